@@ -1,0 +1,135 @@
+//! Reading and writing models as free MPS and CPLEX LP files.
+//!
+//! Both formats share [`NameMap`] (how names were sanitised on write), [`Warning`] (what a
+//! reader accepted but found odd), and [`ReadError`] (a file-level error naming the path).
+
+pub mod lp;
+pub mod mps;
+
+use crate::milp::Model;
+use indexmap::IndexMap;
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
+
+/// How names were changed when writing: original name → written name, only for names that
+/// had to change. Variables and rows are kept apart because they live in separate namespaces.
+#[derive(Clone, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct NameMap {
+    /// Renamed variables.
+    pub vars: IndexMap<String, String>,
+    /// Renamed rows.
+    pub rows: IndexMap<String, String>,
+}
+
+impl NameMap {
+    /// Whether every name was written unchanged.
+    pub fn is_identity(&self) -> bool {
+        self.vars.is_empty() && self.rows.is_empty()
+    }
+}
+
+/// Something a reader accepted but that may not mean what the author intended.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Warning {
+    /// 1-based line number.
+    pub line: usize,
+    /// What was odd and what the reader did.
+    pub message: String,
+}
+
+impl std::fmt::Display for Warning {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "line {}: {}", self.line, self.message)
+    }
+}
+
+/// A model read from a file, with the reader's warnings.
+#[derive(Clone, Debug)]
+pub struct ReadOutcome {
+    /// The model.
+    pub model: Model,
+    /// Warnings, in file order.
+    pub warnings: Vec<Warning>,
+}
+
+/// A file format.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Format {
+    /// Free (or fixed) MPS.
+    Mps,
+    /// CPLEX LP.
+    Lp,
+}
+
+impl Format {
+    /// The format named by a path's extension (`.mps`, `.lp`, also under `.gz` is not supported).
+    pub fn from_path(path: &Path) -> Option<Format> {
+        match path.extension()?.to_str()?.to_ascii_lowercase().as_str() {
+            "mps" => Some(Format::Mps),
+            "lp" => Some(Format::Lp),
+            _ => None,
+        }
+    }
+}
+
+/// Why a file could not be read or written.
+#[derive(Debug, thiserror::Error)]
+pub enum FileErrorKind {
+    /// The extension is neither `.mps` nor `.lp`.
+    #[error("unknown file format (expected a .mps or .lp extension)")]
+    UnknownFormat,
+    /// The operating system refused.
+    #[error(transparent)]
+    Io(#[from] std::io::Error),
+    /// The MPS text is malformed.
+    #[error(transparent)]
+    Mps(#[from] mps::ParseError),
+    /// The LP text is malformed.
+    #[error(transparent)]
+    Lp(#[from] lp::ParseError),
+    /// The model read is structurally invalid (e.g. a NaN coefficient).
+    #[error(transparent)]
+    Model(#[from] crate::milp::ModelError),
+}
+
+/// A file-level error: which file, and what went wrong.
+#[derive(Debug, thiserror::Error)]
+#[error("{}: {kind}", path.display())]
+pub struct FileError {
+    /// The file.
+    pub path: PathBuf,
+    /// What went wrong.
+    #[source]
+    pub kind: FileErrorKind,
+}
+
+fn file_err(path: &Path, kind: impl Into<FileErrorKind>) -> FileError {
+    FileError { path: path.to_path_buf(), kind: kind.into() }
+}
+
+/// Reads a `.mps` or `.lp` file (chosen by extension) and validates the model.
+pub fn read_model_file(path: &Path) -> Result<ReadOutcome, FileError> {
+    let format = Format::from_path(path).ok_or_else(|| file_err(path, FileErrorKind::UnknownFormat))?;
+    let text = std::fs::read_to_string(path).map_err(|e| file_err(path, e))?;
+    let outcome = match format {
+        Format::Mps => mps::read_str(&text).map_err(|e| file_err(path, e))?,
+        Format::Lp => lp::read_str(&text).map_err(|e| file_err(path, e))?,
+    };
+    outcome.model.validate().map_err(|e| file_err(path, e))?;
+    Ok(outcome)
+}
+
+/// Writes a model to a `.mps` or `.lp` file (chosen by extension) and returns the name map.
+pub fn write_model_file(model: &Model, path: &Path) -> Result<NameMap, FileError> {
+    let format = Format::from_path(path).ok_or_else(|| file_err(path, FileErrorKind::UnknownFormat))?;
+    let file = std::fs::File::create(path).map_err(|e| file_err(path, e))?;
+    let mut w = std::io::BufWriter::with_capacity(1 << 20, file);
+    let map = match format {
+        Format::Mps => mps::write(model, &mut w, &mps::WriteOptions::default()),
+        Format::Lp => lp::write(model, &mut w, &lp::WriteOptions::default()),
+    }
+    .map_err(|e| file_err(path, e))?;
+    std::io::Write::flush(&mut w).map_err(|e| file_err(path, e))?;
+    Ok(map)
+}

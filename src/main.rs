@@ -1,0 +1,184 @@
+//! The `netspec` command-line tool: a thin layer over the library.
+
+use anyhow::{bail, Context, Result};
+use clap::{Args, Parser, Subcommand};
+use netspec::io::{read_model_file, write_model_file};
+use netspec::milp::Tolerances;
+use netspec::report::{SolveReport, SCHEMA_VERSION};
+use netspec::solvers::{LogTarget, SolveOptions, SolverKind};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+/// Exit code when the solver's answer fails netspec's independent check.
+const EXIT_CHECK_FAILED: u8 = 3;
+
+#[derive(Parser)]
+#[command(name = "netspec", version, about = "Network design from functional specifications, by integer programming", long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Solve an MPS or LP file and check the answer independently.
+    #[command(name = "solve-file")]
+    SolveFile {
+        /// The model file (`.mps` or `.lp`).
+        file: PathBuf,
+        #[command(flatten)]
+        solve: SolveArgs,
+        /// Also write the JSON result (schema in docs/result-schema.md) here; `-` for stdout.
+        #[arg(long, value_name = "PATH")]
+        json: Option<PathBuf>,
+    },
+    /// Convert a model between MPS and LP (formats chosen by extension).
+    Convert {
+        /// Input file (`.mps` or `.lp`).
+        input: PathBuf,
+        /// Output file (`.mps` or `.lp`).
+        output: PathBuf,
+    },
+    /// List the compiled backends with their versions and capabilities.
+    Solvers {
+        /// Print JSON instead of a table.
+        #[arg(long)]
+        json: bool,
+    },
+}
+
+/// Options shared by every command that solves.
+#[derive(Args, Clone)]
+struct SolveArgs {
+    /// Backend: highs, cbc, scip, microlp or good_lp (default: the embedded HiGHS).
+    #[arg(long, value_name = "NAME")]
+    solver: Option<SolverKind>,
+    /// Wall-clock time limit in seconds.
+    #[arg(long, value_name = "SECONDS")]
+    time_limit: Option<f64>,
+    /// Relative MIP gap at which to stop.
+    #[arg(long, value_name = "REL")]
+    gap: Option<f64>,
+    /// Absolute MIP gap at which to stop.
+    #[arg(long, value_name = "ABS")]
+    abs_gap: Option<f64>,
+    /// Number of threads.
+    #[arg(long)]
+    threads: Option<u32>,
+    /// Random seed.
+    #[arg(long)]
+    seed: Option<u64>,
+    /// Branch-and-bound node limit.
+    #[arg(long)]
+    node_limit: Option<u64>,
+    /// Show the solver's own log on stdout.
+    #[arg(long, conflicts_with = "log_file")]
+    verbose: bool,
+    /// Write the solver's own log to this file.
+    #[arg(long, value_name = "PATH")]
+    log_file: Option<PathBuf>,
+}
+
+impl SolveArgs {
+    fn options(&self) -> SolveOptions {
+        SolveOptions {
+            time_limit: self.time_limit,
+            rel_gap: self.gap,
+            abs_gap: self.abs_gap,
+            threads: self.threads,
+            seed: self.seed,
+            node_limit: self.node_limit,
+            log: match (&self.log_file, self.verbose) {
+                (Some(p), _) => LogTarget::File(p.clone()),
+                (None, true) => LogTarget::Stdout,
+                (None, false) => LogTarget::Quiet,
+            },
+            mip_start: None,
+        }
+    }
+
+    fn solver(&self) -> Result<SolverKind> {
+        match self.solver {
+            Some(k) => Ok(k),
+            None => SolverKind::default_kind().context("no backend compiled in"),
+        }
+    }
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match run(cli) {
+        Ok(code) => code,
+        Err(e) => {
+            eprintln!("error: {e}");
+            for cause in e.chain().skip(1) {
+                eprintln!("  caused by: {cause}");
+            }
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn run(cli: Cli) -> Result<ExitCode> {
+    match cli.command {
+        Command::SolveFile { file, solve, json } => solve_file(&file, &solve, json.as_deref()),
+        Command::Convert { input, output } => {
+            let read = read_model_file(&input)?;
+            for w in &read.warnings {
+                eprintln!("warning: {}: {w}", input.display());
+            }
+            let map = write_model_file(&read.model, &output)?;
+            println!(
+                "wrote {} ({}){}",
+                output.display(),
+                read.model.stats(),
+                if map.is_identity() { String::new() } else { format!("; {} names sanitised", map.vars.len() + map.rows.len()) }
+            );
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Solvers { json } => {
+            let list = netspec::report::solver_list();
+            if json {
+                println!("{}", serde_json::to_string_pretty(&list)?);
+            } else {
+                for s in &list {
+                    println!("{:<8} {:<10} {}", s.name, s.version, s.capability_summary());
+                }
+                let missing: Vec<_> = SolverKind::ALL.iter().filter(|k| !k.is_compiled()).map(|k| k.name()).collect();
+                if !missing.is_empty() {
+                    println!("not compiled in: {} (enable the cargo features of the same names)", missing.join(", "));
+                }
+            }
+            Ok(ExitCode::SUCCESS)
+        }
+    }
+}
+
+fn solve_file(file: &std::path::Path, args: &SolveArgs, json: Option<&std::path::Path>) -> Result<ExitCode> {
+    let read = read_model_file(file)?;
+    for w in &read.warnings {
+        eprintln!("warning: {}: {w}", file.display());
+    }
+    let kind = args.solver()?;
+    let solver = kind.instance()?;
+    let options = args.options();
+    let result = solver.solve(&read.model, &options).with_context(|| format!("solving {}", file.display()))?;
+    let report = SolveReport::new(file.display().to_string(), &read.model, options, result, &Tolerances::default());
+    print!("{}", report.summary());
+    if let Some(path) = json {
+        let text = serde_json::to_string_pretty(&report)?;
+        if path.as_os_str() == "-" {
+            println!("{text}");
+        } else {
+            std::fs::write(path, text + "\n").with_context(|| format!("writing {}", path.display()))?;
+            println!("result     {} (schema v{SCHEMA_VERSION})", path.display());
+        }
+    }
+    if report.check.as_ref().is_some_and(|c| !c.is_feasible()) {
+        return Ok(ExitCode::from(EXIT_CHECK_FAILED));
+    }
+    if let netspec::solvers::Termination::Error(e) = &report.result.termination {
+        bail!("the solver failed: {e}");
+    }
+    Ok(ExitCode::SUCCESS)
+}

@@ -1,0 +1,9 @@
+//! The solver-neutral MILP model, its validation and the independent feasibility checker.
+
+pub mod check;
+pub mod model;
+pub mod validate;
+
+pub use check::{check_point, objectives_agree, CheckReport, Tolerances, Violation};
+pub use model::{row_kind, Model, RowId, RowKind, RowView, Sense, VarId, VarKind, Variable};
+pub use validate::{Location, ModelError, ModelErrorKind, ModelStats};

@@ -1,0 +1,321 @@
+//! microlp backend (pure Rust, crate `microlp` 0.7: simplex plus branch and bound).
+//!
+//! # How the model is given to microlp
+//!
+//! * microlp's constraints are one-sided (`≤`, `≥`, `=`): a ranged row becomes two constraints,
+//!   a free row is left out.
+//! * The objective constant is carried by an extra variable fixed at 1 (an integer variable for a
+//!   MIP, so that microlp's integral-objective pruning is not lost), so that microlp's objective,
+//!   best bound and relative gap all include it, as netspec's own [`gap`](super::gap) does. The
+//!   variable is removed from the reported solution. A model without a constant gets no such
+//!   variable.
+//! * Integer bounds must be integers in `i32` range: netspec rounds a fractional bound inwards
+//!   and gives an infinite one as `i32::MIN`/`i32::MAX` (so an "unbounded" integer variable is
+//!   limited to ±2^31); a finite integer bound outside `i32` is refused
+//!   ([`SolverErrorKind::ModelUnsupported`]).
+//!
+//! # Options
+//!
+//! | option | microlp |
+//! |---|---|
+//! | `time_limit` | `SolveOptions::time_limit` (wall clock, fractional seconds) |
+//! | `rel_gap` | `SolveOptions::mip_gap` (`(incumbent − bound) / |incumbent|`) |
+//! | `node_limit` | `SolveOptions::node_limit` (the root LP is not a node) |
+//! | `mip_start` | `SolveOptions::warm_start` (a hint for a MIP: an infeasible one is ignored; an LP has no use for it) |
+//! | `abs_gap`, `threads` > 1, `seed`, any log | unsupported: microlp has no such option and logs only through the `log` crate |
+//!
+//! The result reports microlp's best bound, its node count and its own elapsed time.
+
+use super::{preflight, Capabilities, LimitKind, SolveOptions, SolveResult, Solver, SolverError, SolverErrorKind, SolverKind, Termination};
+use crate::milp::{Model, RowKind, Sense, VarKind};
+use microlp::{ComparisonOp, OptimizationDirection, Problem, Variable};
+use std::time::{Duration, Instant};
+
+/// The microlp backend.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct MicrolpSolver;
+
+const KIND: SolverKind = SolverKind::Microlp;
+
+/// The version of the microlp crate netspec is built with.
+pub const MICROLP_VERSION: &str = "0.7.0";
+
+/// An integer bound for microlp: rounded inwards, infinite as the `i32` extreme, `None` when a
+/// finite bound does not fit in `i32`.
+fn int_bound(b: f64, lower: bool) -> Option<i32> {
+    if b.is_infinite() {
+        return Some(if lower { i32::MIN } else { i32::MAX });
+    }
+    let r = if lower { b.ceil() } else { b.floor() };
+    (i32::MIN as f64..=i32::MAX as f64).contains(&r).then_some(r as i32)
+}
+
+/// The microlp problem, the model's variables in [`crate::milp::VarId`] order, and the variable
+/// carrying the objective constant (if any).
+struct Loaded {
+    problem: Problem,
+    vars: Vec<Variable>,
+    constant: Option<Variable>,
+}
+
+fn load(model: &Model) -> Result<Loaded, SolverError> {
+    let mut problem = Problem::new(match model.sense {
+        Sense::Minimize => OptimizationDirection::Minimize,
+        Sense::Maximize => OptimizationDirection::Maximize,
+    });
+    let mut vars = Vec::with_capacity(model.num_vars());
+    for v in model.vars() {
+        let var = match v.kind {
+            VarKind::Continuous => problem.add_var(v.obj, (v.lb, v.ub)),
+            VarKind::Integer | VarKind::Binary => {
+                let (lo, hi) = match (int_bound(v.lb, true), int_bound(v.ub, false)) {
+                    (Some(lo), Some(hi)) => (lo, hi),
+                    _ => {
+                        return Err(SolverError::new(
+                            KIND,
+                            SolverErrorKind::ModelUnsupported(format!(
+                                "integer variable `{}` has a bound outside microlp's i32 range [{}, {}]",
+                                v.name, v.lb, v.ub
+                            )),
+                        ))
+                    }
+                };
+                // Bounds that round past each other (e.g. [0.2, 0.8]) leave no integer: keep them
+                // crossed so that microlp reports the model infeasible.
+                problem.add_integer_var(v.obj, (lo, hi))
+            }
+        };
+        vars.push(var);
+    }
+    let constant = (model.obj_constant != 0.0).then(|| {
+        if model.is_mip() {
+            problem.add_integer_var(model.obj_constant, (1, 1))
+        } else {
+            problem.add_var(model.obj_constant, (1.0, 1.0))
+        }
+    });
+    for row in model.rows() {
+        let terms: Vec<(Variable, f64)> = row.terms().map(|(v, a)| (vars[v.index()], a)).collect();
+        match row.kind() {
+            RowKind::Free => {}
+            RowKind::Le => problem.add_constraint(terms, ComparisonOp::Le, row.rhs),
+            RowKind::Ge => problem.add_constraint(terms, ComparisonOp::Ge, row.lhs),
+            RowKind::Eq => problem.add_constraint(terms, ComparisonOp::Eq, row.rhs),
+            RowKind::Ranged => {
+                problem.add_constraint(terms.clone(), ComparisonOp::Ge, row.lhs);
+                problem.add_constraint(terms, ComparisonOp::Le, row.rhs);
+            }
+        }
+    }
+    Ok(Loaded { problem, vars, constant })
+}
+
+fn options(loaded: &Loaded, o: &SolveOptions) -> microlp::SolveOptions {
+    let mut opts = microlp::SolveOptions::default();
+    // Durations beyond what `Duration` holds count as no limit, as microlp reads `Duration::MAX`.
+    opts.time_limit = o.time_limit.map(|t| Duration::try_from_secs_f64(t).unwrap_or(Duration::MAX));
+    opts.node_limit = o.node_limit;
+    if let Some(g) = o.rel_gap {
+        opts.mip_gap = g;
+    }
+    if let Some(x) = &o.mip_start {
+        // microlp refuses NaN or infinite hint values outright; leave those variables to it.
+        let mut hint: Vec<(Variable, f64)> =
+            loaded.vars.iter().zip(x).filter(|(_, v)| v.is_finite()).map(|(&var, &v)| (var, v)).collect();
+        hint.extend(loaded.constant.map(|c| (c, 1.0)));
+        opts.warm_start = Some(hint);
+    }
+    opts
+}
+
+impl Solver for MicrolpSolver {
+    fn kind(&self) -> SolverKind {
+        KIND
+    }
+
+    fn version(&self) -> String {
+        MICROLP_VERSION.to_string()
+    }
+
+    fn capabilities(&self) -> Capabilities {
+        Capabilities {
+            integer_variables: true,
+            time_limit: true,
+            time_limit_whole_seconds: false,
+            rel_gap: true,
+            abs_gap: false,
+            threads: false,
+            seed: false,
+            node_limit: true,
+            log_stdout: false,
+            log_file: false,
+            mip_start: true,
+            reports_dual_bound: true,
+            reports_nodes: true,
+            reports_solver_time: true,
+        }
+    }
+
+    fn solve(&self, model: &Model, o: &SolveOptions) -> Result<SolveResult, SolverError> {
+        let t0 = Instant::now();
+        preflight(KIND, &self.capabilities(), model, o)?;
+        let loaded = load(model)?;
+        let opts = options(&loaded, o);
+        let outcome = loaded.problem.solve_with(opts);
+        let mut r = SolveResult::empty(KIND, self.version(), Termination::Optimal);
+        match outcome {
+            Err(microlp::Error::Infeasible) => r.termination = Termination::Infeasible,
+            Err(microlp::Error::Unbounded) => r.termination = Termination::Unbounded,
+            Err(microlp::Error::InternalError(e)) => r.termination = Termination::Error(format!("microlp: {e}")),
+            Err(microlp::Error::InvalidOptions(e) | microlp::Error::InvalidOperation(e)) => {
+                return Err(SolverError::new(KIND, SolverErrorKind::Rejected(format!("microlp: {e}"))))
+            }
+            Err(e) => r.termination = Termination::Error(format!("microlp: {e}")),
+            Ok(outcome) => {
+                let stats = outcome.stats();
+                r.termination = match outcome.termination_reason() {
+                    microlp::TerminationReason::ProvenOptimal => Termination::Optimal,
+                    // microlp stopped on the user's gap: `finish` says Limit(Gap) unless the gap is
+                    // within the default tolerance anyway.
+                    microlp::TerminationReason::MipGap => Termination::Optimal,
+                    microlp::TerminationReason::TimeLimit => Termination::Limit(LimitKind::Time),
+                    microlp::TerminationReason::NodeLimit => Termination::Limit(LimitKind::Node),
+                    _ => Termination::Limit(LimitKind::Other),
+                };
+                if let Some(sol) = outcome.solution() {
+                    r.primal = Some(loaded.vars.iter().map(|&v| sol.var_value(v)).collect());
+                    r.objective = Some(sol.objective());
+                }
+                r.dual_bound = stats.best_bound.filter(|b| b.is_finite());
+                r.nodes = Some(stats.nodes_solved);
+                r.solver_time = Some(stats.elapsed.as_secs_f64());
+            }
+        }
+        if model.num_vars() == 0 && r.termination == Termination::Optimal && r.primal.is_none() {
+            r.primal = Some(Vec::new());
+            r.objective = Some(model.obj_constant);
+            r.dual_bound = Some(model.obj_constant);
+        }
+        r.finish(model.sense, o.rel_gap.is_some() || o.abs_gap.is_some());
+        r.wall_time = t0.elapsed().as_secs_f64();
+        Ok(r)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::milp::{check_point, Tolerances, VarId};
+    use crate::solvers::LogTarget;
+
+    fn assert_feasible(model: &Model, r: &SolveResult) {
+        let x = r.primal.as_ref().expect("a primal point");
+        let rep = check_point(model, x, &Tolerances::default());
+        assert!(rep.is_feasible(), "{:?}", rep.violations);
+        let obj = r.objective.expect("an objective");
+        assert!((rep.objective - obj).abs() < 1e-6 * (1.0 + obj.abs()), "{} vs {}", rep.objective, obj);
+    }
+
+    fn lp() -> Model {
+        let mut m = Model::new("lp");
+        let x = m.add_continuous("x", 0.0, f64::INFINITY, -1.0);
+        let y = m.add_continuous("y", 0.0, f64::INFINITY, -1.0);
+        m.add_le("c1", [(x, 1.0), (y, 2.0)], 4.0);
+        m.add_le("c2", [(x, 3.0), (y, 1.0)], 6.0);
+        m.obj_constant = 7.0;
+        m
+    }
+
+    fn knapsack() -> Model {
+        let mut m = Model::new("knap");
+        m.sense = Sense::Maximize;
+        m.obj_constant = 100.0;
+        let w = [2.0, 8.0, 4.0, 2.0, 5.0];
+        let p = [5.0, 3.0, 2.0, 7.0, 4.0];
+        let xs: Vec<_> = p.iter().enumerate().map(|(i, &c)| m.add_binary(format!("x{i}"), c)).collect();
+        m.add_le("cap", xs.iter().copied().zip(w), 10.0);
+        m
+    }
+
+    #[test]
+    fn solves_an_lp_with_a_constant() {
+        let m = lp();
+        let r = MicrolpSolver.solve(&m, &SolveOptions::default()).unwrap();
+        assert_eq!(r.termination, Termination::Optimal);
+        assert_feasible(&m, &r);
+        assert!((r.objective.unwrap() - 4.2).abs() < 1e-6);
+        assert!((r.dual_bound.unwrap() - 4.2).abs() < 1e-6);
+    }
+
+    #[test]
+    fn solves_a_max_knapsack_with_a_constant() {
+        let m = knapsack();
+        let r = MicrolpSolver.solve(&m, &SolveOptions::default()).unwrap();
+        assert_eq!(r.termination, Termination::Optimal);
+        assert_feasible(&m, &r);
+        assert!((r.objective.unwrap() - 116.0).abs() < 1e-6);
+        assert!((r.dual_bound.unwrap() - 116.0).abs() < 1e-6);
+    }
+
+    #[test]
+    fn ranged_and_free_rows() {
+        // max x + y, 1 <= x - y <= 2 (ranged), a free row, x, y in [0, 10]: optimum 20 - ... x=10, y=8 → 18.
+        let mut m = Model::new("ranged");
+        m.sense = Sense::Maximize;
+        let x = m.add_continuous("x", 0.0, 10.0, 1.0);
+        let y = m.add_integer("y", 0.0, 10.0, 1.0);
+        m.add_row("r", 1.0, 2.0, [(x, 1.0), (y, -1.0)]);
+        m.add_row("free", f64::NEG_INFINITY, f64::INFINITY, [(x, 1.0)]);
+        let r = MicrolpSolver.solve(&m, &SolveOptions::default()).unwrap();
+        assert_eq!(r.termination, Termination::Optimal);
+        assert_feasible(&m, &r);
+        assert!((r.objective.unwrap() - 18.0).abs() < 1e-6);
+    }
+
+    #[test]
+    fn infeasible_is_an_outcome() {
+        let mut m = Model::new("inf");
+        let x = m.add_integer("x", 0.0, 10.0, 1.0);
+        m.add_eq("half", [(x, 2.0)], 1.0);
+        let r = MicrolpSolver.solve(&m, &SolveOptions::default()).unwrap();
+        assert_eq!(r.termination, Termination::Infeasible);
+        assert!(r.primal.is_none());
+        let mut m = lp();
+        m.add_ge("big", [(VarId(0), 1.0)], 100.0);
+        let r = MicrolpSolver.solve(&m, &SolveOptions::default()).unwrap();
+        assert_eq!(r.termination, Termination::Infeasible);
+    }
+
+    #[test]
+    fn empty_model() {
+        let mut m = Model::new("empty");
+        m.obj_constant = 3.5;
+        let r = MicrolpSolver.solve(&m, &SolveOptions::default()).unwrap();
+        assert_eq!(r.termination, Termination::Optimal);
+        assert_eq!(r.primal.as_deref(), Some(&[][..]));
+        assert_eq!(r.objective, Some(3.5));
+        let r = MicrolpSolver.solve(&Model::new("empty0"), &SolveOptions::default()).unwrap();
+        assert_eq!(r.objective, Some(0.0));
+    }
+
+    #[test]
+    fn unsupported_options_are_refused() {
+        for o in [
+            SolveOptions { abs_gap: Some(1.0), ..Default::default() },
+            SolveOptions { seed: Some(1), ..Default::default() },
+            SolveOptions { threads: Some(2), ..Default::default() },
+            SolveOptions { log: LogTarget::Stdout, ..Default::default() },
+        ] {
+            let e = MicrolpSolver.solve(&lp(), &o).unwrap_err();
+            assert!(matches!(e.kind, SolverErrorKind::Unsupported { .. }), "{e}");
+        }
+    }
+
+    #[test]
+    fn out_of_range_integer_bound_is_refused() {
+        let mut m = Model::new("big");
+        m.add_integer("x", 0.0, 1e12, 1.0);
+        let e = MicrolpSolver.solve(&m, &SolveOptions::default()).unwrap_err();
+        assert!(matches!(e.kind, SolverErrorKind::ModelUnsupported(_)));
+    }
+}

@@ -1,0 +1,201 @@
+//! MILP backends behind one small trait.
+//!
+//! Every backend lives in its own file behind a cargo feature named after the solver. A solve
+//! returns a [`SolveResult`] that says *why* the solver stopped ([`Termination`]) separately from
+//! *whether* it has a solution: infeasible is an outcome, not an `Err`. An `Err` means the solve
+//! could not be attempted (an option the backend cannot honour, a model the backend rejects).
+
+#[cfg(feature = "cbc")]
+pub mod cbc;
+#[cfg(feature = "good_lp")]
+pub mod good_lp_bridge;
+#[cfg(feature = "highs")]
+pub mod highs;
+#[cfg(feature = "microlp")]
+pub mod microlp;
+#[cfg(feature = "scip")]
+pub mod scip;
+
+mod options;
+mod result;
+
+pub use options::{Capabilities, LogTarget, SolveOptions};
+pub use result::{gap, LimitKind, SolveResult, Termination};
+
+use crate::milp::Model;
+use serde::{Deserialize, Serialize};
+
+/// A MILP backend.
+pub trait Solver {
+    /// Which backend this is.
+    fn kind(&self) -> SolverKind;
+    /// The underlying solver's version string (e.g. `1.11.0`).
+    fn version(&self) -> String;
+    /// What options and results the backend supports.
+    fn capabilities(&self) -> Capabilities;
+    /// Solves `model`. Returns `Err` only when the solve cannot be attempted: an option the
+    /// backend cannot honour ([`SolverErrorKind::Unsupported`]) or a model it rejects.
+    fn solve(&self, model: &Model, options: &SolveOptions) -> Result<SolveResult, SolverError>;
+}
+
+/// The backends known to netspec (compiled in or not).
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum SolverKind {
+    /// HiGHS, embedded (built from source by `highs-sys`).
+    Highs,
+    /// COIN-OR CBC, linked from the Debian package.
+    Cbc,
+    /// SCIP 10, linked from the pyscipopt wheel's shared library.
+    Scip,
+    /// microlp, pure Rust.
+    Microlp,
+    /// good_lp's solver selection (the good_lp bridge).
+    GoodLp,
+}
+
+impl SolverKind {
+    /// Every backend, in a fixed order.
+    pub const ALL: [SolverKind; 5] =
+        [SolverKind::Highs, SolverKind::Cbc, SolverKind::Scip, SolverKind::Microlp, SolverKind::GoodLp];
+
+    /// The name used on the command line and in results.
+    pub fn name(self) -> &'static str {
+        match self {
+            SolverKind::Highs => "highs",
+            SolverKind::Cbc => "cbc",
+            SolverKind::Scip => "scip",
+            SolverKind::Microlp => "microlp",
+            SolverKind::GoodLp => "good_lp",
+        }
+    }
+
+    /// The cargo feature that compiles this backend in.
+    pub fn feature(self) -> &'static str {
+        self.name()
+    }
+
+    /// Whether this backend was compiled in.
+    pub fn is_compiled(self) -> bool {
+        match self {
+            SolverKind::Highs => cfg!(feature = "highs"),
+            SolverKind::Cbc => cfg!(feature = "cbc"),
+            SolverKind::Scip => cfg!(feature = "scip"),
+            SolverKind::Microlp => cfg!(feature = "microlp"),
+            SolverKind::GoodLp => cfg!(feature = "good_lp"),
+        }
+    }
+
+    /// The compiled backends, in a fixed order.
+    pub fn compiled() -> Vec<SolverKind> {
+        Self::ALL.into_iter().filter(|k| k.is_compiled()).collect()
+    }
+
+    /// The default backend: HiGHS when compiled in (it is embedded), else the first compiled.
+    pub fn default_kind() -> Option<SolverKind> {
+        Self::compiled().into_iter().next()
+    }
+
+    /// An instance of this backend, or an error if it was not compiled in.
+    pub fn instance(self) -> Result<Box<dyn Solver + Send + Sync>, SolverError> {
+        match self {
+            #[cfg(feature = "highs")]
+            SolverKind::Highs => Ok(Box::new(highs::HighsSolver)),
+            #[cfg(feature = "cbc")]
+            SolverKind::Cbc => Ok(Box::new(cbc::CbcSolver)),
+            #[cfg(feature = "scip")]
+            SolverKind::Scip => Ok(Box::new(scip::ScipSolver)),
+            #[cfg(feature = "microlp")]
+            SolverKind::Microlp => Ok(Box::new(microlp::MicrolpSolver)),
+            #[cfg(feature = "good_lp")]
+            SolverKind::GoodLp => Ok(Box::new(good_lp_bridge::GoodLpSolver)),
+            #[allow(unreachable_patterns)]
+            other => Err(SolverError::new(other, SolverErrorKind::NotCompiled)),
+        }
+    }
+}
+
+impl std::fmt::Display for SolverKind {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl std::str::FromStr for SolverKind {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        Self::ALL
+            .into_iter()
+            .find(|k| k.name().eq_ignore_ascii_case(s) || (s.eq_ignore_ascii_case("good-lp") && *k == SolverKind::GoodLp))
+            .ok_or_else(|| {
+                let names: Vec<_> = Self::ALL.iter().map(|k| k.name()).collect();
+                format!("unknown solver `{s}` (known: {})", names.join(", "))
+            })
+    }
+}
+
+/// Why a solve could not be attempted.
+#[derive(Debug, thiserror::Error)]
+pub enum SolverErrorKind {
+    /// The backend was not compiled in.
+    #[error("backend not compiled in (enable the cargo feature)")]
+    NotCompiled,
+    /// The backend cannot honour an option that was set.
+    #[error("option `{option}` is not supported: {reason}")]
+    Unsupported {
+        /// The option's name, as in [`SolveOptions`].
+        option: &'static str,
+        /// Why, in a few words.
+        reason: String,
+    },
+    /// The model is invalid (see [`Model::validate`]).
+    #[error("invalid model: {0}")]
+    InvalidModel(#[from] crate::milp::ModelError),
+    /// The model has a feature this backend cannot represent (e.g. integers on an LP-only
+    /// solver).
+    #[error("model not supported: {0}")]
+    ModelUnsupported(String),
+    /// The native solver refused the model or an option.
+    #[error("solver rejected the input: {0}")]
+    Rejected(String),
+    /// Writing the log file failed.
+    #[error("log file: {0}")]
+    Io(#[from] std::io::Error),
+}
+
+/// An error from a backend: which one, and what.
+#[derive(Debug, thiserror::Error)]
+#[error("{solver}: {kind}")]
+pub struct SolverError {
+    /// The backend.
+    pub solver: SolverKind,
+    /// What went wrong.
+    #[source]
+    pub kind: SolverErrorKind,
+}
+
+impl SolverError {
+    /// Builds an error.
+    pub fn new(solver: SolverKind, kind: impl Into<SolverErrorKind>) -> Self {
+        SolverError { solver, kind: kind.into() }
+    }
+}
+
+/// Solves with a backend after validating the model and checking options against the backend's
+/// capabilities. Every backend's `solve` calls this first.
+pub(crate) fn preflight(kind: SolverKind, caps: &Capabilities, model: &Model, options: &SolveOptions) -> Result<(), SolverError> {
+    model.validate().map_err(|e| SolverError::new(kind, e))?;
+    caps.check(options).map_err(|k| SolverError::new(kind, k))?;
+    if model.is_mip() && !caps.integer_variables {
+        return Err(SolverError::new(kind, SolverErrorKind::ModelUnsupported("integer variables".into())));
+    }
+    if let Some(start) = &options.mip_start {
+        if start.len() != model.num_vars() {
+            return Err(SolverError::new(
+                kind,
+                SolverErrorKind::Rejected(format!("MIP start has {} values for {} variables", start.len(), model.num_vars())),
+            ));
+        }
+    }
+    Ok(())
+}

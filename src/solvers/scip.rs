@@ -1,0 +1,403 @@
+//! SCIP backend (crate `russcip`, with `scip-sys` on the model's raw pointer for what the safe
+//! crate does not wrap: the objective offset, the raw solve status, the dual bound, the node count
+//! over all restarts, the log file, the message handler's quiet flag and the version).
+//!
+//! SCIP 10 is linked from a shared library (see `scripts/setup.sh`); `russcip` is used without
+//! its default features (no bindgen).
+//!
+//! # Options
+//!
+//! | option | SCIP parameter |
+//! |---|---|
+//! | `time_limit` | `limits/time` (fractional seconds; wall clock, since netspec sets `timing/clocktype` = 2) |
+//! | `rel_gap` / `abs_gap` | `limits/gap` / `limits/absgap` (SCIP's gap is relative to the smaller of the two bounds) |
+//! | `threads` | unsupported: the sequential solver uses one thread |
+//! | `seed` | `randomization/randomseedshift` (the seed modulo 2^31) |
+//! | `node_limit` | `limits/totalnodes` (nodes over all restarts, capped at `i64::MAX`) |
+//! | `log` | `display/verblevel` 0 plus a quiet message handler (quiet); verbosity 4 on stdout; or SCIP's own log file (`SCIPsetMessagehdlrLogfile`) with the console quiet |
+//! | `mip_start` | an original-space solution checked and added before the solve (an infeasible start is dropped) |
+//!
+//! Values of magnitude 1e20 or more are infinite for SCIP; netspec passes infinite bounds and
+//! sides as SCIP's infinity.
+
+use super::{preflight, Capabilities, LimitKind, LogTarget, SolveOptions, SolveResult, Solver, SolverError, SolverErrorKind, SolverKind, Termination};
+use crate::milp::{Model, Sense, VarKind};
+use russcip::{ffi, ObjSense, ProblemOrSolving, VarType, Variable, WithSolutions};
+use std::ffi::CString;
+use std::path::Path;
+use std::time::Instant;
+
+/// The SCIP backend.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct ScipSolver;
+
+const KIND: SolverKind = SolverKind::Scip;
+
+/// SCIP's version, e.g. `10.0.2`.
+pub fn scip_version() -> String {
+    // SAFETY: pure functions returning compile-time constants of the library.
+    let (major, minor, tech) = unsafe { (ffi::SCIPmajorVersion(), ffi::SCIPminorVersion(), ffi::SCIPtechVersion()) };
+    format!("{major}.{minor}.{tech}")
+}
+
+fn rejected(msg: impl Into<String>) -> SolverError {
+    SolverError::new(KIND, SolverErrorKind::Rejected(msg.into()))
+}
+
+fn retcode(what: &str, rc: impl std::fmt::Debug) -> SolverError {
+    rejected(format!("{what}: SCIP returned {rc:?}"))
+}
+
+/// Clamps ±inf (and anything SCIP would treat as infinite) to SCIP's infinity.
+fn scip_value(v: f64, inf: f64) -> f64 {
+    v.clamp(-inf, inf)
+}
+
+/// Calls a raw SCIP function returning a `SCIP_RETCODE` and turns a failure into an error.
+fn check(what: &str, rc: ffi::SCIP_RETCODE) -> Result<(), SolverError> {
+    if rc == ffi::SCIP_Retcode_SCIP_OKAY {
+        Ok(())
+    } else {
+        Err(retcode(what, rc))
+    }
+}
+
+type Problem = russcip::Model<russcip::ProblemCreated>;
+
+/// A new SCIP instance with the default plugins and the console quiet (callers turn the output
+/// back on when asked).
+fn new_scip() -> Result<russcip::Model<russcip::PluginsIncluded>, SolverError> {
+    let m = russcip::Model::try_new().map_err(|e| retcode("SCIPcreate", e))?;
+    // SAFETY: live SCIP instance; its own default message handler.
+    unsafe { ffi::SCIPsetMessagehdlrQuiet(m.scip_ptr(), 1) };
+    let m = m.set_int_param("display/verblevel", 0).map_err(|e| retcode("display/verblevel", e))?;
+    Ok(m.include_default_plugins())
+}
+
+/// Builds the SCIP problem: variables (with their objective), linear constraints, sense and
+/// objective offset. Returns the problem and its variables in [`crate::milp::VarId`] order.
+fn load(model: &Model) -> Result<(Problem, Vec<Variable>), SolverError> {
+    let name = if model.name.is_empty() || model.name.contains('\0') { "netspec" } else { model.name.as_str() };
+    let mut p = new_scip()?.create_prob(name);
+    let ptr = p.scip_ptr();
+    // SAFETY: live SCIP instance.
+    let inf = unsafe { ffi::SCIPinfinity(ptr) };
+    let vars: Vec<Variable> = model
+        .vars()
+        .iter()
+        .map(|v| {
+            let ty = match v.kind {
+                VarKind::Continuous => VarType::Continuous,
+                VarKind::Integer => VarType::Integer,
+                VarKind::Binary => VarType::Binary,
+            };
+            p.add_var(scip_value(v.lb, inf), scip_value(v.ub, inf), v.obj, &v.name, ty)
+        })
+        .collect();
+    for row in model.rows() {
+        let vs: Vec<&Variable> = row.vars.iter().map(|v| &vars[v.index()]).collect();
+        p.add_cons(vs, row.coefs, scip_value(row.lhs, inf), scip_value(row.rhs, inf), row.name);
+    }
+    let sense = match model.sense {
+        Sense::Minimize => ObjSense::Minimize,
+        Sense::Maximize => ObjSense::Maximize,
+    };
+    let p = p.set_obj_sense(sense);
+    if model.obj_constant != 0.0 {
+        // SAFETY: live SCIP instance in the problem stage.
+        check("SCIPaddOrigObjoffset", unsafe { ffi::SCIPaddOrigObjoffset(p.scip_ptr(), model.obj_constant) })?;
+    }
+    Ok((p, vars))
+}
+
+/// Sets SCIP parameters for the options (the log is handled by [`LogGuard`]).
+fn apply_options(mut p: Problem, vars: &[Variable], o: &SolveOptions) -> Result<Problem, SolverError> {
+    let real = |p: Problem, name: &str, v: f64| p.set_real_param(name, v).map_err(|e| retcode(name, e));
+    // Wall clock for `limits/time` (SCIP's default, set explicitly so it cannot drift).
+    p = p.set_int_param("timing/clocktype", 2).map_err(|e| retcode("timing/clocktype", e))?;
+    if let Some(t) = o.time_limit {
+        p = real(p, "limits/time", t)?;
+    }
+    if let Some(g) = o.rel_gap {
+        p = real(p, "limits/gap", g)?;
+    }
+    if let Some(g) = o.abs_gap {
+        p = real(p, "limits/absgap", g)?;
+    }
+    if let Some(s) = o.seed {
+        let shift = (s % (i32::MAX as u64 + 1)) as i32;
+        p = p.set_int_param("randomization/randomseedshift", shift).map_err(|e| retcode("randomization/randomseedshift", e))?;
+    }
+    if let Some(n) = o.node_limit {
+        let n = n.min(i64::MAX as u64) as i64;
+        p = p.set_longint_param("limits/totalnodes", n).map_err(|e| retcode("limits/totalnodes", e))?;
+    }
+    if let Some(x) = &o.mip_start {
+        let sol = p.create_orig_sol();
+        for (v, &val) in vars.iter().zip(x) {
+            sol.set_val(v, val);
+        }
+        // An infeasible start is refused by SCIP's check and freed; the solve goes on without.
+        let _accepted = p.add_sol(sol).is_ok();
+    }
+    Ok(p)
+}
+
+/// Routes SCIP's log for one solve; closes the log file when dropped.
+struct LogGuard {
+    scip: *mut ffi::SCIP,
+    file: bool,
+}
+
+impl LogGuard {
+    fn new(p: Problem, log: &LogTarget) -> Result<(Problem, LogGuard), SolverError> {
+        let scip = p.scip_ptr();
+        match log {
+            LogTarget::Quiet => Ok((p, LogGuard { scip, file: false })),
+            LogTarget::Stdout => {
+                let p = p.set_int_param("display/verblevel", 4).map_err(|e| retcode("display/verblevel", e))?;
+                // SAFETY: live SCIP instance.
+                unsafe { ffi::SCIPsetMessagehdlrQuiet(scip, 0) };
+                Ok((p, LogGuard { scip, file: false }))
+            }
+            LogTarget::File(path) => {
+                // SCIP only prints an error when it cannot open the file: check first, so that
+                // an unusable path is a typed error rather than a silently missing log.
+                std::fs::OpenOptions::new().create(true).append(true).open(path).map_err(|e| SolverError::new(KIND, e))?;
+                let c = CString::new(path.to_string_lossy().as_bytes()).map_err(|_| rejected("log file path contains NUL"))?;
+                let p = p.set_int_param("display/verblevel", 4).map_err(|e| retcode("display/verblevel", e))?;
+                // SAFETY: live SCIP instance; SCIP copies nothing but opens the file by name now.
+                unsafe { ffi::SCIPsetMessagehdlrLogfile(scip, c.as_ptr()) };
+                Ok((p, LogGuard { scip, file: true }))
+            }
+        }
+    }
+}
+
+impl Drop for LogGuard {
+    fn drop(&mut self) {
+        if self.file {
+            // SAFETY: the SCIP instance outlives the guard (the guard is dropped before the
+            // model in `solve`); NULL closes the log file.
+            unsafe { ffi::SCIPsetMessagehdlrLogfile(self.scip, std::ptr::null()) };
+        }
+    }
+}
+
+fn termination(status: ffi::SCIP_Status) -> Termination {
+    match status {
+        ffi::SCIP_Status_SCIP_STATUS_OPTIMAL => Termination::Optimal,
+        ffi::SCIP_Status_SCIP_STATUS_INFEASIBLE => Termination::Infeasible,
+        ffi::SCIP_Status_SCIP_STATUS_UNBOUNDED => Termination::Unbounded,
+        ffi::SCIP_Status_SCIP_STATUS_INFORUNBD => Termination::InfeasibleOrUnbounded,
+        ffi::SCIP_Status_SCIP_STATUS_TIMELIMIT => Termination::Limit(LimitKind::Time),
+        ffi::SCIP_Status_SCIP_STATUS_NODELIMIT | ffi::SCIP_Status_SCIP_STATUS_TOTALNODELIMIT => Termination::Limit(LimitKind::Node),
+        // Stopped by the user's gap limit: reported optimal, and `SolveResult::finish` turns it
+        // into `Limit(Gap)` when the gap is above the default tolerance.
+        ffi::SCIP_Status_SCIP_STATUS_GAPLIMIT => Termination::Optimal,
+        ffi::SCIP_Status_SCIP_STATUS_SOLLIMIT | ffi::SCIP_Status_SCIP_STATUS_BESTSOLLIMIT => Termination::Limit(LimitKind::Solution),
+        ffi::SCIP_Status_SCIP_STATUS_USERINTERRUPT | ffi::SCIP_Status_SCIP_STATUS_TERMINATE => Termination::Limit(LimitKind::Interrupt),
+        ffi::SCIP_Status_SCIP_STATUS_STALLNODELIMIT
+        | ffi::SCIP_Status_SCIP_STATUS_MEMLIMIT
+        | ffi::SCIP_Status_SCIP_STATUS_PRIMALLIMIT
+        | ffi::SCIP_Status_SCIP_STATUS_DUALLIMIT
+        | ffi::SCIP_Status_SCIP_STATUS_RESTARTLIMIT => Termination::Limit(LimitKind::Other),
+        s => Termination::Error(format!("SCIP status {s}")),
+    }
+}
+
+/// Whether SCIP's statistics (bounds, nodes) can be queried in the instance's current stage.
+fn has_statistics(scip: *mut ffi::SCIP) -> bool {
+    // SAFETY: live SCIP instance.
+    let stage = unsafe { ffi::SCIPgetStage(scip) };
+    (ffi::SCIP_Stage_SCIP_STAGE_TRANSFORMED..=ffi::SCIP_Stage_SCIP_STAGE_SOLVED).contains(&stage)
+}
+
+impl Solver for ScipSolver {
+    fn kind(&self) -> SolverKind {
+        KIND
+    }
+
+    fn version(&self) -> String {
+        scip_version()
+    }
+
+    fn capabilities(&self) -> Capabilities {
+        Capabilities {
+            integer_variables: true,
+            time_limit: true,
+            time_limit_whole_seconds: false,
+            rel_gap: true,
+            abs_gap: true,
+            threads: false,
+            seed: true,
+            node_limit: true,
+            log_stdout: true,
+            log_file: true,
+            mip_start: true,
+            reports_dual_bound: true,
+            reports_nodes: true,
+            reports_solver_time: true,
+        }
+    }
+
+    fn solve(&self, model: &Model, o: &SolveOptions) -> Result<SolveResult, SolverError> {
+        let t0 = Instant::now();
+        preflight(KIND, &self.capabilities(), model, o)?;
+        let (p, vars) = load(model)?;
+        let p = apply_options(p, &vars, o)?;
+        let (p, log) = LogGuard::new(p, &o.log)?;
+        let solved = match p.try_solve() {
+            Ok(s) => s,
+            Err(e) => {
+                drop(log);
+                let mut r = SolveResult::empty(KIND, self.version(), Termination::Error(format!("SCIPsolve returned {e:?}")));
+                r.wall_time = t0.elapsed().as_secs_f64();
+                return Ok(r);
+            }
+        };
+        drop(log);
+        let ptr = solved.scip_ptr();
+        // SAFETY: live SCIP instance after SCIPsolve.
+        let status = unsafe { ffi::SCIPgetStatus(ptr) };
+        let mut r = SolveResult::empty(KIND, self.version(), termination(status));
+        if let Some(sol) = solved.best_sol() {
+            r.primal = Some(vars.iter().map(|v| sol.val(v)).collect());
+            r.objective = Some(sol.obj_val());
+        }
+        if has_statistics(ptr) {
+            // SAFETY: live SCIP instance in a stage where these statistics exist.
+            let (bound, inf, nodes) = unsafe { (ffi::SCIPgetDualbound(ptr), ffi::SCIPinfinity(ptr), ffi::SCIPgetNTotalNodes(ptr)) };
+            let meaningful = !matches!(r.termination, Termination::Infeasible | Termination::Unbounded | Termination::InfeasibleOrUnbounded);
+            r.dual_bound = (meaningful && bound.abs() < inf).then_some(bound);
+            r.nodes = Some(nodes.max(0) as u64);
+        }
+        r.solver_time = Some(solved.solving_time());
+        r.finish(model.sense, o.rel_gap.is_some() || o.abs_gap.is_some());
+        drop(vars);
+        drop(solved);
+        r.wall_time = t0.elapsed().as_secs_f64();
+        Ok(r)
+    }
+}
+
+/// Reads a model file with SCIP's own readers (chosen by the file's extension: `.mps`, `.lp`,
+/// also compressed `.gz`) and solves it quietly (used to check that files netspec writes are read
+/// faithfully by SCIP itself). Returns the termination and, when a solution exists, the objective
+/// of the best one.
+pub fn solve_file_with_native_reader(path: &Path) -> Result<(Termination, Option<f64>), SolverError> {
+    let p = path.to_str().ok_or_else(|| rejected("path is not UTF-8"))?;
+    if p.contains('\0') {
+        return Err(rejected("path contains NUL"));
+    }
+    std::fs::File::open(path).map_err(|e| SolverError::new(KIND, e))?;
+    let m = new_scip()?.read_prob(p).map_err(|e| rejected(format!("SCIP could not read {}: {e:?}", path.display())))?;
+    let solved = m.try_solve().map_err(|e| retcode("SCIPsolve", e))?;
+    // SAFETY: live SCIP instance after SCIPsolve.
+    let t = termination(unsafe { ffi::SCIPgetStatus(solved.scip_ptr()) });
+    let obj = solved.best_sol().map(|s| s.obj_val());
+    Ok((t, obj))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::milp::{check_point, Tolerances, VarId};
+
+    fn assert_feasible(model: &Model, r: &SolveResult) {
+        let x = r.primal.as_ref().expect("a primal point");
+        let rep = check_point(model, x, &Tolerances::default());
+        assert!(rep.is_feasible(), "{:?}", rep.violations);
+        let obj = r.objective.expect("an objective");
+        assert!((rep.objective - obj).abs() < 1e-6 * (1.0 + obj.abs()), "{} vs {}", rep.objective, obj);
+    }
+
+    fn lp() -> Model {
+        let mut m = Model::new("lp");
+        let x = m.add_continuous("x", 0.0, f64::INFINITY, -1.0);
+        let y = m.add_continuous("y", 0.0, f64::INFINITY, -1.0);
+        m.add_le("c1", [(x, 1.0), (y, 2.0)], 4.0);
+        m.add_le("c2", [(x, 3.0), (y, 1.0)], 6.0);
+        m.obj_constant = 7.0;
+        m
+    }
+
+    fn knapsack() -> Model {
+        let mut m = Model::new("knap");
+        m.sense = Sense::Maximize;
+        m.obj_constant = 100.0;
+        let w = [2.0, 8.0, 4.0, 2.0, 5.0];
+        let p = [5.0, 3.0, 2.0, 7.0, 4.0];
+        let xs: Vec<_> = p.iter().enumerate().map(|(i, &c)| m.add_binary(format!("x{i}"), c)).collect();
+        m.add_le("cap", xs.iter().copied().zip(w), 10.0);
+        m
+    }
+
+    #[test]
+    fn version_is_ten() {
+        assert!(scip_version().starts_with("10."), "{}", scip_version());
+    }
+
+    #[test]
+    fn solves_an_lp_with_a_constant() {
+        let m = lp();
+        let r = ScipSolver.solve(&m, &SolveOptions::default()).unwrap();
+        assert_eq!(r.termination, Termination::Optimal);
+        assert_feasible(&m, &r);
+        assert!((r.objective.unwrap() - 4.2).abs() < 1e-6);
+        assert!((r.dual_bound.unwrap() - 4.2).abs() < 1e-6);
+    }
+
+    #[test]
+    fn solves_a_max_knapsack_with_a_constant() {
+        let m = knapsack();
+        let r = ScipSolver.solve(&m, &SolveOptions::default()).unwrap();
+        assert_eq!(r.termination, Termination::Optimal);
+        assert_feasible(&m, &r);
+        assert!((r.objective.unwrap() - 116.0).abs() < 1e-6);
+        assert!((r.dual_bound.unwrap() - 116.0).abs() < 1e-6);
+        assert!(r.nodes.is_some() && r.solver_time.is_some());
+    }
+
+    #[test]
+    fn infeasible_is_an_outcome() {
+        let mut m = Model::new("inf");
+        let x = m.add_integer("x", 0.0, 10.0, 1.0);
+        m.add_eq("half", [(x, 2.0)], 1.0);
+        let r = ScipSolver.solve(&m, &SolveOptions::default()).unwrap();
+        assert_eq!(r.termination, Termination::Infeasible);
+        assert!(r.primal.is_none());
+        let mut m = lp();
+        m.add_ge("big", [(VarId(0), 1.0)], 100.0);
+        let r = ScipSolver.solve(&m, &SolveOptions::default()).unwrap();
+        assert_eq!(r.termination, Termination::Infeasible);
+    }
+
+    #[test]
+    fn empty_model() {
+        let mut m = Model::new("empty");
+        m.obj_constant = 3.5;
+        let r = ScipSolver.solve(&m, &SolveOptions::default()).unwrap();
+        assert_eq!(r.termination, Termination::Optimal);
+        assert_eq!(r.primal.as_deref(), Some(&[][..]));
+        assert_eq!(r.objective, Some(3.5));
+    }
+
+    #[test]
+    fn mip_start_and_log_file() {
+        let m = knapsack();
+        let dir = tempfile::tempdir().unwrap();
+        let log = dir.path().join("scip.log");
+        let o = SolveOptions { mip_start: Some(vec![1.0, 1.0, 0.0, 0.0, 0.0]), log: LogTarget::File(log.clone()), ..Default::default() };
+        let r = ScipSolver.solve(&m, &o).unwrap();
+        assert_feasible(&m, &r);
+        assert!(std::fs::metadata(&log).unwrap().len() > 0);
+    }
+
+    #[test]
+    fn threads_are_refused() {
+        let o = SolveOptions { threads: Some(2), ..Default::default() };
+        let e = ScipSolver.solve(&lp(), &o).unwrap_err();
+        assert!(matches!(e.kind, SolverErrorKind::Unsupported { option: "threads", .. }));
+    }
+}

@@ -1,0 +1,427 @@
+//! Functional specifications: what the network must do, as a TOML or JSON file.
+//!
+//! A [`Spec`] is the file's content (serde, unknown keys rejected). [`Spec::resolve`] turns it
+//! into a [`Problem`]: the mesh, every edge's role, the sinks, and the switches in plain form,
+//! checking ids, ranges and contradictions with errors that name the field.
+
+mod resolve;
+
+pub use resolve::{EdgeRole, PointToPoint, Problem, Weight};
+pub(crate) use resolve::{shortest_path, OrdF64};
+
+use crate::solvers::SolverKind;
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
+
+/// A functional specification (the content of a spec file).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Spec {
+    /// A short name (used in titles and file names).
+    pub name: String,
+    /// Free text (e.g. which figure of the paper this reconstructs).
+    #[serde(default)]
+    pub description: String,
+    /// The domain.
+    pub mesh: MeshSpec,
+    /// What boundary edges are: `road` (existing), `wall` (excluded) or `candidate`.
+    #[serde(default = "default_boundary")]
+    pub boundary: BoundaryRole,
+    /// Where the network leads.
+    pub sinks: SinkSpec,
+    /// How dense the network must be.
+    #[serde(default)]
+    pub coverage: CoverageSpec,
+    /// Objective weights and forbidden features.
+    #[serde(default)]
+    pub weights: WeightSpec,
+    /// Dead-ends and branches.
+    #[serde(default)]
+    pub features: FeatureSpec,
+    /// Point-to-point path sets (§3.4), off when absent.
+    #[serde(default)]
+    pub point_to_point: Option<PointToPointSpec>,
+    /// Obstacles, forced elements and through routes.
+    #[serde(default)]
+    pub user: UserSpec,
+    /// `paper` (exactly the paper's rows, big-M = Δall) or `tight` (FORMULATION.md's
+    /// strengthenings).
+    #[serde(default)]
+    pub formulation: FormulationVariant,
+    /// Solver settings (the command line overrides them).
+    #[serde(default)]
+    pub solver: SolverSpec,
+}
+
+fn default_boundary() -> BoundaryRole {
+    BoundaryRole::Wall
+}
+
+/// The domain mesh: a generator or a file, optionally jittered.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MeshSpec {
+    /// A `width × height` grid of square cells.
+    #[serde(default)]
+    pub grid: Option<GridSpec>,
+    /// A grid clipped to a polygon with holes.
+    #[serde(default)]
+    pub clipped: Option<ClippedSpec>,
+    /// A Wavefront OBJ or JSON mesh file, relative to the spec file.
+    #[serde(default)]
+    pub file: Option<PathBuf>,
+    /// Random jitter of interior vertices.
+    #[serde(default)]
+    pub jitter: Option<JitterSpec>,
+}
+
+/// A rectangular grid.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GridSpec {
+    /// Cells along x.
+    pub width: usize,
+    /// Cells along y.
+    pub height: usize,
+    /// Cell size.
+    #[serde(default = "one")]
+    pub spacing: f64,
+}
+
+fn one() -> f64 {
+    1.0
+}
+
+/// A grid clipped to a polygon.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ClippedSpec {
+    /// The outer polygon.
+    pub outer: Vec<[f64; 2]>,
+    /// Holes.
+    #[serde(default)]
+    pub holes: Vec<Vec<[f64; 2]>>,
+    /// Cell size.
+    #[serde(default = "one")]
+    pub spacing: f64,
+}
+
+/// Vertex jitter.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct JitterSpec {
+    /// Fraction of the shortest incident edge.
+    pub amount: f64,
+    /// Seed.
+    #[serde(default)]
+    pub seed: u64,
+}
+
+/// Role of the mesh boundary's edges (FORMULATION §1).
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum BoundaryRole {
+    /// Existing roads: fixed active, every boundary vertex must be a sink.
+    Road,
+    /// Walls: fixed inactive.
+    Wall,
+    /// Ordinary candidate edges.
+    Candidate,
+}
+
+/// Which vertices are sinks.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+pub struct SinkSpec {
+    /// Every boundary vertex.
+    #[serde(default)]
+    pub all_boundary: bool,
+    /// Vertex ids.
+    #[serde(default)]
+    pub vertices: Vec<u32>,
+    /// The nearest vertex to each point.
+    #[serde(default)]
+    pub points: Vec<[f64; 2]>,
+}
+
+/// How coverage distance is measured.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum CoverageModel {
+    /// Edges on the mesh graph (the paper's "two edges wide").
+    #[default]
+    Hops,
+    /// Straight-line distance between vertices.
+    Euclidean,
+}
+
+/// Coverage (5)–(6).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CoverageSpec {
+    /// The range `r` (in edges for `hops`, in length units for `euclidean`); at least 1.
+    #[serde(default = "default_range")]
+    pub range: f64,
+    /// The distance model.
+    #[serde(default)]
+    pub model: CoverageModel,
+}
+
+fn default_range() -> f64 {
+    2.0
+}
+
+impl Default for CoverageSpec {
+    fn default() -> Self {
+        CoverageSpec { range: 2.0, model: CoverageModel::Hops }
+    }
+}
+
+/// A weight: a non-negative number, or `"forbid"` (the paper's `inf`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum WeightValue {
+    /// A weight.
+    Number(f64),
+    /// `"forbid"`.
+    Word(String),
+}
+
+impl Default for WeightValue {
+    fn default() -> Self {
+        WeightValue::Number(0.0)
+    }
+}
+
+/// Objective weights (15).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct WeightSpec {
+    /// λL, on total length.
+    #[serde(default = "wnum1")]
+    pub length: WeightValue,
+    /// λD, on the sum of distance labels.
+    #[serde(default)]
+    pub distance: WeightValue,
+    /// λZ0, on zig-zags.
+    #[serde(default)]
+    pub zigzag: WeightValue,
+    /// λZ1, on too-close parallel edges.
+    #[serde(default)]
+    pub too_close: WeightValue,
+    /// λT, on T-junctions.
+    #[serde(default)]
+    pub t_junction: WeightValue,
+}
+
+fn wnum1() -> WeightValue {
+    WeightValue::Number(1.0)
+}
+
+impl Default for WeightSpec {
+    fn default() -> Self {
+        WeightSpec {
+            length: wnum1(),
+            distance: WeightValue::default(),
+            zigzag: WeightValue::default(),
+            too_close: WeightValue::default(),
+            t_junction: WeightValue::default(),
+        }
+    }
+}
+
+/// `allow` or `forbid`.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Allow {
+    /// Allowed.
+    Allow,
+    /// Forbidden by constraints.
+    Forbid,
+}
+
+/// Dead-ends and branches.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FeatureSpec {
+    /// Dead-ends (10)–(11).
+    #[serde(default = "forbid")]
+    pub dead_ends: Allow,
+    /// Branches (12).
+    #[serde(default = "allow")]
+    pub branches: Allow,
+}
+
+fn forbid() -> Allow {
+    Allow::Forbid
+}
+fn allow() -> Allow {
+    Allow::Allow
+}
+
+impl Default for FeatureSpec {
+    fn default() -> Self {
+        FeatureSpec { dead_ends: Allow::Forbid, branches: Allow::Allow }
+    }
+}
+
+/// Point-to-point path sets (8)–(9).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PointToPointSpec {
+    /// Partition the faces into `blocks × blocks` blocks by face centroid (grid-like meshes).
+    #[serde(default)]
+    pub blocks: Option<usize>,
+    /// Or an explicit part number per face (one entry per face).
+    #[serde(default)]
+    pub parts: Option<Vec<u32>>,
+    /// Extra edges allowed over the shortest path (default 2).
+    #[serde(default = "two")]
+    pub tolerance: usize,
+    /// Seed for picking the vertex of each part.
+    #[serde(default)]
+    pub seed: u64,
+    /// Cap on the paths enumerated per pair of parts.
+    #[serde(default = "default_max_paths")]
+    pub max_paths: usize,
+}
+
+fn two() -> usize {
+    2
+}
+fn default_max_paths() -> usize {
+    5000
+}
+
+/// A point or a vertex id.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum Place {
+    /// A vertex id.
+    Vertex(u32),
+    /// The nearest vertex to a point.
+    Point([f64; 2]),
+}
+
+/// A through route: a shortest path between two places, forced active, no inner branches.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ThroughRoute {
+    /// One end.
+    pub from: Place,
+    /// The other end.
+    pub to: Place,
+}
+
+/// User specifications: obstacles, forced elements, through routes.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+pub struct UserSpec {
+    /// Obstacle vertices (ids).
+    #[serde(default)]
+    pub obstacle_vertices: Vec<u32>,
+    /// Obstacle edges, as pairs of vertex ids.
+    #[serde(default)]
+    pub obstacle_edges: Vec<[u32; 2]>,
+    /// Obstacle faces (ids).
+    #[serde(default)]
+    pub obstacle_faces: Vec<u32>,
+    /// Obstacle polygons: every face whose centroid is inside is an obstacle face.
+    #[serde(default)]
+    pub obstacle_polygons: Vec<Vec<[f64; 2]>>,
+    /// Forced edges, as pairs of vertex ids.
+    #[serde(default)]
+    pub forced_edges: Vec<[u32; 2]>,
+    /// Forced-active vertices (ids).
+    #[serde(default)]
+    pub forced_vertices: Vec<u32>,
+    /// Through routes.
+    #[serde(default)]
+    pub through_routes: Vec<ThroughRoute>,
+}
+
+/// Which rows to emit.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum FormulationVariant {
+    /// Exactly the paper's rows: big-M = Δall, (8) in the paper's form, dead-ends by ν.
+    #[default]
+    Paper,
+    /// FORMULATION.md's strengthenings: smaller big-M, `P ≤ E_n`, compact dead-end rows.
+    Tight,
+}
+
+/// Solver settings in a spec (the command line overrides each).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+pub struct SolverSpec {
+    /// Backend name.
+    #[serde(default)]
+    pub name: Option<SolverKind>,
+    /// Time limit in seconds.
+    #[serde(default)]
+    pub time_limit: Option<f64>,
+    /// Relative gap.
+    #[serde(default)]
+    pub gap: Option<f64>,
+    /// Threads.
+    #[serde(default)]
+    pub threads: Option<u32>,
+    /// Seed.
+    #[serde(default)]
+    pub seed: Option<u64>,
+}
+
+/// Why a spec file could not be used.
+#[derive(Debug, thiserror::Error)]
+pub enum SpecErrorKind {
+    /// The file could not be read.
+    #[error(transparent)]
+    Io(#[from] std::io::Error),
+    /// TOML syntax or schema error (the message names the line and key).
+    #[error("{0}")]
+    Toml(String),
+    /// JSON syntax or schema error.
+    #[error("{0}")]
+    Json(#[from] serde_json::Error),
+    /// A field's value is unusable.
+    #[error("field `{field}`: {message}")]
+    Field {
+        /// Dotted path of the field, e.g. `sinks.vertices[3]`.
+        field: String,
+        /// What is wrong.
+        message: String,
+    },
+    /// The mesh could not be built or read.
+    #[error("field `mesh`: {0}")]
+    Mesh(String),
+}
+
+/// A spec error, naming the file.
+#[derive(Debug, thiserror::Error)]
+#[error("{}: {kind}", path.display())]
+pub struct SpecError {
+    /// The spec file (or `<inline>`).
+    pub path: PathBuf,
+    /// What is wrong.
+    #[source]
+    pub kind: SpecErrorKind,
+}
+
+impl Spec {
+    /// Reads a `.toml` or `.json` spec file.
+    pub fn load(path: &Path) -> Result<Spec, SpecError> {
+        let err = |kind| SpecError { path: path.to_path_buf(), kind };
+        let text = std::fs::read_to_string(path).map_err(|e| err(e.into()))?;
+        if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("json")) {
+            serde_json::from_str(&text).map_err(|e| err(e.into()))
+        } else {
+            Spec::from_toml(&text).map_err(|k| err(k))
+        }
+    }
+
+    /// Parses TOML text.
+    pub fn from_toml(text: &str) -> Result<Spec, SpecErrorKind> {
+        toml::from_str(text).map_err(|e| SpecErrorKind::Toml(e.to_string()))
+    }
+}

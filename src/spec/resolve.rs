@@ -1,0 +1,437 @@
+//! From a [`Spec`] to a [`Problem`]: the mesh, edge roles, sinks and switches, checked.
+
+use super::*;
+use crate::mesh::{self, EdgeId, FaceId, Mesh, VertexId};
+
+/// What an edge is in the model (FORMULATION §1).
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum EdgeRole {
+    /// A decision variable.
+    Candidate,
+    /// Fixed active (an existing road); not a variable.
+    Existing,
+    /// Fixed inactive (wall, obstacle).
+    Excluded,
+}
+
+/// A resolved weight.
+#[derive(Copy, Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase", tag = "mode", content = "value")]
+pub enum Weight {
+    /// Weight 0: nothing is emitted.
+    Off,
+    /// A positive weight: indicator variables and objective terms.
+    Penalty(f64),
+    /// Forbidden: constraints, no indicators.
+    Forbid,
+}
+
+impl Weight {
+    /// The objective weight (0 unless penalised).
+    pub fn value(self) -> f64 {
+        match self {
+            Weight::Penalty(w) => w,
+            _ => 0.0,
+        }
+    }
+}
+
+/// Resolved point-to-point settings.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct PointToPoint {
+    /// Part number of every face (`u32::MAX` for obstacle faces).
+    pub face_part: Vec<u32>,
+    /// Extra edges over the shortest path.
+    pub tolerance: usize,
+    /// Seed for sampling.
+    pub seed: u64,
+    /// Cap on paths per pair.
+    pub max_paths: usize,
+}
+
+/// A specification resolved against its mesh: everything the formulation needs.
+#[derive(Clone, Debug)]
+pub struct Problem {
+    /// The spec it came from.
+    pub spec: Spec,
+    /// The mesh.
+    pub mesh: Mesh,
+    /// Role of every edge.
+    pub roles: Vec<EdgeRole>,
+    /// Whether each vertex is a sink.
+    pub is_sink: Vec<bool>,
+    /// Whether each vertex is an obstacle (exempt from coverage, never active).
+    pub is_obstacle_vertex: Vec<bool>,
+    /// Whether each face is an obstacle.
+    pub is_obstacle_face: Vec<bool>,
+    /// Edges that must be active (candidate edges fixed to 1, plus through routes).
+    pub forced_edges: Vec<EdgeId>,
+    /// Vertices that must be active.
+    pub forced_vertices: Vec<VertexId>,
+    /// Through routes as vertex sequences (shortest paths).
+    pub through_routes: Vec<Vec<VertexId>>,
+    /// Coverage range.
+    pub coverage_range: f64,
+    /// Coverage model.
+    pub coverage_model: CoverageModel,
+    /// λL.
+    pub w_length: f64,
+    /// λD.
+    pub w_distance: f64,
+    /// λZ0 (zig-zags).
+    pub w_zigzag: Weight,
+    /// λZ1 (too close).
+    pub w_too_close: Weight,
+    /// λT (T-junctions).
+    pub w_t_junction: Weight,
+    /// Dead-ends allowed?
+    pub dead_ends: Allow,
+    /// Branches allowed?
+    pub branches: Allow,
+    /// Point-to-point, if on.
+    pub p2p: Option<PointToPoint>,
+    /// Formulation variant.
+    pub variant: FormulationVariant,
+}
+
+fn field(field: impl Into<String>, message: impl Into<String>) -> SpecErrorKind {
+    SpecErrorKind::Field { field: field.into(), message: message.into() }
+}
+
+fn weight(name: &str, w: &WeightValue, forbid_ok: bool) -> Result<Weight, SpecErrorKind> {
+    match w {
+        WeightValue::Number(x) if !x.is_finite() || *x < 0.0 => {
+            Err(field(format!("weights.{name}"), format!("must be a non-negative number or \"forbid\", got {x}")))
+        }
+        WeightValue::Number(x) if *x == 0.0 => Ok(Weight::Off),
+        WeightValue::Number(x) => Ok(Weight::Penalty(*x)),
+        WeightValue::Word(s) if forbid_ok && (s == "forbid" || s == "inf") => Ok(Weight::Forbid),
+        WeightValue::Word(s) => Err(field(
+            format!("weights.{name}"),
+            if forbid_ok { format!("expected a number or \"forbid\", got {s:?}") } else { format!("expected a number, got {s:?}") },
+        )),
+    }
+}
+
+fn point_in_polygon(p: [f64; 2], poly: &[[f64; 2]]) -> bool {
+    let mut inside = false;
+    let n = poly.len();
+    for i in 0..n {
+        let (a, b) = (poly[i], poly[(i + n - 1) % n]);
+        if (a[1] > p[1]) != (b[1] > p[1]) && p[0] < (b[0] - a[0]) * (p[1] - a[1]) / (b[1] - a[1]) + a[0] {
+            inside = !inside;
+        }
+    }
+    inside
+}
+
+impl Spec {
+    /// Builds the mesh and resolves every field. `base` is the directory relative to which
+    /// mesh files are found.
+    pub fn resolve(&self, base: &Path) -> Result<Problem, SpecErrorKind> {
+        let mesh = self.build_mesh(base)?;
+        let nv = mesh.num_vertices();
+        let nf = mesh.num_faces();
+        let vid = |f: String, v: u32| -> Result<VertexId, SpecErrorKind> {
+            if (v as usize) < nv {
+                Ok(VertexId(v))
+            } else {
+                Err(field(f, format!("vertex {v} does not exist (the mesh has {nv} vertices)")))
+            }
+        };
+        let edge_of = |f: String, [a, b]: [u32; 2]| -> Result<EdgeId, SpecErrorKind> {
+            let (va, vb) = (vid(f.clone(), a)?, vid(f.clone(), b)?);
+            mesh.half_edge_between(va, vb)
+                .map(|h| mesh.he_edge(h))
+                .ok_or_else(|| field(f, format!("vertices {a} and {b} are not joined by a mesh edge")))
+        };
+        let place = |f: String, p: &Place| -> Result<VertexId, SpecErrorKind> {
+            match p {
+                Place::Vertex(v) => vid(f, *v),
+                Place::Point(pt) => mesh.nearest_vertex(*pt).ok_or_else(|| field(f, "the mesh has no vertex")),
+            }
+        };
+
+        // Roles from the boundary switch.
+        let mut roles: Vec<EdgeRole> = mesh
+            .edges()
+            .map(|e| match (mesh.is_boundary_edge(e), self.boundary) {
+                (true, BoundaryRole::Road) => EdgeRole::Existing,
+                (true, BoundaryRole::Wall) => EdgeRole::Excluded,
+                _ => EdgeRole::Candidate,
+            })
+            .collect();
+
+        // Obstacles.
+        let u = &self.user;
+        let mut is_obstacle_face = vec![false; nf];
+        for (i, &f) in u.obstacle_faces.iter().enumerate() {
+            if f as usize >= nf {
+                return Err(field(format!("user.obstacle_faces[{i}]"), format!("face {f} does not exist (the mesh has {nf} faces)")));
+            }
+            is_obstacle_face[f as usize] = true;
+        }
+        for (i, poly) in u.obstacle_polygons.iter().enumerate() {
+            if poly.len() < 3 {
+                return Err(field(format!("user.obstacle_polygons[{i}]"), "a polygon needs at least 3 points"));
+            }
+            for f in mesh.faces() {
+                if point_in_polygon(mesh.face_centroid(f), poly) {
+                    is_obstacle_face[f.index()] = true;
+                }
+            }
+        }
+        let mut is_obstacle_vertex = vec![false; nv];
+        for (i, &v) in u.obstacle_vertices.iter().enumerate() {
+            is_obstacle_vertex[vid(format!("user.obstacle_vertices[{i}]"), v)?.index()] = true;
+        }
+        // A vertex all of whose faces are obstacle faces lies inside the obstacle.
+        for f in mesh.faces().filter(|f| is_obstacle_face[f.index()]) {
+            for e in mesh.face_edges(f) {
+                roles[e.index()] = EdgeRole::Excluded;
+            }
+            for &v in mesh.face_vertices(f) {
+                let interior = mesh.outgoing(v).iter().all(|&h| {
+                    let faces = [mesh.he_face(h), mesh.he_face(mesh.he_twin(h))];
+                    faces.iter().all(|f| f.is_none_or(|f: FaceId| is_obstacle_face[f.index()]))
+                });
+                if interior && !mesh.is_boundary_vertex(v) {
+                    is_obstacle_vertex[v.index()] = true;
+                }
+            }
+        }
+        for v in mesh.vertices().filter(|v| is_obstacle_vertex[v.index()]) {
+            for e in mesh.incident_edges(v) {
+                roles[e.index()] = EdgeRole::Excluded;
+            }
+        }
+        for (i, &pair) in u.obstacle_edges.iter().enumerate() {
+            let e = edge_of(format!("user.obstacle_edges[{i}]"), pair)?;
+            roles[e.index()] = EdgeRole::Excluded;
+        }
+
+        // Sinks.
+        let mut is_sink = vec![false; nv];
+        if self.sinks.all_boundary {
+            for v in mesh.boundary_vertices() {
+                is_sink[v.index()] = true;
+            }
+        }
+        for (i, &v) in self.sinks.vertices.iter().enumerate() {
+            is_sink[vid(format!("sinks.vertices[{i}]"), v)?.index()] = true;
+        }
+        for (i, p) in self.sinks.points.iter().enumerate() {
+            is_sink[place(format!("sinks.points[{i}]"), &Place::Point(*p))?.index()] = true;
+        }
+        if !is_sink.iter().any(|&s| s) {
+            return Err(field("sinks", "no sink: set all_boundary, vertices or points"));
+        }
+        for v in mesh.vertices().filter(|v| is_sink[v.index()] && is_obstacle_vertex[v.index()]) {
+            return Err(field("sinks", format!("vertex {} is both a sink and an obstacle", v.0)));
+        }
+        for e in mesh.edges().filter(|e| roles[e.index()] == EdgeRole::Existing) {
+            let (a, b) = mesh.edge_vertices(e);
+            for v in [a, b] {
+                if !is_sink[v.index()] {
+                    return Err(field(
+                        "sinks",
+                        format!("existing edge {}–{} touches vertex {}, which is not a sink (existing edges must join sinks; with boundary = \"road\" set sinks.all_boundary)", a.0, b.0, v.0),
+                    ));
+                }
+            }
+        }
+
+        // Forced elements.
+        let mut forced_edges = Vec::new();
+        for (i, &pair) in u.forced_edges.iter().enumerate() {
+            let f = format!("user.forced_edges[{i}]");
+            let e = edge_of(f.clone(), pair)?;
+            if roles[e.index()] == EdgeRole::Excluded {
+                return Err(field(f, format!("edge {}–{} is forced but excluded (an obstacle or a wall)", pair[0], pair[1])));
+            }
+            forced_edges.push(e);
+        }
+        let mut forced_vertices = Vec::new();
+        for (i, &v) in u.forced_vertices.iter().enumerate() {
+            let f = format!("user.forced_vertices[{i}]");
+            let v = vid(f.clone(), v)?;
+            if is_obstacle_vertex[v.index()] || mesh.incident_edges(v).all(|e| roles[e.index()] == EdgeRole::Excluded) {
+                return Err(field(f, format!("vertex {} is forced active but has no usable edge", v.0)));
+            }
+            forced_vertices.push(v);
+        }
+        let mut through_routes = Vec::new();
+        for (i, r) in u.through_routes.iter().enumerate() {
+            let f = format!("user.through_routes[{i}]");
+            let (a, b) = (place(format!("{f}.from"), &r.from)?, place(format!("{f}.to"), &r.to)?);
+            if a == b {
+                return Err(field(f, "both ends are the same vertex"));
+            }
+            let path = shortest_path(&mesh, &roles, a, b)
+                .ok_or_else(|| field(f.clone(), format!("no path from vertex {} to {} avoids walls and obstacles", a.0, b.0)))?;
+            through_routes.push(path);
+        }
+
+        // Switches.
+        if !(self.coverage.range >= 1.0) {
+            return Err(field("coverage.range", format!("must be at least 1, got {}", self.coverage.range)));
+        }
+        let w = &self.weights;
+        let p2p = match &self.point_to_point {
+            None => None,
+            Some(p) => Some(PointToPoint {
+                face_part: self.partition(&mesh, p, &is_obstacle_face)?,
+                tolerance: p.tolerance,
+                seed: p.seed,
+                max_paths: p.max_paths.max(1),
+            }),
+        };
+        Ok(Problem {
+            spec: self.clone(),
+            roles,
+            is_sink,
+            is_obstacle_vertex,
+            is_obstacle_face,
+            forced_edges,
+            forced_vertices,
+            through_routes,
+            coverage_range: self.coverage.range,
+            coverage_model: self.coverage.model,
+            w_length: weight("length", &w.length, false)?.value(),
+            w_distance: weight("distance", &w.distance, false)?.value(),
+            w_zigzag: weight("zigzag", &w.zigzag, true)?,
+            w_too_close: weight("too_close", &w.too_close, true)?,
+            w_t_junction: weight("t_junction", &w.t_junction, true)?,
+            dead_ends: self.features.dead_ends,
+            branches: self.features.branches,
+            p2p,
+            variant: self.formulation,
+            mesh,
+        })
+    }
+
+    fn build_mesh(&self, base: &Path) -> Result<Mesh, SpecErrorKind> {
+        let m = &self.mesh;
+        let given = [m.grid.is_some(), m.clipped.is_some(), m.file.is_some()].iter().filter(|&&b| b).count();
+        if given != 1 {
+            return Err(field("mesh", "give exactly one of `grid`, `clipped` or `file`"));
+        }
+        let mesh = if let Some(g) = &m.grid {
+            if g.width == 0 || g.height == 0 || g.width * g.height > 1_000_000 {
+                return Err(field("mesh.grid", format!("size {}×{} must be between 1×1 and 10^6 cells", g.width, g.height)));
+            }
+            if !(g.spacing > 0.0 && g.spacing.is_finite()) {
+                return Err(field("mesh.grid.spacing", "must be a positive number"));
+            }
+            mesh::grid(g.width, g.height, g.spacing)
+        } else if let Some(c) = &m.clipped {
+            if !(c.spacing > 0.0 && c.spacing.is_finite()) {
+                return Err(field("mesh.clipped.spacing", "must be a positive number"));
+            }
+            mesh::clipped_grid(&c.outer, &c.holes, c.spacing).map_err(|e| SpecErrorKind::Mesh(e.to_string()))?
+        } else {
+            let path = base.join(m.file.as_ref().expect("one source"));
+            let text = std::fs::read_to_string(&path).map_err(|e| SpecErrorKind::Mesh(format!("{}: {e}", path.display())))?;
+            if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("json")) {
+                serde_json::from_str(&text).map_err(|e| SpecErrorKind::Mesh(format!("{}: {e}", path.display())))?
+            } else {
+                mesh::from_obj(&text).map_err(|e| SpecErrorKind::Mesh(format!("{}: {e}", path.display())))?
+            }
+        };
+        Ok(match &m.jitter {
+            Some(j) if j.amount > 0.0 && j.amount < 0.5 => mesh::jitter(&mesh, j.amount, j.seed),
+            Some(j) if j.amount == 0.0 => mesh,
+            Some(j) => return Err(field("mesh.jitter.amount", format!("must be in [0, 0.5), got {}", j.amount))),
+            None => mesh,
+        })
+    }
+
+    fn partition(&self, mesh: &Mesh, p: &PointToPointSpec, obstacle: &[bool]) -> Result<Vec<u32>, SpecErrorKind> {
+        let nf = mesh.num_faces();
+        let mut parts = match (&p.blocks, &p.parts) {
+            (Some(_), Some(_)) | (None, None) => {
+                return Err(field("point_to_point", "give exactly one of `blocks` or `parts`"));
+            }
+            (Some(k), None) => {
+                if *k < 2 {
+                    return Err(field("point_to_point.blocks", "need at least 2 blocks per side"));
+                }
+                let (lo, hi) = mesh.bounding_box();
+                mesh.faces()
+                    .map(|f| {
+                        let c = mesh.face_centroid(f);
+                        let bx = (((c[0] - lo[0]) / (hi[0] - lo[0]) * *k as f64) as usize).min(k - 1);
+                        let by = (((c[1] - lo[1]) / (hi[1] - lo[1]) * *k as f64) as usize).min(k - 1);
+                        (by * k + bx) as u32
+                    })
+                    .collect::<Vec<u32>>()
+            }
+            (None, Some(parts)) => {
+                if parts.len() != nf {
+                    return Err(field("point_to_point.parts", format!("has {} entries; the mesh has {nf} faces", parts.len())));
+                }
+                parts.clone()
+            }
+        };
+        for (f, part) in parts.iter_mut().enumerate() {
+            if obstacle[f] {
+                *part = u32::MAX;
+            }
+        }
+        Ok(parts)
+    }
+}
+
+/// Shortest path by length over non-excluded edges (Dijkstra; ties broken by vertex id, so
+/// the route is deterministic).
+pub(crate) fn shortest_path(mesh: &Mesh, roles: &[EdgeRole], a: VertexId, b: VertexId) -> Option<Vec<VertexId>> {
+    use std::cmp::Reverse;
+    use std::collections::BinaryHeap;
+    let n = mesh.num_vertices();
+    let mut dist = vec![f64::INFINITY; n];
+    let mut prev = vec![u32::MAX; n];
+    let mut heap = BinaryHeap::new();
+    dist[a.index()] = 0.0;
+    heap.push(Reverse((OrdF64(0.0), a.0)));
+    while let Some(Reverse((OrdF64(d), v))) = heap.pop() {
+        if d > dist[v as usize] {
+            continue;
+        }
+        if v == b.0 {
+            break;
+        }
+        for &h in mesh.outgoing(VertexId(v)) {
+            let e = mesh.he_edge(h);
+            if roles[e.index()] == EdgeRole::Excluded {
+                continue;
+            }
+            let w = mesh.he_head(h);
+            let nd = d + mesh.edge_length(e);
+            if nd < dist[w.index()] - 1e-12 {
+                dist[w.index()] = nd;
+                prev[w.index()] = v;
+                heap.push(Reverse((OrdF64(nd), w.0)));
+            }
+        }
+    }
+    if !dist[b.index()].is_finite() {
+        return None;
+    }
+    let mut path = vec![b];
+    while *path.last().unwrap() != a {
+        path.push(VertexId(prev[path.last().unwrap().index()]));
+    }
+    path.reverse();
+    Some(path)
+}
+
+/// A totally ordered f64 for heaps (no NaN ever enters).
+#[derive(Copy, Clone, PartialEq, PartialOrd)]
+pub(crate) struct OrdF64(pub f64);
+impl Eq for OrdF64 {}
+impl Ord for OrdF64 {
+    fn cmp(&self, other: &Self) -> std::cmp::Ordering {
+        self.0.total_cmp(&other.0)
+    }
+}

@@ -1,0 +1,79 @@
+//! The `netspec` binary, run as a user would.
+
+use crate::corpus::corpus_dir;
+use std::process::Command;
+
+fn netspec() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_netspec"))
+}
+
+#[test]
+fn solve_file_prints_summary_and_json() {
+    let dir = tempfile::tempdir().unwrap();
+    let json = dir.path().join("r.json");
+    let out = netspec().arg("solve-file").arg(corpus_dir().join("afiro.mps")).arg("--json").arg(&json).output().unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{stdout}\n{}", String::from_utf8_lossy(&out.stderr));
+    assert!(stdout.contains("status     optimal"), "{stdout}");
+    assert!(stdout.contains("check      valid"), "{stdout}");
+    let v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert_eq!(v["schema"], "netspec.solve");
+    assert_eq!(v["schema_version"], 1);
+    assert_eq!(v["valid"], true);
+    let obj = v["result"]["objective"].as_f64().unwrap();
+    assert!((obj - -464.7531429).abs() < 1e-5, "{obj}");
+}
+
+#[test]
+fn infeasible_is_a_result_not_a_failure() {
+    let out = netspec().arg("solve-file").arg(corpus_dir().join("infeasible-mip0.mps")).output().unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{stdout}");
+    assert!(stdout.contains("status     infeasible"), "{stdout}");
+}
+
+#[test]
+fn bad_file_names_file_and_line() {
+    let out = netspec().arg("solve-file").arg(corpus_dir().join("nan0.mps")).output().unwrap();
+    assert!(!out.status.success());
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("nan0.mps") && stderr.contains("line "), "{stderr}");
+}
+
+#[test]
+fn missing_file_is_a_clear_error() {
+    let out = netspec().args(["solve-file", "does-not-exist.mps"]).output().unwrap();
+    assert!(!out.status.success());
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("does-not-exist.mps"), "{stderr}");
+}
+
+#[test]
+fn unknown_solver_is_refused() {
+    let out = netspec().args(["solve-file", "x.mps", "--solver", "gurobi"]).output().unwrap();
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("unknown solver"));
+}
+
+#[test]
+fn convert_round_trips() {
+    let dir = tempfile::tempdir().unwrap();
+    let lp = dir.path().join("p.lp");
+    let mps = dir.path().join("p.mps");
+    assert!(netspec().arg("convert").arg(corpus_dir().join("egout.mps")).arg(&lp).status().unwrap().success());
+    assert!(netspec().arg("convert").arg(&lp).arg(&mps).status().unwrap().success());
+    let a = netspec::io::read_model_file(&corpus_dir().join("egout.mps")).unwrap().model;
+    let b = netspec::io::read_model_file(&mps).unwrap().model;
+    assert_eq!(a.stats(), b.stats());
+}
+
+#[test]
+fn solvers_lists_every_compiled_backend() {
+    let out = netspec().args(["solvers", "--json"]).output().unwrap();
+    assert!(out.status.success());
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let names: Vec<&str> = v.as_array().unwrap().iter().map(|s| s["name"].as_str().unwrap()).collect();
+    for k in netspec::solvers::SolverKind::compiled() {
+        assert!(names.contains(&k.name()), "{names:?}");
+    }
+}

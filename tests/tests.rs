@@ -1,0 +1,10 @@
+//! The one integration-test binary (linking the native solvers into many binaries is slow).
+
+// The MOI.Test-style conformance suite, instantiated for every compiled backend.
+mod conformance;
+// The external corpus (../shared/corpus/highs-check): read, solve with every backend, compare.
+mod corpus;
+// Files we write, read back by HiGHS, CBC and SCIP through their own readers.
+mod native_readers;
+// The command-line tool, run as a subprocess.
+mod cli;
