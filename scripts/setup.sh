@@ -14,7 +14,7 @@ log() { printf '[setup] %s\n' "$*" >&2; }
 die() { printf '[setup] ERROR: %s\n' "$*" >&2; exit 1; }
 
 # 1. Debian packages.
-pkgs=(cmake clang libclang-dev coinor-libcbc-dev coinor-cbc pkg-config unzip)
+pkgs=(cmake clang libclang-dev coinor-libcbc-dev coinor-cbc pkg-config unzip fonts-dejavu-core)
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")

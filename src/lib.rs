@@ -2,11 +2,20 @@
 //! specifications by integer programming, after Peng et al., "Computational Network Design from
 //! Functional Specifications" (SIGGRAPH 2016).
 //!
-//! Layers: [`milp`] (the solver-neutral model and its independent checker), [`io`] (MPS and
-//! LP files), [`solvers`] (HiGHS, CBC, SCIP, microlp and a good_lp bridge behind one trait).
+//! Layers, bottom up: [`milp`] (the solver-neutral model and its independent checker), [`io`]
+//! (MPS and LP files), [`solvers`] (HiGHS, CBC, SCIP, microlp and a good_lp bridge behind one
+//! trait), [`mesh`] (2D half-edge meshes), [`spec`] (functional specifications),
+//! [`formulations`] (the paper's integer programs), [`design`] (decoding, metrics and the
+//! independent validator), [`render`] (pictures), and [`pipeline`] (spec → checked design).
 #![deny(missing_docs)]
 
+pub mod design;
+pub mod formulations;
 pub mod io;
+pub mod mesh;
 pub mod milp;
+pub mod pipeline;
+pub mod render;
 pub mod report;
 pub mod solvers;
+pub mod spec;

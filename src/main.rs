@@ -9,6 +9,10 @@ use netspec::solvers::{LogTarget, SolveOptions, SolverKind};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
+mod cli {
+    pub mod design;
+}
+
 /// Exit code when the solver's answer fails netspec's independent check.
 const EXIT_CHECK_FAILED: u8 = 3;
 
@@ -32,6 +36,23 @@ enum Command {
         #[arg(long, value_name = "PATH")]
         json: Option<PathBuf>,
     },
+    /// Design a network from a spec file (TOML or JSON): build the MILP, solve it, check and
+    /// validate the answer, and write result.json, network.svg and network.png.
+    Solve {
+        /// The spec file.
+        spec: PathBuf,
+        #[command(flatten)]
+        solve: SolveArgs,
+        /// Output directory (default: out/<spec name>).
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+        /// Also write the MILP (`.lp` or `.mps`, by extension).
+        #[arg(long, value_name = "FILE")]
+        export: Option<PathBuf>,
+        /// Build and export the model without solving it.
+        #[arg(long)]
+        no_solve: bool,
+    },
     /// Convert a model between MPS and LP (formats chosen by extension).
     Convert {
         /// Input file (`.mps` or `.lp`).
@@ -48,7 +69,7 @@ enum Command {
 }
 
 /// Options shared by every command that solves.
-#[derive(Args, Clone)]
+#[derive(Args, Clone, Default)]
 struct SolveArgs {
     /// Backend: highs, cbc, scip, microlp or good_lp (default: the embedded HiGHS).
     #[arg(long, value_name = "NAME")]
@@ -122,6 +143,7 @@ fn main() -> ExitCode {
 fn run(cli: Cli) -> Result<ExitCode> {
     match cli.command {
         Command::SolveFile { file, solve, json } => solve_file(&file, &solve, json.as_deref()),
+        Command::Solve { spec, solve, out, export, no_solve } => cli::design::solve_spec(&spec, &solve, out, export, no_solve),
         Command::Convert { input, output } => {
             let read = read_model_file(&input)?;
             for w in &read.warnings {

@@ -94,8 +94,9 @@ pub enum MeshError {
         /// The vertex.
         v: VertexId,
     },
-    /// The corner angles of the faces around a vertex add up to more than a full turn
-    /// (or, at an interior vertex, to anything but one full turn): faces fold over each other.
+    /// The corner angles of the faces around a vertex do not fit a planar fan: at an interior
+    /// vertex they must add up to one turn (within 1e-6 rad), at a boundary vertex to less than
+    /// one turn (by more than 1e-9 rad). Otherwise faces fold over each other.
     #[error("faces around vertex {v} overlap (corner angles do not add up to one turn)")]
     OverlappingFaces {
         /// The vertex.

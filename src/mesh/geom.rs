@@ -51,7 +51,7 @@ pub(crate) fn perimeter(pts: &[P]) -> f64 {
 pub(crate) fn is_area_degenerate(pts: &[P]) -> bool {
     let a = signed_area(pts);
     let p = perimeter(pts);
-    !(a.abs() > 1e-12 * p * p)
+    a.abs() <= 1e-12 * p * p || a.is_nan()
 }
 
 /// Area centroid of a closed polygon (falls back to the vertex average for zero area).
@@ -74,7 +74,9 @@ pub(crate) fn centroid(pts: &[P]) -> P {
         }
         [o[0] + cx / (6.0 * a), o[1] + cy / (6.0 * a)]
     } else {
-        let s = pts.iter().fold([0.0, 0.0], |s, p| [s[0] + p[0], s[1] + p[1]]);
+        let s = pts
+            .iter()
+            .fold([0.0, 0.0], |s, p| [s[0] + p[0], s[1] + p[1]]);
         [s[0] / n as f64, s[1] / n as f64]
     }
 }
@@ -98,7 +100,10 @@ pub(crate) fn segments_intersect(p1: P, p2: P, q1: P, q2: P) -> bool {
 
 /// For a point `c` collinear with `a b`: whether it lies on the closed segment.
 fn on_segment(a: P, b: P, c: P) -> bool {
-    c[0] >= a[0].min(b[0]) && c[0] <= a[0].max(b[0]) && c[1] >= a[1].min(b[1]) && c[1] <= a[1].max(b[1])
+    c[0] >= a[0].min(b[0])
+        && c[0] <= a[0].max(b[0])
+        && c[1] >= a[1].min(b[1])
+        && c[1] <= a[1].max(b[1])
 }
 
 /// Whether a closed polygon is simple: no two non-adjacent sides meet, and no corner folds back

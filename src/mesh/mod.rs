@@ -20,31 +20,37 @@
 //!   the two boundary edges, `he_face(outgoing[i])` is the face between `outgoing[i]` and
 //!   `outgoing[i + 1]`, and `he_face(outgoing[last])` is `None` (the gap).
 //!
-//! Accessors panic on ids out of range, like slice indexing.
+//! A mesh may have several connected components and holes, but every vertex must have a single
+//! fan of faces: faces touching only at a corner are rejected
+//! ([`MeshError::NonManifoldVertex`]). Accessors panic on ids out of range, like slice indexing.
 //!
 //! # Files
 //!
-//! - JSON (serde): `{ "vertices": [[x, y], …], "faces": [[i, j, k, l], …] }`; deserialising
-//!   validates through [`Mesh::from_polygons`].
+//! - JSON (serde): `{ "vertices": [[x, y], …], "faces": [[i, j, k, l], …] }` (faces written
+//!   counter-clockwise); deserialising validates through [`Mesh::from_polygons`] and rejects
+//!   unknown fields. Coordinates round-trip bit-exactly only if serde_json's `float_roundtrip`
+//!   feature is on (otherwise its float parser may be off by one ulp).
 //! - Wavefront OBJ: [`to_obj`] / [`from_obj`].
 //!
 //! # Tools
 //!
-//! [`grid`], [`clipped_grid`] and [`jitter`] generate meshes; [`subdivide`] splits every n-gon
-//! into n quads without moving the old vertices.
+//! [`grid`], [`clipped_grid`] and [`jitter`] generate meshes; [`subdivide`](fn@subdivide) splits
+//! every n-gon into n quads without moving the old vertices.
 
-mod core;
 mod error;
 pub mod generate;
 mod geom;
+mod halfedge;
 mod ids;
 pub mod obj;
 mod serde_impl;
 pub mod subdivide;
+#[cfg(test)]
+mod tests;
 
-pub use self::core::Mesh;
 pub use self::error::{DegenerateReason, MeshError};
 pub use self::generate::{clipped_grid, grid, jitter};
+pub use self::halfedge::Mesh;
 pub use self::ids::{EdgeId, FaceId, HalfEdgeId, VertexId};
 pub use self::obj::{from_obj, to_obj, ObjError, ObjErrorKind};
 pub use self::subdivide::{subdivide, Subdivision};

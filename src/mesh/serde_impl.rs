@@ -1,6 +1,6 @@
 //! JSON (serde) form of a [`Mesh`]: `{ "vertices": [[x, y], …], "faces": [[i, j, k, l], …] }`.
 
-use super::core::Mesh;
+use super::halfedge::Mesh;
 use super::ids::VertexId;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
@@ -19,8 +19,11 @@ struct MeshData {
 
 impl Serialize for Mesh {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        MeshRef { vertices: self.positions(), faces: self.faces().map(|f| self.face_vertices(f)).collect() }
-            .serialize(serializer)
+        MeshRef {
+            vertices: self.positions(),
+            faces: self.faces().map(|f| self.face_vertices(f)).collect(),
+        }
+        .serialize(serializer)
     }
 }
 

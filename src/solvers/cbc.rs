@@ -448,4 +448,48 @@ mod tests {
         let e = CbcSolver.solve(&lp(), &o).unwrap_err();
         assert!(matches!(e.kind, SolverErrorKind::Unsupported { option: "log", .. }));
     }
+
+    /// A Cornuéjols–Dawande market-split instance (5 equality rows over 40 binaries, slacks priced
+    /// 1): trivially feasible, very hard to prove optimal.
+    fn market_split() -> Model {
+        let mut m = Model::new("market_split");
+        let mut s: u64 = 12345;
+        let mut rnd = move || {
+            s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            ((s >> 33) % 100) as f64
+        };
+        let x: Vec<_> = (0..40).map(|j| m.add_binary(format!("x{j}"), 0.0)).collect();
+        for i in 0..5 {
+            let w: Vec<f64> = (0..40).map(|_| rnd()).collect();
+            let rhs = (w.iter().sum::<f64>() / 2.0).floor();
+            let sp = m.add_continuous(format!("sp{i}"), 0.0, f64::INFINITY, 1.0);
+            let sm = m.add_continuous(format!("sm{i}"), 0.0, f64::INFINITY, 1.0);
+            m.add_eq(format!("r{i}"), x.iter().copied().zip(w).chain([(sp, 1.0), (sm, -1.0)]), rhs);
+        }
+        m
+    }
+
+    #[test]
+    fn time_limit_stops_a_hard_model_and_keeps_the_incumbent() {
+        let m = market_split();
+        let o = SolveOptions { time_limit: Some(1.0), ..Default::default() };
+        let r = CbcSolver.solve(&m, &o).unwrap();
+        assert_eq!(r.termination, Termination::Limit(LimitKind::Time), "{r:?}");
+        assert!(r.wall_time < 3.0, "{}", r.wall_time);
+        assert_feasible(&m, &r);
+    }
+
+    #[test]
+    #[ignore]
+    fn zz_debug_print() {
+        let m = market_split();
+        for o in [SolveOptions { time_limit: Some(1.0), ..Default::default() }, SolveOptions { time_limit: Some(0.0), ..Default::default() }, SolveOptions { node_limit: Some(3), ..Default::default() }, SolveOptions { rel_gap: Some(0.9), ..Default::default() }] {
+            let r = CbcSolver.solve(&m, &o).unwrap();
+            println!("{:?} -> {} obj={:?} bound={:?} gap={:?} nodes={:?} st={:?} wall={:.3} primal={}", o, r.termination, r.objective, r.dual_bound, r.gap, r.nodes, r.solver_time, r.wall_time, r.primal.is_some());
+        }
+        let r = CbcSolver.solve(&knapsack(), &SolveOptions::default()).unwrap();
+        println!("knap {r:?}");
+        let r = CbcSolver.solve(&lp(), &SolveOptions::default()).unwrap();
+        println!("lp {r:?}");
+    }
 }

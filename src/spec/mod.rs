@@ -7,7 +7,7 @@
 mod resolve;
 
 pub use resolve::{EdgeRole, PointToPoint, Problem, Weight};
-pub(crate) use resolve::{shortest_path, OrdF64};
+pub(crate) use resolve::OrdF64;
 
 use crate::solvers::SolverKind;
 use serde::{Deserialize, Serialize};

@@ -47,20 +47,32 @@
 //!   `ROWS` (which [`write`] emits) flips the sense back to maximisation and negates the
 //!   objective and its constant, so that write → read gives back the same model exactly. A
 //!   comment `* netspec: binary NAME` marks an integer column with bounds inside `[0, 1]` as
-//!   [`VarKind::Binary`] (used for binaries whose bounds are not `[0, 1]`).
+//!   [`VarKind::Binary`] (used for binaries whose bounds are not `[0, 1]`). A comment
+//!   `* netspec: range NAME LHS RHS` gives the exact sides of a ranged row whose width
+//!   `RHS − LHS` is not representable (so that no RANGES value reproduces both sides exactly).
 //!
 //! # Writing ([`write`])
 //!
 //! Free MPS in the classic layout. Integer and binary columns are written inside `MARKER`
 //! blocks and always with explicit bounds (readers disagree on the default bounds of integer
 //! columns); binaries with bounds `[0, 1]` as `BV`; continuous columns only with the bounds that
-//! differ from `[0, +∞)`. Numbers are written in the shortest form that reads back to the same
-//! `f64`. Ranged rows are written as `L` or `G` rows plus a RANGES entry chosen so that the two
-//! sides read back exactly whenever such an entry exists. Names are made writable and unique
-//! (see [`NameMap`]). By default a maximisation is written as the minimisation of the negated
-//! objective, because some readers (CBC) ignore `OBJSENSE`; see [`WriteOptions::negate_max`].
-//! Finite bounds and sides with `|v| ≥ 1e30` cannot be written faithfully: they read back as
-//! infinite.
+//! differ from `[0, +∞)`. A column with no entries gets a zero objective entry so that it
+//! exists. Numbers are written in the shortest form that reads back to the same `f64`.
+//!
+//! Ranged rows are written as `L` or `G` rows plus a RANGES entry chosen so that the two sides
+//! read back exactly whenever such an entry exists (otherwise other readers get the sides within
+//! an ulp, and ours reads the exact sides from a `* netspec: range` comment). Free rows are
+//! written as `N` rows after the objective row.
+//!
+//! Names are made writable and unique (see [`NameMap`]): whitespace and control characters
+//! become `_`, a leading `*` or `$` becomes `_`, an empty name becomes `_`, a column named like
+//! a section keyword (`RHS`, `BOUNDS`, `MAX`, ...; HiGHS reads those as headers even when
+//! indented) gets a `_` suffix, and clashes get a `_2`, `_3`, ... suffix. The objective row's
+//! name is claimed first, so a constraint with the same name is the one renamed.
+//!
+//! By default a maximisation is written as the minimisation of the negated objective, because
+//! some readers (CBC) ignore `OBJSENSE`; see [`WriteOptions::negate_max`]. Finite bounds and
+//! sides with `|v| ≥ 1e30` cannot be written faithfully: they read back as infinite.
 
 mod names;
 mod read;
@@ -85,6 +97,11 @@ pub const NEGATED_MAX_COMMENT: &str = "* netspec: maximize, objective negated";
 /// The prefix of the comment line by which [`write`] marks a binary column whose bounds are not
 /// `[0, 1]` (the column name follows).
 pub const BINARY_COMMENT_PREFIX: &str = "* netspec: binary ";
+
+/// The prefix of the comment line by which [`write`] gives the exact sides of a ranged row
+/// when no RANGES value reproduces both (the row name and the two sides follow). Our reader
+/// applies them when they agree with the sides from RHS and RANGES to within `1e-9` relative.
+pub const RANGE_COMMENT_PREFIX: &str = "* netspec: range ";
 
 /// Options for [`write`].
 #[derive(Clone, Debug, PartialEq, Eq)]

@@ -74,6 +74,19 @@ pub(crate) fn is_clean(name: &str) -> bool {
         && !name.chars().any(|c| c.is_whitespace() || c.is_control())
 }
 
+/// Words that HiGHS's free-format reader takes for a section header even when indented, so a
+/// column with one of these names would end the COLUMNS section there.
+const KEYWORDS: &[&str] = &[
+    "NAME", "OBJSENSE", "OBJNAME", "MAX", "MIN", "ROWS", "COLUMNS", "RHS", "BOUNDS", "RANGES", "QSECTION",
+    "QMATRIX", "QUADOBJ", "QCMATRIX", "CSECTION", "DELAYEDROWS", "MODELCUTS", "INDICATORS", "SETS", "SOS",
+    "GENCONS", "PWLOBJ", "PWLNAM", "PWLCON", "ENDATA",
+];
+
+/// Whether a name is one of [`KEYWORDS`].
+pub(crate) fn is_keyword(name: &str) -> bool {
+    KEYWORDS.contains(&name)
+}
+
 /// The cleaned form of a name (before uniqueness is enforced): whitespace and control
 /// characters become `_`, a leading `*` or `$` becomes `_`, the empty name becomes `_`.
 pub(crate) fn clean(name: &str) -> Cow<'_, str> {
@@ -99,13 +112,16 @@ pub(crate) fn clean(name: &str) -> Cow<'_, str> {
 
 /// Makes a list of names writable and unique. Clean names that are unique keep their spelling;
 /// the others are cleaned and, if needed, given a suffix `_2`, `_3`, … that makes them unique.
-/// `reserved` names (e.g. the objective row) are taken before any of `names`.
+/// `reserved` names (e.g. the objective row) are taken before any of `names`. With
+/// `avoid_keywords` (for column names), names equal to an MPS section keyword get a `_` suffix,
+/// because HiGHS would read them as section headers.
 ///
 /// Returns the written names (borrowed when unchanged) and the list of `(index, new name)` of
 /// the names that changed.
 pub(crate) fn make_unique<'a>(
     reserved: &[&'a str],
     names: impl ExactSizeIterator<Item = &'a str> + Clone,
+    avoid_keywords: bool,
 ) -> (Vec<Cow<'a, str>>, Vec<(usize, String)>) {
     let n = names.len();
     let mut used: FxHashSet<Cow<'a, str>> = FxHashSet::default();
@@ -117,7 +133,7 @@ pub(crate) fn make_unique<'a>(
     let mut out: Vec<Option<Cow<'a, str>>> = Vec::with_capacity(n);
     let mut pending = Vec::new();
     for (i, name) in names.clone().enumerate() {
-        if is_clean(name) && used.insert(Cow::Borrowed(name)) {
+        if is_clean(name) && !(avoid_keywords && is_keyword(name)) && used.insert(Cow::Borrowed(name)) {
             out.push(Some(Cow::Borrowed(name)));
         } else {
             out.push(None);
@@ -129,7 +145,10 @@ pub(crate) fn make_unique<'a>(
     if !pending.is_empty() {
         let originals: Vec<&'a str> = names.collect();
         for i in pending {
-            let base = clean(originals[i]);
+            let mut base = clean(originals[i]);
+            if avoid_keywords && is_keyword(&base) {
+                base = Cow::Owned(format!("{base}_"));
+            }
             let mut candidate = base.to_string();
             let mut k = 2usize;
             while used.contains(candidate.as_str()) {
@@ -163,11 +182,13 @@ mod tests {
     #[test]
     fn unique_names() {
         let names = ["a b", "a_b", "x", "x", "", "_"];
-        let (out, changed) = make_unique(&["obj"], names.iter().copied());
+        let (out, changed) = make_unique(&["obj"], names.iter().copied(), false);
         let out: Vec<&str> = out.iter().map(|c| c.as_ref()).collect();
         assert_eq!(out, ["a_b_2", "a_b", "x", "x_2", "__2", "_"]);
         assert_eq!(changed.len(), 3);
-        let (out, _) = make_unique(&["obj"], ["obj", "o"].iter().copied());
+        let (out, _) = make_unique(&["obj"], ["obj", "o"].iter().copied(), false);
         assert_eq!(out[0], "obj_2");
+        let (out, _) = make_unique(&[], ["RHS", "RHS_", "x"].iter().copied(), true);
+        assert_eq!(out, ["RHS__2", "RHS_", "x"]);
     }
 }

@@ -1,7 +1,7 @@
 //! The MPS reader. See the module documentation of [`super`] for the conventions.
 
 use super::names::{make_unique, FxHashMap};
-use super::{ParseError, ParseErrorKind, BINARY_COMMENT_PREFIX, NEGATED_MAX_COMMENT};
+use super::{ParseError, ParseErrorKind, BINARY_COMMENT_PREFIX, NEGATED_MAX_COMMENT, RANGE_COMMENT_PREFIX};
 use crate::io::{ReadOutcome, Warning};
 use crate::milp::{Model, Sense, VarId, VarKind};
 
@@ -178,6 +178,7 @@ struct Parser<'a> {
     ranges_vec: VectorChoice<'a>,
     bounds_vec: VectorChoice<'a>,
     binary_comments: Vec<(&'a str, usize)>,
+    range_comments: Vec<(&'a str, usize)>,
 }
 
 type PResult<T> = Result<T, ParseErrorKind>;
@@ -332,6 +333,7 @@ impl<'a> Parser<'a> {
             ranges_vec: VectorChoice::default(),
             bounds_vec: VectorChoice::default(),
             binary_comments: Vec::new(),
+            range_comments: Vec::new(),
         }
     }
 
@@ -431,6 +433,8 @@ impl<'a> Parser<'a> {
             }
         } else if let Some(name) = line.strip_prefix(BINARY_COMMENT_PREFIX) {
             self.binary_comments.push((name.trim(), line_no));
+        } else if let Some(rest) = line.strip_prefix(RANGE_COMMENT_PREFIX) {
+            self.range_comments.push((rest, line_no));
         }
     }
 
@@ -983,6 +987,31 @@ impl<'a> Parser<'a> {
             }
         }
 
+        // Exact sides of ranged rows from our own comments.
+        for &(text, line) in &self.range_comments {
+            let f: Vec<&str> = text.split_ascii_whitespace().collect();
+            let parsed = match f.as_slice() {
+                [name, l, u] => match (self.row_index.get(name), l.parse::<f64>(), u.parse::<f64>()) {
+                    (Some(&r), Ok(l), Ok(u)) if r != OBJ => Some((r as usize, l, u)),
+                    _ => None,
+                },
+                _ => None,
+            };
+            let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * a.abs().max(b.abs()).max(1.0);
+            match parsed {
+                Some((r, l, u))
+                    if self.range_set.get(r).copied().unwrap_or(false) && close(l, lhs[r]) && close(u, rhs[r]) =>
+                {
+                    lhs[r] = l;
+                    rhs[r] = u;
+                }
+                _ => self.warnings.push(Warning {
+                    line,
+                    message: "netspec range comment does not match a ranged row: ignored".into(),
+                }),
+            }
+        }
+
         // Column kinds and default bounds.
         for c in &mut self.cols {
             if c.marker_int && !c.any_bound {
@@ -1015,9 +1044,9 @@ impl<'a> Parser<'a> {
         let (row_out, col_out) = if fixed_names {
             let obj = self.obj_name.map(|o| o.replace(' ', "_"));
             let reserved: Vec<&str> = obj.as_deref().into_iter().collect();
-            let (rows, rc) = make_unique(&reserved, self.row_names.iter().copied());
+            let (rows, rc) = make_unique(&reserved, self.row_names.iter().copied(), false);
             let rows: Vec<String> = rows.into_iter().map(|c| c.into_owned()).collect();
-            let (cols, cc) = make_unique(&[], self.cols.iter().map(|c| c.name));
+            let (cols, cc) = make_unique(&[], self.cols.iter().map(|c| c.name), false);
             let cols: Vec<String> = cols.into_iter().map(|c| c.into_owned()).collect();
             if !rc.is_empty() || !cc.is_empty() {
                 self.warnings.push(Warning {

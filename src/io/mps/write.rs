@@ -1,7 +1,7 @@
 //! The free MPS writer. See the module documentation of [`super`] for the conventions.
 
 use super::names::{clean, make_unique};
-use super::{WriteOptions, BINARY_COMMENT_PREFIX, NEGATED_MAX_COMMENT};
+use super::{WriteOptions, BINARY_COMMENT_PREFIX, NEGATED_MAX_COMMENT, RANGE_COMMENT_PREFIX};
 use crate::io::NameMap;
 use crate::milp::{Model, RowKind, Sense, VarKind};
 use std::borrow::Cow;
@@ -56,6 +56,12 @@ impl<W: Write> Out<'_, W> {
         }
     }
 
+    /// The gap between the two (name, value) pairs of a line.
+    #[inline]
+    fn pair_gap(&mut self) {
+        self.s(if self.align { "   " } else { " " });
+    }
+
     #[inline]
     fn nl(&mut self) -> io::Result<()> {
         self.buf.push(b'\n');
@@ -104,13 +110,14 @@ fn check(model: &Model) -> io::Result<()> {
     Ok(())
 }
 
-/// How a row is written: its type letter, the RHS value and an optional RANGES value.
-fn row_form(lhs: f64, rhs: f64) -> (&'static str, f64, Option<f64>) {
+/// How a row is written: its type letter, the RHS value, an optional RANGES value, and whether
+/// the two sides read back exactly from these.
+fn row_form(lhs: f64, rhs: f64) -> (&'static str, f64, Option<f64>, bool) {
     match crate::milp::row_kind(lhs, rhs) {
-        RowKind::Le => ("L", rhs, None),
-        RowKind::Ge => ("G", lhs, None),
-        RowKind::Eq => ("E", rhs, None),
-        RowKind::Free => ("N", 0.0, None),
+        RowKind::Le => ("L", rhs, None, true),
+        RowKind::Ge => ("G", lhs, None, true),
+        RowKind::Eq => ("E", rhs, None, true),
+        RowKind::Free => ("N", 0.0, None, true),
         RowKind::Ranged => {
             // A G row [b, b + R] or an L row [b - R, b], whichever reads back exactly.
             let r0 = rhs - lhs;
@@ -122,14 +129,16 @@ fn row_form(lhs: f64, rhs: f64) -> (&'static str, f64, Option<f64>) {
             for r in cand {
                 if r > 0.0 && r.is_finite() {
                     if lhs + r == rhs {
-                        return ("G", lhs, Some(r));
+                        return ("G", lhs, Some(r), true);
                     }
                     if rhs - r == lhs {
-                        return ("L", rhs, Some(r));
+                        return ("L", rhs, Some(r), true);
                     }
                 }
             }
-            ("G", lhs, Some(r0))
+            // `rhs - lhs` is not representable: no RANGES value gives both sides exactly. Other
+            // readers get the sides within an ulp; ours reads the exact ones from a comment.
+            ("G", lhs, Some(r0), false)
         }
     }
 }
@@ -140,8 +149,8 @@ pub(super) fn write<W: Write>(model: &Model, w: &mut W, opts: &WriteOptions) -> 
     // Names.
     let obj_name: Cow<str> = if model.objective_name.is_empty() { Cow::Borrowed("obj") } else { clean(&model.objective_name) };
     let row_orig: Vec<&str> = model.rows().map(|r| r.name).collect();
-    let (row_names, row_changes) = make_unique(&[obj_name.as_ref()], row_orig.iter().copied());
-    let (col_names, col_changes) = make_unique(&[], model.vars().iter().map(|v| v.name.as_str()));
+    let (row_names, row_changes) = make_unique(&[obj_name.as_ref()], row_orig.iter().copied(), false);
+    let (col_names, col_changes) = make_unique(&[], model.vars().iter().map(|v| v.name.as_str()), true);
     let mut map = NameMap::default();
     for (i, new) in col_changes {
         map.vars.insert(model.vars()[i].name.clone(), new);
@@ -178,7 +187,7 @@ pub(super) fn write<W: Write>(model: &Model, w: &mut W, opts: &WriteOptions) -> 
 
     // ROWS.
     let (lhs, rhs) = model.row_sides();
-    let forms: Vec<(&'static str, f64, Option<f64>)> =
+    let forms: Vec<(&'static str, f64, Option<f64>, bool)> =
         lhs.iter().zip(rhs).map(|(&l, &u)| row_form(l, u)).collect();
     o.s("ROWS");
     o.nl()?;
@@ -223,7 +232,7 @@ pub(super) fn write<W: Write>(model: &Model, w: &mut W, opts: &WriteOptions) -> 
             o.field(chunk[0].0, 2);
             if chunk.len() == 2 {
                 o.num(chunk[0].1, 12);
-                o.s("   ");
+                o.pair_gap();
                 o.field(chunk[1].0, 2);
                 o.num(chunk[1].1, 0);
             } else {
@@ -265,6 +274,17 @@ pub(super) fn write<W: Write>(model: &Model, w: &mut W, opts: &WriteOptions) -> 
     if !pairs.is_empty() {
         o.s("RANGES");
         o.nl()?;
+        for (r, form) in forms.iter().enumerate() {
+            if !form.3 {
+                o.s(RANGE_COMMENT_PREFIX);
+                o.s(&row_names[r]);
+                o.s(" ");
+                o.num(lhs[r], 0);
+                o.s(" ");
+                o.num(rhs[r], 0);
+                o.nl()?;
+            }
+        }
         write_vector(&mut o, "RNG", &pairs)?;
     }
 
@@ -346,7 +366,7 @@ fn write_vector<W: Write>(o: &mut Out<'_, W>, set: &str, pairs: &[(&str, f64)]) 
         o.field(chunk[0].0, 2);
         if chunk.len() == 2 {
             o.num(chunk[0].1, 12);
-            o.s("   ");
+            o.pair_gap();
             o.field(chunk[1].0, 2);
             o.num(chunk[1].1, 0);
         } else {

@@ -3,7 +3,7 @@
 use super::error::{DegenerateReason, MeshError};
 use super::geom;
 use super::ids::{EdgeId, FaceId, HalfEdgeId, VertexId};
-use std::collections::{HashMap, VecDeque};
+use std::collections::VecDeque;
 use std::f64::consts::TAU;
 
 /// Largest element count accepted, so that every id (including half-edge `2e + 1`) fits in `u32`.
@@ -14,7 +14,7 @@ const DUPLICATE_TOLERANCE: f64 = 1e-12;
 
 /// A validated 2D polygon mesh with a half-edge structure.
 ///
-/// Built by [`Mesh::from_polygons`] (or the generators, [`subdivide`](super::subdivide), OBJ and
+/// Built by [`Mesh::from_polygons`] (or the generators, [`subdivide`](fn@super::subdivide), OBJ and
 /// JSON readers). Immutable. Invariants of a mesh built by `from_polygons`:
 /// - every face is a simple polygon with non-negligible area, stored counter-clockwise;
 /// - every edge has one or two faces, and two faces sharing an edge use it in opposite directions;
@@ -27,7 +27,7 @@ const DUPLICATE_TOLERANCE: f64 = 1e-12;
 ///
 /// See the [module docs](super) for the numbering of edges and half-edges and the order of
 /// one-rings.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, PartialEq)]
 pub struct Mesh {
     positions: Vec<[f64; 2]>,
     /// CSR offsets into `face_verts` / `face_hes`, length `F + 1`.
@@ -56,7 +56,10 @@ impl Mesh {
     /// by reversing every loop while keeping its first vertex (`[a, b, c, d]` becomes
     /// `[a, d, c, b]`). Vertex and face ids are the input indices; edges are numbered in order of
     /// first appearance along the normalised loops. See [`MeshError`] for everything checked.
-    pub fn from_polygons(positions: Vec<[f64; 2]>, faces: Vec<Vec<u32>>) -> Result<Mesh, MeshError> {
+    pub fn from_polygons(
+        positions: Vec<[f64; 2]>,
+        faces: Vec<Vec<u32>>,
+    ) -> Result<Mesh, MeshError> {
         Self::build(positions, faces, true)
     }
 
@@ -65,7 +68,7 @@ impl Mesh {
     /// angle sums) are skipped; the combinatorial checks still run. Used by [`subdivide`], whose
     /// output is combinatorially valid by construction.
     ///
-    /// [`subdivide`]: super::subdivide
+    /// [`subdivide`]: fn@super::subdivide
     pub(crate) fn build(
         positions: Vec<[f64; 2]>,
         mut faces: Vec<Vec<u32>>,
@@ -74,7 +77,9 @@ impl Mesh {
         let nv = positions.len();
         let nf = faces.len();
         if nf == 0 {
-            return Err(MeshError::Empty { reason: "no faces".into() });
+            return Err(MeshError::Empty {
+                reason: "no faces".into(),
+            });
         }
         let corners: usize = faces.iter().map(Vec::len).sum();
         if nv > MAX_ELEMENTS || nf > MAX_ELEMENTS || corners > MAX_ELEMENTS {
@@ -84,11 +89,19 @@ impl Mesh {
         }
 
         if check_geometry {
-            if let Some(v) = positions.iter().position(|p| !(p[0].is_finite() && p[1].is_finite())) {
-                return Err(MeshError::NonFinitePosition { v: VertexId(v as u32) });
+            if let Some(v) = positions
+                .iter()
+                .position(|p| !(p[0].is_finite() && p[1].is_finite()))
+            {
+                return Err(MeshError::NonFinitePosition {
+                    v: VertexId(v as u32),
+                });
             }
             if let Some((a, b)) = first_duplicate(&positions) {
-                return Err(MeshError::DuplicateVertex { a: VertexId(a as u32), b: VertexId(b as u32) });
+                return Err(MeshError::DuplicateVertex {
+                    a: VertexId(a as u32),
+                    b: VertexId(b as u32),
+                });
             }
         }
 
@@ -101,7 +114,10 @@ impl Mesh {
                 return Err(MeshError::BadIndex { face, index });
             }
             if lp.len() < 3 {
-                return Err(MeshError::DegenerateFace { face, reason: DegenerateReason::TooFewVertices });
+                return Err(MeshError::DegenerateFace {
+                    face,
+                    reason: DegenerateReason::TooFewVertices,
+                });
             }
             for &i in lp {
                 if seen_in_face[i as usize] == f as u32 {
@@ -115,7 +131,9 @@ impl Mesh {
             }
         }
         if let Some(v) = used.iter().position(|&u| !u) {
-            return Err(MeshError::IsolatedVertex { v: VertexId(v as u32) });
+            return Err(MeshError::IsolatedVertex {
+                v: VertexId(v as u32),
+            });
         }
 
         // Geometric face checks and orientation.
@@ -127,29 +145,30 @@ impl Mesh {
                 pts.extend(lp.iter().map(|&i| positions[i as usize]));
                 let face = FaceId(f as u32);
                 if geom::is_area_degenerate(&pts) {
-                    return Err(MeshError::DegenerateFace { face, reason: DegenerateReason::ZeroArea });
+                    return Err(MeshError::DegenerateFace {
+                        face,
+                        reason: DegenerateReason::ZeroArea,
+                    });
                 }
                 if !geom::is_simple(&pts) {
-                    return Err(MeshError::DegenerateFace { face, reason: DegenerateReason::SelfIntersecting });
+                    return Err(MeshError::DegenerateFace {
+                        face,
+                        reason: DegenerateReason::SelfIntersecting,
+                    });
                 }
                 clockwise[f] = geom::signed_area(&pts) < 0.0;
             }
         }
 
-        // Edges used by more than two faces (independent of orientation).
-        let mut use_count: HashMap<(u32, u32), u8> = HashMap::with_capacity(corners);
-        for lp in &faces {
-            for k in 0..lp.len() {
-                let (a, b) = (lp[k], lp[(k + 1) % lp.len()]);
-                let key = (a.min(b), a.max(b));
-                let c = use_count.entry(key).or_insert(0);
-                *c += 1;
-                if *c > 2 {
-                    return Err(MeshError::NonManifoldEdge { a: VertexId(key.0), b: VertexId(key.1) });
-                }
-            }
+        // Edges used by more than two faces (independent of orientation): report the edge whose
+        // third use comes first in face-walk order.
+        let mut groups = CornerGroups::new(&faces, nv);
+        if let Some((a, b)) = groups.non_manifold {
+            return Err(MeshError::NonManifoldEdge {
+                a: VertexId(a),
+                b: VertexId(b),
+            });
         }
-        drop(use_count);
 
         if check_geometry {
             let n_cw = clockwise.iter().filter(|&&c| c).count();
@@ -157,52 +176,55 @@ impl Mesh {
                 for lp in &mut faces {
                     lp[1..].reverse();
                 }
+                groups = CornerGroups::new(&faces, nv);
             } else if n_cw > 0 {
                 // The minority orientation is wrong; on a tie, the clockwise faces are.
                 let wrong_is_cw = 2 * n_cw <= nf;
-                let f = clockwise.iter().position(|&c| c == wrong_is_cw).unwrap_or(0);
-                return Err(MeshError::InconsistentOrientation { face: FaceId(f as u32) });
+                let f = clockwise
+                    .iter()
+                    .position(|&c| c == wrong_is_cw)
+                    .unwrap_or(0);
+                return Err(MeshError::InconsistentOrientation {
+                    face: FaceId(f as u32),
+                });
             }
         }
 
-        // Half-edges.
-        let mut edge_of: HashMap<(u32, u32), u32> = HashMap::with_capacity(corners);
-        let mut he_tail: Vec<VertexId> = Vec::new();
-        let mut he_face: Vec<Option<FaceId>> = Vec::new();
+        // Half-edges: a corner that first uses its edge creates it (half-edge 2e in its
+        // direction); the other corner of the edge, if any, takes half-edge 2e + 1.
+        let mut he_tail: Vec<VertexId> = Vec::with_capacity(corners + corners / 2);
+        let mut he_face: Vec<Option<FaceId>> = Vec::with_capacity(corners + corners / 2);
         let mut face_offsets = Vec::with_capacity(nf + 1);
         let mut face_verts = Vec::with_capacity(corners);
-        let mut face_hes = Vec::with_capacity(corners);
+        let mut face_hes: Vec<HalfEdgeId> = Vec::with_capacity(corners);
         face_offsets.push(0);
         for (f, lp) in faces.iter().enumerate() {
             let face = FaceId(f as u32);
             for k in 0..lp.len() {
+                let c = face_verts.len();
                 let (a, b) = (lp[k], lp[(k + 1) % lp.len()]);
-                let key = (a.min(b), a.max(b));
-                let h = match edge_of.get(&key) {
-                    None => {
-                        let e = (he_tail.len() / 2) as u32;
-                        edge_of.insert(key, e);
-                        he_tail.push(VertexId(a));
-                        he_tail.push(VertexId(b));
-                        he_face.push(Some(face));
-                        he_face.push(None);
-                        2 * e
+                let first = groups.first[c] as usize;
+                let h = if first == c {
+                    let e = (he_tail.len() / 2) as u32;
+                    he_tail.push(VertexId(a));
+                    he_tail.push(VertexId(b));
+                    he_face.push(Some(face));
+                    he_face.push(None);
+                    2 * e
+                } else {
+                    let h0 = face_hes[first];
+                    if he_tail[h0.index()] == VertexId(a) {
+                        return Err(MeshError::InconsistentOrientation { face });
                     }
-                    Some(&e) => {
-                        let h = if he_tail[2 * e as usize] == VertexId(a) { 2 * e } else { 2 * e + 1 };
-                        if he_face[h as usize].is_some() {
-                            return Err(MeshError::InconsistentOrientation { face });
-                        }
-                        he_face[h as usize] = Some(face);
-                        h
-                    }
+                    he_face[h0.index() ^ 1] = Some(face);
+                    h0.0 ^ 1
                 };
                 face_verts.push(VertexId(a));
                 face_hes.push(HalfEdgeId(h));
             }
             face_offsets.push(face_verts.len());
         }
-        drop(edge_of);
+        drop(groups);
         let nh = he_tail.len();
         let mut he_next = vec![None; nh];
         let mut he_prev = vec![None; nh];
@@ -237,7 +259,9 @@ impl Mesh {
             let mut starts = ring.iter().filter(|&&h| he_face[twin(h).index()].is_none());
             let first = starts.next().copied();
             if starts.next().is_some() {
-                return Err(MeshError::NonManifoldVertex { v: VertexId(v as u32) });
+                return Err(MeshError::NonManifoldVertex {
+                    v: VertexId(v as u32),
+                });
             }
             boundary_vertex[v] = first.is_some();
             // ring is in increasing id order, so ring[0] is the smallest id.
@@ -247,7 +271,9 @@ impl Mesh {
             loop {
                 out_hes.push(cur);
                 if out_hes.len() - before > ring.len() {
-                    return Err(MeshError::NonManifoldVertex { v: VertexId(v as u32) });
+                    return Err(MeshError::NonManifoldVertex {
+                        v: VertexId(v as u32),
+                    });
                 }
                 // CCW successor: sweep across the face on the left of `cur`.
                 let Some(p) = he_prev[cur.index()] else { break };
@@ -258,7 +284,9 @@ impl Mesh {
                 cur = nxt;
             }
             if out_hes.len() - before != ring.len() {
-                return Err(MeshError::NonManifoldVertex { v: VertexId(v as u32) });
+                return Err(MeshError::NonManifoldVertex {
+                    v: VertexId(v as u32),
+                });
             }
         }
 
@@ -422,7 +450,10 @@ impl Mesh {
 
     /// The half-edge `from → to`, if the two vertices are joined by an edge.
     pub fn half_edge_between(&self, from: VertexId, to: VertexId) -> Option<HalfEdgeId> {
-        self.outgoing(from).iter().copied().find(|&h| self.he_head(h) == to)
+        self.outgoing(from)
+            .iter()
+            .copied()
+            .find(|&h| self.he_head(h) == to)
     }
 
     /// Half-edges leaving `v`, in counter-clockwise angular order. An interior vertex's list
@@ -447,7 +478,9 @@ impl Mesh {
     /// Faces around `v`, counter-clockwise, in the order of [`outgoing`](Self::outgoing)
     /// (`valence − 1` faces at a boundary vertex, `valence` at an interior one).
     pub fn vertex_faces(&self, v: VertexId) -> impl Iterator<Item = FaceId> + '_ {
-        self.outgoing(v).iter().filter_map(move |&h| self.he_face(h))
+        self.outgoing(v)
+            .iter()
+            .filter_map(move |&h| self.he_face(h))
     }
 
     /// Number of edges at `v`.
@@ -467,7 +500,9 @@ impl Mesh {
 
     /// All boundary vertices, in id order.
     pub fn boundary_vertices(&self) -> Vec<VertexId> {
-        self.vertices().filter(|&v| self.is_boundary_vertex(v)).collect()
+        self.vertices()
+            .filter(|&v| self.is_boundary_vertex(v))
+            .collect()
     }
 
     /// All boundary edges, in id order.
@@ -492,7 +527,9 @@ impl Mesh {
                 done[h.index()] = true;
                 lp.push(h);
                 // The next faceless half-edge leaves head(h) as its last outgoing half-edge.
-                let Some(&n) = self.outgoing(self.he_head(h)).last() else { break };
+                let Some(&n) = self.outgoing(self.he_head(h)).last() else {
+                    break;
+                };
                 if n == h0 || done[n.index()] || self.he_face(n).is_some() {
                     break;
                 }
@@ -522,7 +559,10 @@ impl Mesh {
     /// A face's edges, in the order of [`face_half_edges`](Self::face_half_edges) (so in a quad,
     /// edges `i` and `i + 2` are opposite).
     pub fn face_edges(&self, f: FaceId) -> Vec<EdgeId> {
-        self.face_half_edges_slice(f).iter().map(|&h| self.he_edge(h)).collect()
+        self.face_half_edges_slice(f)
+            .iter()
+            .map(|&h| self.he_edge(h))
+            .collect()
     }
 
     /// The faces on the two sides of an edge: `[left of 2e, left of 2e + 1]`. The first is always
@@ -537,7 +577,10 @@ impl Mesh {
     }
 
     fn face_points(&self, f: FaceId) -> Vec<[f64; 2]> {
-        self.face_vertices(f).iter().map(|&v| self.position(v)).collect()
+        self.face_vertices(f)
+            .iter()
+            .map(|&v| self.position(v))
+            .collect()
     }
 
     /// Area centroid of a face.
@@ -607,28 +650,140 @@ impl Mesh {
     /// The input form: positions and counter-clockwise face loops (what
     /// [`from_polygons`](Self::from_polygons) takes back to rebuild an equal mesh).
     pub fn to_polygons(&self) -> (Vec<[f64; 2]>, Vec<Vec<u32>>) {
-        let faces = self.faces().map(|f| self.face_vertices(f).iter().map(|v| v.0).collect()).collect();
+        let faces = self
+            .faces()
+            .map(|f| self.face_vertices(f).iter().map(|v| v.0).collect())
+            .collect();
         (self.positions.clone(), faces)
+    }
+}
+
+/// Corners (face sides, numbered in face-walk order) grouped by undirected edge.
+struct CornerGroups {
+    /// `first[c]`: the first corner (in walk order) on the same undirected edge as corner `c`.
+    first: Vec<u32>,
+    /// Endpoints `(min, max)` of the edge whose third corner comes first, if any edge has more
+    /// than two.
+    non_manifold: Option<(u32, u32)>,
+}
+
+impl CornerGroups {
+    /// Buckets corners by their smaller endpoint, then sorts each bucket by the larger one.
+    /// Indices must be valid.
+    fn new(faces: &[Vec<u32>], nv: usize) -> CornerGroups {
+        let corners: usize = faces.iter().map(Vec::len).sum();
+        let key = |lp: &[u32], k: usize| {
+            let (a, b) = (lp[k], lp[(k + 1) % lp.len()]);
+            (a.min(b), a.max(b))
+        };
+        let mut offsets = vec![0usize; nv + 1];
+        for lp in faces {
+            for k in 0..lp.len() {
+                offsets[key(lp, k).0 as usize + 1] += 1;
+            }
+        }
+        for v in 0..nv {
+            offsets[v + 1] += offsets[v];
+        }
+        // (larger endpoint, corner), filled in corner order.
+        let mut entries = vec![(0u32, 0u32); corners];
+        let mut fill = offsets.clone();
+        let mut c = 0u32;
+        for lp in faces {
+            for k in 0..lp.len() {
+                let (lo, hi) = key(lp, k);
+                entries[fill[lo as usize]] = (hi, c);
+                fill[lo as usize] += 1;
+                c += 1;
+            }
+        }
+        let mut first = vec![0u32; corners];
+        let mut worst: Option<(u32, u32, u32)> = None; // (third corner, lo, hi)
+        for lo in 0..nv {
+            let bucket = &mut entries[offsets[lo]..offsets[lo + 1]];
+            bucket.sort_unstable();
+            let mut i = 0;
+            while i < bucket.len() {
+                let mut j = i;
+                while j < bucket.len() && bucket[j].0 == bucket[i].0 {
+                    first[bucket[j].1 as usize] = bucket[i].1;
+                    j += 1;
+                }
+                if j - i > 2 && worst.is_none_or(|w| bucket[i + 2].1 < w.0) {
+                    worst = Some((bucket[i + 2].1, lo as u32, bucket[i].0));
+                }
+                i = j;
+            }
+        }
+        CornerGroups {
+            first,
+            non_manifold: worst.map(|(_, a, b)| (a, b)),
+        }
+    }
+}
+
+/// Counts, plus the positions and face loops for small meshes (≤ 32 faces).
+impl std::fmt::Debug for Mesh {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let mut d = f.debug_struct("Mesh");
+        d.field("num_vertices", &self.num_vertices())
+            .field("num_edges", &self.num_edges())
+            .field("num_faces", &self.num_faces());
+        if self.num_faces() <= 32 {
+            d.field("positions", &self.positions);
+            d.field(
+                "faces",
+                &self
+                    .faces()
+                    .map(|f| self.face_vertices(f))
+                    .collect::<Vec<_>>(),
+            );
+        }
+        d.finish_non_exhaustive()
     }
 }
 
 /// The lexicographically smallest pair `(a, b)`, `a < b`, of positions within the duplicate
 /// tolerance, if any.
-fn first_duplicate(positions: &[[f64; 2]]) -> Option<(usize, usize)> {
+pub(crate) fn first_duplicate(positions: &[[f64; 2]]) -> Option<(usize, usize)> {
     let mut order: Vec<usize> = (0..positions.len()).collect();
-    order.sort_by(|&i, &j| positions[i][0].total_cmp(&positions[j][0]).then(i.cmp(&j)));
+    order.sort_by(|&i, &j| {
+        // `+ 0.0` turns −0 into +0, so that the order agrees with `==` on runs of equal x.
+        let (p, q) = (positions[i], positions[j]);
+        (p[0] + 0.0)
+            .total_cmp(&(q[0] + 0.0))
+            .then((p[1] + 0.0).total_cmp(&(q[1] + 0.0)))
+            .then(i.cmp(&j))
+    });
+    // run_end[k]: one past the last sorted position with the same x as sorted position k.
+    let n = order.len();
+    let mut run_end = vec![n; n];
+    for k in (0..n.saturating_sub(1)).rev() {
+        let same = positions[order[k]][0] == positions[order[k + 1]][0];
+        run_end[k] = if same { run_end[k + 1] } else { k + 1 };
+    }
     let mut best: Option<(usize, usize)> = None;
-    for (k, &i) in order.iter().enumerate() {
-        for &j in &order[k + 1..] {
-            if positions[j][0] - positions[i][0] > DUPLICATE_TOLERANCE {
+    for k in 0..n {
+        let p = positions[order[k]];
+        let mut l = k + 1;
+        while l < n {
+            let q = positions[order[l]];
+            if q[0] - p[0] > DUPLICATE_TOLERANCE {
                 break;
             }
-            if geom::dist(positions[i], positions[j]) <= DUPLICATE_TOLERANCE {
+            if q[1] - p[1] > DUPLICATE_TOLERANCE {
+                // Sorted by y within a run of equal x: the rest of q's run is farther away.
+                l = run_end[l];
+                continue;
+            }
+            if geom::dist(p, q) <= DUPLICATE_TOLERANCE {
+                let (i, j) = (order[k], order[l]);
                 let pair = (i.min(j), i.max(j));
                 if best.is_none_or(|b| pair < b) {
                     best = Some(pair);
                 }
             }
+            l += 1;
         }
     }
     best

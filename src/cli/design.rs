@@ -1,0 +1,135 @@
+//! `netspec solve SPEC`: the design command.
+
+use crate::SolveArgs;
+use anyhow::{Context, Result};
+use indicatif::{ProgressBar, ProgressStyle};
+use netspec::pipeline::{self, DesignResult};
+use netspec::render::{self, Caption};
+use netspec::solvers::SolverKind;
+use netspec::spec::Spec;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::time::Duration;
+
+/// Exit code when the design fails an independent check.
+const EXIT_INVALID: u8 = 3;
+
+pub fn solve_spec(path: &Path, args: &SolveArgs, out: Option<PathBuf>, export: Option<PathBuf>, no_solve: bool) -> Result<ExitCode> {
+    let spec = Spec::load(path)?;
+    let base = path.parent().unwrap_or(Path::new("."));
+    let problem = spec.resolve(base).map_err(|kind| netspec::spec::SpecError { path: path.to_path_buf(), kind })?;
+    let t0 = std::time::Instant::now();
+    let nm = pipeline::build(&problem);
+    let build_ms = t0.elapsed().as_secs_f64() * 1e3;
+    println!("spec       {} — {}", spec.name, spec.description);
+    println!(
+        "mesh       {} vertices, {} edges, {} faces; {} sinks",
+        problem.mesh.num_vertices(),
+        problem.mesh.num_edges(),
+        problem.mesh.num_faces(),
+        problem.is_sink.iter().filter(|&&s| s).count()
+    );
+    println!("model      {} (built in {build_ms:.1} ms, big-M {:.1})", nm.model.stats(), nm.big_m);
+    for (family, st) in &nm.families {
+        println!("  {family:<24} {:>7} vars {:>7} rows {:>8} nonzeros", st.vars, st.rows, st.nonzeros);
+    }
+    if let Some(ps) = &nm.path_sets {
+        let truncated = ps.pairs.iter().filter(|p| p.truncated).count();
+        println!("paths      {} pairs, {} paths enumerated in {:.3} s ({truncated} pairs truncated)", ps.pairs.len(), ps.total_paths, ps.seconds);
+    }
+    if let Some(file) = &export {
+        netspec::io::write_model_file(&nm.model, file)?;
+        println!("exported   {}", file.display());
+    }
+    if no_solve {
+        return Ok(ExitCode::SUCCESS);
+    }
+    // Command line over spec over default.
+    let kind = match (args.solver, spec.solver.name) {
+        (Some(k), _) | (None, Some(k)) => k,
+        (None, None) => SolverKind::default_kind().context("no backend compiled in")?,
+    };
+    let mut options = args.options();
+    options.time_limit = options.time_limit.or(spec.solver.time_limit);
+    options.rel_gap = options.rel_gap.or(spec.solver.gap);
+    options.threads = options.threads.or(spec.solver.threads);
+    options.seed = options.seed.or(spec.solver.seed);
+
+    let bar = ProgressBar::new_spinner();
+    bar.set_style(ProgressStyle::with_template("{spinner} solving with {msg} … {elapsed}").expect("static template"));
+    bar.set_message(format!("{kind}{}", options.time_limit.map_or(String::new(), |t| format!(" (limit {t} s)"))));
+    bar.enable_steady_tick(Duration::from_millis(200));
+    let res = pipeline::solve_built(&problem, &nm, kind, &options);
+    bar.finish_and_clear();
+    let res = res?;
+    print_summary(&res);
+
+    let dir = out.unwrap_or_else(|| PathBuf::from("out").join(&spec.name));
+    std::fs::create_dir_all(&dir).with_context(|| format!("creating {}", dir.display()))?;
+    let json = dir.join("result.json");
+    std::fs::write(&json, serde_json::to_string_pretty(&res)? + "\n").with_context(|| format!("writing {}", json.display()))?;
+    let caption = Caption {
+        name: format!("{} — {}", spec.name, spec.description),
+        solver: format!("{} {}", res.solve.solver, res.solve.solver_version),
+        status: res.solve.termination.label(),
+        objective: res.solve.objective,
+        gap: res.solve.gap,
+        verdict: verdict(&res),
+    };
+    if let Some(net) = &res.network {
+        let svg = render::svg(&problem, net, nm.path_sets.as_ref(), &caption);
+        let svg_path = dir.join("network.svg");
+        std::fs::write(&svg_path, &svg).with_context(|| format!("writing {}", svg_path.display()))?;
+        let png_path = dir.join("network.png");
+        std::fs::write(&png_path, render::png(&svg)?).with_context(|| format!("writing {}", png_path.display()))?;
+        println!("picture    {} (and .svg)", png_path.display());
+    }
+    println!("result     {}", json.display());
+    Ok(if res.network.is_some() && !res.validity.valid { ExitCode::from(EXIT_INVALID) } else { ExitCode::SUCCESS })
+}
+
+fn verdict(r: &DesignResult) -> String {
+    match (&r.network, r.validity.valid) {
+        (None, _) => "no network".into(),
+        (Some(_), true) => "valid".into(),
+        (Some(_), false) => {
+            let n = r.validity.design_violations.len() + r.validity.milp_check.as_ref().map_or(0, |c| c.violations.len());
+            format!("INVALID ({n} violations)")
+        }
+    }
+}
+
+fn print_summary(r: &DesignResult) {
+    let s = &r.solve;
+    let num = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.6}"));
+    println!("solver     {} {}", s.solver, s.solver_version);
+    println!("status     {}", s.termination);
+    println!("objective  {}", num(s.objective));
+    println!("bound      {}", num(s.dual_bound));
+    println!("gap        {}", s.gap.map_or("-".into(), |g| format!("{:.2}%", 100.0 * g)));
+    println!(
+        "time       {} solver, {:.2} s wall, {} nodes",
+        s.solver_time.map_or("-".into(), |t| format!("{t:.2} s")),
+        s.wall_time,
+        s.nodes.map_or("-".into(), |n| n.to_string())
+    );
+    if let Some(m) = &r.metrics {
+        println!(
+            "network    {} edges, length {:.2}, {} dead-ends, {} 3-way + {} 4-way junctions, {} T, {} too-close, {} zig-zags",
+            m.edges, m.length, m.dead_ends, m.junctions_3way, m.junctions_4way, m.t_junctions, m.too_close, m.zigzags
+        );
+        println!("travel     mean {:.3}, max {:.3} to the nearest sink; coverage slack {}", m.mean_travel, m.max_travel, m.coverage_slack);
+    }
+    println!("validity   {}", verdict(r));
+    for v in r.validity.design_violations.iter().take(10) {
+        println!("  {v}");
+    }
+    if let Some(c) = &r.validity.milp_check {
+        for v in c.violations.iter().take(10) {
+            println!("  MILP: {v}");
+        }
+    }
+    if r.validity.objective_agrees == Some(false) {
+        println!("  objective recomputed from the design: {:?}", r.validity.objective_recomputed);
+    }
+}
