@@ -8,3 +8,5 @@ mod corpus;
 mod native_readers;
 // The command-line tool, run as a subprocess.
 mod cli;
+// The network IP (paper §4) on small grids, the validator, spec errors.
+mod network;

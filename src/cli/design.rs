@@ -69,7 +69,7 @@ pub fn solve_spec(path: &Path, args: &SolveArgs, out: Option<PathBuf>, export: O
     let json = dir.join("result.json");
     std::fs::write(&json, serde_json::to_string_pretty(&res)? + "\n").with_context(|| format!("writing {}", json.display()))?;
     let caption = Caption {
-        name: format!("{} — {}", spec.name, spec.description),
+        name: if spec.description.is_empty() { spec.name.clone() } else { format!("{} — {}", spec.name, spec.description) },
         solver: format!("{} {}", res.solve.solver, res.solve.solver_version),
         status: res.solve.termination.label(),
         objective: res.solve.objective,

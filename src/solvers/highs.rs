@@ -127,13 +127,14 @@ fn termination(status: sys::HighsInt, o: &SolveOptions) -> Termination {
         sys::MODEL_STATUS_UNBOUNDED => Termination::Unbounded,
         sys::MODEL_STATUS_UNBOUNDED_OR_INFEASIBLE => Termination::InfeasibleOrUnbounded,
         sys::MODEL_STATUS_REACHED_TIME_LIMIT => Termination::Limit(LimitKind::Time),
+        // HiGHS reports its node limit (`mip_max_nodes`) as the "solution limit" status; netspec
+        // sets no other limit of that family (leaves, improving solutions).
+        sys::MODEL_STATUS_REACHED_SOLUTION_LIMIT if o.node_limit.is_some() => Termination::Limit(LimitKind::Node),
         sys::MODEL_STATUS_REACHED_SOLUTION_LIMIT => Termination::Limit(LimitKind::Solution),
         sys::MODEL_STATUS_REACHED_INTERRUPT => Termination::Limit(LimitKind::Interrupt),
         sys::MODEL_STATUS_REACHED_ITERATION_LIMIT | sys::MODEL_STATUS_REACHED_MEMORY_LIMIT => {
             Termination::Limit(LimitKind::Other)
         }
-        // HiGHS reports the node limit as "unknown"… only when a node limit was set.
-        sys::MODEL_STATUS_UNKNOWN if o.node_limit.is_some() => Termination::Limit(LimitKind::Node),
         sys::MODEL_STATUS_OBJECTIVE_BOUND | sys::MODEL_STATUS_OBJECTIVE_TARGET => Termination::Limit(LimitKind::Other),
         sys::MODEL_STATUS_SOLVE_ERROR | sys::MODEL_STATUS_POSTSOLVE_ERROR | sys::MODEL_STATUS_PRESOLVE_ERROR => {
             Termination::NumericalError

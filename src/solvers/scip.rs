@@ -229,7 +229,7 @@ impl Solver for ScipSolver {
             time_limit_whole_seconds: false,
             rel_gap: true,
             abs_gap: true,
-            threads: false,
+            threads: true,
             seed: true,
             node_limit: true,
             log_stdout: true,
@@ -247,7 +247,14 @@ impl Solver for ScipSolver {
         let (p, vars) = load(model)?;
         let p = apply_options(p, &vars, o)?;
         let (p, log) = LogGuard::new(p, &o.log)?;
-        let solved = match p.try_solve() {
+        let solved = match o.threads {
+            Some(t) if t > 1 => p
+                .set_int_param("parallel/maxnthreads", t.min(i32::MAX as u32) as i32)
+                .map_err(|e| retcode("parallel/maxnthreads", e))?
+                .try_solve_concurrent(),
+            _ => p.try_solve(),
+        };
+        let solved = match solved {
             Ok(s) => s,
             Err(e) => {
                 drop(log);
@@ -435,13 +442,29 @@ mod tests {
     #[ignore]
     fn zz_debug_print() {
         let m = market_split();
-        for o in [SolveOptions { time_limit: Some(1.0), ..Default::default() }, SolveOptions { time_limit: Some(0.0), ..Default::default() }, SolveOptions { node_limit: Some(3), ..Default::default() }, SolveOptions { rel_gap: Some(0.9), ..Default::default() }] {
-            let r = ScipSolver.solve(&m, &o).unwrap();
+        for o in [SolveOptions { time_limit: Some(1.0), ..Default::default() }, SolveOptions { time_limit: Some(0.0), ..Default::default() }, SolveOptions { node_limit: Some(3), ..Default::default() }, SolveOptions { rel_gap: Some(0.9), time_limit: Some(2.0), ..Default::default() }, SolveOptions { threads: Some(2), time_limit: Some(1.0), ..Default::default() }] {
+            let Ok(r) = ScipSolver.solve(&m, &o) else { println!("refused {o:?}"); continue };
             println!("{:?} -> {} obj={:?} bound={:?} gap={:?} nodes={:?} st={:?} wall={:.3} primal={}", o, r.termination, r.objective, r.dual_bound, r.gap, r.nodes, r.solver_time, r.wall_time, r.primal.is_some());
         }
         let r = ScipSolver.solve(&knapsack(), &SolveOptions::default()).unwrap();
         println!("knap {r:?}");
+        let r = ScipSolver.solve(&knapsack(), &SolveOptions { threads: Some(2), ..Default::default() }).unwrap();
+        println!("knap thr {r:?}");
+        let r = ScipSolver.solve(&lp(), &SolveOptions { threads: Some(2), ..Default::default() }).unwrap();
+        println!("lp thr {r:?}");
+        let r = ScipSolver.solve(&market_split(), &SolveOptions { threads: Some(2), node_limit: Some(10), ..Default::default() }).unwrap();
+        println!("ms thr nodes {} {:?} {:?}", r.termination, r.nodes, r.objective);
+        let r = ScipSolver.solve(&market_split(), &SolveOptions { threads: Some(2), time_limit: Some(1.0), ..Default::default() }).unwrap();
+        println!("ms thr time {} {:?} {:?} {}", r.termination, r.nodes, r.objective, r.wall_time);
         let r = ScipSolver.solve(&lp(), &SolveOptions::default()).unwrap();
         println!("lp {r:?}");
+    }
+
+    #[test]
+    #[ignore]
+    fn zz_thr() {
+        let t: u32 = std::env::var("THR").unwrap().parse().unwrap();
+        let r = ScipSolver.solve(&market_split(), &SolveOptions { threads: Some(t), time_limit: Some(3.0), ..Default::default() }).unwrap();
+        println!("ms thr{t} {} {:?} {:?} {}", r.termination, r.nodes, r.objective, r.wall_time);
     }
 }

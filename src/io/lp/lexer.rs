@@ -203,7 +203,13 @@ impl<'a> Lexer<'a> {
             DIGIT | DOT => {
                 let (v, end) = scan_number(b, i);
                 i = end;
-                Tok::Num(v, self.slice(start, i)?)
+                let text = self.slice(start, i)?;
+                if v.is_nan() {
+                    // Unreachable (the scanner only accepts valid literals), but never a silent NaN.
+                    self.pos = i;
+                    return Err(self.err(ParseErrorKind::NaN(text.to_string())));
+                }
+                Tok::Num(v, text)
             }
             OP => {
                 let next = if i + 1 < n { b[i + 1] } else { 0 };

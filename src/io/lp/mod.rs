@@ -101,7 +101,7 @@
 //!   starting with a digit or one of `.(),;`, equal to a keyword (`st`, `end`, `free`, `inf`,
 //!   `bin`, …), starting like an exponent (`e`, `e12`, `ee…`) or with `inf`/`nan` (HiGHS parses
 //!   `inf1` as a number) gets a `_` prefix; names longer than [`WriteOptions::max_name_len`]
-//!   are shortened; clashes get a `_1`, `_2`, … suffix. Changed names are returned in the
+//!   (default 100, the CoinLpIO limit) are shortened; clashes get a `_1`, `_2`, … suffix. Changed names are returned in the
 //!   [`NameMap`] (the objective name, which must differ from every row name for CoinLpIO, in
 //!   its `rows` part). The upper halves of ranged rows are not in the map.
 //! * A model that has no LP form (a NaN, an infinite coefficient or constant, a bound or side
@@ -139,19 +139,19 @@ pub struct WriteOptions {
     /// is written. Default `true`.
     pub negate_max: bool,
     /// Wrap lines before they exceed this many characters. A line is longer only when a single
-    /// piece (a term with a long name, a bound) is; with the default name limit no line exceeds
-    /// 250 characters. Default `250` (CPLEX and older readers truncate lines beyond 255).
+    /// piece (a term with a long name, a bound) is; the longest piece is the name plus 37
+    /// characters. Default `250` (CPLEX and older readers truncate lines beyond 255).
     pub max_line_len: usize,
     /// Names longer than this are shortened (and the change recorded in the [`NameMap`]).
-    /// Default `200`, which keeps the longest possible piece (`-inf <= name <= u` with a
-    /// 24-character number) within 250 characters. Values above 255 (the CPLEX limit) are
-    /// treated as 255.
+    /// Default `100`: CoinLpIO (CBC's reader) rejects longer names, and renames *every*
+    /// variable or row of a file that has one. Values above 255 (the CPLEX limit) are treated
+    /// as 255; with names of at most 200 characters no line exceeds 250 characters.
     pub max_name_len: usize,
 }
 
 impl Default for WriteOptions {
     fn default() -> Self {
-        WriteOptions { negate_max: true, max_line_len: 250, max_name_len: 200 }
+        WriteOptions { negate_max: true, max_line_len: 250, max_name_len: 100 }
     }
 }
 

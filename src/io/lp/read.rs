@@ -309,13 +309,11 @@ impl<'a> Parser<'a> {
                 }
             }
             Section::Semi => {
-                if self.peek()?.tok == Tok::Minus {
-                    if let Tok::Name(w) = self.peek2()?.tok {
-                        if w.eq_ignore_ascii_case("continuous") {
-                            self.bump();
-                            self.bump();
-                        }
-                    }
+                let continuous = self.peek()?.tok == Tok::Minus
+                    && matches!(self.peek2()?.tok, Tok::Name(w) if w.eq_ignore_ascii_case("continuous"));
+                if continuous {
+                    self.bump();
+                    self.bump();
                 }
             }
             _ => {}
