@@ -80,7 +80,7 @@ fn vname(v: VertexId) -> String {
 }
 
 fn he_name(mesh: &Mesh, h: HalfEdgeId) -> String {
-    format!("{}_{}", vname(mesh.he_tail(h)), vname(mesh.he_head(h)))
+    format!("v{}_v{}", mesh.he_tail(h).0, mesh.he_head(h).0)
 }
 
 /// Builds the MILP for a resolved problem.
@@ -215,10 +215,10 @@ fn no_island(p: &Problem, em: &mut Emitter, nm: &NetworkModel) {
                     continue;
                 }
                 let djk = nm.label_var[g.index()].unwrap();
-                let tag = format!("{}_{}_{}", vname(i), vname(j), vname(k));
-                let l = em.model.add_binary(format!("L_{tag}"), 0.0);
-                em.model.add_le(format!("noisl1_{tag}"), [(l, 1.0), (ejk, -1.0)], 0.0);
-                em.model.add_le(format!("noisl2_{tag}"), [(djk, 1.0), (dij, -1.0), (l, m)], m - delta);
+                let (i, j, k) = (i.0, j.0, k.0);
+                let l = em.model.add_binary(format!("L_v{i}_v{j}_v{k}"), 0.0);
+                em.model.add_le(format!("noisl1_v{i}_v{j}_v{k}"), [(l, 1.0), (ejk, -1.0)], 0.0);
+                em.model.add_le(format!("noisl2_v{i}_v{j}_v{k}"), [(djk, 1.0), (dij, -1.0), (l, m)], m - delta);
                 three.add(l, -1.0);
             }
             em.le(format!("noisl3_{}", he_name(mesh, h)), &three, 0.0);

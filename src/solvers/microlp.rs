@@ -350,18 +350,4 @@ mod tests {
             assert_feasible(&m, &r);
         }
     }
-
-    #[test]
-    #[ignore]
-    fn zz_debug_print() {
-        let m = market_split();
-        for o in [SolveOptions { time_limit: Some(1.0), ..Default::default() }, SolveOptions { time_limit: Some(0.0), ..Default::default() }, SolveOptions { node_limit: Some(3), ..Default::default() }, SolveOptions { rel_gap: Some(0.9), time_limit: Some(2.0), ..Default::default() }, SolveOptions { threads: Some(2), time_limit: Some(1.0), ..Default::default() }] {
-            let Ok(r) = MicrolpSolver.solve(&m, &o) else { println!("refused {o:?}"); continue };
-            println!("{:?} -> {} obj={:?} bound={:?} gap={:?} nodes={:?} st={:?} wall={:.3} primal={}", o, r.termination, r.objective, r.dual_bound, r.gap, r.nodes, r.solver_time, r.wall_time, r.primal.is_some());
-        }
-        let r = MicrolpSolver.solve(&knapsack(), &SolveOptions::default()).unwrap();
-        println!("knap {r:?}");
-        let r = MicrolpSolver.solve(&lp(), &SolveOptions::default()).unwrap();
-        println!("lp {r:?}");
-    }
 }

@@ -361,8 +361,22 @@ mod tests {
     #[test]
     fn numbers() {
         for s in [
-            "0", "1", "5.", ".5", "3.25", "1e30", "1e+30", "1E-7", "123456789012345678901234567890", "0.1", "2.2250738585072014e-308",
-            "5e-324", "1.7976931348623157e308", "9007199254740993", "0.000000000000000000000000001", "1e400",
+            "0",
+            "1",
+            "5.",
+            ".5",
+            "3.25",
+            "1e30",
+            "1e+30",
+            "1E-7",
+            "123456789012345678901234567890",
+            "0.1",
+            "2.2250738585072014e-308",
+            "5e-324",
+            "1.7976931348623157e308",
+            "9007199254740993",
+            "0.000000000000000000000000001",
+            "1e400",
         ] {
             let (v, end) = scan_number(s.as_bytes(), 0);
             assert_eq!(end, s.len(), "{s}");
@@ -379,10 +393,30 @@ mod tests {
         assert_eq!(
             toks("obj: 2x + 3 y \\ comment\n- .5 z <= =< >= => = < > == -> <-> [ ] * ^"),
             vec![
-                Name("obj"), Colon, Num(2.0, "2"), Name("x"), Plus, Num(3.0, "3"), Name("y"), Minus, Num(0.5, ".5"),
-                Name("z"), Cmp(super::Cmp::Le), Cmp(super::Cmp::Le), Cmp(super::Cmp::Ge), Cmp(super::Cmp::Ge),
-                Cmp(super::Cmp::Eq), Cmp(super::Cmp::Le), Cmp(super::Cmp::Ge), Cmp(super::Cmp::Eq), Arrow, Arrow,
-                Quad(b'['), Quad(b']'), Quad(b'*'), Quad(b'^'),
+                Name("obj"),
+                Colon,
+                Num(2.0, "2"),
+                Name("x"),
+                Plus,
+                Num(3.0, "3"),
+                Name("y"),
+                Minus,
+                Num(0.5, ".5"),
+                Name("z"),
+                Cmp(super::Cmp::Le),
+                Cmp(super::Cmp::Le),
+                Cmp(super::Cmp::Ge),
+                Cmp(super::Cmp::Ge),
+                Cmp(super::Cmp::Eq),
+                Cmp(super::Cmp::Le),
+                Cmp(super::Cmp::Ge),
+                Cmp(super::Cmp::Eq),
+                Arrow,
+                Arrow,
+                Quad(b'['),
+                Quad(b']'),
+                Quad(b'*'),
+                Quad(b'^'),
             ]
         );
         assert_eq!(toks("x<-5"), vec![Name("x"), Cmp(super::Cmp::Le), Minus, Num(5.0, "5")]);

@@ -215,7 +215,8 @@ pub(super) fn assign(model: &Model, max_len: usize, is_ranged: impl Fn(usize) ->
         namer.claim(&model.objective_name);
         Cow::Borrowed(model.objective_name.as_str())
     } else {
-        let base = if model.objective_name.is_empty() { "obj".to_string() } else { sanitize(&model.objective_name, max_len) };
+        let base =
+            if model.objective_name.is_empty() { "obj".to_string() } else { sanitize(&model.objective_name, max_len) };
         let fresh = namer.fresh(base);
         map.rows.insert(model.objective_name.clone(), fresh.clone());
         Cow::Owned(fresh)
@@ -262,9 +263,9 @@ mod tests {
             assert!(is_writable(ok, 255), "{ok}");
         }
         for bad in [
-            "", "1x", ".x", "(x", ",x", ";x", "e", "E", "e1", "e1x", "ee", "EEl", "inf", "INF1", "nanx", "infinity", "st",
-            "S.T.", "end", "Free", "bin", "subject", "a b", "a/b", "a|b", "a:b", "a-b", "a+b", "a[b", "a^b", "a*b", "a<b",
-            "a\\b", "é",
+            "", "1x", ".x", "(x", ",x", ";x", "e", "E", "e1", "e1x", "ee", "EEl", "inf", "INF1", "nanx", "infinity",
+            "st", "S.T.", "end", "Free", "bin", "subject", "a b", "a/b", "a|b", "a:b", "a-b", "a+b", "a[b", "a^b",
+            "a*b", "a<b", "a\\b", "é",
         ] {
             assert!(!is_writable(bad, 255), "{bad}");
             let s = sanitize(bad, 255);

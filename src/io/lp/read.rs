@@ -285,7 +285,9 @@ impl<'a> Parser<'a> {
             Keyword::Lazy if second("constraints") => {
                 return Err(Self::error(t.line, ParseErrorKind::Unsupported("lazy constraints")))
             }
-            Keyword::User if second("cuts") => return Err(Self::error(t.line, ParseErrorKind::Unsupported("user cuts"))),
+            Keyword::User if second("cuts") => {
+                return Err(Self::error(t.line, ParseErrorKind::Unsupported("user cuts")))
+            }
             Keyword::Lazy | Keyword::User => return Ok(None),
             Keyword::Bounds => Section::Bounds,
             Keyword::Generals => Section::Generals,
@@ -419,9 +421,10 @@ impl<'a> Parser<'a> {
         }
         if let Some(line) = max_header {
             match saw_objective_sense {
-                Some(Sense::Maximize) => {
-                    self.warn(line, "`netspec: maximize, objective negated` comment ignored: the objective is already `Maximize`")
-                }
+                Some(Sense::Maximize) => self.warn(
+                    line,
+                    "`netspec: maximize, objective negated` comment ignored: the objective is already `Maximize`",
+                ),
                 _ => self.negated_max = true,
             }
         }
@@ -641,7 +644,9 @@ impl<'a> Parser<'a> {
             Tok::Eof => Ok(()),
             Tok::Cmp(_) => Err(Self::error(
                 t.line,
-                ParseErrorKind::MissingSection("comparison in the objective: is `Subject To` missing before the constraints?"),
+                ParseErrorKind::MissingSection(
+                    "comparison in the objective: is `Subject To` missing before the constraints?",
+                ),
             )),
             Tok::Name(_) if self.peek2()?.tok == Tok::Colon => Err(Self::error(
                 t.line,
@@ -715,7 +720,8 @@ impl<'a> Parser<'a> {
                             t2.line,
                             ParseErrorKind::UnexpectedToken {
                                 found: describe(&t2.tok),
-                                expected: "the same direction on both sides of a ranged constraint (`lo <= expr <= hi`)",
+                                expected:
+                                    "the same direction on both sides of a ranged constraint (`lo <= expr <= hi`)",
                             },
                         ))
                     }
@@ -745,10 +751,16 @@ impl<'a> Parser<'a> {
         }
         let display = name.unwrap_or("(unnamed)");
         if lhs == f64::INFINITY {
-            return Err(Self::error(line, ParseErrorKind::InfiniteBound(format!("row `{display}` has lower side +infinity"))));
+            return Err(Self::error(
+                line,
+                ParseErrorKind::InfiniteBound(format!("row `{display}` has lower side +infinity")),
+            ));
         }
         if rhs == f64::NEG_INFINITY {
-            return Err(Self::error(line, ParseErrorKind::InfiniteBound(format!("row `{display}` has upper side -infinity"))));
+            return Err(Self::error(
+                line,
+                ParseErrorKind::InfiniteBound(format!("row `{display}` has upper side -infinity")),
+            ));
         }
         self.finish_row(name, line, lhs, rhs, ranged_here)?;
         self.clear_terms();
@@ -778,13 +790,21 @@ impl<'a> Parser<'a> {
         if let Some((first, dline)) = self.range_first.take() {
             let row = self.model.row(first);
             let same = row.vars.len() == self.terms.len()
-                && row.vars.iter().zip(row.coefs).zip(&self.terms).all(|((v, a), (w, b))| v == w && a.to_bits() == b.to_bits());
+                && row
+                    .vars
+                    .iter()
+                    .zip(row.coefs)
+                    .zip(&self.terms)
+                    .all(|((v, a), (w, b))| v == w && a.to_bits() == b.to_bits());
             if same && row.rhs == f64::INFINITY && row.lhs.is_finite() && lhs == f64::NEG_INFINITY && rhs.is_finite() {
                 let lo = row.lhs;
                 self.model.set_row_sides(first, lo, rhs);
                 return Ok(());
             }
-            self.warn(dline, "`ranged row` comment ignored: the two rows after it are not the `>=` and `<=` halves of one row");
+            self.warn(
+                dline,
+                "`ranged row` comment ignored: the two rows after it are not the `>=` and `<=` halves of one row",
+            );
         }
         if let Some(n) = name {
             if let Some(&first_line) = self.row_names.get(n) {
@@ -807,7 +827,10 @@ impl<'a> Parser<'a> {
     fn set_lb(&mut self, v: VarId, value: f64, line: usize) -> Result<(), ParseError> {
         if value == f64::INFINITY {
             let name = &self.model.var(v).name;
-            return Err(Self::error(line, ParseErrorKind::InfiniteBound(format!("lower bound of `{name}` is +infinity"))));
+            return Err(Self::error(
+                line,
+                ParseErrorKind::InfiniteBound(format!("lower bound of `{name}` is +infinity")),
+            ));
         }
         if self.flags[v.index()] & LB_SET != 0 {
             let name = self.model.var(v).name.clone();
@@ -821,7 +844,10 @@ impl<'a> Parser<'a> {
     fn set_ub(&mut self, v: VarId, value: f64, line: usize) -> Result<(), ParseError> {
         if value == f64::NEG_INFINITY {
             let name = &self.model.var(v).name;
-            return Err(Self::error(line, ParseErrorKind::InfiniteBound(format!("upper bound of `{name}` is -infinity"))));
+            return Err(Self::error(
+                line,
+                ParseErrorKind::InfiniteBound(format!("upper bound of `{name}` is -infinity")),
+            ));
         }
         if self.flags[v.index()] & UB_SET != 0 {
             let name = self.model.var(v).name.clone();
@@ -843,7 +869,10 @@ impl<'a> Parser<'a> {
             Cmp::Eq => {
                 if !value.is_finite() {
                     let name = self.model.var(v).name.clone();
-                    return Err(Self::error(line, ParseErrorKind::InfiniteBound(format!("`{name}` fixed at an infinite value"))));
+                    return Err(Self::error(
+                        line,
+                        ParseErrorKind::InfiniteBound(format!("`{name}` fixed at an infinite value")),
+                    ));
                 }
                 self.set_lb(v, value, line)?;
                 // A fixing sets both sides at once: do not warn about the upper side.
@@ -912,7 +941,8 @@ impl<'a> Parser<'a> {
                     let t3 = self.peek()?;
                     if let Tok::Cmp(c2) = t3.tok {
                         self.bump();
-                        let (second, _) = self.value("a number")?.ok_or_else(|| Self::unexpected(&self.buf[0], "a number"))?;
+                        let (second, _) =
+                            self.value("a number")?.ok_or_else(|| Self::unexpected(&self.buf[0], "a number"))?;
                         let second = to_bound(second);
                         match (c1, c2) {
                             (Cmp::Le, Cmp::Le) => {
@@ -994,7 +1024,10 @@ impl<'a> Parser<'a> {
         for (id, line) in std::mem::take(&mut self.negative_ub) {
             let v = self.model.var(id);
             if self.flags[id.index()] & LB_SET == 0 && v.ub < 0.0 && self.flags[id.index()] & BINARY == 0 {
-                let msg = format!("upper bound {} of `{}` is below its default lower bound 0 (the bounds cross)", v.ub, v.name);
+                let msg = format!(
+                    "upper bound {} of `{}` is below its default lower bound 0 (the bounds cross)",
+                    v.ub, v.name
+                );
                 self.warn(line, msg);
             }
         }
@@ -1006,7 +1039,8 @@ impl<'a> Parser<'a> {
             v.lb = lb.max(0.0);
             v.ub = ub.min(1.0);
             if (f & LB_SET != 0 && lb < 0.0) || (f & UB_SET != 0 && ub > 1.0) {
-                let msg = format!("bounds [{lb}, {ub}] of binary variable `{}` clipped to [{}, {}]", v.name, v.lb, v.ub);
+                let msg =
+                    format!("bounds [{lb}, {ub}] of binary variable `{}` clipped to [{}, {}]", v.name, v.lb, v.ub);
                 self.warn(line, msg);
             }
         }

@@ -49,7 +49,11 @@ fn corpus_1448_is_an_empty_model() {
     let o = read(include_str!("../../../fixtures/lp/highs-check/1448.lp"));
     assert_eq!(o.model.num_vars(), 0);
     assert_eq!(o.model.num_rows(), 0);
-    assert!(o.warnings.iter().any(|w| w.line == 1 && w.message.contains("before the first section")), "{:?}", o.warnings);
+    assert!(
+        o.warnings.iter().any(|w| w.line == 1 && w.message.contains("before the first section")),
+        "{:?}",
+        o.warnings
+    );
 }
 
 #[test]
@@ -196,7 +200,8 @@ fn repeated_variables_are_summed() {
 
 #[test]
 fn terms_span_lines_and_signs() {
-    let text = "min\n obj: x\n + y\n -\n 3\n z\nst\n c1: - x\n - - y +\n + 2 z\n >= -4\n c2: -2.5e-1 x +1e+2 y\n <= .5\nend";
+    let text =
+        "min\n obj: x\n + y\n -\n 3\n z\nst\n c1: - x\n - - y +\n + 2 z\n >= -4\n c2: -2.5e-1 x +1e+2 y\n <= .5\nend";
     let m = read(text).model;
     assert_eq!(var(&m, "z").obj, -3.0);
     let c1 = row_by_name(&m, "c1");
@@ -214,7 +219,17 @@ fn constraint_senses_and_constants() {
     let sides: Vec<_> = m.rows().map(|r| (r.lhs, r.rhs)).collect();
     assert_eq!(
         sides,
-        [(-INF, 1.0), (-INF, 2.0), (-INF, 3.0), (4.0, INF), (5.0, INF), (6.0, INF), (7.0, 7.0), (2.0, INF), (-INF, 3.0)]
+        [
+            (-INF, 1.0),
+            (-INF, 2.0),
+            (-INF, 3.0),
+            (4.0, INF),
+            (5.0, INF),
+            (6.0, INF),
+            (7.0, 7.0),
+            (2.0, INF),
+            (-INF, 3.0)
+        ]
     );
 }
 
@@ -246,7 +261,16 @@ fn empty_free_and_infinite_rows() {
     let kinds: Vec<_> = m.rows().map(|r| r.kind()).collect();
     assert_eq!(
         kinds,
-        [RowKind::Ge, RowKind::Le, RowKind::Eq, RowKind::Free, RowKind::Free, RowKind::Free, RowKind::Free, RowKind::Free]
+        [
+            RowKind::Ge,
+            RowKind::Le,
+            RowKind::Eq,
+            RowKind::Free,
+            RowKind::Free,
+            RowKind::Free,
+            RowKind::Free,
+            RowKind::Free
+        ]
     );
     assert!(row_by_name(&m, "e1").vars.is_empty());
     assert_eq!(row_by_name(&m, "e1").lhs, -3.0);
@@ -300,7 +324,11 @@ fn bound_warnings_and_errors() {
     let o = read("min\n obj: x + y\nst\nbounds\n x >= 1\n x >= 2\n y <= -5\nend");
     assert_eq!(var(&o.model, "x").lb, 2.0);
     assert!(o.warnings.iter().any(|w| w.line == 6 && w.message.contains("set again")), "{:?}", o.warnings);
-    assert!(o.warnings.iter().any(|w| w.line == 7 && w.message.contains("below its default lower bound")), "{:?}", o.warnings);
+    assert!(
+        o.warnings.iter().any(|w| w.line == 7 && w.message.contains("below its default lower bound")),
+        "{:?}",
+        o.warnings
+    );
     let o = read("min\n obj: y\nst\nbounds\n y <= -5\n y >= -10\nend");
     assert!(o.warnings.is_empty(), "{:?}", o.warnings);
     for (text, line) in [
@@ -314,7 +342,10 @@ fn bound_warnings_and_errors() {
     }
     let e = err("min\nst\nbounds\n x frees\nend");
     assert!(matches!(e.kind, ParseErrorKind::UnknownKeyword { .. }), "{e}");
-    assert_eq!(e.to_string(), "line 4: unknown keyword `frees` (after a variable in the bounds section, expected `free` or a comparison)");
+    assert_eq!(
+        e.to_string(),
+        "line 4: unknown keyword `frees` (after a variable in the bounds section, expected `free` or a comparison)"
+    );
     let e = err("min\nst\nbounds\n 1 <= x >= 0\nend");
     assert_eq!(e.line, 4);
     let e = err("min\nst\nbounds\n x <=\nend");
@@ -586,8 +617,9 @@ fn writer_refuses_unwritable_models() {
 #[test]
 fn long_rows_are_wrapped_under_255_characters() {
     let mut m = Model::new("wide");
-    let vars: Vec<VarId> =
-        (0..1000).map(|j| m.add_integer(format!("variable_with_a_long_name_{j}"), -1e-300 * j as f64, 1e29, -1.0 / 3.0)).collect();
+    let vars: Vec<VarId> = (0..1000)
+        .map(|j| m.add_integer(format!("variable_with_a_long_name_{j}"), -1e-300 * j as f64, 1e29, -1.0 / 3.0))
+        .collect();
     m.add_row(
         "wide_row",
         -123456.789,
@@ -595,7 +627,8 @@ fn long_rows_are_wrapped_under_255_characters() {
         vars.iter().enumerate().map(|(j, &v)| (v, if j % 2 == 0 { -2.0f64.powi(-(j as i32)) } else { 1.0 / 3.0 })),
     );
     let long = "n".repeat(200);
-    let v = m.add_continuous(long.clone(), -1.2345678901234567e-300, -2.2250738585072014e-308, -1.2345678901234567e-300);
+    let v =
+        m.add_continuous(long.clone(), -1.2345678901234567e-300, -2.2250738585072014e-308, -1.2345678901234567e-300);
     m.add_row(long.clone(), -1.2345678901234567e-300, 1.2345678901234567e-300, [(v, -1.2345678901234567e-300)]);
     for opts in [
         WriteOptions::default(),
@@ -620,11 +653,30 @@ fn long_rows_are_wrapped_under_255_characters() {
 #[test]
 fn numbers_round_trip_bit_exactly() {
     let values = [
-        0.0, -0.0, 1.0, -1.0, 0.1, 1.0 / 3.0, 2.0 / 3.0, 1e-300, 5e-324, f64::MIN_POSITIVE, f64::MAX, -f64::MAX, 1e15, 1e16, 123456789012345.6,
-        9007199254740993.0, 0.30000000000000004, 1e22, 1e23, 4.35e-320,
+        0.0,
+        -0.0,
+        1.0,
+        -1.0,
+        0.1,
+        1.0 / 3.0,
+        2.0 / 3.0,
+        1e-300,
+        5e-324,
+        f64::MIN_POSITIVE,
+        f64::MAX,
+        -f64::MAX,
+        1e15,
+        1e16,
+        123456789012345.6,
+        9007199254740993.0,
+        0.30000000000000004,
+        1e22,
+        1e23,
+        4.35e-320,
     ];
     let mut m = Model::new("");
-    let vars: Vec<VarId> = values.iter().enumerate().map(|(j, &c)| m.add_continuous(format!("x{j}"), 0.0, INF, c)).collect();
+    let vars: Vec<VarId> =
+        values.iter().enumerate().map(|(j, &c)| m.add_continuous(format!("x{j}"), 0.0, INF, c)).collect();
     m.add_le("r", vars.iter().zip(&values).map(|(&v, &a)| (v, a)), 1e-300);
     m.obj_constant = -1.0 / 3.0;
     let (text, _) = write_str(&m, &WriteOptions::default());
@@ -722,18 +774,18 @@ struct Spec {
 
 fn model_strategy() -> impl Strategy<Value = Spec> {
     let vars = prop::collection::vec((name_strategy(), 0u8..3, value(), value(), 0u8..6, coef()), 0..8);
-    let rows = prop::collection::vec((name_strategy(), 0u8..5, value(), value(), prop::collection::vec((any::<prop::sample::Index>(), coef()), 0..6)), 0..7);
-    (
-        vars,
-        rows,
-        "[ -~]{0,20}",
-        name_strategy(),
-        any::<bool>(),
-        value(),
-        any::<bool>(),
-        40usize..260,
-    )
-        .prop_map(|(vars, rows, mname, oname, max, constant, negate_max, line_len)| {
+    let rows = prop::collection::vec(
+        (
+            name_strategy(),
+            0u8..5,
+            value(),
+            value(),
+            prop::collection::vec((any::<prop::sample::Index>(), coef()), 0..6),
+        ),
+        0..7,
+    );
+    (vars, rows, "[ -~]{0,20}", name_strategy(), any::<bool>(), value(), any::<bool>(), 40usize..260).prop_map(
+        |(vars, rows, mname, oname, max, constant, negate_max, line_len)| {
             let mut m = Model::new(mname.trim());
             m.sense = if max { Sense::Maximize } else { Sense::Minimize };
             m.obj_constant = constant;
@@ -778,13 +830,18 @@ fn model_strategy() -> impl Strategy<Value = Spec> {
                 let terms: Vec<(VarId, f64)> = if n == 0 {
                     vec![]
                 } else {
-                    entries.into_iter().map(|(i, c)| (VarId(i.index(n) as u32), c)).filter(|(v, _)| seen.insert(*v)).collect()
+                    entries
+                        .into_iter()
+                        .map(|(i, c)| (VarId(i.index(n) as u32), c))
+                        .filter(|(v, _)| seen.insert(*v))
+                        .collect()
                 };
                 m.add_row(name.clone(), lhs, rhs, terms);
             }
             m.objective_name = row_names.last().cloned().unwrap_or_default();
             Spec { model: m, opts: WriteOptions { negate_max, max_line_len: line_len, ..Default::default() } }
-        })
+        },
+    )
 }
 
 /// `model` with names changed as `map` says.
@@ -959,7 +1016,12 @@ fn throughput() {
         assert_eq!(o.model.num_nonzeros(), m.num_nonzeros());
     }
     assert_eq!(read_str(&text).unwrap().model, m);
-    println!("LP file {mb:.1} MB, {} nonzeros: write {:.0} MB/s ({w:.3} s), read {:.0} MB/s ({r:.3} s)", m.num_nonzeros(), mb / w, mb / r);
+    println!(
+        "LP file {mb:.1} MB, {} nonzeros: write {:.0} MB/s ({w:.3} s), read {:.0} MB/s ({r:.3} s)",
+        m.num_nonzeros(),
+        mb / w,
+        mb / r
+    );
 }
 
 /// Writes random models and the bench model as LP files plus a JSON description, for checking
@@ -976,7 +1038,13 @@ fn dump_for_other_readers() {
     let strategy = model_strategy();
     // Other readers treat huge values as infinite (HiGHS from 1e20 for coefficients, SCIP 1e20
     // for everything) and drop tiny ones (SCIP below 1e-9): keep values moderate.
-    let tame = |v: f64| if v.is_finite() && (v.abs() > 1e9 || (v != 0.0 && v.abs() < 1e-6)) { (v.abs().log2() * 7.0).round() } else { v };
+    let tame = |v: f64| {
+        if v.is_finite() && (v.abs() > 1e9 || (v != 0.0 && v.abs() < 1e-6)) {
+            (v.abs().log2() * 7.0).round()
+        } else {
+            v
+        }
+    };
     for i in 0..300 {
         let spec = strategy.new_tree(&mut runner).unwrap().current();
         let wild = spec.model;
