@@ -115,6 +115,7 @@ impl SolveArgs {
                 (None, false) => LogTarget::Quiet,
             },
             mip_start: None,
+            progress: None,
         }
     }
 

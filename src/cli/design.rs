@@ -56,9 +56,16 @@ pub fn solve_spec(path: &Path, args: &SolveArgs, out: Option<PathBuf>, export: O
     options.seed = options.seed.or(spec.solver.seed);
 
     let bar = ProgressBar::new_spinner();
-    bar.set_style(ProgressStyle::with_template("{spinner} solving with {msg} … {elapsed}").expect("static template"));
-    bar.set_message(format!("{kind}{}", options.time_limit.map_or(String::new(), |t| format!(" (limit {t} s)"))));
+    bar.set_style(ProgressStyle::with_template("{spinner} solving with {prefix} {elapsed} {msg}").expect("static template"));
+    bar.set_prefix(format!("{kind}{}", options.time_limit.map_or(String::new(), |t| format!(" (limit {t} s)"))));
     bar.enable_steady_tick(Duration::from_millis(200));
+    if kind.instance()?.capabilities().reports_progress {
+        let b = bar.clone();
+        options.progress = Some(netspec::solvers::ProgressSink(std::sync::Arc::new(move |p: netspec::solvers::Progress| {
+            let f = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.4}"));
+            b.set_message(format!("incumbent {} bound {} nodes {}", f(p.primal), f(p.dual), p.nodes));
+        })));
+    }
     let res = pipeline::solve_built(&problem, &nm, kind, &options);
     bar.finish_and_clear();
     let res = res?;

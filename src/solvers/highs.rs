@@ -4,7 +4,7 @@
 //!
 //! HiGHS is compiled into the binary (vendored source), so it is the default backend.
 
-use super::{preflight, Capabilities, LimitKind, LogTarget, SolveOptions, SolveResult, Solver, SolverError, SolverErrorKind, SolverKind, Termination};
+use super::{preflight, Capabilities, Progress, ProgressSink, LimitKind, LogTarget, SolveOptions, SolveResult, Solver, SolverError, SolverErrorKind, SolverKind, Termination};
 use crate::milp::{Model, Sense};
 use highs_sys as sys;
 use std::ffi::{CStr, CString};
@@ -93,6 +93,40 @@ fn apply_options(m: &mut highs::Model, model: &Model, o: &SolveOptions) -> Resul
         m.try_set_solution(Some(x), None, None, None).map_err(|e| rejected(format!("MIP start: {e:?}")))?;
     }
     Ok(())
+}
+
+/// What the progress callback needs between calls.
+struct ProgressState {
+    sink: ProgressSink,
+    last: f64,
+}
+
+/// HiGHS's MIP "interrupt" callback, called often during branch and bound: forwards a
+/// [`Progress`] report at most every 0.25 s, and never interrupts.
+unsafe extern "C" fn progress_callback(
+    _kind: std::os::raw::c_int,
+    _message: *const std::os::raw::c_char,
+    out: *const sys::HighsCallbackDataOut,
+    _in: *mut sys::HighsCallbackDataIn,
+    data: *mut std::ffi::c_void,
+) {
+    if out.is_null() || data.is_null() {
+        return;
+    }
+    // SAFETY: HiGHS passes a valid output block, and `data` is the `ProgressState` registered
+    // in `solve`, alive for the whole run and used from this one thread.
+    let (out, state) = unsafe { (&*out, &mut *(data as *mut ProgressState)) };
+    if out.running_time - state.last < 0.25 {
+        return;
+    }
+    state.last = out.running_time;
+    let finite = |v: f64| (v.is_finite() && v.abs() < 1e30).then_some(v);
+    (state.sink.0)(Progress {
+        elapsed: out.running_time,
+        primal: finite(out.mip_primal_bound),
+        dual: finite(out.mip_dual_bound),
+        nodes: out.mip_node_count.max(0) as u64,
+    });
 }
 
 /// The thread count HiGHS's process-global task scheduler was last started with (0: never).
@@ -189,6 +223,7 @@ impl Solver for HighsSolver {
             reports_dual_bound: true,
             reports_nodes: true,
             reports_solver_time: true,
+            reports_progress: true,
         }
     }
 
@@ -197,6 +232,16 @@ impl Solver for HighsSolver {
         preflight(KIND, &self.capabilities(), model, o)?;
         let mut m = load(model)?;
         apply_options(&mut m, model, o)?;
+        // The state lives on this stack frame for the whole solve; HiGHS only calls back
+        // during `Highs_run`.
+        let mut progress = o.progress.clone().map(|sink| ProgressState { sink, last: f64::NEG_INFINITY });
+        if let Some(state) = progress.as_mut() {
+            // SAFETY: live instance; the data pointer outlives the solve (see above).
+            unsafe {
+                sys::Highs_setCallback(m.as_mut_ptr(), Some(progress_callback), state as *mut ProgressState as *mut std::ffi::c_void);
+                sys::Highs_startCallback(m.as_mut_ptr(), sys::kHighsCallbackMipInterrupt);
+            }
+        }
         let solved = run_with_threads(m, o.threads).map_err(|e| rejected(format!("Highs_run: {e:?}")));
         let solved = match solved {
             Ok(s) => s,

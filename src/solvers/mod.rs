@@ -19,7 +19,7 @@ pub mod scip;
 mod options;
 mod result;
 
-pub use options::{Capabilities, LogTarget, SolveOptions};
+pub use options::{Capabilities, LogTarget, Progress, ProgressSink, SolveOptions};
 pub use result::{gap, LimitKind, SolveResult, Termination};
 
 use crate::milp::Model;

@@ -3,6 +3,37 @@
 use super::SolverErrorKind;
 use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
+use std::sync::Arc;
+
+/// A snapshot of a running solve, for progress displays.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Progress {
+    /// Seconds since the solver started.
+    pub elapsed: f64,
+    /// Best objective found so far (model sense), if any.
+    pub primal: Option<f64>,
+    /// Best proven bound so far, if any.
+    pub dual: Option<f64>,
+    /// Branch-and-bound nodes so far.
+    pub nodes: u64,
+}
+
+/// Receives [`Progress`] reports during a solve, from the solver's thread, at most about four
+/// times a second. Only backends whose [`Capabilities::reports_progress`] is set accept one.
+#[derive(Clone)]
+pub struct ProgressSink(pub Arc<dyn Fn(Progress) + Send + Sync>);
+
+impl std::fmt::Debug for ProgressSink {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("ProgressSink")
+    }
+}
+
+impl PartialEq for ProgressSink {
+    fn eq(&self, other: &Self) -> bool {
+        Arc::ptr_eq(&self.0, &other.0)
+    }
+}
 
 /// Where the solver's own log goes.
 #[derive(Clone, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -38,6 +69,9 @@ pub struct SolveOptions {
     /// A full starting point for the MIP (one value per variable, in [`crate::milp::VarId`]
     /// order). The solver may reject it if infeasible.
     pub mip_start: Option<Vec<f64>>,
+    /// Progress reports while the solve runs (not serialised).
+    #[serde(skip)]
+    pub progress: Option<ProgressSink>,
 }
 
 /// Whether a backend supports an option, and how.
@@ -71,6 +105,9 @@ pub struct Capabilities {
     pub reports_nodes: bool,
     /// The result carries the solver's own run time.
     pub reports_solver_time: bool,
+    /// [`SolveOptions::progress`]: reports incumbent, bound and nodes while solving.
+    #[serde(default)]
+    pub reports_progress: bool,
 }
 
 fn unsupported(option: &'static str, reason: &str) -> SolverErrorKind {
@@ -114,6 +151,9 @@ impl Capabilities {
             LogTarget::Stdout if !self.log_stdout => return Err(unsupported("log", "the backend cannot print its log")),
             LogTarget::File(_) if !self.log_file => return Err(unsupported("log", "the backend cannot write a log file")),
             _ => {}
+        }
+        if o.progress.is_some() && !self.reports_progress {
+            return Err(unsupported("progress", "the backend reports no progress while solving"));
         }
         if o.mip_start.is_some() && !self.mip_start {
             return Err(unsupported("mip_start", "the backend does not accept a starting solution"));
