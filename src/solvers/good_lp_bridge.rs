@@ -21,7 +21,8 @@
 //! status (optimal, time limit, gap limit) and the variable values. Hence:
 //!
 //! * every [`SolveOptions`] field is **unsupported** (time limit, gaps, threads, seed, node limit,
-//!   a log, a MIP start): the solve fails with [`SolverErrorKind::Unsupported`] rather than
+//!   a log, a MIP start): the solve fails with
+//!   [`SolverErrorKind::Unsupported`](super::SolverErrorKind::Unsupported) rather than
 //!   ignore one. Options exist only on some of good_lp's solver types (`WithTimeLimit`,
 //!   `WithMipGap`…), which a backend chosen by cargo features cannot rely on;
 //! * the result has **no dual bound, no gap, no node count and no solver time**: only the
@@ -58,6 +59,7 @@ fn capabilities() -> Capabilities {
         reports_dual_bound: false,
         reports_nodes: false,
         reports_solver_time: false,
+        reports_progress: false,
     }
 }
 

@@ -4,11 +4,10 @@
 //!
 //! * microlp's constraints are one-sided (`≤`, `≥`, `=`): a ranged row becomes two constraints,
 //!   a free row is left out.
-//! * The objective constant is carried by an extra variable fixed at 1 (an integer variable for a
-//!   MIP, so that microlp's integral-objective pruning is not lost), so that microlp's objective,
-//!   best bound and relative gap all include it, as netspec's own [`gap`](super::gap) does. The
-//!   variable is removed from the reported solution. A model without a constant gets no such
-//!   variable.
+//! * The objective constant is carried by an extra variable fixed at 1, so that microlp's
+//!   objective, best bound and relative gap all include it, as netspec's own
+//!   [`gap`](super::gap) does. The variable is removed from the reported solution. A model
+//!   without a constant gets no such variable.
 //! * Integer bounds must be integers in `i32` range: netspec rounds a fractional bound inwards
 //!   and gives an infinite one as `i32::MIN`/`i32::MAX` (so an "unbounded" integer variable is
 //!   limited to ±2^31); a finite integer bound outside `i32` is refused
@@ -87,13 +86,7 @@ fn load(model: &Model) -> Result<Loaded, SolverError> {
         };
         vars.push(var);
     }
-    let constant = (model.obj_constant != 0.0).then(|| {
-        if model.is_mip() {
-            problem.add_integer_var(model.obj_constant, (1, 1))
-        } else {
-            problem.add_var(model.obj_constant, (1.0, 1.0))
-        }
-    });
+    let constant = (model.obj_constant != 0.0).then(|| problem.add_var(model.obj_constant, (1.0, 1.0)));
     for row in model.rows() {
         let terms: Vec<(Variable, f64)> = row.terms().map(|(v, a)| (vars[v.index()], a)).collect();
         match row.kind() {
@@ -153,6 +146,7 @@ impl Solver for MicrolpSolver {
             reports_dual_bound: true,
             reports_nodes: true,
             reports_solver_time: true,
+            reports_progress: false,
         }
     }
 
@@ -312,6 +306,14 @@ mod tests {
     }
 
     #[test]
+    fn integer_bounds_without_an_integer_are_infeasible() {
+        let mut m = Model::new("crossed");
+        m.add_integer("z", 0.2, 0.8, 1.0);
+        let r = MicrolpSolver.solve(&m, &SolveOptions::default()).unwrap();
+        assert_eq!(r.termination, Termination::Infeasible);
+    }
+
+    #[test]
     fn out_of_range_integer_bound_is_refused() {
         let mut m = Model::new("big");
         m.add_integer("x", 0.0, 1e12, 1.0);
@@ -345,9 +347,20 @@ mod tests {
         let o = SolveOptions { time_limit: Some(1.0), ..Default::default() };
         let r = MicrolpSolver.solve(&m, &o).unwrap();
         assert_eq!(r.termination, Termination::Limit(LimitKind::Time), "{r:?}");
-        assert!(r.wall_time < 3.0, "{}", r.wall_time);
+        assert!(r.wall_time < 5.0, "{}", r.wall_time);
         if r.primal.is_some() {
             assert_feasible(&m, &r);
         }
+    }
+
+    #[test]
+    fn unbounded_is_an_outcome() {
+        let mut m = Model::new("unb");
+        let x = m.add_continuous("x", 0.0, f64::INFINITY, -1.0);
+        let y = m.add_continuous("y", 0.0, f64::INFINITY, -1.0);
+        m.add_le("c", [(x, 1.0), (y, -1.0)], 1.0);
+        let r = MicrolpSolver.solve(&m, &SolveOptions::default()).unwrap();
+        assert!(matches!(r.termination, Termination::Unbounded | Termination::InfeasibleOrUnbounded), "{r:?}");
+        assert!(r.dual_bound.is_none());
     }
 }

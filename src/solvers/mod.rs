@@ -196,6 +196,12 @@ pub(crate) fn preflight(kind: SolverKind, caps: &Capabilities, model: &Model, op
                 SolverErrorKind::Rejected(format!("MIP start has {} values for {} variables", start.len(), model.num_vars())),
             ));
         }
+        if let Some(j) = start.iter().position(|v| !v.is_finite()) {
+            return Err(SolverError::new(
+                kind,
+                SolverErrorKind::Rejected(format!("MIP start value of `{}` is not finite", model.vars()[j].name)),
+            ));
+        }
     }
     Ok(())
 }

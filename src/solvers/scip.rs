@@ -240,6 +240,7 @@ impl Solver for ScipSolver {
             reports_dual_bound: true,
             reports_nodes: true,
             reports_solver_time: true,
+            reports_progress: false,
         }
     }
 
@@ -425,8 +426,9 @@ mod tests {
             assert!((obj.unwrap() - 5.0).abs() < 1e-9, "{p:?}: {obj:?}");
         }
         assert!(solve_file_with_native_reader(&dir.path().join("missing.mps")).is_err());
+        // A syntax error is a typed error (SCIP also prints it on stderr).
         let bad = dir.path().join("bad.lp");
-        std::fs::write(&bad, "this is not an LP file").unwrap();
+        std::fs::write(&bad, "Minimize\n obj: 2 x +\nSubject To\n c1: x >= >= 1\nEnd\n").unwrap();
         assert!(solve_file_with_native_reader(&bad).is_err());
     }
 
@@ -460,7 +462,18 @@ mod tests {
         let o = SolveOptions { time_limit: Some(1.0), ..Default::default() };
         let r = ScipSolver.solve(&m, &o).unwrap();
         assert_eq!(r.termination, Termination::Limit(LimitKind::Time), "{r:?}");
-        assert!(r.wall_time < 3.0, "{}", r.wall_time);
+        assert!(r.wall_time < 5.0, "{}", r.wall_time);
         assert_feasible(&m, &r);
+    }
+
+    #[test]
+    fn unbounded_is_an_outcome() {
+        let mut m = Model::new("unb");
+        let x = m.add_continuous("x", 0.0, f64::INFINITY, -1.0);
+        let y = m.add_continuous("y", 0.0, f64::INFINITY, -1.0);
+        m.add_le("c", [(x, 1.0), (y, -1.0)], 1.0);
+        let r = ScipSolver.solve(&m, &SolveOptions::default()).unwrap();
+        assert!(matches!(r.termination, Termination::Unbounded | Termination::InfeasibleOrUnbounded), "{r:?}");
+        assert!(r.dual_bound.is_none());
     }
 }
