@@ -128,6 +128,37 @@ fn corpus_garbage_is_an_error() {
     assert!(msg.contains('^'), "{msg}");
 }
 
+#[test]
+fn corpus_through_read_model_file() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/lp/highs-check");
+    for (file, vars, rows) in [
+        ("1448.lp", 0, 0),
+        ("fixed-binary.lp", 1, 0),
+        ("issue-2388.lp", 42, 34),
+        ("issue-2585.lp", 4, 6),
+        ("no-newline-eof.lp", 2, 1),
+    ] {
+        let o = crate::io::read_model_file(&dir.join(file)).unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!((o.model.num_vars(), o.model.num_rows()), (vars, rows), "{file}");
+    }
+    let e = crate::io::read_model_file(&dir.join("garbage.lp")).unwrap_err();
+    assert!(matches!(e.kind, crate::io::FileErrorKind::Lp(ParseError { line: 2, .. })), "{e}");
+    assert!(e.to_string().contains("garbage.lp: line 2: expected a section keyword"), "{e}");
+}
+
+#[test]
+fn file_round_trip() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("sample.lp");
+    let mut m = sample_model();
+    m.sense = Sense::Maximize;
+    let map = crate::io::write_model_file(&m, &path).unwrap();
+    assert!(map.is_identity());
+    let o = crate::io::read_model_file(&path).unwrap();
+    assert_eq!(o.model, m);
+    assert!(o.warnings.is_empty());
+}
+
 // ----- reader syntax -----
 
 #[test]
@@ -1102,6 +1133,12 @@ fn dump_for_other_readers() {
             "rows": rows,
         });
         std::fs::write(dir.join(format!("m{i}.json")), serde_json::to_string_pretty(&desc).unwrap()).unwrap();
+    }
+    // The HiGHS corpus, read and written again.
+    let corpus = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/lp/highs-check");
+    for file in ["1448.lp", "fixed-binary.lp", "issue-2388.lp", "issue-2585.lp", "no-newline-eof.lp"] {
+        let m = crate::io::read_model_file(&corpus.join(file)).unwrap().model;
+        crate::io::write_model_file(&m, &dir.join(format!("corpus-{file}"))).unwrap();
     }
     let mut f = std::fs::File::create(dir.join("bench.lp")).unwrap();
     write(&bench_model(), &mut f, &WriteOptions::default()).unwrap();

@@ -55,7 +55,8 @@ impl Hasher for FxHasher {
 
     #[inline]
     fn finish(&self) -> u64 {
-        self.hash
+        // The multiply leaves the low bits (which pick the bucket) weak: fold the high ones in.
+        self.hash ^ (self.hash >> 29)
     }
 }
 

@@ -444,6 +444,19 @@ fn corpus_dump_json() {
         let mut w = std::fs::File::create(format!("{out}/{name}")).unwrap();
         write(m, &mut w, &WriteOptions::default()).unwrap();
     }
+    // Our fixtures and a small maximisation (optimum 9), written both ways for maximisations.
+    let mut small_max = small_model();
+    small_max.sense = Sense::Maximize;
+    for (name, m) in [
+        ("features", read(include_str!("../../../fixtures/mps/features.mps")).model),
+        ("fixed_spaces", read(include_str!("../../../fixtures/mps/fixed_spaces.mps")).model),
+        ("small_max", small_max),
+    ] {
+        for (suffix, negate_max) in [("neg", true), ("objsense", false)] {
+            let mut w = std::fs::File::create(format!("{out}/fixture-{name}.{suffix}.mps")).unwrap();
+            write(&m, &mut w, &WriteOptions { negate_max, ..Default::default() }).unwrap();
+        }
+    }
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -906,23 +919,25 @@ fn big_model(nnz: usize) -> Model {
 #[ignore]
 fn throughput() {
     let m = big_model(1_000_000);
-    let mut buf = Vec::with_capacity(64 << 20);
-    let t = std::time::Instant::now();
-    write(&m, &mut buf, &WriteOptions::default()).unwrap();
-    let tw = t.elapsed().as_secs_f64();
-    let mb = buf.len() as f64 / 1e6;
-    let text = String::from_utf8(buf).unwrap();
-    let t = std::time::Instant::now();
-    let back = read_str(&text).unwrap().model;
-    let tr = t.elapsed().as_secs_f64();
-    assert_eq!(back, m);
-    println!(
-        "MPS: {} nonzeros, {:.1} MB; write {:.3} s = {:.0} MB/s; read {:.3} s = {:.0} MB/s",
-        m.num_nonzeros(),
-        mb,
-        tw,
-        mb / tw,
-        tr,
-        mb / tr
-    );
+    for align in [true, false] {
+        let mut buf = Vec::with_capacity(64 << 20);
+        let t = std::time::Instant::now();
+        write(&m, &mut buf, &WriteOptions { align, ..Default::default() }).unwrap();
+        let tw = t.elapsed().as_secs_f64();
+        let mb = buf.len() as f64 / 1e6;
+        let text = String::from_utf8(buf).unwrap();
+        let t = std::time::Instant::now();
+        let back = read_str(&text).unwrap().model;
+        let tr = t.elapsed().as_secs_f64();
+        assert_eq!(back, m);
+        println!(
+            "MPS (align: {align}): {} nonzeros, {:.1} MB; write {:.3} s = {:.0} MB/s; read {:.3} s = {:.0} MB/s",
+            m.num_nonzeros(),
+            mb,
+            tw,
+            mb / tw,
+            tr,
+            mb / tr
+        );
+    }
 }

@@ -258,11 +258,10 @@ pub(super) fn write<W: Write>(model: &Model, w: &mut W, opts: &WriteOptions) -> 
             pairs.push((row_names[r].as_ref(), form.1));
         }
     }
-    if !pairs.is_empty() {
-        o.s("RHS");
-        o.nl()?;
-        write_vector(&mut o, "RHS", &pairs)?;
-    }
+    // The header is written even when empty: SCIP's reader requires RHS after COLUMNS.
+    o.s("RHS");
+    o.nl()?;
+    write_vector(&mut o, "RHS", &pairs)?;
 
     // RANGES.
     pairs.clear();
