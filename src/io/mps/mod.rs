@@ -29,35 +29,39 @@
 //!   order. Only the first RHS (RANGES, BOUNDS) vector is used; entries of other vectors are
 //!   ignored with a warning.
 //! * **Integers.** A column inside a `MARKER` block is integer. If no BOUNDS entry mentions it,
-//!   it gets bounds `[0, 1]` (what HiGHS, CPLEX and CBC do) but stays [`VarKind::Integer`]; any
-//!   bound entry switches this default off, so `UP x 5` gives `[0, 5]` and `LO x 0` gives
-//!   `[0, +∞)`.
+//!   it gets bounds `[0, 1]` (as HiGHS does; readers disagree here) but stays
+//!   [`VarKind::Integer`](crate::milp::VarKind::Integer); any bound entry switches this default
+//!   off, so `UP x 5` gives `[0, 5]` and `LO x 0` gives `[0, +∞)`.
 //! * **BOUNDS** `UP`, `LO`, `FX`, `FR`, `MI`, `PL`, `BV`, `LI`, `UI` are supported, applied in
 //!   file order (a later entry for the same side overrides the earlier one, with a warning).
-//!   `BV` makes the column [`VarKind::Binary`] with bounds `[0, 1]` (a later numeric bound turns
-//!   it back into an integer column); `LI`/`UI` make it integer. `UP` with a negative value on a
-//!   column whose lower bound was not given sets the lower bound to `-∞` (CPLEX convention) with
-//!   a warning. `SC` and `SI` (semi-continuous, semi-integer) are rejected as unsupported.
-//! * **Anomalies** that have a safe reading are warnings ([`Warning`]): a duplicate matrix, RHS
-//!   or RANGES entry (the first one is kept, as HiGHS does), a missing `ENDATA`, a missing
-//!   objective row, a non-integral `LI`/`UI` bound. References to undefined rows or columns,
-//!   a column whose entries are split in two blocks, a duplicate row and unknown bound types are
-//!   errors ([`ParseError`]).
-//! * **Our own maximisations.** A comment line `* netspec: maximize, objective negated` before
-//!   `ROWS` (which [`write`] emits) flips the sense back to maximisation and negates the
+//!   `BV` makes the column [`VarKind::Binary`](crate::milp::VarKind::Binary) with bounds
+//!   `[0, 1]` (a later bound entry turns it back into an integer column); `LI`/`UI` make it
+//!   integer. `UP` with a negative value on a column whose lower bound was not given sets the
+//!   lower bound to `-∞` (CPLEX convention) with a warning. `SC` and `SI` (semi-continuous,
+//!   semi-integer) are rejected as unsupported.
+//! * **Anomalies** that have a safe reading are warnings
+//!   ([`Warning`](crate::io::Warning)): a duplicate matrix, RHS or RANGES entry (the first one is
+//!   kept, as HiGHS does), a missing `ENDATA`, an unclosed `MARKER` block, a missing objective
+//!   row, a non-integral `LI`/`UI` bound. References to undefined rows or columns, a column
+//!   whose entries are split in two blocks, a duplicate row and unknown bound types are errors
+//!   ([`ParseError`]).
+//! * **Our own comments.** A comment line `* netspec: maximize, objective negated` before
+//!   `ROWS` (which [`write()`] emits) flips the sense back to maximisation and negates the
 //!   objective and its constant, so that write → read gives back the same model exactly. A
 //!   comment `* netspec: binary NAME` marks an integer column with bounds inside `[0, 1]` as
-//!   [`VarKind::Binary`] (used for binaries whose bounds are not `[0, 1]`). A comment
-//!   `* netspec: range NAME LHS RHS` gives the exact sides of a ranged row whose width
-//!   `RHS − LHS` is not representable (so that no RANGES value reproduces both sides exactly).
+//!   [`VarKind::Binary`](crate::milp::VarKind::Binary) (used for binaries whose bounds are not
+//!   `[0, 1]`). A comment `* netspec: range NAME LHS RHS` gives the exact sides of a ranged row
+//!   whose width `RHS − LHS` is not representable (so that no RANGES value reproduces both
+//!   sides exactly).
 //!
-//! # Writing ([`write`])
+//! # Writing ([`write()`])
 //!
 //! Free MPS in the classic layout. Integer and binary columns are written inside `MARKER`
 //! blocks and always with explicit bounds (readers disagree on the default bounds of integer
 //! columns); binaries with bounds `[0, 1]` as `BV`; continuous columns only with the bounds that
 //! differ from `[0, +∞)`. A column with no entries gets a zero objective entry so that it
-//! exists. Numbers are written in the shortest form that reads back to the same `f64`.
+//! exists. Numbers are written in the shortest form that reads back to the same `f64`. The RHS
+//! section is written even when empty (SCIP's reader requires it after COLUMNS).
 //!
 //! Ranged rows are written as `L` or `G` rows plus a RANGES entry chosen so that the two sides
 //! read back exactly whenever such an entry exists (otherwise other readers get the sides within
@@ -82,28 +86,24 @@ mod write;
 mod tests;
 
 use crate::io::NameMap;
-#[allow(unused_imports)] // used by the docs
-use crate::io::Warning;
-#[allow(unused_imports)] // used by the docs
-use crate::milp::VarKind;
 use crate::milp::Model;
 
 pub use read::read_str;
 
-/// The comment line by which [`write`] marks a maximisation written as the minimisation of the
+/// The comment line by which [`write()`] marks a maximisation written as the minimisation of the
 /// negated objective (recognised by [`read_str`]).
 pub const NEGATED_MAX_COMMENT: &str = "* netspec: maximize, objective negated";
 
-/// The prefix of the comment line by which [`write`] marks a binary column whose bounds are not
+/// The prefix of the comment line by which [`write()`] marks a binary column whose bounds are not
 /// `[0, 1]` (the column name follows).
 pub const BINARY_COMMENT_PREFIX: &str = "* netspec: binary ";
 
-/// The prefix of the comment line by which [`write`] gives the exact sides of a ranged row
+/// The prefix of the comment line by which [`write()`] gives the exact sides of a ranged row
 /// when no RANGES value reproduces both (the row name and the two sides follow). Our reader
 /// applies them when they agree with the sides from RHS and RANGES to within `1e-9` relative.
 pub const RANGE_COMMENT_PREFIX: &str = "* netspec: range ";
 
-/// Options for [`write`].
+/// Options for [`write()`].
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct WriteOptions {
     /// Write a maximisation as the minimisation of the negated objective (and negated

@@ -78,9 +78,31 @@ pub(crate) fn is_clean(name: &str) -> bool {
 /// Words that HiGHS's free-format reader takes for a section header even when indented, so a
 /// column with one of these names would end the COLUMNS section there.
 const KEYWORDS: &[&str] = &[
-    "NAME", "OBJSENSE", "OBJNAME", "MAX", "MIN", "ROWS", "COLUMNS", "RHS", "BOUNDS", "RANGES", "QSECTION",
-    "QMATRIX", "QUADOBJ", "QCMATRIX", "CSECTION", "DELAYEDROWS", "MODELCUTS", "INDICATORS", "SETS", "SOS",
-    "GENCONS", "PWLOBJ", "PWLNAM", "PWLCON", "ENDATA",
+    "NAME",
+    "OBJSENSE",
+    "OBJNAME",
+    "MAX",
+    "MIN",
+    "ROWS",
+    "COLUMNS",
+    "RHS",
+    "BOUNDS",
+    "RANGES",
+    "QSECTION",
+    "QMATRIX",
+    "QUADOBJ",
+    "QCMATRIX",
+    "CSECTION",
+    "DELAYEDROWS",
+    "MODELCUTS",
+    "INDICATORS",
+    "SETS",
+    "SOS",
+    "GENCONS",
+    "PWLOBJ",
+    "PWLNAM",
+    "PWLCON",
+    "ENDATA",
 ];
 
 /// Whether a name is one of [`KEYWORDS`].

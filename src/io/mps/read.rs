@@ -397,9 +397,7 @@ impl<'a> Parser<'a> {
             }
             let f = &fields[..n.min(MAX_FIELDS)];
             let res = match self.section {
-                Section::None | Section::Name => {
-                    Err(ParseErrorKind::ExpectedSection(truncate(line.trim(), 40)))
-                }
+                Section::None | Section::Name => Err(ParseErrorKind::ExpectedSection(truncate(line.trim(), 40))),
                 Section::ObjSense => self.objsense_line(f, n),
                 Section::ObjName => self.objname_line(f, n, line_no),
                 Section::Rows => self.rows_line(f, n),
@@ -410,14 +408,19 @@ impl<'a> Parser<'a> {
             };
             res.map_err(|k| err(line_no, k))?;
         }
+        if !ended && text.ends_with('\n') {
+            // The empty piece after the final newline is not a line.
+            line_no -= 1;
+        }
+        let line_no = line_no.max(1);
         if !ended {
             self.leave_section(line_no);
-            self.warn(line_no.max(1), "missing ENDATA: the file ends without it".into());
+            self.warn(line_no, "missing ENDATA: the file ends without it".into());
         }
         if self.seen & Section::Rows.bit() == 0 {
-            return Err(err(line_no.max(1), ParseErrorKind::MissingSection("ROWS")));
+            return Err(err(line_no, ParseErrorKind::MissingSection("ROWS")));
         }
-        self.build(line_no.max(1))
+        self.build(line_no)
     }
 
     fn comment(&mut self, line: &'a str, line_no: usize) {
@@ -638,7 +641,9 @@ impl<'a> Parser<'a> {
                 ("'INTEND'", false) => {
                     return Err(ParseErrorKind::BadMarker("'INTEND' without a matching 'INTORG'".into()))
                 }
-                (other, _) => return Err(ParseErrorKind::BadMarker(format!("unknown marker `{}`", truncate(other, 40)))),
+                (other, _) => {
+                    return Err(ParseErrorKind::BadMarker(format!("unknown marker `{}`", truncate(other, 40))))
+                }
             }
             self.cur_col = NONE;
             return Ok(());
@@ -850,7 +855,11 @@ impl<'a> Parser<'a> {
                 return Err(ParseErrorKind::FieldCount {
                     section: "BOUNDS",
                     found: n,
-                    expected: if needs_value { "3 or 4 (type, [vector,] column, value)" } else { "2 to 4 (type, [vector,] column)" },
+                    expected: if needs_value {
+                        "3 or 4 (type, [vector,] column, value)"
+                    } else {
+                        "2 to 4 (type, [vector,] column)"
+                    },
                 })
             }
         };
@@ -1027,7 +1036,8 @@ impl<'a> Parser<'a> {
                     if c.int && c.lb >= 0.0 && c.ub <= 1.0 {
                         binary_flag[j as usize] = true;
                     } else {
-                        let message = format!("column `{name}` marked binary is not an integer column within [0, 1]: kept as is");
+                        let message =
+                            format!("column `{name}` marked binary is not an integer column within [0, 1]: kept as is");
                         self.warnings.push(Warning { line, message });
                     }
                 }
@@ -1051,10 +1061,7 @@ impl<'a> Parser<'a> {
             if !rc.is_empty() || !cc.is_empty() {
                 self.warnings.push(Warning {
                     line: last_line,
-                    message: format!(
-                        "{} names containing spaces were rewritten with `_`",
-                        rc.len() + cc.len()
-                    ),
+                    message: format!("{} names containing spaces were rewritten with `_`", rc.len() + cc.len()),
                 });
             }
             (Some(rows), Some(cols))

@@ -134,7 +134,8 @@ fn ranges_sign_rules() {
 
 #[test]
 fn ranges_before_rhs_and_infinite_range() {
-    let text = "NAME\nROWS\n N o\n L l\n E e\nCOLUMNS\n    x l 1 e 1\nRANGES\n    R l 3 e 1e30\nRHS\n    R l 10 e 2\nENDATA\n";
+    let text =
+        "NAME\nROWS\n N o\n L l\n E e\nCOLUMNS\n    x l 1 e 1\nRANGES\n    R l 3 e 1e30\nRHS\n    R l 10 e 2\nENDATA\n";
     let m = read(text).model;
     assert_eq!((row(&m, "l").lhs, row(&m, "l").rhs), (7.0, 10.0));
     assert_eq!((row(&m, "e").lhs, row(&m, "e").rhs), (2.0, INF));
@@ -250,11 +251,14 @@ fn comments_and_missing_endata() {
     assert_eq!(o.warnings.len(), 1);
     assert!(o.warnings[0].message.contains("ENDATA"));
     assert_eq!(o.warnings[0].line, 14);
+    let o = read(&format!("{text}\n"));
+    assert_eq!(o.warnings[0].line, 14);
 }
 
 #[test]
 fn crlf_bom_and_tabs() {
-    let text = "\u{feff}NAME\tt\r\nROWS\r\n N\tobj\r\n L\tc\r\nCOLUMNS\r\n\tx\tobj\t1\tc\t1\r\nRHS\r\n\tR\tc\t2\r\nENDATA\r\n";
+    let text =
+        "\u{feff}NAME\tt\r\nROWS\r\n N\tobj\r\n L\tc\r\nCOLUMNS\r\n\tx\tobj\t1\tc\t1\r\nRHS\r\n\tR\tc\t2\r\nENDATA\r\n";
     let m = read(text).model;
     assert_eq!(m.name, "t");
     assert_eq!(m.row(RowId(0)).rhs, 2.0);

@@ -147,7 +147,8 @@ pub(super) fn write<W: Write>(model: &Model, w: &mut W, opts: &WriteOptions) -> 
     check(model)?;
 
     // Names.
-    let obj_name: Cow<str> = if model.objective_name.is_empty() { Cow::Borrowed("obj") } else { clean(&model.objective_name) };
+    let obj_name: Cow<str> =
+        if model.objective_name.is_empty() { Cow::Borrowed("obj") } else { clean(&model.objective_name) };
     let row_orig: Vec<&str> = model.rows().map(|r| r.name).collect();
     let (row_names, row_changes) = make_unique(&[obj_name.as_ref()], row_orig.iter().copied(), false);
     let (col_names, col_changes) = make_unique(&[], model.vars().iter().map(|v| v.name.as_str()), true);
