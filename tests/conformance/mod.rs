@@ -104,7 +104,7 @@ const TIME_MARGIN: f64 = 1.5;
 pub fn time_limit_stops_hard_model(kind: SolverKind) {
     let solver = kind.instance().unwrap();
     let caps = solver.capabilities();
-    let (model, _) = models::market_split(4, 30, 7);
+    let (model, _) = models::market_split(4, 30, 7, false);
     let o = SolveOptions { time_limit: Some(1.0), threads: caps.threads.then_some(1), ..Default::default() };
     if !caps.time_limit {
         let e = solver.solve(&model, &o).expect_err("unsupported option must be refused");
@@ -125,7 +125,7 @@ pub fn time_limit_stops_hard_model(kind: SolverKind) {
 
 pub fn mip_start_is_used(kind: SolverKind) {
     let solver = kind.instance().unwrap();
-    let (model, planted) = models::market_split(4, 30, 11);
+    let (model, planted) = models::market_split(4, 30, 11, true);
     let o = SolveOptions { time_limit: Some(0.5), mip_start: Some(planted), ..Default::default() };
     if !solver.capabilities().mip_start {
         let e = solver.solve(&model, &o).expect_err("unsupported option must be refused");
@@ -161,7 +161,7 @@ pub fn gap_limit_stops_early(kind: SolverKind) {
 
 pub fn node_limit(kind: SolverKind) {
     let solver = kind.instance().unwrap();
-    let (model, _) = models::market_split(4, 30, 5);
+    let (model, _) = models::market_split(4, 30, 5, false);
     let o = SolveOptions { node_limit: Some(10), time_limit: Some(20.0), ..Default::default() };
     if !solver.capabilities().node_limit {
         let e = solver.solve(&model, &o).expect_err("unsupported option must be refused");

@@ -168,19 +168,27 @@ impl Rng {
 }
 
 /// A market-split instance (Cornuéjols & Dawande 1998): `m` equality rows over `n` binaries with
-/// coefficients in [0, 99], right-hand sides from a planted solution, and slack pairs charged in
-/// the objective. The optimum is 0 (the planted point), notoriously hard to prove or even find
-/// for branch and bound at `m = 4, n = 30`; the all-zero point with slacks is a trivial
-/// incumbent. Returns the model and the planted solution (a full point).
-pub fn market_split(m_rows: usize, n: usize, seed: u64) -> (Model, Vec<f64>) {
+/// coefficients in [0, 99] and slack pairs charged in the objective; the all-zero point with
+/// slacks is a trivial incumbent and the LP bound is 0.
+///
+/// With `planted`, the right-hand sides come from a random 0/1 point, so the optimum is 0 and
+/// is hard to *find* (the planted point is returned as a full solution). Without, they are half
+/// the row sums (the classic hard form): an exact split almost surely does not exist at
+/// `m = 4, n = 30`, and proving that takes branch and bound far longer than any test limit.
+pub fn market_split(m_rows: usize, n: usize, seed: u64, planted: bool) -> (Model, Vec<f64>) {
     let mut rng = Rng::new(seed);
     let mut m = Model::new(format!("market_split_{m_rows}x{n}"));
     let xs: Vec<VarId> = (0..n).map(|j| m.add_binary(format!("x{j}"), 0.0)).collect();
+    let planted_point = planted;
     let planted: Vec<f64> = (0..n).map(|_| rng.below(2) as f64).collect();
     let mut point = planted.clone();
     for i in 0..m_rows {
         let a: Vec<f64> = (0..n).map(|_| rng.below(100) as f64).collect();
-        let rhs: f64 = a.iter().zip(&planted).map(|(a, x)| a * x).sum();
+        let rhs: f64 = if planted_point {
+            a.iter().zip(&planted).map(|(a, x)| a * x).sum()
+        } else {
+            (a.iter().sum::<f64>() / 2.0).floor()
+        };
         let sp = m.add_continuous(format!("sp{i}"), 0.0, INF, 1.0);
         let sm = m.add_continuous(format!("sm{i}"), 0.0, INF, 1.0);
         let terms = xs.iter().zip(&a).map(|(&x, &c)| (x, c)).chain([(sp, 1.0), (sm, -1.0)]);
