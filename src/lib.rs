@@ -19,3 +19,8 @@ pub mod render;
 pub mod report;
 pub mod solvers;
 pub mod spec;
+
+/// The README's code examples, compiled and run as doctests.
+#[doc = include_str!("../README.md")]
+#[cfg(doctest)]
+pub struct ReadmeDoctests;

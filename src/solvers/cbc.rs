@@ -347,120 +347,11 @@ pub fn solve_file_with_native_reader(path: &std::path::Path) -> Result<(Terminat
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::milp::{check_point, Tolerances};
-
-    fn assert_feasible(model: &Model, r: &SolveResult) {
-        let x = r.primal.as_ref().expect("a primal point");
-        let rep = check_point(model, x, &Tolerances::default());
-        assert!(rep.is_feasible(), "{:?}", rep.violations);
-        let obj = r.objective.expect("an objective");
-        assert!((rep.objective - obj).abs() < 1e-6 * (1.0 + obj.abs()), "{} vs {}", rep.objective, obj);
-    }
-
-    fn lp() -> Model {
-        // min -x - y + 7, x + 2y <= 4, 3x + y <= 6: optimum -2.8 + 7 at (1.6, 1.2).
-        let mut m = Model::new("lp");
-        let x = m.add_continuous("x", 0.0, f64::INFINITY, -1.0);
-        let y = m.add_continuous("y", 0.0, f64::INFINITY, -1.0);
-        m.add_le("c1", [(x, 1.0), (y, 2.0)], 4.0);
-        m.add_le("c2", [(x, 3.0), (y, 1.0)], 6.0);
-        m.obj_constant = 7.0;
-        m
-    }
-
-    fn knapsack() -> Model {
-        // max 5a + 3b + 2c + 7d + 4e + 100, 2a + 8b + 4c + 2d + 5e <= 10: optimum 116.
-        let mut m = Model::new("knap");
-        m.sense = Sense::Maximize;
-        m.obj_constant = 100.0;
-        let w = [2.0, 8.0, 4.0, 2.0, 5.0];
-        let p = [5.0, 3.0, 2.0, 7.0, 4.0];
-        let xs: Vec<_> = p.iter().enumerate().map(|(i, &c)| m.add_binary(format!("x{i}"), c)).collect();
-        m.add_le("cap", xs.iter().copied().zip(w), 10.0);
-        m
-    }
 
     #[test]
-    fn solves_an_lp_with_a_constant() {
-        let m = lp();
-        let r = CbcSolver.solve(&m, &SolveOptions::default()).unwrap();
-        assert_eq!(r.termination, Termination::Optimal);
-        assert_feasible(&m, &r);
-        assert!((r.objective.unwrap() - 4.2).abs() < 1e-6);
-        assert!((r.dual_bound.unwrap() - 4.2).abs() < 1e-6);
-    }
-
-    #[test]
-    fn solves_a_max_knapsack_with_a_constant() {
-        let m = knapsack();
-        let r = CbcSolver.solve(&m, &SolveOptions::default()).unwrap();
-        assert_eq!(r.termination, Termination::Optimal);
-        assert_feasible(&m, &r);
-        assert!((r.objective.unwrap() - 116.0).abs() < 1e-6);
-        assert!((r.dual_bound.unwrap() - 116.0).abs() < 1e-6);
-        assert_eq!(r.gap, Some(0.0));
-        assert!(r.solver_version.starts_with("2."), "{}", r.solver_version);
-    }
-
-    #[test]
-    fn infeasible_is_an_outcome() {
-        let mut m = Model::new("inf");
-        let x = m.add_integer("x", 0.0, 10.0, 1.0);
-        m.add_eq("half", [(x, 2.0)], 1.0);
-        let r = CbcSolver.solve(&m, &SolveOptions::default()).unwrap();
-        assert_eq!(r.termination, Termination::Infeasible);
-        assert!(r.primal.is_none());
-        let mut m = lp();
-        let x = crate::milp::VarId(0);
-        m.add_ge("big", [(x, 1.0)], 100.0);
-        let r = CbcSolver.solve(&m, &SolveOptions::default()).unwrap();
-        assert_eq!(r.termination, Termination::Infeasible);
-        assert!(r.primal.is_none());
-    }
-
-    #[test]
-    fn unbounded_lp() {
-        let mut m = Model::new("unb");
-        let x = m.add_continuous("x", 0.0, f64::INFINITY, -1.0);
-        let y = m.add_continuous("y", 0.0, f64::INFINITY, -1.0);
-        m.add_le("c", [(x, 1.0), (y, -1.0)], 1.0);
-        let r = CbcSolver.solve(&m, &SolveOptions::default()).unwrap();
-        assert_eq!(r.termination, Termination::Unbounded);
-    }
-
-    #[test]
-    fn empty_model() {
-        let mut m = Model::new("empty");
-        m.obj_constant = 3.5;
-        let r = CbcSolver.solve(&m, &SolveOptions::default()).unwrap();
-        assert_eq!(r.termination, Termination::Optimal);
-        assert_eq!(r.primal.as_deref(), Some(&[][..]));
-        assert_eq!(r.objective, Some(3.5));
-    }
-
-    #[test]
-    fn mip_start_and_node_limit() {
-        let m = knapsack();
-        let o = SolveOptions { node_limit: Some(0), mip_start: Some(vec![1.0, 1.0, 0.0, 0.0, 0.0]), ..Default::default() };
-        let r = CbcSolver.solve(&m, &o).unwrap();
-        assert_feasible(&m, &r);
-        assert!(r.objective.unwrap() >= 108.0 - 1e-9);
-    }
-
-    #[test]
-    fn ranged_and_free_rows() {
-        // max x + y, 1 <= x - y <= 2 (ranged), a free row, x in [0, 10], y integer in [0, 10]:
-        // optimum 19 at (10, 9).
-        let mut m = Model::new("ranged");
-        m.sense = Sense::Maximize;
-        let x = m.add_continuous("x", 0.0, 10.0, 1.0);
-        let y = m.add_integer("y", 0.0, 10.0, 1.0);
-        m.add_row("r", 1.0, 2.0, [(x, 1.0), (y, -1.0)]);
-        m.add_row("free", f64::NEG_INFINITY, f64::INFINITY, [(x, 1.0)]);
-        let r = CbcSolver.solve(&m, &SolveOptions { threads: Some(2), seed: Some(0), ..Default::default() }).unwrap();
-        assert_eq!(r.termination, Termination::Optimal);
-        assert_feasible(&m, &r);
-        assert!((r.objective.unwrap() - 19.0).abs() < 1e-6);
+    fn version_is_two() {
+        let v = CbcSolver.version();
+        assert!(v.starts_with("2."), "{v}");
     }
 
     #[test]
@@ -482,41 +373,4 @@ mod tests {
     /// min -x - y + 10, 2x + 3y <= 12, x, y integer in [0, 4]: optimum 5.
     const TEST_MPS: &str = "NAME          T1\nROWS\n N  obj\n L  c1\nCOLUMNS\n    MARKER                 'MARKER'                 'INTORG'\n    x         obj       -1.0           c1        2.0\n    y         obj       -1.0           c1        3.0\n    MARKER                 'MARKER'                 'INTEND'\nRHS\n    RHS       c1        12.0           obj       -10.0\nBOUNDS\n UP BND       x         4.0\n UP BND       y         4.0\nENDATA\n";
     const TEST_LP: &str = "Minimize\n obj: - x - y + 10\nSubject To\n c1: 2 x + 3 y <= 12\nBounds\n 0 <= x <= 4\n 0 <= y <= 4\nGeneral\n x y\nEnd\n";
-
-    #[test]
-    fn log_file_is_refused() {
-        let o = SolveOptions { log: LogTarget::File("x.log".into()), ..Default::default() };
-        let e = CbcSolver.solve(&lp(), &o).unwrap_err();
-        assert!(matches!(e.kind, SolverErrorKind::Unsupported { option: "log", .. }));
-    }
-
-    /// A Cornuéjols–Dawande market-split instance (5 equality rows over 40 binaries, slacks priced
-    /// 1): trivially feasible, very hard to prove optimal.
-    fn market_split() -> Model {
-        let mut m = Model::new("market_split");
-        let mut s: u64 = 12345;
-        let mut rnd = move || {
-            s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-            ((s >> 33) % 100) as f64
-        };
-        let x: Vec<_> = (0..40).map(|j| m.add_binary(format!("x{j}"), 0.0)).collect();
-        for i in 0..5 {
-            let w: Vec<f64> = (0..40).map(|_| rnd()).collect();
-            let rhs = (w.iter().sum::<f64>() / 2.0).floor();
-            let sp = m.add_continuous(format!("sp{i}"), 0.0, f64::INFINITY, 1.0);
-            let sm = m.add_continuous(format!("sm{i}"), 0.0, f64::INFINITY, 1.0);
-            m.add_eq(format!("r{i}"), x.iter().copied().zip(w).chain([(sp, 1.0), (sm, -1.0)]), rhs);
-        }
-        m
-    }
-
-    #[test]
-    fn time_limit_stops_a_hard_model_and_keeps_the_incumbent() {
-        let m = market_split();
-        let o = SolveOptions { time_limit: Some(1.0), ..Default::default() };
-        let r = CbcSolver.solve(&m, &o).unwrap();
-        assert_eq!(r.termination, Termination::Limit(LimitKind::Time), "{r:?}");
-        assert!(r.wall_time < 5.0, "{}", r.wall_time);
-        assert_feasible(&m, &r);
-    }
 }

@@ -6,7 +6,7 @@
 pub mod models;
 
 use netspec::milp::{check_point, objectives_agree, Model, Tolerances};
-use netspec::solvers::{LimitKind, SolveOptions, SolveResult, Solver, SolverErrorKind, SolverKind, Termination};
+use netspec::solvers::{LimitKind, SolveOptions, SolveResult, SolverError, SolverErrorKind, SolverKind, Termination};
 use std::time::Instant;
 
 /// Solves and insists on an `Ok` result.
@@ -30,7 +30,12 @@ pub fn assert_checked(model: &Model, r: &SolveResult) {
 
 /// Solves to optimality and checks the optimum against `expected`.
 pub fn assert_optimal(kind: SolverKind, model: &Model, expected: f64) -> SolveResult {
-    let r = solve(kind, model, &SolveOptions::default());
+    assert_optimal_with(kind, model, &SolveOptions::default(), expected)
+}
+
+/// [`assert_optimal`] with options that must not change the optimum.
+pub fn assert_optimal_with(kind: SolverKind, model: &Model, options: &SolveOptions, expected: f64) -> SolveResult {
+    let r = solve(kind, model, options);
     assert_eq!(r.termination, Termination::Optimal, "{kind} on {}", model.name);
     assert_checked(model, &r);
     let obj = r.objective.unwrap();
@@ -42,7 +47,39 @@ pub fn assert_optimal(kind: SolverKind, model: &Model, expected: f64) -> SolveRe
         assert!(g <= 1e-6, "{kind}: gap {g} at optimality");
     }
     assert!(r.wall_time >= 0.0 && r.solver_version.chars().any(|c| c.is_ascii_digit()), "{kind}: version {:?}", r.solver_version);
+    assert_reports_match_capabilities(kind, model, &r);
     r
+}
+
+/// At optimality a result carries a dual bound (and so a gap), a node count and the solver's
+/// own time exactly when the backend's capabilities say it reports them.
+fn assert_reports_match_capabilities(kind: SolverKind, model: &Model, r: &SolveResult) {
+    let caps = kind.instance().unwrap().capabilities();
+    let name = &model.name;
+    assert_eq!(r.dual_bound.is_some(), caps.reports_dual_bound, "{kind} on {name}: dual bound {:?}", r.dual_bound);
+    assert_eq!(r.gap.is_some(), caps.reports_dual_bound, "{kind} on {name}: gap {:?}", r.gap);
+    assert_eq!(r.nodes.is_some(), caps.reports_nodes, "{kind} on {name}: nodes {:?}", r.nodes);
+    assert_eq!(r.solver_time.is_some(), caps.reports_solver_time, "{kind} on {name}: solver time {:?}", r.solver_time);
+}
+
+/// Where the backend lacks `option` (`supported` is false), asserts that a solve of `model` with
+/// `o` is refused with the typed error naming it, and returns `true`: the case is done.
+fn refused_unless(supported: bool, kind: SolverKind, model: &Model, o: &SolveOptions, option: &str) -> bool {
+    if !supported {
+        assert_refused(kind, kind.instance().unwrap().solve(model, o), option);
+    }
+    !supported
+}
+
+/// Asserts that `r` is the typed refusal of `option`.
+fn assert_refused(kind: SolverKind, r: Result<SolveResult, SolverError>, option: &str) {
+    match r {
+        Err(e) => assert!(
+            matches!(e.kind, SolverErrorKind::Unsupported { option: o, .. } if o == option),
+            "{kind}: expected `{option}` to be refused as unsupported, got: {e}"
+        ),
+        Ok(r) => panic!("{kind}: unsupported option `{option}` silently accepted ({})", r.termination),
+    }
 }
 
 pub fn lp_max(kind: SolverKind) {
@@ -55,6 +92,16 @@ pub fn lp_free_vars(kind: SolverKind) {
 
 pub fn lp_ranged_eq(kind: SolverKind) {
     assert_optimal(kind, &models::lp_ranged_eq(), 6.0);
+}
+
+pub fn lp_with_constant(kind: SolverKind) {
+    assert_optimal(kind, &models::lp_with_constant(), 4.2);
+}
+
+pub fn ranged_and_free_rows(kind: SolverKind) {
+    let r = assert_optimal(kind, &models::ranged_and_free_rows(), 19.0);
+    let x = r.primal.unwrap();
+    assert!((x[0] - 10.0).abs() < 1e-6 && (x[1] - 9.0).abs() < 1e-6, "{kind}: {x:?}");
 }
 
 pub fn knapsack(kind: SolverKind) {
@@ -74,12 +121,21 @@ pub fn max_with_constant(kind: SolverKind) {
 pub fn empty_model(kind: SolverKind) {
     let r = assert_optimal(kind, &models::empty(), 7.0);
     assert_eq!(r.primal.as_deref(), Some(&[][..]));
+    // And without a constant: objective 0 (not missing).
+    let r = assert_optimal(kind, &Model::new("empty0"), 0.0);
+    assert_eq!(r.primal.as_deref(), Some(&[][..]));
 }
 
 fn assert_termination_in(kind: SolverKind, model: &Model, allowed: &[Termination]) {
     let r = solve(kind, model, &SolveOptions::default());
     assert!(allowed.contains(&r.termination), "{kind} on {}: got {}, expected one of {allowed:?}", model.name, r.termination);
     assert!(r.objective.is_none() || r.termination == Termination::Unbounded, "{kind}: objective on {}", r.termination);
+    if r.termination == Termination::Infeasible {
+        assert!(r.primal.is_none(), "{kind} on {}: a primal point for an infeasible model", model.name);
+    }
+    if matches!(r.termination, Termination::Unbounded | Termination::InfeasibleOrUnbounded) {
+        assert!(r.dual_bound.is_none(), "{kind} on {}: dual bound {:?} on {}", model.name, r.dual_bound, r.termination);
+    }
 }
 
 pub fn infeasible_lp(kind: SolverKind) {
@@ -94,6 +150,10 @@ pub fn unbounded_lp(kind: SolverKind) {
     assert_termination_in(kind, &models::unbounded_lp(), &[Termination::Unbounded, Termination::InfeasibleOrUnbounded]);
 }
 
+pub fn unbounded_mip(kind: SolverKind) {
+    assert_termination_in(kind, &models::unbounded_mip(), &[Termination::Unbounded, Termination::InfeasibleOrUnbounded]);
+}
+
 pub fn infeasible_or_unbounded(kind: SolverKind) {
     assert_termination_in(kind, &models::infeasible_or_unbounded(), &[Termination::Infeasible, Termination::InfeasibleOrUnbounded]);
 }
@@ -106,9 +166,7 @@ pub fn time_limit_stops_hard_model(kind: SolverKind) {
     let caps = solver.capabilities();
     let (model, _) = models::market_split(4, 30, 7, false);
     let o = SolveOptions { time_limit: Some(1.0), threads: caps.threads.then_some(1), ..Default::default() };
-    if !caps.time_limit {
-        let e = solver.solve(&model, &o).expect_err("unsupported option must be refused");
-        assert!(matches!(e.kind, SolverErrorKind::Unsupported { option: "time_limit", .. }));
+    if refused_unless(caps.time_limit, kind, &model, &o, "time_limit") {
         return;
     }
     let t0 = Instant::now();
@@ -125,13 +183,16 @@ pub fn time_limit_stops_hard_model(kind: SolverKind) {
 
 pub fn mip_start_is_used(kind: SolverKind) {
     let solver = kind.instance().unwrap();
+    let caps = solver.capabilities();
     let (model, planted) = models::market_split(4, 30, 11, true);
-    let o = SolveOptions { time_limit: Some(0.5), mip_start: Some(planted), ..Default::default() };
-    if !solver.capabilities().mip_start {
-        let e = solver.solve(&model, &o).expect_err("unsupported option must be refused");
-        assert!(matches!(e.kind, SolverErrorKind::Unsupported { option: "mip_start", .. }));
+    let alone = SolveOptions { mip_start: Some(planted.clone()), ..Default::default() };
+    if refused_unless(caps.mip_start, kind, &model, &alone, "mip_start") {
         return;
     }
+    if !caps.time_limit {
+        return; // Without a time limit the hard model would run for hours.
+    }
+    let o = SolveOptions { time_limit: Some(0.5), mip_start: Some(planted), ..Default::default() };
     let r = solve(kind, &model, &o);
     assert_checked(&model, &r);
     // The planted point has objective 0; without the start no solver finds it in 0.5 s.
@@ -140,13 +201,13 @@ pub fn mip_start_is_used(kind: SolverKind) {
 
 pub fn gap_limit_stops_early(kind: SolverKind) {
     let solver = kind.instance().unwrap();
+    let caps = solver.capabilities();
     let model = models::multi_knapsack(60, 5, 3);
-    let o = SolveOptions { rel_gap: Some(0.05), time_limit: Some(20.0), ..Default::default() };
-    if !solver.capabilities().rel_gap {
-        let e = solver.solve(&model, &o).expect_err("unsupported option must be refused");
-        assert!(matches!(e.kind, SolverErrorKind::Unsupported { option: "rel_gap", .. }));
+    let alone = SolveOptions { rel_gap: Some(0.05), ..Default::default() };
+    if refused_unless(caps.rel_gap, kind, &model, &alone, "rel_gap") {
         return;
     }
+    let o = SolveOptions { rel_gap: Some(0.05), time_limit: caps.time_limit.then_some(20.0), ..Default::default() };
     let r = solve(kind, &model, &o);
     assert_checked(&model, &r);
     assert!(
@@ -161,13 +222,13 @@ pub fn gap_limit_stops_early(kind: SolverKind) {
 
 pub fn node_limit(kind: SolverKind) {
     let solver = kind.instance().unwrap();
+    let caps = solver.capabilities();
     let (model, _) = models::market_split(4, 30, 5, false);
-    let o = SolveOptions { node_limit: Some(10), time_limit: Some(20.0), ..Default::default() };
-    if !solver.capabilities().node_limit {
-        let e = solver.solve(&model, &o).expect_err("unsupported option must be refused");
-        assert!(matches!(e.kind, SolverErrorKind::Unsupported { option: "node_limit", .. }));
+    let alone = SolveOptions { node_limit: Some(10), ..Default::default() };
+    if refused_unless(caps.node_limit, kind, &model, &alone, "node_limit") {
         return;
     }
+    let o = SolveOptions { node_limit: Some(10), time_limit: caps.time_limit.then_some(20.0), ..Default::default() };
     let r = solve(kind, &model, &o);
     assert_eq!(r.termination, Termination::Limit(LimitKind::Node), "{kind}");
     if let Some(n) = r.nodes {
@@ -186,20 +247,25 @@ pub fn unsupported_options_are_refused(kind: SolverKind) {
     let solver = kind.instance().unwrap();
     let caps = solver.capabilities();
     let model = models::lp_max();
-    let mut probes: Vec<(bool, SolveOptions)> = vec![
-        (caps.seed, SolveOptions { seed: Some(1), ..Default::default() }),
-        (caps.threads, SolveOptions { threads: Some(2), ..Default::default() }),
-        (caps.abs_gap, SolveOptions { abs_gap: Some(1.0), ..Default::default() }),
+    let mut probes: Vec<(bool, &str, SolveOptions)> = vec![
+        (caps.seed, "seed", SolveOptions { seed: Some(1), ..Default::default() }),
+        (caps.threads, "threads", SolveOptions { threads: Some(2), ..Default::default() }),
+        (caps.abs_gap, "abs_gap", SolveOptions { abs_gap: Some(1.0), ..Default::default() }),
     ];
     let log = std::env::temp_dir().join(format!("netspec-log-{kind}-{}.txt", std::process::id()));
-    probes.push((caps.log_file, SolveOptions { log: netspec::solvers::LogTarget::File(log.clone()), ..Default::default() }));
-    for (supported, o) in probes {
+    probes.push((caps.log_file, "log", SolveOptions { log: netspec::solvers::LogTarget::File(log.clone()), ..Default::default() }));
+    // A log on standard output is probed only where it must be refused (it would litter the
+    // test output where it is honoured).
+    if !caps.log_stdout {
+        probes.push((false, "log", SolveOptions { log: netspec::solvers::LogTarget::Stdout, ..Default::default() }));
+    }
+    for (supported, option, o) in probes {
         let r = solver.solve(&model, &o);
         if supported {
-            let r = r.unwrap_or_else(|e| panic!("{kind}: supported option refused: {e}"));
+            let r = r.unwrap_or_else(|e| panic!("{kind}: supported option `{option}` refused: {e}"));
             assert_eq!(r.termination, Termination::Optimal);
         } else {
-            assert!(matches!(r, Err(ref e) if matches!(e.kind, SolverErrorKind::Unsupported { .. })), "{kind}: {o:?} silently accepted");
+            assert_refused(kind, r, option);
         }
     }
     if caps.log_file {
@@ -209,16 +275,104 @@ pub fn unsupported_options_are_refused(kind: SolverKind) {
     }
 }
 
+/// More than one thread, where supported, gives the same optimum; elsewhere it is refused.
+pub fn two_threads(kind: SolverKind) {
+    let solver = kind.instance().unwrap();
+    let model = models::knapsack();
+    let o = SolveOptions { threads: Some(2), ..Default::default() };
+    if refused_unless(solver.capabilities().threads, kind, &model, &o, "threads") {
+        return;
+    }
+    assert_optimal_with(kind, &model, &o, models::knapsack_optimum());
+}
+
+/// A zero time limit is legal: the solver stops at once (or has already solved the model), and
+/// whatever point it returns is feasible.
+pub fn time_limit_zero(kind: SolverKind) {
+    let solver = kind.instance().unwrap();
+    let o = SolveOptions { time_limit: Some(0.0), ..Default::default() };
+    let (hard, _) = models::market_split(4, 30, 7, false);
+    for model in [models::knapsack(), hard] {
+        if refused_unless(solver.capabilities().time_limit, kind, &model, &o, "time_limit") {
+            continue;
+        }
+        let t0 = Instant::now();
+        let r = solve(kind, &model, &o);
+        let wall = t0.elapsed().as_secs_f64();
+        assert!(
+            matches!(r.termination, Termination::Optimal | Termination::Limit(LimitKind::Time)),
+            "{kind} on {}: {} with a zero time limit",
+            model.name,
+            r.termination
+        );
+        assert!(wall <= TIME_MARGIN, "{kind} on {}: returned after {wall:.2} s for a zero time limit", model.name);
+        if r.primal.is_some() {
+            assert_checked(&model, &r);
+        }
+    }
+}
+
+/// A MIP start with a non-finite value, or of the wrong length, is refused before the solve;
+/// a backend without MIP starts refuses the option itself.
+pub fn nan_mip_start_is_refused(kind: SolverKind) {
+    let solver = kind.instance().unwrap();
+    let model = models::knapsack();
+    let n = model.num_vars();
+    let mut nan = vec![0.0; n];
+    nan[1] = f64::NAN;
+    let mut inf = vec![0.0; n];
+    inf[0] = f64::INFINITY;
+    for start in [nan, inf, vec![0.0; n - 1]] {
+        let o = SolveOptions { mip_start: Some(start.clone()), ..Default::default() };
+        let r = solver.solve(&model, &o);
+        if !solver.capabilities().mip_start {
+            assert_refused(kind, r, "mip_start");
+            continue;
+        }
+        let e = r.err().unwrap_or_else(|| panic!("{kind}: MIP start {start:?} accepted"));
+        assert!(matches!(e.kind, SolverErrorKind::Rejected(_)), "{kind}: MIP start {start:?}: {e}");
+    }
+}
+
+/// A feasible but suboptimal MIP start is a starting point, not a constraint: the solve still
+/// reaches the optimum. With a node limit of 0 the start itself (or better) is returned.
+pub fn mip_start_is_only_a_start(kind: SolverKind) {
+    let caps = kind.instance().unwrap().capabilities();
+    let model = models::knapsack();
+    // Items 0 and 1: weight 11 of 12, value 23, below the optimum.
+    let mut start = vec![0.0; model.num_vars()];
+    start[0] = 1.0;
+    start[1] = 1.0;
+    let o = SolveOptions { mip_start: Some(start.clone()), ..Default::default() };
+    if refused_unless(caps.mip_start, kind, &model, &o, "mip_start") {
+        return;
+    }
+    assert_optimal_with(kind, &model, &o, models::knapsack_optimum());
+    if caps.node_limit {
+        let o = SolveOptions { mip_start: Some(start), node_limit: Some(0), ..Default::default() };
+        let r = solve(kind, &model, &o);
+        assert!(
+            matches!(r.termination, Termination::Optimal | Termination::Limit(LimitKind::Node)),
+            "{kind}: {} with a node limit of 0",
+            r.termination
+        );
+        assert_checked(&model, &r);
+        assert!(r.objective.unwrap() >= 23.0 - 1e-9, "{kind}: objective {:?} below the MIP start's 23", r.objective);
+    }
+}
+
 /// Instantiates every case above for one backend.
 macro_rules! conformance_suite {
     ($($module:ident => $kind:expr, $feature:literal;)*) => {$(
         #[cfg(feature = $feature)]
         mod $module {
             conformance_suite!(@cases $kind;
-                lp_max, lp_free_vars, lp_ranged_eq, knapsack, general_integer, max_with_constant,
-                empty_model, infeasible_lp, infeasible_mip, unbounded_lp, infeasible_or_unbounded,
-                time_limit_stops_hard_model, mip_start_is_used, gap_limit_stops_early, node_limit,
-                invalid_model_is_an_error, unsupported_options_are_refused);
+                lp_max, lp_free_vars, lp_ranged_eq, lp_with_constant, ranged_and_free_rows, knapsack,
+                general_integer, max_with_constant, empty_model, infeasible_lp, infeasible_mip,
+                unbounded_lp, unbounded_mip, infeasible_or_unbounded, time_limit_stops_hard_model,
+                time_limit_zero, mip_start_is_used, mip_start_is_only_a_start, nan_mip_start_is_refused,
+                gap_limit_stops_early, node_limit, two_threads, invalid_model_is_an_error,
+                unsupported_options_are_refused);
         }
     )*};
     (@cases $kind:expr; $($case:ident),*) => {$(
@@ -234,6 +388,7 @@ conformance_suite! {
     cbc => netspec::solvers::SolverKind::Cbc, "cbc";
     scip => netspec::solvers::SolverKind::Scip, "scip";
     microlp => netspec::solvers::SolverKind::Microlp, "microlp";
+    good_lp => netspec::solvers::SolverKind::GoodLp, "good_lp";
 }
 
 /// Every compiled backend agrees on every optimum of the suite's models.
@@ -243,6 +398,8 @@ fn backends_agree() {
         models::lp_max(),
         models::lp_free_vars(),
         models::lp_ranged_eq(),
+        models::lp_with_constant(),
+        models::ranged_and_free_rows(),
         models::knapsack(),
         models::general_integer(),
         models::max_with_constant(),

@@ -100,6 +100,31 @@ pub fn max_with_constant() -> Model {
     m
 }
 
+/// An LP with an objective constant: min −x − y + 7 s.t. x + 2y ≤ 4, 3x + y ≤ 6, x, y ≥ 0 →
+/// the rows cross at x = 1.6, y = 1.2: −2.8 + 7 = 4.2.
+pub fn lp_with_constant() -> Model {
+    let mut m = Model::new("lp_const");
+    m.obj_constant = 7.0;
+    let x = m.add_continuous("x", 0.0, INF, -1.0);
+    let y = m.add_continuous("y", 0.0, INF, -1.0);
+    m.add_le("c1", [(x, 1.0), (y, 2.0)], 4.0);
+    m.add_le("c2", [(x, 3.0), (y, 1.0)], 6.0);
+    m
+}
+
+/// A ranged row and a free row (both sides infinite) in a MIP: max x + y s.t. 1 ≤ x − y ≤ 2,
+/// a free row on x, x ∈ [0, 10] continuous, y ∈ [0, 10] integer → y ≤ x − 1 ≤ 9, so x = 10,
+/// y = 9: 19. The free row must not constrain anything.
+pub fn ranged_and_free_rows() -> Model {
+    let mut m = Model::new("ranged_free");
+    m.sense = Sense::Maximize;
+    let x = m.add_continuous("x", 0.0, 10.0, 1.0);
+    let y = m.add_integer("y", 0.0, 10.0, 1.0);
+    m.add_row("ranged", 1.0, 2.0, [(x, 1.0), (y, -1.0)]);
+    m.add_row("free", -INF, INF, [(x, 1.0), (y, 1.0)]);
+    m
+}
+
 /// No variables, no rows, constant 7.
 pub fn empty() -> Model {
     let mut m = Model::new("empty");
@@ -132,6 +157,17 @@ pub fn unbounded_lp() -> Model {
     let x = m.add_continuous("x", 0.0, INF, -1.0);
     let y = m.add_continuous("y", 0.0, INF, 0.0);
     m.add_le("c", [(x, 1.0), (y, -1.0)], 1.0);
+    m
+}
+
+/// A MIP whose relaxation is unbounded through a continuous variable: min −y s.t. y − x ≥ 0.5,
+/// x ∈ [0, 5] integer, y ≥ 0 continuous (no integer bound is involved, so a backend that caps
+/// unbounded integers still sees the ray).
+pub fn unbounded_mip() -> Model {
+    let mut m = Model::new("unbounded_mip");
+    let x = m.add_integer("x", 0.0, 5.0, 0.0);
+    let y = m.add_continuous("y", 0.0, INF, -1.0);
+    m.add_ge("c", [(y, 1.0), (x, -1.0)], 0.5);
     m
 }
 
