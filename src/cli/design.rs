@@ -52,6 +52,8 @@ pub fn solve_spec(path: &Path, args: &SolveArgs, out: Option<PathBuf>, export: O
     let mut options = args.options();
     options.time_limit = options.time_limit.or(spec.solver.time_limit);
     options.rel_gap = options.rel_gap.or(spec.solver.gap);
+    options.abs_gap = options.abs_gap.or(spec.solver.abs_gap);
+    options.node_limit = options.node_limit.or(spec.solver.node_limit);
     options.threads = options.threads.or(spec.solver.threads);
     options.seed = options.seed.or(spec.solver.seed);
 

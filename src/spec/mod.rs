@@ -364,6 +364,12 @@ pub struct SolverSpec {
     /// Relative gap.
     #[serde(default)]
     pub gap: Option<f64>,
+    /// Absolute gap.
+    #[serde(default)]
+    pub abs_gap: Option<f64>,
+    /// Node limit.
+    #[serde(default)]
+    pub node_limit: Option<u64>,
     /// Threads.
     #[serde(default)]
     pub threads: Option<u32>,
