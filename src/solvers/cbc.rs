@@ -27,21 +27,29 @@
 //! | `log` | `logLevel`/`slogLevel` 0 (quiet) or 1 (stdout); a log **file** is unsupported |
 //! | `mip_start` | `Cbc_setInitialSolution` (checked by CBC; an infeasible start is dropped) |
 //!
-//! CBC does not report its run time through the C interface (`solver_time` is `None`).
+//! CBC does not report its run time through the C interface, so `solver_time` is netspec's own
+//! measurement of the native solve (`Cbc_solve`), taken after the process-wide lock below is
+//! held: it excludes time spent queueing behind other CBC solves, as a solver-reported time would.
 //!
 //! # Concurrency
 //!
 //! CBC 2.10 is not thread-safe: `coin_cbc` (feature `singlethread-cbc`) serialises model
 //! creation, solves and deletion behind one process-wide lock, which netspec keeps by going
-//! through `coin_cbc::raw::Model`. Concurrent CBC solves therefore run one after the other; the
-//! time spent waiting for the lock is in `wall_time` but not in CBC's time limit.
+//! through `coin_cbc::raw::Model`, and holds a lock of its own around each whole solve (load,
+//! solve, read back) so that queueing happens in one visible place. Concurrent CBC solves
+//! therefore run one after the other; the time spent waiting is in `wall_time` but neither in
+//! CBC's time limit nor in `solver_time`.
 
 use super::{preflight, Capabilities, LimitKind, LogTarget, SolveOptions, SolveResult, Solver, SolverError, SolverErrorKind, SolverKind, Termination};
 use crate::milp::{Model, Sense};
 use coin_cbc::raw::Model as CbcModel;
 use coin_cbc_sys as sys;
 use std::ffi::{c_char, c_int, CStr, CString};
+use std::sync::Mutex;
 use std::time::Instant;
+
+/// Serialises netspec's CBC solves (see the module docs).
+static CBC_SOLVES: Mutex<()> = Mutex::new(());
 
 /// The CBC backend.
 #[derive(Clone, Copy, Debug, Default)]
@@ -263,7 +271,7 @@ impl Solver for CbcSolver {
             mip_start: true,
             reports_dual_bound: true,
             reports_nodes: true,
-            reports_solver_time: false,
+            reports_solver_time: true,
             reports_progress: false,
         }
     }
@@ -271,9 +279,12 @@ impl Solver for CbcSolver {
     fn solve(&self, model: &Model, o: &SolveOptions) -> Result<SolveResult, SolverError> {
         let t0 = Instant::now();
         preflight(KIND, &self.capabilities(), model, o)?;
+        let _serial = CBC_SOLVES.lock().unwrap_or_else(|e| e.into_inner());
         let mut m = load(model)?;
         apply_options(&mut m, model, o)?;
+        let t_solve = Instant::now();
         m.solve();
+        let solver_time = t_solve.elapsed().as_secs_f64();
         let ptr = raw_ptr(&m);
         let n = model.num_vars();
         let mut r = SolveResult::empty(KIND, self.version(), termination(ptr, model.is_mip()));
@@ -295,6 +306,7 @@ impl Solver for CbcSolver {
         }
         // SAFETY: live, solved model.
         r.nodes = Some(unsafe { sys::Cbc_getNodeCount(ptr) }.max(0) as u64);
+        r.solver_time = Some(solver_time);
         r.finish(model.sense, o.rel_gap.is_some() || o.abs_gap.is_some());
         drop(m);
         r.wall_time = t0.elapsed().as_secs_f64();

@@ -84,7 +84,8 @@ pub struct SolveResult {
     pub gap: Option<f64>,
     /// Branch-and-bound nodes, if the solver reports them.
     pub nodes: Option<u64>,
-    /// The solver's own run time in seconds, if it reports one.
+    /// The solver's own run time in seconds, if it reports one (for CBC, which does not,
+    /// netspec's measurement of the native solve call, excluding any queueing).
     pub solver_time: Option<f64>,
     /// Wall-clock time of the whole `solve` call, measured by netspec.
     pub wall_time: f64,
