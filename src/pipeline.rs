@@ -30,6 +30,20 @@ pub struct Validity {
     pub objective_agrees: Option<bool>,
 }
 
+/// The room part of a design result.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct RoomsResult {
+    /// Placements enumerated, per template.
+    pub enumerated_per_template: Vec<usize>,
+    /// Whether enumeration hit its count or time cap.
+    pub truncated: bool,
+    /// Seconds spent enumerating.
+    pub seconds: f64,
+    /// The chosen placements (faces, inner and boundary edges), in placement order; the
+    /// network's `rooms` indices refer to the model's full list, these are the rooms themselves.
+    pub chosen: Vec<crate::formulations::placements::Placement>,
+}
+
 /// Everything about one design run (`result.json`).
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct DesignResult {
@@ -63,6 +77,8 @@ pub struct DesignResult {
     pub big_m: f64,
     /// Point-to-point path sets, if on.
     pub path_sets: Option<PathSets>,
+    /// Room tiling, if on.
+    pub rooms: Option<RoomsResult>,
 }
 
 /// Builds the MILP of a problem (no solve).
@@ -81,6 +97,9 @@ pub fn solve_built(p: &Problem, nm: &NetworkModel, kind: SolverKind, options: &S
         let check = check_point(&nm.model, x, &Tolerances::default());
         let n = design::decode(p, nm, x);
         validity.design_violations = design::validate(p, &n, nm.path_sets.as_ref());
+        if let Some(rm) = &nm.rooms {
+            validity.design_violations.extend(design::validate_rooms(p, &n, &rm.report.placements, &n.rooms));
+        }
         let recomputed = design::recompute_objective(p, nm, &n, x);
         validity.objective_recomputed = Some(recomputed);
         validity.objective_agrees = result.objective.map(|o| objectives_agree(o, recomputed, 1e-6));
@@ -99,6 +118,7 @@ pub fn solve_built(p: &Problem, nm: &NetworkModel, kind: SolverKind, options: &S
             .collect()
     });
     result.primal = None;
+    let net_rooms = net.as_ref().map_or(Vec::new(), |n| n.rooms.clone());
     Ok(DesignResult {
         schema: "netspec.design".into(),
         schema_version: DESIGN_SCHEMA_VERSION,
@@ -115,5 +135,11 @@ pub fn solve_built(p: &Problem, nm: &NetworkModel, kind: SolverKind, options: &S
         families: nm.families.clone(),
         big_m: nm.big_m,
         path_sets: nm.path_sets.clone(),
+        rooms: nm.rooms.as_ref().map(|rm| RoomsResult {
+            enumerated_per_template: rm.report.per_template.clone(),
+            truncated: rm.report.truncated,
+            seconds: rm.report.seconds,
+            chosen: net_rooms.iter().map(|&k| rm.report.placements[k].clone()).collect(),
+        }),
     })
 }

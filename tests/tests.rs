@@ -10,3 +10,5 @@ mod native_readers;
 mod cli;
 // The network IP (paper §4) on small grids, the validator, spec errors.
 mod network;
+// Room tiling: floor plans and game levels (paper §5.2–5.3).
+mod rooms;

@@ -86,7 +86,8 @@ pub fn solve_spec(path: &Path, args: &SolveArgs, out: Option<PathBuf>, export: O
         verdict: verdict(&res),
     };
     if let Some(net) = &res.network {
-        let svg = render::svg(&problem, net, nm.path_sets.as_ref(), &caption);
+        let placements = nm.rooms.as_ref().map(|r| r.report.placements.as_slice());
+        let svg = render::svg(&problem, net, nm.path_sets.as_ref(), placements, &caption);
         let svg_path = dir.join("network.svg");
         std::fs::write(&svg_path, &svg).with_context(|| format!("writing {}", svg_path.display()))?;
         let png_path = dir.join("network.png");

@@ -9,7 +9,7 @@ mod metrics;
 mod validate;
 
 pub use metrics::{travel_distances, Metrics};
-pub use validate::{validate, Violation};
+pub use validate::{validate, validate_rooms, Violation};
 
 use crate::formulations::network::NetworkModel;
 use crate::mesh::{EdgeId, VertexId};
@@ -25,6 +25,9 @@ pub struct Network {
     pub directions: Vec<(VertexId, VertexId)>,
     /// Distance labels of active half-edges as the solver returned them: (tail, head, label).
     pub labels: Vec<(VertexId, VertexId, f64)>,
+    /// Chosen room placements (indices into the model's placements), when tiling rooms.
+    #[serde(default)]
+    pub rooms: Vec<usize>,
 }
 
 impl Network {
@@ -39,7 +42,7 @@ impl Network {
         for e in edges {
             active[e.index()] = true;
         }
-        Network { active, directions: Vec::new(), labels: Vec::new() }
+        Network { active, directions: Vec::new(), labels: Vec::new(), rooms: Vec::new() }
     }
 }
 
@@ -66,7 +69,10 @@ pub fn decode(p: &Problem, nm: &NetworkModel, x: &[f64]) -> Network {
             }
         }
     }
-    Network { active, directions, labels }
+    let rooms = nm.rooms.as_ref().map_or(Vec::new(), |rm| {
+        rm.vars.iter().enumerate().filter(|(_, v)| x[v.index()] > 0.5).map(|(k, _)| k).collect()
+    });
+    Network { active, directions, labels, rooms }
 }
 
 /// FORMULATION §6 item 7, the design half: the objective recomputed from the decoded network

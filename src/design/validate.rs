@@ -77,6 +77,27 @@ pub enum Violation {
         /// The two parts.
         parts: (u32, u32),
     },
+    /// Item 6: a non-obstacle face covered by no room, or by more than one.
+    Cover {
+        /// The face.
+        face: crate::mesh::FaceId,
+        /// How many chosen rooms cover it.
+        rooms: usize,
+    },
+    /// Item 6: a room whose inner or boundary edges break the mode's rule.
+    Room {
+        /// Index of the placement.
+        placement: usize,
+        /// What is wrong.
+        detail: String,
+    },
+    /// Item 6: a room-type count outside its bounds.
+    RoomCount {
+        /// Template index.
+        template: usize,
+        /// Rooms of that type.
+        count: usize,
+    },
 }
 
 impl std::fmt::Display for Violation {
@@ -95,6 +116,9 @@ impl std::fmt::Display for Violation {
             Violation::ForcedVertexInactive { vertex } => write!(f, "forced vertex v{} is inactive", vertex.0),
             Violation::ThroughRoute { route, detail } => write!(f, "through route {route}: {detail}"),
             Violation::PointToPoint { parts } => write!(f, "parts {} and {}: no enumerated path is fully active", parts.0, parts.1),
+            Violation::Cover { face, rooms } => write!(f, "face f{} is covered by {rooms} rooms", face.0),
+            Violation::Room { placement, detail } => write!(f, "room {placement}: {detail}"),
+            Violation::RoomCount { template, count } => write!(f, "template {template}: {count} rooms, outside its bounds"),
         }
     }
 }
@@ -162,8 +186,9 @@ pub fn validate(p: &Problem, net: &Network, paths: Option<&PathSets>) -> Vec<Vio
         }
     }
 
-    // 2. Coverage, by BFS from the active vertices (hops) or by distance (Euclidean).
-    let r = p.coverage_range;
+    // 2. Coverage, by BFS from the active vertices (hops) or by distance (Euclidean). Room
+    // tiling replaces coverage (FORMULATION §4).
+    let r = if p.rooms.is_some() { f64::INFINITY } else { p.coverage_range };
     let covered: Vec<bool> = match p.coverage_model {
         CoverageModel::Hops => {
             let mut d = vec![usize::MAX; mesh.num_vertices()];
@@ -180,7 +205,7 @@ pub fn validate(p: &Problem, net: &Network, paths: Option<&PathSets>) -> Vec<Vio
                     }
                 }
             }
-            d.iter().map(|&h| h != usize::MAX && h as f64 <= r.floor()).collect()
+            d.iter().map(|&h| r.is_infinite() || (h != usize::MAX && h as f64 <= r.floor())).collect()
         }
         CoverageModel::Euclidean => {
             let act: Vec<[f64; 2]> = mesh.vertices().filter(|v| active_vertex[v.index()]).map(|v| mesh.position(v)).collect();
@@ -272,6 +297,56 @@ pub fn validate(p: &Problem, net: &Network, paths: Option<&PathSets>) -> Vec<Vio
             if !pair.paths.iter().any(|path| all_active(&path.edges)) {
                 out.push(Violation::PointToPoint { parts: pair.parts });
             }
+        }
+    }
+    out
+}
+
+/// FORMULATION §6 item 6: exact cover, the mode's inner/boundary edge rules, room counts.
+/// `chosen` are indices into `placements`.
+pub fn validate_rooms(p: &Problem, net: &Network, placements: &[crate::formulations::placements::Placement], chosen: &[usize]) -> Vec<Violation> {
+    let Some(rooms) = &p.rooms else { return Vec::new() };
+    let mesh = &p.mesh;
+    let mut out = Vec::new();
+    let mut cover = vec![0usize; mesh.num_faces()];
+    let mut count = vec![0usize; rooms.templates.len()];
+    for &k in chosen {
+        let pl = &placements[k];
+        count[pl.template] += 1;
+        for f in &pl.faces {
+            cover[f.index()] += 1;
+        }
+        let inner_active = pl.inner_edges.iter().filter(|e| net.active[e.index()]).count();
+        let bnd_active = pl.boundary_edges.iter().filter(|e| net.active[e.index()]).count();
+        match rooms.mode {
+            crate::spec::RoomMode::Floorplan => {
+                if inner_active > 0 {
+                    out.push(Violation::Room { placement: k, detail: format!("{inner_active} corridor edges inside the room") });
+                }
+                if bnd_active == 0 {
+                    out.push(Violation::Room { placement: k, detail: "no corridor along the room".into() });
+                }
+            }
+            crate::spec::RoomMode::Game => {
+                if inner_active == 0 {
+                    out.push(Violation::Room { placement: k, detail: "the block is not traversed".into() });
+                }
+                if bnd_active > 0 {
+                    out.push(Violation::Room { placement: k, detail: format!("{bnd_active} edges run along the block's boundary") });
+                }
+            }
+        }
+    }
+    for f in mesh.faces() {
+        let c = cover[f.index()];
+        if p.is_obstacle_face[f.index()] { if c != 0 { out.push(Violation::Cover { face: f, rooms: c }); } } else if c != 1 {
+            out.push(Violation::Cover { face: f, rooms: c });
+        }
+    }
+    for (t, &(lo, hi)) in rooms.counts.iter().enumerate() {
+        let c = count[t] as u32;
+        if lo.is_some_and(|lo| c < lo) || hi.is_some_and(|hi| c > hi) {
+            out.push(Violation::RoomCount { template: t, count: count[t] });
         }
     }
     out

@@ -4,3 +4,5 @@
 pub mod expr;
 pub mod network;
 pub mod paths;
+pub mod placements;
+pub mod rooms;

@@ -60,6 +60,8 @@ pub struct NetworkModel {
     pub t_configs: Vec<TConfig>,
     /// Point-to-point path sets, if on.
     pub path_sets: Option<PathSets>,
+    /// Room placements and their variables, if room tiling is on.
+    pub rooms: Option<super::rooms::RoomModel>,
     /// Variables and rows per family.
     pub families: IndexMap<String, FamilyStats>,
 }
@@ -99,12 +101,13 @@ pub fn build(p: &Problem) -> NetworkModel {
         local_configs: Vec::new(),
         t_configs: Vec::new(),
         path_sets: None,
+        rooms: None,
         families: IndexMap::new(),
     };
     nm.big_m = big_m(p);
     em.family("edges (4)", |em| edge_variables(p, em, &mut nm));
     em.family("no-island (1)-(3)", |em| no_island(p, em, &nm));
-    em.family("coverage (5)-(6)", |em| coverage(p, em, &mut nm));
+    em.family(if p.rooms.is_some() { "vertices (5)" } else { "coverage (5)-(6)" }, |em| coverage(p, em, &mut nm));
     if p.dead_ends == Allow::Forbid {
         em.family("dead-ends (10)-(11)", |em| dead_ends(p, em, &nm));
     }
@@ -122,6 +125,13 @@ pub fn build(p: &Problem) -> NetworkModel {
     }
     if p.p2p.is_some() {
         em.family("point-to-point (8)-(9)", |em| point_to_point(p, em, &mut nm));
+    }
+    if let Some(rooms) = &p.rooms {
+        let label = match rooms.mode {
+            crate::spec::RoomMode::Floorplan => "rooms (16)-(18)",
+            crate::spec::RoomMode::Game => "blocks (16), (19)-(20)",
+        };
+        nm.rooms = Some(em.family(label, |em| super::rooms::rooms(p, rooms, em, &nm)));
     }
     if !p.forced_vertices.is_empty() || !p.through_routes.is_empty() || !p.forced_edges.is_empty() {
         em.family("user specifications", |em| user_specs(p, em, &nm));
@@ -260,6 +270,9 @@ fn coverage(p: &Problem, em: &mut Emitter, nm: &mut NetworkModel) {
             em.row(format!("cov5_{}", vname(v)), 1.0 - n, &ex, 0.0);
             nm.vertex_value[v.index()] = Value::Var(y);
         }
+    }
+    if p.rooms.is_some() {
+        return; // Room tiling replaces coverage (6) (FORMULATION §4).
     }
     for v in mesh.vertices() {
         if p.is_obstacle_vertex[v.index()] {

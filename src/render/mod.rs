@@ -8,6 +8,7 @@
 
 use crate::design::{travel_distances, Network};
 use crate::formulations::paths::PathSets;
+use crate::formulations::placements::Placement;
 use crate::mesh::EdgeId;
 use crate::spec::Problem;
 use std::fmt::Write;
@@ -40,8 +41,9 @@ fn ramp(t: f64) -> String {
     format!("#{:02x}{:02x}{:02x}", c[0], c[1], c[2])
 }
 
-/// Draws the network as SVG text.
-pub fn svg(p: &Problem, net: &Network, paths: Option<&PathSets>, caption: &Caption) -> String {
+/// Draws the network as SVG text. `placements` are the model's room placements (when tiling
+/// rooms); the chosen ones (`net.rooms`) are filled with their template's colour.
+pub fn svg(p: &Problem, net: &Network, paths: Option<&PathSets>, placements: Option<&[Placement]>, caption: &Caption) -> String {
     let mesh = &p.mesh;
     let (lo, hi) = mesh.bounding_box();
     let span = (hi[0] - lo[0]).max(hi[1] - lo[1]).max(1e-9);
@@ -66,6 +68,19 @@ pub fn svg(p: &Problem, net: &Network, paths: Option<&PathSets>, caption: &Capti
         xml(&caption.status),
         xml(&caption.verdict)
     );
+    // Rooms.
+    if let (Some(rooms), Some(pls)) = (&p.rooms, placements) {
+        for &k in &net.rooms {
+            let pl = &pls[k];
+            for &f in &pl.faces {
+                let pts: Vec<String> = mesh.face_vertices(f).iter().map(|&v| {
+                    let (x, y) = tx(mesh.position(v));
+                    format!("{x:.2},{y:.2}")
+                }).collect();
+                let _ = writeln!(s, r#"<polygon points="{}" fill="{}" stroke="none"/>"#, pts.join(" "), xml(&rooms.colors[pl.template]));
+            }
+        }
+    }
     // Obstacle faces.
     for f in mesh.faces().filter(|f| p.is_obstacle_face[f.index()]) {
         let pts: Vec<String> = mesh.face_vertices(f).iter().map(|&v| {
@@ -82,6 +97,16 @@ pub fn svg(p: &Problem, net: &Network, paths: Option<&PathSets>, caption: &Capti
         let _ = writeln!(s, r#"<line x1="{x1:.2}" y1="{y1:.2}" x2="{x2:.2}" y2="{y2:.2}"/>"#);
     }
     let _ = writeln!(s, "</g>");
+    // Room outlines (their boundary edges), over the mesh.
+    if let (Some(_), Some(pls)) = (&p.rooms, placements) {
+        for &k in &net.rooms {
+            for e in &pls[k].boundary_edges {
+                let (a, b) = mesh.edge_vertices(*e);
+                let ((x1, y1), (x2, y2)) = (tx(mesh.position(a)), tx(mesh.position(b)));
+                let _ = writeln!(s, r##"<line x1="{x1:.2}" y1="{y1:.2}" x2="{x2:.2}" y2="{y2:.2}" stroke="#555" stroke-width="1.5"/>"##);
+            }
+        }
+    }
     // Distances for colouring.
     let use_labels = p.w_distance > 0.0 && !net.labels.is_empty();
     let travel = travel_distances(mesh, net, &p.is_sink);
@@ -162,6 +187,13 @@ pub fn svg(p: &Problem, net: &Network, paths: Option<&PathSets>, caption: &Capti
         let y = ly + 185.0 + i as f64 * 18.0;
         let _ = writeln!(s, r##"<circle cx="{:.1}" cy="{:.1}" r="5" fill="{c}" stroke="#222" stroke-width="0.6"/>"##, lx + 6.0, y - 4.0);
         let _ = writeln!(s, r#"<text x="{:.1}" y="{y:.1}" font-size="11">{label}</text>"#, lx + 18.0);
+    }
+    if let Some(rooms) = &p.rooms {
+        for (i, t) in rooms.templates.iter().enumerate() {
+            let y = ly + 265.0 + i as f64 * 18.0;
+            let _ = writeln!(s, r##"<rect x="{:.1}" y="{:.1}" width="12" height="12" fill="{}" stroke="#555"/>"##, lx, y - 10.0, xml(&rooms.colors[i]));
+            let _ = writeln!(s, r#"<text x="{:.1}" y="{y:.1}" font-size="11">{}</text>"#, lx + 18.0, xml(&t.name));
+        }
     }
     s.push_str("</svg>\n");
     s

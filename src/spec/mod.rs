@@ -6,7 +6,7 @@
 
 mod resolve;
 
-pub use resolve::{EdgeRole, PointToPoint, Problem, Weight};
+pub use resolve::{EdgeRole, PointToPoint, Problem, Rooms, Weight};
 pub(crate) use resolve::OrdF64;
 
 use crate::solvers::SolverKind;
@@ -44,6 +44,9 @@ pub struct Spec {
     /// Obstacles, forced elements and through routes.
     #[serde(default)]
     pub user: UserSpec,
+    /// Room tiling (floor plans §5.2, game levels §5.3), off when absent.
+    #[serde(default)]
+    pub rooms: Option<RoomsSpec>,
     /// `paper` (exactly the paper's rows, big-M = Δall) or `tight` (FORMULATION.md's
     /// strengthenings).
     #[serde(default)]
@@ -338,6 +341,70 @@ pub struct UserSpec {
     /// Through routes.
     #[serde(default)]
     pub through_routes: Vec<ThroughRoute>,
+}
+
+/// Floor plan or game level (FORMULATION §4–§5).
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum RoomMode {
+    /// Corridors between rooms: (17) no corridor inside a room, (18) every room touches one.
+    Floorplan,
+    /// A traversal through blocks: (19) every block is traversed, (20) nothing runs along a
+    /// block's boundary.
+    Game,
+}
+
+/// A room template in a spec: a named shape or an explicit cell list.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TemplateSpec {
+    /// The room type's name (also its legend entry).
+    pub name: String,
+    /// `"rect AxB"` or `"L AxB"`; or give `cells`.
+    #[serde(default)]
+    pub shape: Option<String>,
+    /// Explicit unit cells `[x, y]`.
+    #[serde(default)]
+    pub cells: Option<Vec<[i32; 2]>>,
+    /// Fill colour in pictures (any SVG colour).
+    #[serde(default)]
+    pub color: Option<String>,
+    /// Allow the four rotations (default true).
+    #[serde(default = "yes")]
+    pub rotations: bool,
+    /// Allow reflections (default true).
+    #[serde(default = "yes")]
+    pub reflections: bool,
+    /// At least this many rooms of this type.
+    #[serde(default)]
+    pub min: Option<u32>,
+    /// At most this many.
+    #[serde(default)]
+    pub max: Option<u32>,
+    /// Exactly this many (e.g. the boss room once).
+    #[serde(default)]
+    pub exact: Option<u32>,
+}
+
+fn yes() -> bool {
+    true
+}
+
+/// Room tiling settings.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RoomsSpec {
+    /// Floor plan or game level.
+    pub mode: RoomMode,
+    /// The templates.
+    pub templates: Vec<TemplateSpec>,
+    /// Cap on enumerated placements (reported when hit).
+    #[serde(default = "default_max_placements")]
+    pub max_placements: usize,
+}
+
+fn default_max_placements() -> usize {
+    200_000
 }
 
 /// Which rows to emit.

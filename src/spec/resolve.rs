@@ -1,6 +1,7 @@
 //! From a [`Spec`] to a [`Problem`]: the mesh, edge roles, sinks and switches, checked.
 
 use super::*;
+use crate::formulations::placements::Template;
 use crate::mesh::{self, EdgeId, FaceId, Mesh, VertexId};
 
 /// What an edge is in the model (FORMULATION §1).
@@ -50,6 +51,90 @@ pub struct PointToPoint {
     pub max_paths: usize,
 }
 
+/// Resolved room-tiling settings.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Rooms {
+    /// Floor plan or game level.
+    pub mode: RoomMode,
+    /// The templates, in spec order.
+    pub templates: Vec<Template>,
+    /// Per template: (min, max) count of rooms, if constrained.
+    pub counts: Vec<(Option<u32>, Option<u32>)>,
+    /// Fill colour per template.
+    pub colors: Vec<String>,
+    /// Cap on enumerated placements.
+    pub max_placements: usize,
+}
+
+const PALETTE: [&str; 8] = ["#8dd3c7", "#ffffb3", "#bebada", "#fb8072", "#80b1d3", "#fdb462", "#b3de69", "#fccde5"];
+
+fn parse_shape(field: &str, name: &str, shape: &str) -> Result<Template, SpecErrorKind> {
+    let bad = || SpecErrorKind::Field {
+        field: field.to_string(),
+        message: format!("expected \"rect AxB\" or \"L AxB\" with A, B between 1 and 20, got {shape:?}"),
+    };
+    let mut parts = shape.split_whitespace();
+    let (kind, dims) = (parts.next().ok_or_else(bad)?, parts.next().ok_or_else(bad)?);
+    if parts.next().is_some() {
+        return Err(bad());
+    }
+    let (a, b) = dims.split_once(['x', '×']).ok_or_else(bad)?;
+    let (a, b): (i32, i32) = (a.parse().map_err(|_| bad())?, b.parse().map_err(|_| bad())?);
+    if !(1..=20).contains(&a) || !(1..=20).contains(&b) {
+        return Err(bad());
+    }
+    match kind.to_ascii_lowercase().as_str() {
+        "rect" => Ok(Template::rect(name, a, b)),
+        "l" if a >= 2 && b >= 2 => Ok(Template::l_shape(name, a, b)),
+        _ => Err(bad()),
+    }
+}
+
+impl RoomsSpec {
+    fn resolve(&self) -> Result<Rooms, SpecErrorKind> {
+        if self.templates.is_empty() {
+            return Err(field("rooms.templates", "give at least one template"));
+        }
+        let mut out = Rooms { mode: self.mode, templates: Vec::new(), counts: Vec::new(), colors: Vec::new(), max_placements: self.max_placements };
+        for (i, t) in self.templates.iter().enumerate() {
+            let f = format!("rooms.templates[{i}]");
+            let mut tpl = match (&t.shape, &t.cells) {
+                (Some(s), None) => parse_shape(&format!("{f}.shape"), &t.name, s)?,
+                (None, Some(cells)) => {
+                    if cells.is_empty() || cells.iter().any(|c| c[0] < 0 || c[1] < 0 || c[0] > 50 || c[1] > 50) {
+                        return Err(field(format!("{f}.cells"), "cells must be a non-empty list of [x, y] with 0 ≤ x, y ≤ 50"));
+                    }
+                    let mut cs: Vec<(i32, i32)> = cells.iter().map(|c| (c[0], c[1])).collect();
+                    cs.sort();
+                    if cs.windows(2).any(|w| w[0] == w[1]) {
+                        return Err(field(format!("{f}.cells"), "a cell is listed twice"));
+                    }
+                    Template { name: t.name.clone(), cells: cs, rotations: true, reflections: true }
+                }
+                _ => return Err(field(&f, "give exactly one of `shape` or `cells`")),
+            };
+            tpl.rotations = t.rotations;
+            tpl.reflections = t.reflections;
+            let (lo, hi) = match (t.exact, t.min, t.max) {
+                (Some(e), None, None) => (Some(e), Some(e)),
+                (Some(_), _, _) => return Err(field(&f, "`exact` cannot be combined with `min` or `max`")),
+                (None, lo, hi) => {
+                    if let (Some(a), Some(b)) = (lo, hi) {
+                        if a > b {
+                            return Err(field(&f, format!("min {a} is above max {b}")));
+                        }
+                    }
+                    (lo, hi)
+                }
+            };
+            out.templates.push(tpl);
+            out.counts.push((lo, hi));
+            out.colors.push(t.color.clone().unwrap_or_else(|| PALETTE[i % PALETTE.len()].to_string()));
+        }
+        Ok(out)
+    }
+}
+
 /// A specification resolved against its mesh: everything the formulation needs.
 #[derive(Clone, Debug)]
 pub struct Problem {
@@ -93,6 +178,8 @@ pub struct Problem {
     pub p2p: Option<PointToPoint>,
     /// Formulation variant.
     pub variant: FormulationVariant,
+    /// Room tiling, if on.
+    pub rooms: Option<Rooms>,
 }
 
 fn field(field: impl Into<String>, message: impl Into<String>) -> SpecErrorKind {
@@ -227,7 +314,7 @@ impl Spec {
         if !is_sink.iter().any(|&s| s) {
             return Err(field("sinks", "no sink: set all_boundary, vertices or points"));
         }
-        for v in mesh.vertices().filter(|v| is_sink[v.index()] && is_obstacle_vertex[v.index()]) {
+        if let Some(v) = mesh.vertices().find(|v| is_sink[v.index()] && is_obstacle_vertex[v.index()]) {
             return Err(field("sinks", format!("vertex {} is both a sink and an obstacle", v.0)));
         }
         for e in mesh.edges().filter(|e| roles[e.index()] == EdgeRole::Existing) {
@@ -307,6 +394,7 @@ impl Spec {
             branches: self.features.branches,
             p2p,
             variant: self.formulation,
+            rooms: self.rooms.as_ref().map(RoomsSpec::resolve).transpose()?,
             mesh,
         })
     }

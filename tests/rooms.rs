@@ -1,0 +1,150 @@
+//! Room tiling (FORMULATION §4–§5): floor plans and game levels on small footprints, every
+//! backend, the validator's item 6 on hand-built violations, infeasible tilings, bad specs.
+
+use netspec::design::{self, Network, Violation};
+use netspec::mesh::FaceId;
+use netspec::milp::objectives_agree;
+use netspec::pipeline;
+use netspec::solvers::{SolveOptions, SolverKind, Termination};
+use netspec::spec::{Problem, Spec};
+use std::path::Path;
+
+fn problem(toml: &str) -> Problem {
+    Spec::from_toml(toml).unwrap_or_else(|e| panic!("{e}")).resolve(Path::new(".")).unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn backends() -> Vec<SolverKind> {
+    SolverKind::compiled().into_iter().filter(|k| *k != SolverKind::GoodLp).collect()
+}
+
+/// Solves with every backend; each must prove optimality with a valid design, and all agree
+/// on `expected`.
+fn assert_all_optimal(p: &Problem, expected: f64) -> netspec::pipeline::DesignResult {
+    let nm = pipeline::build(p);
+    let mut last = None;
+    for k in backends() {
+        let r = pipeline::solve_built(p, &nm, k, &SolveOptions { time_limit: Some(60.0), ..Default::default() }).unwrap();
+        assert_eq!(r.solve.termination, Termination::Optimal, "{k} on {}", p.spec.name);
+        assert!(r.validity.valid, "{k} on {}: {:?}", p.spec.name, r.validity.design_violations);
+        let obj = r.solve.objective.unwrap();
+        assert!(objectives_agree(obj, expected, 1e-6), "{k} on {}: {obj}, expected {expected}", p.spec.name);
+        last = Some(r);
+    }
+    last.unwrap()
+}
+
+const FLOORPLAN_4X4: &str = r#"
+name = "floorplan4"
+boundary = "wall"
+formulation = "tight"
+[mesh]
+grid = { width = 4, height = 4 }
+[sinks]
+vertices = [2]          # the entrance, bottom middle
+[features]
+dead_ends = "allow"
+[rooms]
+mode = "floorplan"
+templates = [{ name = "office", shape = "rect 2x2" }]
+"#;
+
+#[test]
+fn floorplan_four_offices_and_a_corridor() {
+    // Four 2×2 offices; the shortest corridor touching all four runs up the middle from the
+    // entrance: 3 edges.
+    let r = assert_all_optimal(&problem(FLOORPLAN_4X4), 3.0);
+    assert_eq!(r.network.unwrap().rooms.len(), 4);
+}
+
+#[test]
+fn floorplan_with_room_type_counts() {
+    let p = problem(&FLOORPLAN_4X4.replace(
+        r#"templates = [{ name = "office", shape = "rect 2x2" }]"#,
+        r#"templates = [{ name = "office", shape = "rect 2x2" }, { name = "lab", shape = "rect 2x1", exact = 2 }]"#,
+    ));
+    let r = assert_all_optimal(&p, 3.0);
+    let net = r.network.unwrap();
+    assert_eq!(net.rooms.len(), 5, "three offices and two labs tile 16 faces");
+}
+
+#[test]
+fn game_level_circular() {
+    // Four 2×2 blocks, one sink, no branches: the cycle through the four block centres and the
+    // four shared boundary midpoints, 8 edges.
+    let p = problem(
+        r#"
+name = "circular4"
+boundary = "wall"
+formulation = "tight"
+[mesh]
+grid = { width = 4, height = 4 }
+[sinks]
+vertices = [7]
+[features]
+branches = "forbid"
+[rooms]
+mode = "game"
+templates = [{ name = "block", shape = "rect 2x2" }]
+"#,
+    );
+    let r = assert_all_optimal(&p, 8.0);
+    let m = r.metrics.unwrap();
+    assert_eq!((m.edges, m.junctions_3way, m.dead_ends), (8, 0, 0));
+}
+
+#[test]
+fn infeasible_tiling_is_a_result() {
+    // 25 faces cannot be tiled by 4-face rooms.
+    let p = problem(&FLOORPLAN_4X4.replace("width = 4, height = 4", "width = 5, height = 5"));
+    let nm = pipeline::build(&p);
+    for k in backends() {
+        let r = pipeline::solve_built(&p, &nm, k, &SolveOptions::default()).unwrap();
+        assert_eq!(r.solve.termination, Termination::Infeasible, "{k}");
+        assert!(r.network.is_none());
+    }
+}
+
+#[test]
+fn validator_item_6_on_hand_built_violations() {
+    let p = problem(FLOORPLAN_4X4);
+    let nm = pipeline::build(&p);
+    let pls = &nm.rooms.as_ref().unwrap().report.placements;
+    let find = |faces: &[u32]| pls.iter().position(|pl| pl.faces.iter().map(|f| f.0).collect::<Vec<_>>() == faces).unwrap();
+    // Faces are numbered row by row (4 per row).
+    let (a, b, c, d) = (find(&[0, 1, 4, 5]), find(&[2, 3, 6, 7]), find(&[8, 9, 12, 13]), find(&[10, 11, 14, 15]));
+    let overlap = find(&[1, 2, 5, 6]);
+    let edge = |u: u32, v: u32| p.mesh.he_edge(p.mesh.half_edge_between(netspec::mesh::VertexId(u), netspec::mesh::VertexId(v)).unwrap());
+    // A corridor up the middle (vertices 2-7-12-17, grid vertex id = 5·row + col).
+    let corridor = [edge(2, 7), edge(7, 12), edge(12, 17)];
+    let mut net = Network::from_edges(&p, &corridor);
+    net.rooms = vec![a, b, c, d];
+    assert!(design::validate_rooms(&p, &net, pls, &net.rooms).is_empty());
+    // Overlap and a gap.
+    net.rooms = vec![a, overlap, c, d];
+    let v = design::validate_rooms(&p, &net, pls, &net.rooms);
+    assert!(v.contains(&Violation::Cover { face: FaceId(1), rooms: 2 }), "{v:?}");
+    assert!(v.contains(&Violation::Cover { face: FaceId(3), rooms: 0 }), "{v:?}");
+    // A corridor inside a room (edge 6-7 lies inside room a).
+    net.rooms = vec![a, b, c, d];
+    let net2 = Network { rooms: net.rooms.clone(), ..Network::from_edges(&p, &[edge(2, 7), edge(7, 12), edge(12, 17), edge(6, 7)]) };
+    let v = design::validate_rooms(&p, &net2, pls, &net2.rooms);
+    assert!(v.iter().any(|v| matches!(v, Violation::Room { placement, .. } if *placement == a)), "{v:?}");
+    // A room with no corridor along it.
+    let net3 = Network { rooms: net.rooms.clone(), ..Network::from_edges(&p, &[edge(2, 7)]) };
+    let v = design::validate_rooms(&p, &net3, pls, &net3.rooms);
+    assert!(v.iter().any(|v| matches!(v, Violation::Room { placement, detail } if *placement == c && detail.contains("no corridor"))), "{v:?}");
+}
+
+#[test]
+fn bad_room_specs_name_the_field() {
+    for (bad, needle) in [
+        (r#"templates = [{ name = "x", shape = "hexagon 2x2" }]"#, "rooms.templates[0].shape"),
+        (r#"templates = [{ name = "x", shape = "rect 2x2", exact = 1, min = 1 }]"#, "rooms.templates[0]"),
+        (r#"templates = [{ name = "x", cells = [[0, 0], [0, 0]] }]"#, "rooms.templates[0].cells"),
+        (r#"templates = []"#, "rooms.templates"),
+    ] {
+        let toml = FLOORPLAN_4X4.replace(r#"templates = [{ name = "office", shape = "rect 2x2" }]"#, bad);
+        let e = Spec::from_toml(&toml).and_then(|s| s.resolve(Path::new("."))).unwrap_err().to_string();
+        assert!(e.contains(needle), "{bad}: {e}");
+    }
+}
