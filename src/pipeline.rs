@@ -39,6 +39,8 @@ pub struct RoomsResult {
     pub truncated: bool,
     /// Seconds spent enumerating.
     pub seconds: f64,
+    /// Game levels: the block connectivity graph (also written as `blocks.dot`).
+    pub block_graph: Option<crate::design::BlockGraph>,
     /// The chosen placements (faces, inner and boundary edges), in placement order; the
     /// network's `rooms` indices refer to the model's full list, these are the rooms themselves.
     pub chosen: Vec<crate::formulations::placements::Placement>,
@@ -119,6 +121,7 @@ pub fn solve_built(p: &Problem, nm: &NetworkModel, kind: SolverKind, options: &S
     });
     result.primal = None;
     let net_rooms = net.as_ref().map_or(Vec::new(), |n| n.rooms.clone());
+    let net_for_graph = net.clone();
     Ok(DesignResult {
         schema: "netspec.design".into(),
         schema_version: DESIGN_SCHEMA_VERSION,
@@ -139,6 +142,10 @@ pub fn solve_built(p: &Problem, nm: &NetworkModel, kind: SolverKind, options: &S
             enumerated_per_template: rm.report.per_template.clone(),
             truncated: rm.report.truncated,
             seconds: rm.report.seconds,
+            block_graph: match (&p.rooms, &net_for_graph) {
+                (Some(r), Some(n)) if r.mode == crate::spec::RoomMode::Game => Some(design::block_graph(p, n, &rm.report.placements)),
+                _ => None,
+            },
             chosen: net_rooms.iter().map(|&k| rm.report.placements[k].clone()).collect(),
         }),
     })

@@ -1,7 +1,7 @@
 //! Room tiling (FORMULATION §4–§5): floor plans and game levels on small footprints, every
 //! backend, the validator's item 6 on hand-built violations, infeasible tilings, bad specs.
 
-use netspec::design::{self, Network, Violation};
+use netspec::design::{self, GraphShape, Network, Violation};
 use netspec::mesh::FaceId;
 use netspec::milp::objectives_agree;
 use netspec::pipeline;
@@ -80,16 +80,68 @@ formulation = "tight"
 grid = { width = 4, height = 4 }
 [sinks]
 vertices = [7]
-[features]
-branches = "forbid"
 [rooms]
 mode = "game"
+level = "circular"
 templates = [{ name = "block", shape = "rect 2x2" }]
 "#,
     );
     let r = assert_all_optimal(&p, 8.0);
     let m = r.metrics.unwrap();
     assert_eq!((m.edges, m.junctions_3way, m.dead_ends), (8, 0, 0));
+    let g = r.rooms.unwrap().block_graph.unwrap();
+    assert_eq!((g.nodes.len(), g.edges.len(), g.shape), (4, 4, GraphShape::Cycle));
+    assert!(g.to_dot("circular4").contains("b0 -- "));
+}
+
+#[test]
+fn game_level_linear() {
+    // Two boundary sinks under the two bottom blocks: the path must traverse all four blocks,
+    // 8 edges, and the block graph is a path.
+    let p = problem(
+        r#"
+name = "linear4"
+boundary = "wall"
+formulation = "tight"
+[mesh]
+grid = { width = 4, height = 4 }
+[sinks]
+vertices = [1, 3]
+[rooms]
+mode = "game"
+level = "linear"
+templates = [{ name = "block", shape = "rect 2x2" }]
+"#,
+    );
+    let r = assert_all_optimal(&p, 8.0);
+    let g = r.rooms.unwrap().block_graph.unwrap();
+    assert_eq!((g.nodes.len(), g.edges.len(), g.shape), (4, 3, GraphShape::Path));
+}
+
+#[test]
+fn level_types_check_their_sinks() {
+    let base = r#"
+name = "x"
+boundary = "wall"
+[mesh]
+grid = { width = 4, height = 4 }
+[sinks]
+vertices = SINKS
+[rooms]
+mode = "MODE"
+level = "LEVEL"
+templates = [{ name = "block", shape = "rect 2x2" }]
+"#;
+    for (sinks, mode, level, needle) in [
+        ("[1, 3]", "game", "circular", "exactly one sink"),
+        ("[7]", "game", "linear", "two sinks"),
+        ("[1, 7]", "game", "linear", "two sinks"),
+        ("[1]", "floorplan", "circular", "rooms.level"),
+    ] {
+        let toml = base.replace("SINKS", sinks).replace("MODE", mode).replace("LEVEL", level);
+        let e = Spec::from_toml(&toml).and_then(|s| s.resolve(Path::new("."))).unwrap_err().to_string();
+        assert!(e.contains(needle), "{sinks} {mode} {level}: {e}");
+    }
 }
 
 #[test]

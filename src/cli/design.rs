@@ -94,6 +94,11 @@ pub fn solve_spec(path: &Path, args: &SolveArgs, out: Option<PathBuf>, export: O
         std::fs::write(&png_path, render::png(&svg)?).with_context(|| format!("writing {}", png_path.display()))?;
         println!("picture    {} (and .svg)", png_path.display());
     }
+    if let Some(g) = res.rooms.as_ref().and_then(|r| r.block_graph.as_ref()) {
+        let dot = dir.join("blocks.dot");
+        std::fs::write(&dot, g.to_dot(&spec.name)).with_context(|| format!("writing {}", dot.display()))?;
+        println!("blocks     {} blocks, {} links: {:?} ({})", g.nodes.len(), g.edges.len(), g.shape, dot.display());
+    }
     println!("result     {}", json.display());
     Ok(if res.network.is_some() && !res.validity.valid { ExitCode::from(EXIT_INVALID) } else { ExitCode::SUCCESS })
 }

@@ -5,9 +5,11 @@
 //! holds; the objective recomputed from the design equals the solver's) is [`check_objective`]
 //! together with the MILP checker.
 
+mod blocks;
 mod metrics;
 mod validate;
 
+pub use blocks::{block_graph, BlockGraph, GraphShape};
 pub use metrics::{travel_distances, Metrics};
 pub use validate::{validate, validate_rooms, Violation};
 

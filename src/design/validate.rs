@@ -91,6 +91,13 @@ pub enum Violation {
         /// What is wrong.
         detail: String,
     },
+    /// Item 6: a game level's block graph does not have the requested shape.
+    LevelShape {
+        /// The level type asked for.
+        level: crate::spec::LevelType,
+        /// The shape found.
+        shape: super::GraphShape,
+    },
     /// Item 6: a room-type count outside its bounds.
     RoomCount {
         /// Template index.
@@ -118,6 +125,7 @@ impl std::fmt::Display for Violation {
             Violation::PointToPoint { parts } => write!(f, "parts {} and {}: no enumerated path is fully active", parts.0, parts.1),
             Violation::Cover { face, rooms } => write!(f, "face f{} is covered by {rooms} rooms", face.0),
             Violation::Room { placement, detail } => write!(f, "room {placement}: {detail}"),
+            Violation::LevelShape { level, shape } => write!(f, "a {level:?} level needs a matching block graph, found {shape:?}"),
             Violation::RoomCount { template, count } => write!(f, "template {template}: {count} rooms, outside its bounds"),
         }
     }
@@ -341,6 +349,18 @@ pub fn validate_rooms(p: &Problem, net: &Network, placements: &[crate::formulati
         let c = cover[f.index()];
         if p.is_obstacle_face[f.index()] { if c != 0 { out.push(Violation::Cover { face: f, rooms: c }); } } else if c != 1 {
             out.push(Violation::Cover { face: f, rooms: c });
+        }
+    }
+    if let (crate::spec::RoomMode::Game, Some(level)) = (rooms.mode, rooms.level) {
+        use super::GraphShape as G;
+        let shape = super::block_graph(p, net, placements).shape;
+        let ok = match level {
+            crate::spec::LevelType::Circular => shape == G::Cycle || (chosen.len() == 1 && shape == G::Path),
+            crate::spec::LevelType::Linear => shape == G::Path,
+            crate::spec::LevelType::Branching => !matches!(shape, G::Disconnected),
+        };
+        if !ok {
+            out.push(Violation::LevelShape { level, shape });
         }
     }
     for (t, &(lo, hi)) in rooms.counts.iter().enumerate() {

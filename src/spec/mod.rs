@@ -390,12 +390,27 @@ fn yes() -> bool {
     true
 }
 
+/// The kind of game level (paper §5.3).
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum LevelType {
+    /// Branches allowed (block graph: any connected graph, e.g. a tree).
+    Branching,
+    /// No branches, one sink (block graph: a cycle).
+    Circular,
+    /// No branches, two sinks on the boundary (block graph: a path).
+    Linear,
+}
+
 /// Room tiling settings.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RoomsSpec {
     /// Floor plan or game level.
     pub mode: RoomMode,
+    /// Game levels: the level type (sets `features.branches` and checks the sinks).
+    #[serde(default)]
+    pub level: Option<LevelType>,
     /// The templates.
     pub templates: Vec<TemplateSpec>,
     /// Cap on enumerated placements (reported when hit).

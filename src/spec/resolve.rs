@@ -56,6 +56,8 @@ pub struct PointToPoint {
 pub struct Rooms {
     /// Floor plan or game level.
     pub mode: RoomMode,
+    /// Game levels: the level type.
+    pub level: Option<LevelType>,
     /// The templates, in spec order.
     pub templates: Vec<Template>,
     /// Per template: (min, max) count of rooms, if constrained.
@@ -95,7 +97,7 @@ impl RoomsSpec {
         if self.templates.is_empty() {
             return Err(field("rooms.templates", "give at least one template"));
         }
-        let mut out = Rooms { mode: self.mode, templates: Vec::new(), counts: Vec::new(), colors: Vec::new(), max_placements: self.max_placements };
+        let mut out = Rooms { mode: self.mode, level: self.level, templates: Vec::new(), counts: Vec::new(), colors: Vec::new(), max_placements: self.max_placements };
         for (i, t) in self.templates.iter().enumerate() {
             let f = format!("rooms.templates[{i}]");
             let mut tpl = match (&t.shape, &t.cells) {
@@ -360,6 +362,29 @@ impl Spec {
             through_routes.push(path);
         }
 
+        // Game level types fix the branch switch and the number of sinks.
+        let mut branches = self.features.branches;
+        if let Some(r) = &self.rooms {
+            let sinks: Vec<VertexId> = mesh.vertices().filter(|v| is_sink[v.index()]).collect();
+            match (r.mode, r.level) {
+                (RoomMode::Floorplan, Some(_)) => return Err(field("rooms.level", "level types are for mode = \"game\"")),
+                (RoomMode::Game, Some(LevelType::Branching)) => branches = Allow::Allow,
+                (RoomMode::Game, Some(LevelType::Circular)) => {
+                    if sinks.len() != 1 {
+                        return Err(field("sinks", format!("a circular level has exactly one sink, the spec gives {}", sinks.len())));
+                    }
+                    branches = Allow::Forbid;
+                }
+                (RoomMode::Game, Some(LevelType::Linear)) => {
+                    if sinks.len() != 2 || sinks.iter().any(|&v| !mesh.is_boundary_vertex(v)) {
+                        return Err(field("sinks", "a linear level has exactly two sinks, both on the boundary"));
+                    }
+                    branches = Allow::Forbid;
+                }
+                _ => {}
+            }
+        }
+
         // Switches.
         if !(self.coverage.range >= 1.0) {
             return Err(field("coverage.range", format!("must be at least 1, got {}", self.coverage.range)));
@@ -391,7 +416,7 @@ impl Spec {
             w_too_close: weight("too_close", &w.too_close, true)?,
             w_t_junction: weight("t_junction", &w.t_junction, true)?,
             dead_ends: self.features.dead_ends,
-            branches: self.features.branches,
+            branches,
             p2p,
             variant: self.formulation,
             rooms: self.rooms.as_ref().map(RoomsSpec::resolve).transpose()?,
