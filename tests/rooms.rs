@@ -200,3 +200,29 @@ fn bad_room_specs_name_the_field() {
         assert!(e.contains(needle), "{bad}: {e}");
     }
 }
+
+#[test]
+fn paper_examples_resolve_and_build() {
+    // The reconstructions of Fig. 9b1–b4, 1d, 1e, 11a, 11b: sizes near the paper's, models build
+    // (solving them is benchmark work, not test work).
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("models");
+    for (name, lo, hi) in [
+        ("fig9b1", 500, 540),
+        ("fig9b2", 500, 540),
+        ("fig9b3", 500, 540),
+        ("fig9b4", 500, 540),
+        ("fig1d", 980, 1040),
+        ("fig1e", 650, 790),
+        ("fig11a", 650, 790),
+        ("fig11b", 650, 790),
+    ] {
+        let path = dir.join(format!("{name}.toml"));
+        let p = Spec::load(&path).unwrap().resolve(&dir).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let edges = p.mesh.num_edges();
+        assert!((lo..=hi).contains(&edges), "{name}: {edges} edges");
+        let nm = pipeline::build(&p);
+        let rm = nm.rooms.as_ref().unwrap();
+        assert!(!rm.report.truncated && rm.report.per_template.iter().all(|&n| n > 0), "{name}: {:?}", rm.report.per_template);
+        nm.model.validate().unwrap();
+    }
+}

@@ -335,9 +335,9 @@ pub struct UserSpec {
     /// Forced edges, as pairs of vertex ids.
     #[serde(default)]
     pub forced_edges: Vec<[u32; 2]>,
-    /// Forced-active vertices (ids).
+    /// Forced-active vertices (ids, or points: the nearest vertex).
     #[serde(default)]
-    pub forced_vertices: Vec<u32>,
+    pub forced_vertices: Vec<Place>,
     /// Through routes.
     #[serde(default)]
     pub through_routes: Vec<ThroughRoute>,

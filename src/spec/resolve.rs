@@ -342,9 +342,9 @@ impl Spec {
             forced_edges.push(e);
         }
         let mut forced_vertices = Vec::new();
-        for (i, &v) in u.forced_vertices.iter().enumerate() {
+        for (i, v) in u.forced_vertices.iter().enumerate() {
             let f = format!("user.forced_vertices[{i}]");
-            let v = vid(f.clone(), v)?;
+            let v = place(f.clone(), v)?;
             if is_obstacle_vertex[v.index()] || mesh.incident_edges(v).all(|e| roles[e.index()] == EdgeRole::Excluded) {
                 return Err(field(f, format!("vertex {} is forced active but has no usable edge", v.0)));
             }
