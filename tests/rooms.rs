@@ -226,3 +226,69 @@ fn paper_examples_resolve_and_build() {
         nm.model.validate().unwrap();
     }
 }
+
+#[derive(serde::Serialize)]
+struct RoomSnapshot {
+    objective: f64,
+    valid: bool,
+    rooms: usize,
+    block_graph: Option<GraphShape>,
+    families: indexmap::IndexMap<String, netspec::formulations::expr::FamilyStats>,
+}
+
+/// 6×6 footprints with 2×2 and 3×2 templates: a floor plan, a circular and a linear level. Every
+/// backend but microlp (minutes on these) must prove the same optimum.
+fn six_by_six(name: &str, sinks: &str, dead_ends: &str, mode: &str, level: &str) -> RoomSnapshot {
+    let p = problem(&format!(
+        r#"
+name = "{name}"
+boundary = "wall"
+formulation = "tight"
+[mesh]
+grid = {{ width = 6, height = 6 }}
+[sinks]
+vertices = {sinks}
+[features]
+dead_ends = "{dead_ends}"
+[rooms]
+mode = "{mode}"
+{level}
+templates = [{{ name = "room", shape = "rect 2x2" }}, {{ name = "hall", shape = "rect 3x2" }}]
+"#
+    ));
+    let nm = pipeline::build(&p);
+    let mut objs = Vec::new();
+    let mut first = None;
+    for k in backends().into_iter().filter(|k| *k != SolverKind::Microlp) {
+        let r = pipeline::solve_built(&p, &nm, k, &SolveOptions { time_limit: Some(60.0), ..Default::default() }).unwrap();
+        assert_eq!(r.solve.termination, Termination::Optimal, "{k} on {name}");
+        assert!(r.validity.valid, "{k} on {name}: {:?}", r.validity.design_violations);
+        objs.push(r.solve.objective.unwrap());
+        first.get_or_insert(r);
+    }
+    assert!(objs.windows(2).all(|w| objectives_agree(w[0], w[1], 1e-6)), "{name}: {objs:?}");
+    let r = first.unwrap();
+    let rooms = r.rooms.unwrap();
+    RoomSnapshot {
+        objective: (objs[0] * 1e4).round() / 1e4,
+        valid: r.validity.valid,
+        rooms: rooms.chosen.len(),
+        block_graph: rooms.block_graph.map(|g| g.shape),
+        families: r.families,
+    }
+}
+
+#[test]
+fn snapshot_floorplan_6x6() {
+    insta::assert_yaml_snapshot!("floorplan_6x6", six_by_six("floorplan6", "[3]", "allow", "floorplan", ""));
+}
+
+#[test]
+fn snapshot_circular_6x6() {
+    insta::assert_yaml_snapshot!("circular_6x6", six_by_six("circular6", "[10]", "forbid", "game", "level = \"circular\""));
+}
+
+#[test]
+fn snapshot_linear_6x6() {
+    insta::assert_yaml_snapshot!("linear_6x6", six_by_six("linear6", "[1, 47]", "forbid", "game", "level = \"linear\""));
+}
