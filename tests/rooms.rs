@@ -188,12 +188,25 @@ fn validator_item_6_on_hand_built_violations() {
 }
 
 #[test]
+fn named_shapes() {
+    let p = problem(&FLOORPLAN_4X4.replace(
+        r#"templates = [{ name = "office", shape = "rect 2x2" }]"#,
+        r#"templates = [{ name = "t", shape = "T 3x2" }, { name = "l", shape = "L 3x2" }, { name = "r", shape = "rect 3x1" }]"#,
+    ));
+    let t = &p.rooms.as_ref().unwrap().templates;
+    assert_eq!(t[0].cells, vec![(0, 1), (1, 0), (1, 1), (2, 1)]);
+    assert_eq!((t[0].cells.len(), t[1].cells.len(), t[2].cells.len()), (4, 4, 3));
+    assert_eq!(t[0].images().len(), 4, "a T has four rotations and is its own mirror image");
+}
+
+#[test]
 fn bad_room_specs_name_the_field() {
     for (bad, needle) in [
         (r#"templates = [{ name = "x", shape = "hexagon 2x2" }]"#, "rooms.templates[0].shape"),
         (r#"templates = [{ name = "x", shape = "rect 2x2", exact = 1, min = 1 }]"#, "rooms.templates[0]"),
         (r#"templates = [{ name = "x", cells = [[0, 0], [0, 0]] }]"#, "rooms.templates[0].cells"),
         (r#"templates = []"#, "rooms.templates"),
+        (r#"templates = [{ name = "x", shape = "T 2x2" }]"#, "rooms.templates[0].shape"),
     ] {
         let toml = FLOORPLAN_4X4.replace(r#"templates = [{ name = "office", shape = "rect 2x2" }]"#, bad);
         let e = Spec::from_toml(&toml).and_then(|s| s.resolve(Path::new("."))).unwrap_err().to_string();
@@ -291,4 +304,9 @@ fn snapshot_circular_6x6() {
 #[test]
 fn snapshot_linear_6x6() {
     insta::assert_yaml_snapshot!("linear_6x6", six_by_six("linear6", "[1, 47]", "forbid", "game", "level = \"linear\""));
+}
+
+#[test]
+fn snapshot_branching_6x6() {
+    insta::assert_yaml_snapshot!("branching_6x6", six_by_six("branching6", "[3]", "forbid", "game", "level = \"branching\""));
 }

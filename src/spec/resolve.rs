@@ -73,7 +73,7 @@ const PALETTE: [&str; 8] = ["#8dd3c7", "#ffffb3", "#bebada", "#fb8072", "#80b1d3
 fn parse_shape(field: &str, name: &str, shape: &str) -> Result<Template, SpecErrorKind> {
     let bad = || SpecErrorKind::Field {
         field: field.to_string(),
-        message: format!("expected \"rect AxB\" or \"L AxB\" with A, B between 1 and 20, got {shape:?}"),
+        message: format!("expected \"rect AxB\", \"L AxB\" or \"T AxB\" (A, B between 1 and 20; L: A, B ≥ 2; T: A odd ≥ 3, B ≥ 2), got {shape:?}"),
     };
     let mut parts = shape.split_whitespace();
     let (kind, dims) = (parts.next().ok_or_else(bad)?, parts.next().ok_or_else(bad)?);
@@ -88,6 +88,12 @@ fn parse_shape(field: &str, name: &str, shape: &str) -> Result<Template, SpecErr
     match kind.to_ascii_lowercase().as_str() {
         "rect" => Ok(Template::rect(name, a, b)),
         "l" if a >= 2 && b >= 2 => Ok(Template::l_shape(name, a, b)),
+        "t" if a >= 3 && a % 2 == 1 && b >= 2 => {
+            // A bar of A cells on top, a stem of B − 1 cells below its middle.
+            let mut cells: Vec<(i32, i32)> = (0..a).map(|x| (x, b - 1)).chain((0..b - 1).map(|y| (a / 2, y))).collect();
+            cells.sort();
+            Ok(Template { name: name.to_string(), cells, rotations: true, reflections: true })
+        }
         _ => Err(bad()),
     }
 }
