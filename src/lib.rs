@@ -9,6 +9,7 @@
 //! independent validator), [`render`] (pictures), and [`pipeline`] (spec → checked design).
 #![deny(missing_docs)]
 
+pub mod compare;
 pub mod design;
 pub mod formulations;
 pub mod io;

@@ -53,6 +53,32 @@ enum Command {
         #[arg(long)]
         no_solve: bool,
     },
+    /// Compare backends on spec files: each run in its own process, killed at the time limit
+    /// plus a grace period, recorded as it ends (rerun to resume); writes results.md,
+    /// results.csv and results.json to --out.
+    Compare {
+        /// Spec files.
+        #[arg(required = true)]
+        specs: Vec<PathBuf>,
+        /// Backends, comma-separated (default: every compiled one but good_lp).
+        #[arg(long, value_delimiter = ',')]
+        solvers: Vec<SolverKind>,
+        /// Time limit per run, seconds.
+        #[arg(long, default_value_t = 60.0)]
+        time_limit: f64,
+        /// Seconds past the limit before a run is killed.
+        #[arg(long, default_value_t = 10.0)]
+        grace: f64,
+        /// Seeds to run (default: one run with each solver's default).
+        #[arg(long, value_delimiter = ',')]
+        seeds: Vec<u64>,
+        /// Threads per run.
+        #[arg(long)]
+        threads: Option<u32>,
+        /// Output directory.
+        #[arg(long, default_value = "out/compare")]
+        out: PathBuf,
+    },
     /// Convert a model between MPS and LP (formats chosen by extension).
     Convert {
         /// Input file (`.mps` or `.lp`).
@@ -128,6 +154,13 @@ impl SolveArgs {
 }
 
 fn main() -> ExitCode {
+    // Behave like other Unix tools when the reader of our output goes away (`| head`): end
+    // quietly instead of panicking on a broken pipe.
+    #[cfg(unix)]
+    // SAFETY: resetting a signal disposition to its default before any thread is started.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
     let cli = Cli::parse();
     match run(cli) {
         Ok(code) => code,
@@ -152,6 +185,41 @@ fn run(cli: Cli) -> Result<ExitCode> {
     match cli.command {
         Command::SolveFile { file, solve, json } => solve_file(&file, &solve, json.as_deref()),
         Command::Solve { spec, solve, out, export, no_solve } => cli::design::solve_spec(&spec, &solve, out, export, no_solve),
+        Command::Compare { specs, solvers, time_limit, grace, seeds, threads, out } => {
+            let solvers: Vec<String> = if solvers.is_empty() {
+                SolverKind::compiled().into_iter().filter(|k| *k != SolverKind::GoodLp).map(|k| k.name().to_string()).collect()
+            } else {
+                solvers.iter().map(|k| k.name().to_string()).collect()
+            };
+            let settings = netspec::compare::CompareSettings { specs, solvers: solvers.clone(), time_limit, grace, seeds, threads };
+            std::fs::create_dir_all(&out).with_context(|| format!("creating {}", out.display()))?;
+            let exe = std::env::current_exe().context("locating the netspec binary")?;
+            let records = netspec::compare::run_all(&exe, &settings, &out, |r, resumed| {
+                println!(
+                    "{:<24} {:<8} {:<16} {:>8.2} s {}{}",
+                    r.instance,
+                    r.solver,
+                    r.status,
+                    r.wall_time,
+                    if r.valid { "valid" } else { "-" },
+                    if resumed { " (resumed)" } else { "" }
+                );
+            })
+            .with_context(|| format!("running the comparison into {}", out.display()))?;
+            let summary = netspec::compare::summarize(&records, &solvers, time_limit);
+            let md = netspec::compare::markdown(&records, &solvers, &summary);
+            let header = format!(
+                "netspec {} compare, time limit {time_limit} s, grace {grace} s, on {} cores\n\n",
+                env!("CARGO_PKG_VERSION"),
+                std::thread::available_parallelism().map_or(0, |n| n.get())
+            );
+            std::fs::write(out.join("results.md"), header + &md)?;
+            std::fs::write(out.join("results.csv"), netspec::compare::csv(&records))?;
+            let all = serde_json::json!({ "settings": settings, "records": records, "summary": summary });
+            std::fs::write(out.join("results.json"), serde_json::to_string_pretty(&all)? + "\n")?;
+            print!("\n{md}");
+            Ok(ExitCode::SUCCESS)
+        }
         Command::Convert { input, output } => {
             let read = read_model_file(&input)?;
             for w in &read.warnings {

@@ -12,3 +12,5 @@ mod cli;
 mod network;
 // Room tiling: floor plans and game levels (paper §5.2–5.3).
 mod rooms;
+// `netspec compare`: tables, summary arithmetic, resume.
+mod compare;

@@ -1,0 +1,291 @@
+//! Comparing backends on a set of specs (`netspec compare`): every (instance, backend, seed) is
+//! solved in its own child process (`netspec solve`), killed at the time limit plus a grace
+//! period, and recorded in its own `run.json` as soon as it ends, so an interrupted comparison
+//! resumes where it stopped. Tables (Markdown, CSV) and a per-backend summary follow.
+
+use crate::pipeline::DesignResult;
+use serde::{Deserialize, Serialize};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+/// One (instance, backend, seed) run.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct RunRecord {
+    /// Instance name (the spec's file stem).
+    pub instance: String,
+    /// Backend name.
+    pub solver: String,
+    /// Seed (`None`: the solver's default).
+    pub seed: Option<u64>,
+    /// Mesh edges.
+    pub edges: Option<usize>,
+    /// MILP variables, rows and nonzeros.
+    pub vars: Option<usize>,
+    /// Rows.
+    pub rows: Option<usize>,
+    /// Nonzeros.
+    pub nonzeros: Option<usize>,
+    /// Termination label (`optimal`, `limit(time)`, …), `killed` or `failed`.
+    pub status: String,
+    /// Objective.
+    pub objective: Option<f64>,
+    /// Dual bound.
+    pub dual_bound: Option<f64>,
+    /// netspec's gap.
+    pub gap: Option<f64>,
+    /// Nodes.
+    pub nodes: Option<u64>,
+    /// Solver time, seconds.
+    pub solver_time: Option<f64>,
+    /// Wall time of the child process, seconds.
+    pub wall_time: f64,
+    /// The independent validity verdict.
+    pub valid: bool,
+    /// Whether the child was killed at limit + grace.
+    pub killed: bool,
+    /// The solver's version.
+    pub solver_version: Option<String>,
+    /// The child's exit code.
+    pub exit_code: Option<i32>,
+}
+
+/// Settings of a comparison.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct CompareSettings {
+    /// Spec files.
+    pub specs: Vec<PathBuf>,
+    /// Backend names.
+    pub solvers: Vec<String>,
+    /// Time limit per run, seconds.
+    pub time_limit: f64,
+    /// Extra seconds before the child is killed.
+    pub grace: f64,
+    /// Seeds (empty: one run with the solver's default).
+    pub seeds: Vec<u64>,
+    /// Threads per run, if set.
+    pub threads: Option<u32>,
+}
+
+fn instance_name(spec: &Path) -> String {
+    spec.file_stem().map_or_else(|| "instance".into(), |s| s.to_string_lossy().into_owned())
+}
+
+/// Runs every missing (instance, backend, seed) combination; returns all records, in a fixed
+/// order. `exe` is the `netspec` binary; `progress` is called after each run.
+pub fn run_all(exe: &Path, settings: &CompareSettings, out: &Path, mut progress: impl FnMut(&RunRecord, bool)) -> std::io::Result<Vec<RunRecord>> {
+    let seeds: Vec<Option<u64>> = if settings.seeds.is_empty() { vec![None] } else { settings.seeds.iter().map(|&s| Some(s)).collect() };
+    let mut records = Vec::new();
+    for spec in &settings.specs {
+        for solver in &settings.solvers {
+            for &seed in &seeds {
+                let name = instance_name(spec);
+                let dir = out.join("runs").join(format!("{name}__{solver}__{}", seed.map_or("default".into(), |s| s.to_string())));
+                let record_path = dir.join("run.json");
+                if let Ok(text) = std::fs::read_to_string(&record_path) {
+                    if let Ok(r) = serde_json::from_str::<RunRecord>(&text) {
+                        progress(&r, true);
+                        records.push(r);
+                        continue;
+                    }
+                }
+                std::fs::create_dir_all(&dir)?;
+                let r = run_one(exe, spec, solver, seed, settings, &dir)?;
+                let tmp = dir.join("run.json.tmp");
+                std::fs::write(&tmp, serde_json::to_string_pretty(&r)? + "\n")?;
+                std::fs::rename(&tmp, &record_path)?;
+                progress(&r, false);
+                records.push(r);
+            }
+        }
+    }
+    Ok(records)
+}
+
+fn run_one(exe: &Path, spec: &Path, solver: &str, seed: Option<u64>, s: &CompareSettings, dir: &Path) -> std::io::Result<RunRecord> {
+    let mut cmd = Command::new(exe);
+    cmd.arg("solve").arg(spec).args(["--solver", solver, "--time-limit", &s.time_limit.to_string(), "--out"]).arg(dir);
+    if let Some(seed) = seed {
+        cmd.args(["--seed", &seed.to_string()]);
+    }
+    if let Some(t) = s.threads {
+        cmd.args(["--threads", &t.to_string()]);
+    }
+    cmd.stdin(Stdio::null()).stdout(std::fs::File::create(dir.join("stdout.txt"))?).stderr(std::fs::File::create(dir.join("stderr.txt"))?);
+    let _ = std::fs::remove_file(dir.join("result.json"));
+    let t0 = Instant::now();
+    let mut child = cmd.spawn()?;
+    let deadline = Duration::from_secs_f64(s.time_limit + s.grace);
+    let mut killed = false;
+    let status = loop {
+        if let Some(st) = child.try_wait()? {
+            break Some(st);
+        }
+        if t0.elapsed() > deadline {
+            let _ = child.kill();
+            let _ = child.wait();
+            killed = true;
+            break None;
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    };
+    let wall_time = t0.elapsed().as_secs_f64();
+    let result: Option<DesignResult> =
+        std::fs::read_to_string(dir.join("result.json")).ok().and_then(|t| serde_json::from_str(&t).ok());
+    let mut r = RunRecord {
+        instance: instance_name(spec),
+        solver: solver.to_string(),
+        seed,
+        edges: None,
+        vars: None,
+        rows: None,
+        nonzeros: None,
+        status: if killed { "killed".into() } else { "failed".into() },
+        objective: None,
+        dual_bound: None,
+        gap: None,
+        nodes: None,
+        solver_time: None,
+        wall_time,
+        valid: false,
+        killed,
+        solver_version: None,
+        exit_code: status.and_then(|s| s.code()),
+    };
+    if let (Some(res), false) = (result, killed) {
+        r.edges = Some(res.mesh.num_edges());
+        r.vars = Some(res.model_stats.vars);
+        r.rows = Some(res.model_stats.rows);
+        r.nonzeros = Some(res.model_stats.nonzeros);
+        r.status = res.solve.termination.label();
+        r.objective = res.solve.objective;
+        r.dual_bound = res.solve.dual_bound;
+        r.gap = res.solve.gap;
+        r.nodes = res.solve.nodes;
+        r.solver_time = res.solve.solver_time;
+        r.valid = res.validity.valid;
+        r.solver_version = Some(res.solve.solver_version);
+    }
+    Ok(r)
+}
+
+/// Shifted geometric mean `exp(mean(ln(t + shift))) − shift` (the MIPLIB convention).
+pub fn shifted_geometric_mean(times: &[f64], shift: f64) -> f64 {
+    if times.is_empty() {
+        return 0.0;
+    }
+    (times.iter().map(|t| (t + shift).ln()).sum::<f64>() / times.len() as f64).exp() - shift
+}
+
+/// Per-backend summary.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct BackendSummary {
+    /// Backend name.
+    pub solver: String,
+    /// Shifted geometric mean of time (shift 10 s; runs not proven optimal charged the limit).
+    pub sgm_time: f64,
+    /// Runs proven optimal (or infeasible) with a valid answer where there is one.
+    pub solved: usize,
+    /// Runs.
+    pub runs: usize,
+    /// Instances where this backend was the fastest to solve.
+    pub wins: usize,
+}
+
+fn solved(r: &RunRecord) -> bool {
+    (r.status == "optimal" && r.valid) || r.status == "infeasible"
+}
+
+/// Summaries per backend, in the order of `solvers`.
+pub fn summarize(records: &[RunRecord], solvers: &[String], limit: f64) -> Vec<BackendSummary> {
+    let mut instances: Vec<&str> = records.iter().map(|r| r.instance.as_str()).collect();
+    instances.dedup();
+    solvers
+        .iter()
+        .map(|s| {
+            let mine: Vec<&RunRecord> = records.iter().filter(|r| &r.solver == s).collect();
+            let times: Vec<f64> = mine.iter().map(|r| if solved(r) { r.wall_time.min(limit) } else { limit }).collect();
+            let wins = instances
+                .iter()
+                .filter(|i| {
+                    let best = records
+                        .iter()
+                        .filter(|r| r.instance == **i && solved(r))
+                        .min_by(|a, b| a.wall_time.total_cmp(&b.wall_time));
+                    best.is_some_and(|b| &b.solver == s)
+                })
+                .count();
+            BackendSummary { solver: s.clone(), sgm_time: shifted_geometric_mean(&times, 10.0), solved: mine.iter().filter(|r| solved(r)).count(), runs: mine.len(), wins }
+        })
+        .collect()
+}
+
+fn opt(v: Option<f64>, digits: usize) -> String {
+    v.map_or("-".into(), |v| format!("{v:.digits$}"))
+}
+
+/// The results table as Markdown: one row per instance, per backend time / status / gap.
+pub fn markdown(records: &[RunRecord], solvers: &[String], summary: &[BackendSummary]) -> String {
+    let mut s = String::from("| instance | edges | vars |");
+    for b in solvers {
+        let _ = write!(s, " {b} |");
+    }
+    s.push_str(" best objective |\n|---|---|---|");
+    for _ in solvers {
+        s.push_str("---|");
+    }
+    s.push_str("---|\n");
+    let mut instances: Vec<&str> = records.iter().map(|r| r.instance.as_str()).collect();
+    instances.dedup();
+    for i in instances {
+        let rows: Vec<&RunRecord> = records.iter().filter(|r| r.instance == i).collect();
+        let any = rows[0];
+        let _ = write!(s, "| {i} | {} | {} |", any.edges.map_or("-".into(), |e| e.to_string()), any.vars.map_or("-".into(), |e| e.to_string()));
+        for b in solvers {
+            match rows.iter().find(|r| &r.solver == b) {
+                Some(r) => {
+                    let _ = write!(s, " {:.2} s {}{} gap {} |", r.wall_time, r.status, if r.valid { "" } else { " (invalid)" }, opt(r.gap.map(|g| g * 100.0), 1));
+                }
+                None => s.push_str(" - |"),
+            }
+        }
+        let best = rows.iter().filter(|r| r.valid).filter_map(|r| r.objective).fold(f64::INFINITY, f64::min);
+        let _ = writeln!(s, " {} |", if best.is_finite() { format!("{best:.4}") } else { "-".into() });
+    }
+    s.push_str("\n| backend | sgm time (shift 10 s) | solved | wins |\n|---|---|---|---|\n");
+    for b in summary {
+        let _ = writeln!(s, "| {} | {:.2} s | {}/{} | {} |", b.solver, b.sgm_time, b.solved, b.runs, b.wins);
+    }
+    s
+}
+
+/// The records as CSV.
+pub fn csv(records: &[RunRecord]) -> String {
+    let mut s = String::from("instance,solver,seed,edges,vars,rows,nonzeros,status,objective,dual_bound,gap,nodes,solver_time,wall_time,valid,killed\n");
+    for r in records {
+        let o = |v: Option<f64>| v.map_or(String::new(), |v| v.to_string());
+        let u = |v: Option<usize>| v.map_or(String::new(), |v| v.to_string());
+        let _ = writeln!(
+            s,
+            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
+            r.instance,
+            r.solver,
+            r.seed.map_or(String::new(), |v| v.to_string()),
+            u(r.edges),
+            u(r.vars),
+            u(r.rows),
+            u(r.nonzeros),
+            r.status,
+            o(r.objective),
+            o(r.dual_bound),
+            o(r.gap),
+            r.nodes.map_or(String::new(), |v| v.to_string()),
+            o(r.solver_time),
+            r.wall_time,
+            r.valid,
+            r.killed
+        );
+    }
+    s
+}

@@ -1,0 +1,113 @@
+//! `netspec compare` on a tiny manifest: two small instances × every compiled backend.
+
+use netspec::compare::{shifted_geometric_mean, summarize, RunRecord};
+use std::process::Command;
+
+const FLOORPLAN: &str = r#"
+name = "tiny_floorplan"
+boundary = "wall"
+formulation = "tight"
+[mesh]
+grid = { width = 4, height = 4 }
+[sinks]
+vertices = [2]
+[features]
+dead_ends = "allow"
+[rooms]
+mode = "floorplan"
+templates = [{ name = "office", shape = "rect 2x2" }]
+"#;
+
+const NETWORK: &str = r#"
+name = "tiny_network"
+boundary = "wall"
+formulation = "tight"
+[mesh]
+grid = { width = 4, height = 4 }
+[sinks]
+all_boundary = true
+"#;
+
+#[test]
+fn compare_runs_tables_and_resumes() {
+    let dir = tempfile::tempdir().unwrap();
+    let (a, b) = (dir.path().join("a.toml"), dir.path().join("b.toml"));
+    std::fs::write(&a, FLOORPLAN).unwrap();
+    std::fs::write(&b, NETWORK).unwrap();
+    let out = dir.path().join("out");
+    let run = || {
+        let o = Command::new(env!("CARGO_BIN_EXE_netspec"))
+            .arg("compare")
+            .args([&a, &b])
+            .args(["--time-limit", "1", "--grace", "5", "--out"])
+            .arg(&out)
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        String::from_utf8(o.stdout).unwrap()
+    };
+    let first = run();
+    let backends: Vec<&str> = netspec::solvers::SolverKind::compiled()
+        .into_iter()
+        .filter(|k| *k != netspec::solvers::SolverKind::GoodLp)
+        .map(|k| k.name())
+        .collect();
+    assert!(!first.contains("(resumed)"), "{first}");
+    let md = std::fs::read_to_string(out.join("results.md")).unwrap();
+    // Header + separator + two instances, then the summary with a row per backend.
+    let table: Vec<&str> = md.lines().filter(|l| l.starts_with("| ")).collect();
+    assert!(table[0].contains("| instance | edges | vars |") && backends.iter().all(|b| table[0].contains(b)), "{md}");
+    assert!(table.iter().any(|l| l.starts_with("| a |") && l.ends_with("| 3.0000 |")), "{md}");
+    assert!(table.iter().any(|l| l.starts_with("| b |")), "{md}");
+    let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(out.join("results.json")).unwrap()).unwrap();
+    let records: Vec<RunRecord> = serde_json::from_value(json["records"].clone()).unwrap();
+    assert_eq!(records.len(), 2 * backends.len());
+    for r in &records {
+        assert!(r.valid && r.status == "optimal" && !r.killed, "{r:?}");
+        assert_eq!(r.edges, Some(40));
+    }
+    let csv = std::fs::read_to_string(out.join("results.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 1 + records.len());
+    assert!(csv.lines().skip(1).all(|l| l.ends_with(",true,false")), "{csv}");
+    // Rerun: nothing is solved again.
+    let stamp = std::fs::metadata(out.join("runs/a__highs__default/run.json")).unwrap().modified().unwrap();
+    let second = run();
+    assert_eq!(second.matches("(resumed)").count(), records.len(), "{second}");
+    assert_eq!(std::fs::metadata(out.join("runs/a__highs__default/run.json")).unwrap().modified().unwrap(), stamp);
+}
+
+#[test]
+fn shifted_geometric_mean_by_hand() {
+    // (11 · 20 · 110)^(1/3) − 10 = 24200^(1/3) − 10.
+    let want = 24200f64.powf(1.0 / 3.0) - 10.0;
+    assert!((shifted_geometric_mean(&[1.0, 10.0, 100.0], 10.0) - want).abs() < 1e-9);
+    assert!((want - 18.9249).abs() < 1e-4);
+}
+
+#[test]
+fn unsolved_runs_are_charged_the_limit() {
+    let rec = |solver: &str, status: &str, t: f64| RunRecord {
+        instance: "i".into(),
+        solver: solver.into(),
+        seed: None,
+        edges: None,
+        vars: None,
+        rows: None,
+        nonzeros: None,
+        status: status.into(),
+        objective: None,
+        dual_bound: None,
+        gap: None,
+        nodes: None,
+        solver_time: None,
+        wall_time: t,
+        valid: status == "optimal",
+        killed: false,
+        solver_version: None,
+        exit_code: Some(0),
+    };
+    let recs = vec![rec("x", "optimal", 2.0), rec("y", "limit(time)", 7.0)];
+    let s = summarize(&recs, &["x".into(), "y".into()], 60.0);
+    assert!((s[0].sgm_time - 2.0).abs() < 1e-9 && s[0].solved == 1 && s[0].wins == 1);
+    assert!((s[1].sgm_time - 60.0).abs() < 1e-9 && s[1].solved == 0 && s[1].wins == 0);
+}
