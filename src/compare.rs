@@ -51,11 +51,75 @@ pub struct RunRecord {
     pub exit_code: Option<i32>,
 }
 
+/// The paper's figures for one instance (Table 1).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PaperRow {
+    /// Mesh edges.
+    #[serde(default)]
+    pub edges: Option<usize>,
+    /// Variables.
+    #[serde(default)]
+    pub variables: Option<usize>,
+    /// Gurobi time as printed (street rows: `level2/level3/level4`).
+    #[serde(default)]
+    pub time: Option<String>,
+}
+
+/// One row of a manifest such as `models/table1.toml`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ManifestRow {
+    /// The row's name (the paper's figure id).
+    pub name: String,
+    /// The spec file, relative to the manifest; absent when the row cannot run yet.
+    #[serde(default)]
+    pub spec: Option<PathBuf>,
+    /// Why the row cannot run yet (shown in the table; rows are never dropped silently).
+    #[serde(default)]
+    pub missing: Option<String>,
+    /// The paper's figures.
+    #[serde(default)]
+    pub paper: PaperRow,
+}
+
+/// A manifest: instances with the paper's figures.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Manifest {
+    /// The rows, in table order.
+    pub row: Vec<ManifestRow>,
+}
+
+impl Manifest {
+    /// Reads a TOML manifest; spec paths become relative to the current directory.
+    pub fn load(path: &Path) -> Result<Manifest, String> {
+        let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+        let mut m: Manifest = toml::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+        let base = path.parent().unwrap_or(Path::new("."));
+        for (i, r) in m.row.iter_mut().enumerate() {
+            match (&r.spec, &r.missing) {
+                (Some(s), None) => r.spec = Some(base.join(s)),
+                (None, Some(_)) => {}
+                _ => return Err(format!("{}: row[{i}] ({}): give exactly one of `spec` or `missing`", path.display(), r.name)),
+            }
+        }
+        Ok(m)
+    }
+
+    /// A manifest of plain spec files (named by file stem, no paper figures).
+    pub fn from_specs(specs: &[PathBuf]) -> Manifest {
+        Manifest {
+            row: specs.iter().map(|p| ManifestRow { name: instance_name(p), spec: Some(p.clone()), missing: None, paper: PaperRow::default() }).collect(),
+        }
+    }
+}
+
 /// Settings of a comparison.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct CompareSettings {
-    /// Spec files.
-    pub specs: Vec<PathBuf>,
+    /// The instances.
+    pub manifest: Manifest,
     /// Backend names.
     pub solvers: Vec<String>,
     /// Time limit per run, seconds.
@@ -77,10 +141,11 @@ fn instance_name(spec: &Path) -> String {
 pub fn run_all(exe: &Path, settings: &CompareSettings, out: &Path, mut progress: impl FnMut(&RunRecord, bool)) -> std::io::Result<Vec<RunRecord>> {
     let seeds: Vec<Option<u64>> = if settings.seeds.is_empty() { vec![None] } else { settings.seeds.iter().map(|&s| Some(s)).collect() };
     let mut records = Vec::new();
-    for spec in &settings.specs {
+    for row in &settings.manifest.row {
+        let Some(spec) = &row.spec else { continue };
         for solver in &settings.solvers {
             for &seed in &seeds {
-                let name = instance_name(spec);
+                let name = row.name.clone();
                 let dir = out.join("runs").join(format!("{name}__{solver}__{}", seed.map_or("default".into(), |s| s.to_string())));
                 let record_path = dir.join("run.json");
                 if let Ok(text) = std::fs::read_to_string(&record_path) {
@@ -91,7 +156,8 @@ pub fn run_all(exe: &Path, settings: &CompareSettings, out: &Path, mut progress:
                     }
                 }
                 std::fs::create_dir_all(&dir)?;
-                let r = run_one(exe, spec, solver, seed, settings, &dir)?;
+                let mut r = run_one(exe, spec, solver, seed, settings, &dir)?;
+                r.instance = name;
                 let tmp = dir.join("run.json.tmp");
                 std::fs::write(&tmp, serde_json::to_string_pretty(&r)? + "\n")?;
                 std::fs::rename(&tmp, &record_path)?;
@@ -225,23 +291,34 @@ fn opt(v: Option<f64>, digits: usize) -> String {
     v.map_or("-".into(), |v| format!("{v:.digits$}"))
 }
 
-/// The results table as Markdown: one row per instance, per backend time / status / gap.
-pub fn markdown(records: &[RunRecord], solvers: &[String], summary: &[BackendSummary]) -> String {
-    let mut s = String::from("| instance | edges | vars |");
+/// The results table as Markdown: one row per manifest row (missing ones with their reason),
+/// the paper's edges, variables and time beside ours, per backend time / status / gap.
+pub fn markdown(manifest: &Manifest, records: &[RunRecord], solvers: &[String], summary: &[BackendSummary]) -> String {
+    let mut s = String::from("| instance | edges (paper) | vars (paper) | paper time |");
     for b in solvers {
         let _ = write!(s, " {b} |");
     }
-    s.push_str(" best objective |\n|---|---|---|");
+    s.push_str(" best objective |\n|---|---|---|---|");
     for _ in solvers {
         s.push_str("---|");
     }
     s.push_str("---|\n");
-    let mut instances: Vec<&str> = records.iter().map(|r| r.instance.as_str()).collect();
-    instances.dedup();
-    for i in instances {
+    let num = |v: Option<usize>| v.map_or("-".to_string(), |e| e.to_string());
+    for row in &manifest.row {
+        let i = row.name.as_str();
+        let p = &row.paper;
         let rows: Vec<&RunRecord> = records.iter().filter(|r| r.instance == i).collect();
-        let any = rows[0];
-        let _ = write!(s, "| {i} | {} | {} |", any.edges.map_or("-".into(), |e| e.to_string()), any.vars.map_or("-".into(), |e| e.to_string()));
+        let paper_time = p.time.clone().unwrap_or_else(|| "-".into());
+        if let Some(why) = &row.missing {
+            let _ = write!(s, "| {i} | - ({}) | - ({}) | {paper_time} |", num(p.edges), num(p.variables));
+            for _ in solvers {
+                s.push_str(" missing |");
+            }
+            let _ = writeln!(s, " missing: {why} |");
+            continue;
+        }
+        let (edges, vars) = rows.first().map_or((None, None), |r| (r.edges, r.vars));
+        let _ = write!(s, "| {i} | {} ({}) | {} ({}) | {paper_time} |", num(edges), num(p.edges), num(vars), num(p.variables));
         for b in solvers {
             match rows.iter().find(|r| &r.solver == b) {
                 Some(r) => {

@@ -58,8 +58,11 @@ enum Command {
     /// results.csv and results.json to --out.
     Compare {
         /// Spec files.
-        #[arg(required = true)]
+        #[arg(required_unless_present = "manifest")]
         specs: Vec<PathBuf>,
+        /// A manifest of instances with the paper's figures (e.g. models/table1.toml).
+        #[arg(long, conflicts_with = "specs")]
+        manifest: Option<PathBuf>,
         /// Backends, comma-separated (default: every compiled one but good_lp).
         #[arg(long, value_delimiter = ',')]
         solvers: Vec<SolverKind>,
@@ -185,13 +188,17 @@ fn run(cli: Cli) -> Result<ExitCode> {
     match cli.command {
         Command::SolveFile { file, solve, json } => solve_file(&file, &solve, json.as_deref()),
         Command::Solve { spec, solve, out, export, no_solve } => cli::design::solve_spec(&spec, &solve, out, export, no_solve),
-        Command::Compare { specs, solvers, time_limit, grace, seeds, threads, out } => {
+        Command::Compare { specs, manifest, solvers, time_limit, grace, seeds, threads, out } => {
+            let manifest = match manifest {
+                Some(m) => netspec::compare::Manifest::load(&m).map_err(anyhow::Error::msg)?,
+                None => netspec::compare::Manifest::from_specs(&specs),
+            };
             let solvers: Vec<String> = if solvers.is_empty() {
                 SolverKind::compiled().into_iter().filter(|k| *k != SolverKind::GoodLp).map(|k| k.name().to_string()).collect()
             } else {
                 solvers.iter().map(|k| k.name().to_string()).collect()
             };
-            let settings = netspec::compare::CompareSettings { specs, solvers: solvers.clone(), time_limit, grace, seeds, threads };
+            let settings = netspec::compare::CompareSettings { manifest, solvers: solvers.clone(), time_limit, grace, seeds, threads };
             std::fs::create_dir_all(&out).with_context(|| format!("creating {}", out.display()))?;
             let exe = std::env::current_exe().context("locating the netspec binary")?;
             let records = netspec::compare::run_all(&exe, &settings, &out, |r, resumed| {
@@ -207,15 +214,21 @@ fn run(cli: Cli) -> Result<ExitCode> {
             })
             .with_context(|| format!("running the comparison into {}", out.display()))?;
             let summary = netspec::compare::summarize(&records, &solvers, time_limit);
-            let md = netspec::compare::markdown(&records, &solvers, &summary);
+            let md = netspec::compare::markdown(&settings.manifest, &records, &solvers, &summary);
+            let cpu = std::fs::read_to_string("/proc/cpuinfo")
+                .ok()
+                .and_then(|t| t.lines().find(|l| l.starts_with("model name")).and_then(|l| l.split(':').nth(1)).map(|s| s.trim().to_string()))
+                .unwrap_or_else(|| "unknown CPU".into());
+            let command: Vec<String> = std::env::args().collect();
             let header = format!(
-                "netspec {} compare, time limit {time_limit} s, grace {grace} s, on {} cores\n\n",
+                "netspec {} compare, time limit {time_limit} s, grace {grace} s; {cpu}, {} cores\n\nCommand: `{}`\n\n",
                 env!("CARGO_PKG_VERSION"),
-                std::thread::available_parallelism().map_or(0, |n| n.get())
+                std::thread::available_parallelism().map_or(0, |n| n.get()),
+                command.join(" ")
             );
             std::fs::write(out.join("results.md"), header + &md)?;
             std::fs::write(out.join("results.csv"), netspec::compare::csv(&records))?;
-            let all = serde_json::json!({ "settings": settings, "records": records, "summary": summary });
+            let all = serde_json::json!({ "netspec_version": env!("CARGO_PKG_VERSION"), "command": command, "cpu": cpu, "settings": settings, "records": records, "summary": summary });
             std::fs::write(out.join("results.json"), serde_json::to_string_pretty(&all)? + "\n")?;
             print!("\n{md}");
             Ok(ExitCode::SUCCESS)

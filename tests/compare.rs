@@ -56,7 +56,7 @@ fn compare_runs_tables_and_resumes() {
     let md = std::fs::read_to_string(out.join("results.md")).unwrap();
     // Header + separator + two instances, then the summary with a row per backend.
     let table: Vec<&str> = md.lines().filter(|l| l.starts_with("| ")).collect();
-    assert!(table[0].contains("| instance | edges | vars |") && backends.iter().all(|b| table[0].contains(b)), "{md}");
+    assert!(table[0].contains("| instance | edges (paper) | vars (paper) | paper time |") && backends.iter().all(|b| table[0].contains(b)), "{md}");
     assert!(table.iter().any(|l| l.starts_with("| a |") && l.ends_with("| 3.0000 |")), "{md}");
     assert!(table.iter().any(|l| l.starts_with("| b |")), "{md}");
     let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(out.join("results.json")).unwrap()).unwrap();
@@ -110,4 +110,47 @@ fn unsolved_runs_are_charged_the_limit() {
     let s = summarize(&recs, &["x".into(), "y".into()], 60.0);
     assert!((s[0].sgm_time - 2.0).abs() < 1e-9 && s[0].solved == 1 && s[0].wins == 1);
     assert!((s[1].sgm_time - 60.0).abs() < 1e-9 && s[1].solved == 0 && s[1].wins == 0);
+}
+
+#[test]
+fn manifest_rows_that_cannot_run_are_shown_missing() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("n.toml"), NETWORK).unwrap();
+    std::fs::write(
+        dir.path().join("m.toml"),
+        r#"
+[[row]]
+name = "net"
+spec = "n.toml"
+paper = { edges = 40, variables = 100, time = "1" }
+
+[[row]]
+name = "street"
+missing = "not built yet"
+paper = { edges = 657, time = "379/366/49" }
+"#,
+    )
+    .unwrap();
+    let out = dir.path().join("out");
+    let o = Command::new(env!("CARGO_BIN_EXE_netspec"))
+        .args(["compare", "--solvers", "highs", "--time-limit", "2", "--manifest"])
+        .arg(dir.path().join("m.toml"))
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let md = std::fs::read_to_string(out.join("results.md")).unwrap();
+    assert!(md.contains("| net | 40 (40) |"), "{md}");
+    assert!(md.contains("| street | - (657) | - (-) | 379/366/49 | missing | missing: not built yet |"), "{md}");
+    assert!(md.contains("Command: `"), "{md}");
+    // The repository's Table 1 manifest loads, lists every row of the paper's table, and every
+    // spec it names exists.
+    let m = netspec::compare::Manifest::load(&std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("models/table1.toml")).unwrap();
+    assert_eq!(m.row.len(), 26);
+    for r in &m.row {
+        if let Some(spec) = &r.spec {
+            assert!(spec.exists(), "{}: {}", r.name, spec.display());
+        }
+    }
 }
