@@ -366,3 +366,50 @@ pub fn csv(records: &[RunRecord]) -> String {
     }
     s
 }
+
+/// A performance profile as SVG: for each backend, the fraction of runs solved (optimal and
+/// valid, or infeasible) within time t, for t from 0 to the limit (log scale from 0.01 s).
+pub fn performance_profile_svg(records: &[RunRecord], solvers: &[String], limit: f64) -> String {
+    const COLORS: [&str; 6] = ["#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b"];
+    let (w, h, left, bottom, top, right) = (640.0, 400.0, 60.0, 50.0, 30.0, 130.0);
+    let (pw, ph) = (w - left - right, h - top - bottom);
+    let t0 = 0.01f64;
+    let limit = limit.max(t0 * 10.0);
+    let x = |t: f64| left + pw * ((t.max(t0) / t0).ln() / (limit / t0).ln()).clamp(0.0, 1.0);
+    let y = |f: f64| top + ph * (1.0 - f);
+    let mut s = format!(r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" font-family="DejaVu Sans, sans-serif" font-size="11">"#);
+    s.push_str("\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n");
+    let _ = writeln!(s, r##"<text x="{left}" y="18" font-size="13" font-weight="bold">Performance profile: fraction solved within time</text>"##);
+    let _ = writeln!(s, r##"<rect x="{left}" y="{top}" width="{pw}" height="{ph}" fill="none" stroke="#888"/>"##);
+    let mut tick = t0;
+    while tick <= limit * 1.0001 {
+        let _ = writeln!(s, r##"<line x1="{0:.1}" y1="{top}" x2="{0:.1}" y2="{1:.1}" stroke="#eee"/><text x="{0:.1}" y="{2:.1}" text-anchor="middle">{3}</text>"##, x(tick), top + ph, top + ph + 16.0, tick);
+        tick *= 10.0;
+    }
+    for k in 0..=4 {
+        let f = k as f64 / 4.0;
+        let _ = writeln!(s, r##"<text x="{:.1}" y="{:.1}" text-anchor="end">{:.0}%</text>"##, left - 6.0, y(f) + 4.0, f * 100.0);
+    }
+    let _ = writeln!(s, r##"<text x="{:.1}" y="{:.1}" text-anchor="middle">time (s, log scale; limit {limit} s)</text>"##, left + pw / 2.0, h - 10.0);
+    for (i, b) in solvers.iter().enumerate() {
+        let mine: Vec<&RunRecord> = records.iter().filter(|r| &r.solver == b).collect();
+        if mine.is_empty() {
+            continue;
+        }
+        let mut times: Vec<f64> = mine.iter().filter(|r| solved(r)).map(|r| r.wall_time).collect();
+        times.sort_by(f64::total_cmp);
+        let n = mine.len() as f64;
+        let mut pts = vec![format!("{:.1},{:.1}", x(t0), y(0.0))];
+        for (k, t) in times.iter().enumerate() {
+            pts.push(format!("{:.1},{:.1}", x(*t), y(k as f64 / n)));
+            pts.push(format!("{:.1},{:.1}", x(*t), y((k + 1) as f64 / n)));
+        }
+        pts.push(format!("{:.1},{:.1}", x(limit), y(times.len() as f64 / n)));
+        let c = COLORS[i % COLORS.len()];
+        let _ = writeln!(s, r#"<polyline class="profile" data-solver="{b}" points="{}" fill="none" stroke="{c}" stroke-width="2"/>"#, pts.join(" "));
+        let ly = top + 14.0 + i as f64 * 18.0;
+        let _ = writeln!(s, r#"<line x1="{:.1}" y1="{ly:.1}" x2="{:.1}" y2="{ly:.1}" stroke="{c}" stroke-width="3"/><text x="{:.1}" y="{:.1}">{b}</text>"#, w - right + 10.0, w - right + 30.0, w - right + 36.0, ly + 4.0);
+    }
+    s.push_str("</svg>\n");
+    s
+}

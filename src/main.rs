@@ -55,7 +55,7 @@ enum Command {
     },
     /// Compare backends on spec files: each run in its own process, killed at the time limit
     /// plus a grace period, recorded as it ends (rerun to resume); writes results.md,
-    /// results.csv and results.json to --out.
+    /// results.csv, results.json and a performance profile (profile.svg) to --out.
     Compare {
         /// Spec files.
         #[arg(required_unless_present = "manifest")]
@@ -228,6 +228,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
             );
             std::fs::write(out.join("results.md"), header + &md)?;
             std::fs::write(out.join("results.csv"), netspec::compare::csv(&records))?;
+            std::fs::write(out.join("profile.svg"), netspec::compare::performance_profile_svg(&records, &solvers, time_limit))?;
             let all = serde_json::json!({ "netspec_version": env!("CARGO_PKG_VERSION"), "command": command, "cpu": cpu, "settings": settings, "records": records, "summary": summary });
             std::fs::write(out.join("results.json"), serde_json::to_string_pretty(&all)? + "\n")?;
             print!("\n{md}");

@@ -66,6 +66,13 @@ fn compare_runs_tables_and_resumes() {
         assert!(r.valid && r.status == "optimal" && !r.killed, "{r:?}");
         assert_eq!(r.edges, Some(40));
     }
+    let profile = std::fs::read_to_string(out.join("profile.svg")).unwrap();
+    assert_eq!(profile.matches(r#"class="profile""#).count(), backends.len(), "one curve per backend");
+    // Everything solved: every curve ends at 100 % (y = top of the plot, 30).
+    for line in profile.lines().filter(|l| l.contains(r#"class="profile""#)) {
+        let last = line.split("points=\"").nth(1).unwrap().split('"').next().unwrap().split(' ').last().unwrap();
+        assert!(last.ends_with(",30.0"), "{line}");
+    }
     let csv = std::fs::read_to_string(out.join("results.csv")).unwrap();
     assert_eq!(csv.lines().count(), 1 + records.len());
     assert!(csv.lines().skip(1).all(|l| l.ends_with(",true,false")), "{csv}");
