@@ -120,8 +120,16 @@ pub fn solve_built(p: &Problem, nm: &NetworkModel, kind: SolverKind, options: &S
             .collect()
     });
     result.primal = None;
-    let net_rooms = net.as_ref().map_or(Vec::new(), |n| n.rooms.clone());
-    let net_for_graph = net.clone();
+    let rooms = nm.rooms.as_ref().map(|rm| RoomsResult {
+        enumerated_per_template: rm.report.per_template.clone(),
+        truncated: rm.report.truncated,
+        seconds: rm.report.seconds,
+        block_graph: match (&p.rooms, &net) {
+            (Some(r), Some(n)) if r.mode == crate::spec::RoomMode::Game => Some(design::block_graph(p, n, &rm.report.placements)),
+            _ => None,
+        },
+        chosen: net.as_ref().map_or(Vec::new(), |n| n.rooms.iter().map(|&k| rm.report.placements[k].clone()).collect()),
+    });
     Ok(DesignResult {
         schema: "netspec.design".into(),
         schema_version: DESIGN_SCHEMA_VERSION,
@@ -138,15 +146,6 @@ pub fn solve_built(p: &Problem, nm: &NetworkModel, kind: SolverKind, options: &S
         families: nm.families.clone(),
         big_m: nm.big_m,
         path_sets: nm.path_sets.clone(),
-        rooms: nm.rooms.as_ref().map(|rm| RoomsResult {
-            enumerated_per_template: rm.report.per_template.clone(),
-            truncated: rm.report.truncated,
-            seconds: rm.report.seconds,
-            block_graph: match (&p.rooms, &net_for_graph) {
-                (Some(r), Some(n)) if r.mode == crate::spec::RoomMode::Game => Some(design::block_graph(p, n, &rm.report.placements)),
-                _ => None,
-            },
-            chosen: net_rooms.iter().map(|&k| rm.report.placements[k].clone()).collect(),
-        }),
+        rooms,
     })
 }

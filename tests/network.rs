@@ -12,13 +12,14 @@ use netspec::spec::{Problem, Spec, SpecErrorKind};
 use serde::Serialize;
 use std::path::Path;
 
-fn problem(toml: &str) -> Problem {
+/// Parses and resolves an inline TOML spec (shared by the room tests).
+pub fn problem(toml: &str) -> Problem {
     Spec::from_toml(toml).unwrap_or_else(|e| panic!("{e}")).resolve(Path::new(".")).unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// Backends for small network models. microlp is a plain branch and bound: it is given only the
 /// specs marked `small` (it takes minutes on the others).
-fn backends(small: bool) -> Vec<SolverKind> {
+pub fn backends(small: bool) -> Vec<SolverKind> {
     SolverKind::compiled()
         .into_iter()
         .filter(|k| *k != SolverKind::GoodLp && (small || *k != SolverKind::Microlp))

@@ -9,12 +9,11 @@ use netspec::solvers::{SolveOptions, SolverKind, Termination};
 use netspec::spec::{Problem, Spec};
 use std::path::Path;
 
-fn problem(toml: &str) -> Problem {
-    Spec::from_toml(toml).unwrap_or_else(|e| panic!("{e}")).resolve(Path::new(".")).unwrap_or_else(|e| panic!("{e}"))
-}
+use crate::network::{backends as network_backends, problem};
 
+/// Every compiled backend but the good_lp bridge (these room models are small enough for microlp).
 fn backends() -> Vec<SolverKind> {
-    SolverKind::compiled().into_iter().filter(|k| *k != SolverKind::GoodLp).collect()
+    network_backends(true)
 }
 
 /// Solves with every backend; each must prove optimality with a valid design, and all agree

@@ -68,26 +68,25 @@ pub fn svg(p: &Problem, net: &Network, paths: Option<&PathSets>, placements: Opt
         xml(&caption.status),
         xml(&caption.verdict)
     );
+    let face_points = |f: crate::mesh::FaceId| {
+        let pts: Vec<String> = mesh.face_vertices(f).iter().map(|&v| {
+            let (x, y) = tx(mesh.position(v));
+            format!("{x:.2},{y:.2}")
+        }).collect();
+        pts.join(" ")
+    };
     // Rooms.
     if let (Some(rooms), Some(pls)) = (&p.rooms, placements) {
         for &k in &net.rooms {
             let pl = &pls[k];
             for &f in &pl.faces {
-                let pts: Vec<String> = mesh.face_vertices(f).iter().map(|&v| {
-                    let (x, y) = tx(mesh.position(v));
-                    format!("{x:.2},{y:.2}")
-                }).collect();
-                let _ = writeln!(s, r#"<polygon points="{}" fill="{}" stroke="none"/>"#, pts.join(" "), xml(&rooms.colors[pl.template]));
+                let _ = writeln!(s, r#"<polygon points="{}" fill="{}" stroke="none"/>"#, face_points(f), xml(&rooms.colors[pl.template]));
             }
         }
     }
     // Obstacle faces.
     for f in mesh.faces().filter(|f| p.is_obstacle_face[f.index()]) {
-        let pts: Vec<String> = mesh.face_vertices(f).iter().map(|&v| {
-            let (x, y) = tx(mesh.position(v));
-            format!("{x:.2},{y:.2}")
-        }).collect();
-        let _ = writeln!(s, r##"<polygon points="{}" fill="#333" fill-opacity="0.55"/>"##, pts.join(" "));
+        let _ = writeln!(s, r##"<polygon points="{}" fill="#333" fill-opacity="0.55"/>"##, face_points(f));
     }
     // Mesh.
     let _ = writeln!(s, r##"<g stroke="#d6d6d6" stroke-width="1">"##);
