@@ -20,6 +20,7 @@ pub mod render;
 pub mod report;
 pub mod solvers;
 pub mod spec;
+pub mod urban;
 
 /// The README's code examples, compiled and run as doctests.
 #[doc = include_str!("../README.md")]

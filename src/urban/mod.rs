@@ -1,0 +1,8 @@
+//! Urban street layouts (§5.1 of the paper): a city spec whose major roads split the domain into
+//! sub-regions, the level hierarchy (collector roads, local roads on a subdivided mesh,
+//! cul-de-sacs) solved per sub-region as network IPs, snake smoothing of the result, city-wide
+//! street metrics, and the outputs (picture, GeoJSON, per-level JSON).
+
+pub mod metrics;
+pub mod planar;
+pub mod smooth;
