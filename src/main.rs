@@ -10,6 +10,8 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 mod cli {
+    #[cfg(any())] // TEMP until urban::city is enabled
+    pub mod city;
     pub mod design;
 }
 
@@ -55,7 +57,8 @@ enum Command {
     },
     /// Compare backends on spec files: each run in its own process, killed at the time limit
     /// plus a grace period, recorded as it ends (rerun to resume); writes results.md,
-    /// results.csv, results.json and a performance profile (profile.svg) to --out.
+    /// results.csv, results.json, a performance profile (profile.svg) and a bar chart of the
+    /// time per instance and backend (bars.svg) to --out.
     Compare {
         /// Spec files.
         #[arg(required_unless_present = "manifest")]
@@ -81,6 +84,34 @@ enum Command {
         /// Output directory.
         #[arg(long, default_value = "out/compare")]
         out: PathBuf,
+    },
+    /// Lay out a city's streets (§5.1): sub-regions from the major roads, levels 2–4 per
+    /// sub-region (in parallel), smoothing; writes city.json, streets.geojson, city.svg/png and
+    /// every level's spec, mesh and result under regions/. Rerun to resume an interrupted run.
+    City {
+        /// The city spec (TOML).
+        spec: PathBuf,
+        /// Backend (default: the spec's, else the embedded HiGHS).
+        #[arg(long, value_name = "NAME")]
+        solver: Option<SolverKind>,
+        /// Time limit for every level's solve, seconds (default: each level's `time_limit`).
+        #[arg(long, value_name = "SECONDS")]
+        time_limit: Option<f64>,
+        /// Total thread budget (default: the spec's).
+        #[arg(long)]
+        threads: Option<u32>,
+        /// Threads per solve (default: the spec's).
+        #[arg(long)]
+        threads_per_solve: Option<u32>,
+        /// Relative gap.
+        #[arg(long, value_name = "REL")]
+        gap: Option<f64>,
+        /// Solve every level again even if an earlier run finished it.
+        #[arg(long)]
+        fresh: bool,
+        /// Output directory (default: out/<city name>).
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
     },
     /// Convert a model between MPS and LP (formats chosen by extension).
     Convert {
@@ -229,10 +260,17 @@ fn run(cli: Cli) -> Result<ExitCode> {
             std::fs::write(out.join("results.md"), header + &md)?;
             std::fs::write(out.join("results.csv"), netspec::compare::csv(&records))?;
             std::fs::write(out.join("profile.svg"), netspec::compare::performance_profile_svg(&records, &solvers, time_limit))?;
+            std::fs::write(out.join("bars.svg"), netspec::compare::bar_chart_svg(&settings.manifest, &records, &solvers, time_limit))?;
             let all = serde_json::json!({ "netspec_version": env!("CARGO_PKG_VERSION"), "command": command, "cpu": cpu, "settings": settings, "records": records, "summary": summary });
             std::fs::write(out.join("results.json"), serde_json::to_string_pretty(&all)? + "\n")?;
             print!("\n{md}");
             Ok(ExitCode::SUCCESS)
+        }
+        Command::City { spec, solver, time_limit, threads, threads_per_solve, gap, fresh, out } => {
+            #[cfg(any())]
+            return cli::city::run_city(&spec, cli::city::CityArgs { solver, time_limit, threads, threads_per_solve, gap, fresh, out });
+            let _ = (spec, solver, time_limit, threads, threads_per_solve, gap, fresh, out);
+            bail!("TEMP")
         }
         Command::Convert { input, output } => {
             let read = read_model_file(&input)?;

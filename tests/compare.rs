@@ -1,6 +1,6 @@
 //! `netspec compare` on a tiny manifest: two small instances × every compiled backend.
 
-use netspec::compare::{shifted_geometric_mean, summarize, RunRecord};
+use netspec::compare::{bar_chart_svg, paper_seconds, shifted_geometric_mean, summarize, Manifest, ManifestRow, PaperRow, RunRecord};
 use std::process::Command;
 
 const FLOORPLAN: &str = r#"
@@ -39,7 +39,7 @@ fn compare_runs_tables_and_resumes() {
         let o = Command::new(env!("CARGO_BIN_EXE_netspec"))
             .arg("compare")
             .args([&a, &b])
-            .args(["--time-limit", "1", "--grace", "5", "--out"])
+            .args(["--time-limit", "20", "--grace", "5", "--out"])
             .arg(&out)
             .output()
             .unwrap();
@@ -73,6 +73,23 @@ fn compare_runs_tables_and_resumes() {
         let last = line.split("points=\"").nth(1).unwrap().split('"').next().unwrap().split(' ').last().unwrap();
         assert!(last.ends_with(",30.0"), "{line}");
     }
+    // The bar chart: one group per instance, one bar per (instance, backend), all solved.
+    let bars = std::fs::read_to_string(out.join("bars.svg")).unwrap();
+    assert!(bars.starts_with("<svg") && bars.trim_end().ends_with("</svg>"), "{bars}");
+    assert_eq!(bars.matches("<svg").count(), 1);
+    assert_eq!(bars.matches(r#"<g class="instance""#).count(), 2, "{bars}");
+    assert_eq!(bars.matches("<g").count(), bars.matches("</g>").count(), "{bars}");
+    for i in ["a", "b"] {
+        assert_eq!(bars.matches(&format!(r#"<g class="instance" data-instance="{i}">"#)).count(), 1, "{bars}");
+        for b in &backends {
+            let bar = format!(r#"<rect class="bar" data-instance="{i}" data-solver="{b}" data-status="optimal" data-solved="true""#);
+            assert_eq!(bars.matches(&bar).count(), 1, "{i}/{b}: {bars}");
+        }
+    }
+    assert_eq!(bars.matches(r#"class="bar""#).count(), 2 * backends.len());
+    assert_eq!(bars.matches(r#"class="limit""#).count(), 1);
+    assert!(!bars.contains(r#"class="label""#) && !bars.contains(r#"class="paper""#), "{bars}");
+    assert!(md.contains("`bars.svg`"), "{md}");
     let csv = std::fs::read_to_string(out.join("results.csv")).unwrap();
     assert_eq!(csv.lines().count(), 1 + records.len());
     assert!(csv.lines().skip(1).all(|l| l.ends_with(",true,false")), "{csv}");
@@ -89,6 +106,72 @@ fn shifted_geometric_mean_by_hand() {
     let want = 24200f64.powf(1.0 / 3.0) - 10.0;
     assert!((shifted_geometric_mean(&[1.0, 10.0, 100.0], 10.0) - want).abs() < 1e-9);
     assert!((want - 18.9249).abs() < 1e-4);
+}
+
+fn record(instance: &str, solver: &str, status: &str, t: f64) -> RunRecord {
+    RunRecord {
+        instance: instance.into(),
+        solver: solver.into(),
+        seed: None,
+        edges: None,
+        vars: None,
+        rows: None,
+        nonzeros: None,
+        status: status.into(),
+        objective: None,
+        dual_bound: None,
+        gap: None,
+        nodes: None,
+        solver_time: Some(t),
+        wall_time: t + 0.5,
+        valid: status == "optimal",
+        killed: false,
+        solver_version: None,
+        exit_code: Some(0),
+    }
+}
+
+#[test]
+fn bar_chart_marks_unsolved_killed_failed_and_paper_times() {
+    let row = |name: &str, spec: bool, time: Option<&str>| ManifestRow {
+        name: name.into(),
+        spec: spec.then(|| format!("{name}.toml").into()),
+        missing: (!spec).then(|| "not yet".into()),
+        paper: PaperRow { edges: None, variables: None, time: time.map(Into::into) },
+    };
+    let manifest = Manifest { row: vec![row("2a", true, Some("132")), row("1a", false, Some("379/366/49")), row("x<&>", true, Some("-"))] };
+    assert_eq!(paper_seconds(&manifest.row[0].paper), Some(132.0));
+    assert_eq!(paper_seconds(&manifest.row[1].paper), None);
+    assert_eq!(paper_seconds(&manifest.row[2].paper), None);
+    let solvers: Vec<String> = ["highs", "cbc", "scip"].map(String::from).to_vec();
+    let mut gap = record("2a", "cbc", "limit(time)", 60.0);
+    gap.gap = Some(0.125);
+    let mut killed = record("2a", "scip", "killed", 75.0);
+    (killed.killed, killed.solver_time) = (true, None);
+    let mut failed = record("x<&>", "cbc", "failed", 0.0);
+    failed.solver_time = None;
+    let records = vec![record("2a", "highs", "optimal", 12.5), gap, killed, record("x<&>", "highs", "optimal", 0.02), failed];
+    let svg = bar_chart_svg(&manifest, &records, &solvers, 60.0);
+    assert_eq!(svg, bar_chart_svg(&manifest, &records, &solvers, 60.0), "deterministic");
+    assert!(svg.starts_with("<svg") && svg.ends_with("</svg>\n"));
+    // Rows without a spec are listed, not drawn; names are escaped.
+    assert_eq!(svg.matches(r#"<g class="instance""#).count(), 2, "{svg}");
+    assert!(svg.contains(r#"data-instance="x&lt;&amp;&gt;""#) && !svg.contains("x<&>"), "{svg}");
+    assert!(svg.contains("Not shown (no spec yet): 1a"), "{svg}");
+    // One bar per run; no bar where there is no run (x<&> on scip).
+    assert_eq!(svg.matches(r#"class="bar""#).count(), 5, "{svg}");
+    assert!(svg.contains(r#"data-instance="2a" data-solver="highs" data-status="optimal" data-solved="true" data-time="12.5""#), "{svg}");
+    assert!(svg.contains(r#"data-instance="2a" data-solver="cbc" data-status="limit(time)" data-solved="false" data-time="60""#), "{svg}");
+    assert!(svg.contains(r#"data-solver="scip" data-status="killed" data-solved="false" data-time="75.5""#), "killed: wall time; {svg}");
+    assert!(svg.contains(r#"data-solver="cbc" data-status="failed" data-solved="false" data-time="0.5""#), "{svg}");
+    assert!(svg.contains(">limit(time) 12.5%</text>") && svg.contains(">killed</text>") && svg.contains(">failed</text>"), "{svg}");
+    assert_eq!(svg.matches(r#"class="killed""#).count(), 1);
+    assert_eq!(svg.matches(r#"fill="url(#hatch-"#).count(), 2 + 1, "two hatched bars and the legend");
+    // The paper's time only where it is one number; the axis reaches it (1000 s decade).
+    assert_eq!(svg.matches(r#"<g class="paper""#).count(), 1);
+    assert!(svg.contains(r#"<g class="paper" data-instance="2a" data-time="132">"#), "{svg}");
+    assert!(svg.contains(">1000</text>") && svg.contains(">0.01</text>") && svg.contains("log scale"), "{svg}");
+    assert!(svg.contains(r#"class="limit""#) && svg.contains("limit 60 s"));
 }
 
 #[test]

@@ -14,3 +14,5 @@ mod network;
 mod rooms;
 // `netspec compare`: tables, summary arithmetic, resume.
 mod compare;
+// Street layouts: cities, levels, resume, outputs (paper §5.1).
+mod urban;

@@ -72,6 +72,28 @@ pub fn clipped_grid(
     holes: &[Vec<[f64; 2]>],
     spacing: f64,
 ) -> Result<Mesh, MeshError> {
+    clipped_grid_impl(outer, holes, spacing, None)
+}
+
+/// [`clipped_grid`] on the lattice through `origin` (grid points at `origin + spacing·(i, j)`)
+/// instead of the polygon's own bounding-box corner. Polygons that share a border and are meshed
+/// on one lattice get complementary cells along it (every cell belongs to the polygon that
+/// contains its centre), so their mesh boundaries coincide there — the sub-regions of a city.
+pub fn clipped_grid_on_lattice(
+    outer: &[[f64; 2]],
+    holes: &[Vec<[f64; 2]>],
+    spacing: f64,
+    origin: [f64; 2],
+) -> Result<Mesh, MeshError> {
+    clipped_grid_impl(outer, holes, spacing, Some(origin))
+}
+
+fn clipped_grid_impl(
+    outer: &[[f64; 2]],
+    holes: &[Vec<[f64; 2]>],
+    spacing: f64,
+    origin: Option<[f64; 2]>,
+) -> Result<Mesh, MeshError> {
     let invalid = |reason: String| Err(MeshError::InvalidInput { reason });
     if !(spacing.is_finite() && spacing > 0.0) {
         return invalid(format!(
@@ -103,6 +125,14 @@ pub fn clipped_grid(
         for k in 0..2 {
             lo[k] = lo[k].min(p[k]);
             hi[k] = hi[k].max(p[k]);
+        }
+    }
+    if let Some(o) = origin {
+        if !(o[0].is_finite() && o[1].is_finite()) {
+            return invalid("the lattice origin must be finite".into());
+        }
+        for k in 0..2 {
+            lo[k] = o[k] + ((lo[k] - o[k]) / spacing).floor() * spacing;
         }
     }
     let cells_along = |k: usize| ((hi[k] - lo[k]) / spacing).ceil().max(1.0);

@@ -341,6 +341,11 @@ pub struct UserSpec {
     /// Through routes.
     #[serde(default)]
     pub through_routes: Vec<ThroughRoute>,
+    /// Existing roads inside the domain (pairs of vertex ids): fixed active, not variables, and
+    /// their end vertices become sinks (FORMULATION §1). Street levels use this to carry the
+    /// roads of earlier levels over.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub existing_edges: Vec<[u32; 2]>,
 }
 
 /// Floor plan or game level (FORMULATION §4–§5).

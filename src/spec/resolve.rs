@@ -225,7 +225,12 @@ impl Spec {
     /// Builds the mesh and resolves every field. `base` is the directory relative to which
     /// mesh files are found.
     pub fn resolve(&self, base: &Path) -> Result<Problem, SpecErrorKind> {
-        let mesh = self.build_mesh(base)?;
+        self.resolve_on_mesh(self.build_mesh(base)?)
+    }
+
+    /// Resolves every field against a mesh built elsewhere (the spec's `mesh` section is not
+    /// read): street levels use this for their generated and subdivided meshes.
+    pub fn resolve_on_mesh(&self, mesh: Mesh) -> Result<Problem, SpecErrorKind> {
         let nv = mesh.num_vertices();
         let nf = mesh.num_faces();
         let vid = |f: String, v: u32| -> Result<VertexId, SpecErrorKind> {
@@ -305,6 +310,16 @@ impl Spec {
             let e = edge_of(format!("user.obstacle_edges[{i}]"), pair)?;
             roles[e.index()] = EdgeRole::Excluded;
         }
+        let mut existing_ends = Vec::new();
+        for (i, &pair) in u.existing_edges.iter().enumerate() {
+            let f = format!("user.existing_edges[{i}]");
+            let e = edge_of(f.clone(), pair)?;
+            if roles[e.index()] == EdgeRole::Excluded {
+                return Err(field(f, format!("edge {}–{} is an existing road but excluded (an obstacle or a wall)", pair[0], pair[1])));
+            }
+            roles[e.index()] = EdgeRole::Existing;
+            existing_ends.extend(pair);
+        }
 
         // Sinks.
         let mut is_sink = vec![false; nv];
@@ -318,6 +333,9 @@ impl Spec {
         }
         for (i, p) in self.sinks.points.iter().enumerate() {
             is_sink[place(format!("sinks.points[{i}]"), &Place::Point(*p))?.index()] = true;
+        }
+        for v in existing_ends {
+            is_sink[v as usize] = true;
         }
         if !is_sink.iter().any(|&s| s) {
             return Err(field("sinks", "no sink: set all_boundary, vertices or points"));

@@ -1,1 +1,172 @@
-//! (being written)
+//! Street and block metrics of a street graph, after Yang et al. ("Urban pattern: layout design
+//! by hierarchical domain splitting", §7), which Peng et al. report for their urban layouts.
+//!
+//! Definitions (model lengths are converted with `metres_per_unit`):
+//! - **street length** `sl`: total edge length in km, per km² of the city domain;
+//! - **intersections** `si`: vertices of valence ≥ 3, per km² (`si3`, `si4`: valence exactly
+//!   3 and 4; valence ≥ 5 is only counted). Vertices of valence 2 are bends, not intersections.
+//!   Whether the domain boundary belongs to the graph is up to the caller: if it does, a street
+//!   ending at the boundary forms a 3-way intersection with the boundary road;
+//! - **dead ends** `sd`: vertices of valence 1, per km²;
+//! - **blocks** `bn`: bounded faces of the street graph, per km²; a block's boundary length is
+//!   [`Face::perimeter`](super::planar::Face::perimeter): the edges with the block on exactly one
+//!   side, holes included, cul-de-sacs poking into the block excluded. `bmin`, `bavg`, `bmax`
+//!   are the minimum, mean and maximum in metres.
+//!
+//! Vertices of valence 0 are ignored. Densities are 0 when the domain area is not positive.
+
+use super::planar::PlanarGraph;
+use serde::{Deserialize, Serialize};
+
+/// Street and block metrics of a street graph (see the module docs for the definitions).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct StreetMetrics {
+    /// Metres per model unit.
+    pub metres_per_unit: f64,
+    /// Area of the city domain in km².
+    pub area_km2: f64,
+    /// Total street length in km.
+    pub street_length_km: f64,
+    /// Street length density: km of street per km².
+    pub sl: f64,
+    /// Number of 3-way intersections (valence 3).
+    pub intersections_3: usize,
+    /// Number of 4-way intersections (valence 4).
+    pub intersections_4: usize,
+    /// Number of intersections of valence 5 or more.
+    pub intersections_5plus: usize,
+    /// Intersections (valence ≥ 3) per km².
+    pub si: f64,
+    /// 3-way intersections per km².
+    pub si3: f64,
+    /// 4-way intersections per km².
+    pub si4: f64,
+    /// Number of dead ends (valence-1 vertices).
+    pub dead_ends: usize,
+    /// Dead ends per km².
+    pub sd: f64,
+    /// Number of blocks (bounded faces).
+    pub blocks: usize,
+    /// Blocks per km².
+    pub bn: f64,
+    /// Smallest block boundary length in metres (`None` without blocks).
+    pub bmin: Option<f64>,
+    /// Mean block boundary length in metres (`None` without blocks).
+    pub bavg: Option<f64>,
+    /// Largest block boundary length in metres (`None` without blocks).
+    pub bmax: Option<f64>,
+}
+
+/// Computes the [`StreetMetrics`] of the street graph `g` (model units, converted with
+/// `metres_per_unit`) over a city domain of `area_units` model units². Blocks are the bounded
+/// faces of [`PlanarGraph::faces`], so `g` should be planar (e.g. built by
+/// [`PlanarGraph::from_segments`] or as a union of planar region graphs).
+pub fn street_metrics(g: &PlanarGraph, metres_per_unit: f64, area_units: f64) -> StreetMetrics {
+    let km = metres_per_unit / 1000.0;
+    let area_km2 = area_units * km * km;
+    let per_km2 = |x: f64| if area_km2 > 0.0 { x / area_km2 } else { 0.0 };
+    let street_length_km = (0..g.edges.len()).map(|e| g.edge_length(e)).sum::<f64>() * km;
+    let valences = g.valences();
+    let count = |f: &dyn Fn(usize) -> bool| valences.iter().filter(|&&d| f(d)).count();
+    let (i3, i4, i5) = (count(&|d| d == 3), count(&|d| d == 4), count(&|d| d >= 5));
+    let dead_ends = count(&|d| d == 1);
+    let perimeters: Vec<f64> = g.faces().faces.iter().map(|f| f.perimeter * metres_per_unit).collect();
+    let blocks = perimeters.len();
+    let (bmin, bavg, bmax) = if blocks == 0 {
+        (None, None, None)
+    } else {
+        (
+            perimeters.iter().copied().reduce(f64::min),
+            Some(perimeters.iter().sum::<f64>() / blocks as f64),
+            perimeters.iter().copied().reduce(f64::max),
+        )
+    };
+    StreetMetrics {
+        metres_per_unit,
+        area_km2,
+        street_length_km,
+        sl: per_km2(street_length_km),
+        intersections_3: i3,
+        intersections_4: i4,
+        intersections_5plus: i5,
+        si: per_km2((i3 + i4 + i5) as f64),
+        si3: per_km2(i3 as f64),
+        si4: per_km2(i4 as f64),
+        dead_ends,
+        sd: per_km2(dead_ends as f64),
+        blocks,
+        bn: per_km2(blocks as f64),
+        bmin,
+        bavg,
+        bmax,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn square_with(roads: &[[[f64; 2]; 2]]) -> PlanarGraph {
+        let sq = [[0.0, 0.0], [200.0, 0.0], [200.0, 200.0], [0.0, 200.0]];
+        let mut segs: Vec<[[f64; 2]; 2]> = (0..4).map(|k| [sq[k], sq[(k + 1) % 4]]).collect();
+        segs.extend_from_slice(roads);
+        PlanarGraph::from_segments(&segs, 1e-9)
+    }
+
+    /// A 2 × 2 km square (200 units of 10 m) with a plus of roads through its centre.
+    #[test]
+    fn plus_in_a_square() {
+        let g = square_with(&[[[100.0, 0.0], [100.0, 200.0]], [[0.0, 100.0], [200.0, 100.0]]]);
+        let m = street_metrics(&g, 10.0, 200.0 * 200.0);
+        let want = StreetMetrics {
+            metres_per_unit: 10.0,
+            area_km2: 4.0,
+            street_length_km: 12.0, // 8 km boundary + 4 km plus
+            sl: 3.0,
+            intersections_3: 4, // where the plus meets the boundary
+            intersections_4: 1, // the centre
+            intersections_5plus: 0,
+            si: 1.25,
+            si3: 1.0,
+            si4: 0.25,
+            dead_ends: 0,
+            sd: 0.0,
+            blocks: 4,
+            bn: 1.0,
+            bmin: Some(4000.0),
+            bavg: Some(4000.0),
+            bmax: Some(4000.0),
+        };
+        assert_eq!(m, want);
+        // Serde round trip.
+        let back: StreetMetrics = serde_json::from_str(&serde_json::to_string(&m).unwrap()).unwrap();
+        assert_eq!(back, m);
+    }
+
+    /// A cul-de-sac from the bottom midpoint to the centre, and a 5-way star elsewhere.
+    #[test]
+    fn dead_ends_and_stars() {
+        let g = square_with(&[[[100.0, 0.0], [100.0, 100.0]]]);
+        let m = street_metrics(&g, 10.0, 200.0 * 200.0);
+        assert_eq!((m.intersections_3, m.intersections_4, m.dead_ends, m.blocks), (1, 0, 1, 1));
+        assert_eq!(m.street_length_km, 9.0);
+        assert_eq!((m.sd, m.si, m.si3), (0.25, 0.25, 0.25));
+        // The cul-de-sac is not part of the block's boundary.
+        assert_eq!((m.bmin, m.bavg, m.bmax), (Some(8000.0), Some(8000.0), Some(8000.0)));
+
+        // Without the boundary: a lone star of 5 spokes has 5 dead ends and one 5-way centre.
+        let spokes: Vec<[[f64; 2]; 2]> = (0..5)
+            .map(|k| {
+                let a = k as f64 * std::f64::consts::TAU / 5.0;
+                [[0.0, 0.0], [a.cos(), a.sin()]]
+            })
+            .collect();
+        let m = street_metrics(&PlanarGraph::from_segments(&spokes, 1e-9), 1000.0, 4.0);
+        assert_eq!((m.intersections_5plus, m.dead_ends, m.blocks), (1, 5, 0));
+        assert_eq!((m.si, m.si3, m.sd), (0.25, 0.0, 1.25));
+        assert!((m.street_length_km - 5.0).abs() < 1e-12);
+        assert_eq!((m.bmin, m.bavg, m.bmax), (None, None, None));
+        // Zero area: densities are 0, not NaN.
+        assert_eq!(street_metrics(&PlanarGraph::default(), 1.0, 0.0).sl, 0.0);
+    }
+}

@@ -1,0 +1,130 @@
+//! `netspec city SPEC`: street layouts for a whole city, with a progress bar per sub-region.
+
+use anyhow::{Context, Result};
+use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
+use netspec::solvers::SolverKind;
+use netspec::urban::{self, CityEvent, CityRunOptions, CitySpec};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::sync::{Arc, Mutex};
+use std::time::Duration;
+
+/// Exit code when some level produced no network (infeasible, time limit without a solution,
+/// error) — the rest of the city is still written.
+const EXIT_INCOMPLETE: u8 = 4;
+/// Exit code when a network fails an independent check.
+const EXIT_INVALID: u8 = 3;
+
+/// The command line's settings.
+pub struct CityArgs {
+    pub solver: Option<SolverKind>,
+    pub time_limit: Option<f64>,
+    pub threads: Option<u32>,
+    pub threads_per_solve: Option<u32>,
+    pub gap: Option<f64>,
+    pub fresh: bool,
+    pub out: Option<PathBuf>,
+}
+
+pub fn run_city(path: &Path, args: CityArgs) -> Result<ExitCode> {
+    let spec = CitySpec::load(path)?;
+    let mut opts = CityRunOptions::from_spec(&spec).context("no backend compiled in")?;
+    if let Some(k) = args.solver {
+        opts.solver = k;
+    }
+    opts.time_limit = args.time_limit;
+    opts.threads = args.threads.unwrap_or(opts.threads).max(1);
+    opts.threads_per_solve = args.threads_per_solve.unwrap_or(opts.threads_per_solve).max(1);
+    opts.gap = args.gap.or(opts.gap);
+    opts.resume = !args.fresh;
+    let out = args.out.unwrap_or_else(|| PathBuf::from("out").join(&spec.name));
+    let regions = urban::city::regions(&spec).with_context(|| format!("{}", path.display()))?;
+    println!("city       {} — {}", spec.name, spec.description);
+    println!(
+        "           {} sub-regions, levels {:?}, {} × {} thread(s) with {}",
+        regions.len(),
+        spec.level_numbers(),
+        (opts.threads / opts.threads_per_solve).max(1),
+        opts.threads_per_solve,
+        opts.solver
+    );
+
+    // One bar per sub-region; the message says which level runs and how it is going.
+    let multi = MultiProgress::new();
+    let style = ProgressStyle::with_template("{prefix:<22} {bar:12} {pos}/{len} {msg}").expect("static template");
+    let bars: Vec<ProgressBar> = regions
+        .iter()
+        .enumerate()
+        .map(|(i, (_, entry))| {
+            let name = entry.map_or_else(|| format!("region-{i}"), |k| spec.regions[k].name.clone());
+            let b = multi.add(ProgressBar::new(spec.region_levels(*entry).len() as u64));
+            b.set_style(style.clone());
+            b.set_prefix(format!("{i:02} {name}"));
+            b.set_message("waiting");
+            b.enable_steady_tick(Duration::from_millis(250));
+            b
+        })
+        .collect();
+    let bars = Arc::new(Mutex::new(bars));
+    let b2 = bars.clone();
+    opts.observer = Some(Arc::new(move |e: &CityEvent| {
+        let bars = b2.lock().expect("progress bars");
+        match e {
+            CityEvent::LevelStarted { region, level, time_limit } => {
+                bars[*region].set_message(format!("L{level} solving{}", time_limit.map_or(String::new(), |t| format!(" (limit {t} s)"))));
+            }
+            CityEvent::LevelProgress { region, level, progress } => {
+                let f = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.2}"));
+                bars[*region].set_message(format!("L{level} {:.0} s incumbent {} bound {}", progress.elapsed, f(progress.primal), f(progress.dual)));
+            }
+            CityEvent::LevelDone { region, outcome } => {
+                bars[*region].inc(1);
+                let what = outcome.termination.clone().or(outcome.message.clone()).unwrap_or_default();
+                let line = format!("L{} {} {}", outcome.level, outcome.state, what);
+                bars[*region].set_message(line.clone());
+                bars[*region].println(format!("{:<22} {line}", bars[*region].prefix()));
+            }
+        }
+    }));
+    let result = urban::run_city(&spec, &out, &opts);
+    for b in bars.lock().expect("progress bars").iter() {
+        b.finish();
+    }
+    let result = result.with_context(|| format!("{}", path.display()))?;
+
+    println!();
+    for r in &result.regions {
+        for l in &r.levels {
+            println!(
+                "{:02} {:<18} L{} {:<10} {:<14} obj {:>10} gap {:>8} {:>7} s {}",
+                r.index,
+                r.name,
+                l.level,
+                l.state,
+                l.termination.as_deref().unwrap_or("-"),
+                l.objective.map_or("-".into(), |v| format!("{v:.3}")),
+                l.gap.map_or("-".into(), |v| format!("{:.2}%", 100.0 * v)),
+                l.wall_time.map_or("-".into(), |v| format!("{v:.1}")),
+                match l.valid {
+                    Some(true) => "valid".to_string(),
+                    Some(false) => "INVALID".to_string(),
+                    None => l.message.clone().unwrap_or_default(),
+                }
+            );
+        }
+    }
+    let m = &result.metrics;
+    println!(
+        "metrics    per km² ({:.3} km², {} m/unit): streets {:.2} km, intersections {:.1} (3-way {:.1}, 4-way {:.1}), dead-ends {:.1}, blocks {:.1}",
+        m.area_km2, spec.metres_per_unit, m.sl, m.si, m.si3, m.si4, m.sd, m.bn
+    );
+    println!("smoothing  {:?}: {} snakes, energy {:.4} → {:.4}", result.smoothing.method, result.smoothing.snakes, result.smoothing.energy_before, result.smoothing.energy_after);
+    println!("wrote      {}/city.json, streets.geojson, city.svg, city.png, regions/", out.display());
+    Ok(if !result.valid {
+        ExitCode::from(EXIT_INVALID)
+    } else if !result.complete {
+        ExitCode::from(EXIT_INCOMPLETE)
+    } else {
+        ExitCode::SUCCESS
+    })
+}

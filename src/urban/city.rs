@@ -1,0 +1,463 @@
+//! Running a city: sub-regions from the planar arrangement, the level hierarchy per sub-region
+//! (each level one network IP), in parallel under a thread budget, with every finished level
+//! written to disk at once so that an interrupted run resumes without solving it again.
+
+use super::planar::{self, Region};
+use super::spec::{CitySpec, CitySpecErrorKind, LevelSpec};
+use crate::mesh::{self, Mesh};
+use crate::pipeline::{self, DesignResult};
+use crate::solvers::{ProgressSink, SolveOptions, SolverKind};
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+/// Why a city could not be run at all (a sub-region's failure is an outcome, not this).
+#[derive(Debug, thiserror::Error)]
+pub enum CityError {
+    /// The spec is unusable.
+    #[error(transparent)]
+    Spec(#[from] CitySpecErrorKind),
+    /// The domain and major roads do not form sub-regions.
+    #[error("the domain and major roads: {0}")]
+    Arrangement(String),
+    /// Writing outputs failed.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file or directory.
+        path: PathBuf,
+        /// The I/O error.
+        source: std::io::Error,
+    },
+    /// The thread pool could not be created.
+    #[error("thread pool: {0}")]
+    Threads(String),
+}
+
+fn io_err(path: &Path) -> impl FnOnce(std::io::Error) -> CityError + '_ {
+    move |source| CityError::Io { path: path.to_path_buf(), source }
+}
+
+/// How to run a city.
+#[derive(Clone)]
+pub struct CityRunOptions {
+    /// The backend.
+    pub solver: SolverKind,
+    /// Overrides every level's time limit (seconds).
+    pub time_limit: Option<f64>,
+    /// Total thread budget (sub-regions at once = `threads / threads_per_solve`).
+    pub threads: u32,
+    /// Threads per solve.
+    pub threads_per_solve: u32,
+    /// Relative gap.
+    pub gap: Option<f64>,
+    /// Seed.
+    pub seed: Option<u64>,
+    /// Reuse finished levels found in the output directory (same inputs only).
+    pub resume: bool,
+    /// Receives events as the run goes (from worker threads).
+    pub observer: Option<Arc<dyn Fn(&CityEvent) + Send + Sync>>,
+}
+
+impl CityRunOptions {
+    /// Options from a city spec's `[solver]` section, with the embedded default backend.
+    pub fn from_spec(spec: &CitySpec) -> Option<CityRunOptions> {
+        Some(CityRunOptions {
+            solver: spec.solver.name.or_else(SolverKind::default_kind)?,
+            time_limit: None,
+            threads: spec.solver.threads,
+            threads_per_solve: spec.solver.threads_per_solve,
+            gap: spec.solver.gap,
+            seed: spec.solver.seed,
+            resume: true,
+            observer: None,
+        })
+    }
+}
+
+/// What happens during a run.
+#[derive(Clone, Debug)]
+pub enum CityEvent {
+    /// A level of a region starts solving.
+    LevelStarted {
+        /// Region index.
+        region: usize,
+        /// Level.
+        level: u8,
+        /// Its time limit.
+        time_limit: Option<f64>,
+    },
+    /// Solver progress (backends that report it).
+    LevelProgress {
+        /// Region index.
+        region: usize,
+        /// Level.
+        level: u8,
+        /// The report.
+        progress: crate::solvers::Progress,
+    },
+    /// A level ended (solved, reused, failed or skipped).
+    LevelDone {
+        /// Region index.
+        region: usize,
+        /// The outcome.
+        outcome: LevelOutcome,
+    },
+}
+
+/// How one level of one region ended.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct LevelOutcome {
+    /// The level.
+    pub level: u8,
+    /// `solved` (a network was found), `reused` (from an earlier run), `no_network`, `error`
+    /// or `skipped`.
+    pub state: String,
+    /// The solver's termination label (`optimal`, `limit(time)`, `infeasible`, …).
+    pub termination: Option<String>,
+    /// Objective.
+    pub objective: Option<f64>,
+    /// Dual bound.
+    pub dual_bound: Option<f64>,
+    /// netspec's gap.
+    pub gap: Option<f64>,
+    /// Solver time, seconds.
+    pub solver_time: Option<f64>,
+    /// Wall time of the solve call, seconds.
+    pub wall_time: Option<f64>,
+    /// The independent validity verdict.
+    pub valid: Option<bool>,
+    /// Mesh size at this level: vertices, edges, faces.
+    pub mesh: Option<[usize; 3]>,
+    /// MILP variables, rows, nonzeros.
+    pub model: Option<[usize; 3]>,
+    /// Roads added at this level (mesh edges).
+    pub new_edges: Option<usize>,
+    /// Why the level failed or was skipped.
+    pub message: Option<String>,
+}
+
+impl LevelOutcome {
+    fn bare(level: u8, state: &str, message: impl Into<String>) -> LevelOutcome {
+        LevelOutcome {
+            level,
+            state: state.into(),
+            termination: None,
+            objective: None,
+            dual_bound: None,
+            gap: None,
+            solver_time: None,
+            wall_time: None,
+            valid: None,
+            mesh: None,
+            model: None,
+            new_edges: None,
+            message: Some(message.into()),
+        }
+    }
+
+    /// Whether this level produced a network (solved now or reused).
+    pub fn has_network(&self) -> bool {
+        self.state == "solved" || self.state == "reused"
+    }
+}
+
+/// A region's roads after its last successful level: the mesh and each edge's level
+/// (0: no road; 1: the sub-region's boundary, a major road; 2–4: the level that chose it).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct RegionRoads {
+    /// The mesh of the last level.
+    pub mesh: Mesh,
+    /// Level per edge.
+    pub edge_level: Vec<u8>,
+}
+
+/// Everything about one sub-region.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct RegionOutcome {
+    /// Index (regions sorted by their lowest, then leftmost corner).
+    pub index: usize,
+    /// Name (from `[[region]]`, or `region-N`).
+    pub name: String,
+    /// Which `[[region]]` entry applies, if any.
+    pub spec_entry: Option<usize>,
+    /// The sub-region polygon.
+    pub outer: Vec<[f64; 2]>,
+    /// Its holes.
+    pub holes: Vec<Vec<[f64; 2]>>,
+    /// Area in model units².
+    pub area: f64,
+    /// A point inside (for labels).
+    pub label_point: [f64; 2],
+    /// One entry per level run (or attempted).
+    pub levels: Vec<LevelOutcome>,
+    /// The roads after the last level with a network (`None` if the region could not be
+    /// meshed). Not in `city.json`: each level's `state.json` has them.
+    #[serde(skip)]
+    pub roads: Option<RegionRoads>,
+}
+
+/// What one finished level leaves on disk (`state.json`): enough to go on without solving again.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+struct LevelState {
+    /// Digest of every input of this level.
+    fingerprint: String,
+    outcome: LevelOutcome,
+    roads: Option<RegionRoads>,
+}
+
+/// FNV-1a, 64 bits: a stable digest of a level's inputs (not for security).
+fn fnv1a(parts: &[&[u8]]) -> String {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for p in parts {
+        for &b in *p {
+            h ^= b as u64;
+            h = h.wrapping_mul(0x0000_0100_0000_01b3);
+        }
+        h ^= 0xff;
+        h = h.wrapping_mul(0x0000_0100_0000_01b3);
+    }
+    format!("{h:016x}")
+}
+
+/// The sub-regions of a city, each matched to its `[[region]]` entry.
+pub fn regions(spec: &CitySpec) -> Result<Vec<(Region, Option<usize>)>, CityError> {
+    let roads: Vec<Vec<[f64; 2]>> = spec.roads.iter().map(|r| r.points.clone()).collect();
+    let tol = spec.mesh.spacing * 1e-6;
+    let arr = planar::arrangement(&spec.domain.outer, &roads, tol).map_err(|e| CityError::Arrangement(e.to_string()))?;
+    let mut entries: Vec<Option<usize>> = vec![None; arr.regions.len()];
+    for (i, r) in spec.regions.iter().enumerate() {
+        let hit = arr.regions.iter().position(|reg| point_in_region(r.at, reg));
+        let Some(k) = hit else {
+            return Err(CitySpecErrorKind::Field { field: format!("region[{i}].at"), message: format!("point {:?} is in no sub-region", r.at) }.into());
+        };
+        if let Some(j) = entries[k] {
+            return Err(CitySpecErrorKind::Field { field: format!("region[{i}].at"), message: format!("names the same sub-region as region[{j}]") }.into());
+        }
+        entries[k] = Some(i);
+    }
+    Ok(arr.regions.into_iter().zip(entries).collect())
+}
+
+/// Even-odd point-in-polygon test.
+pub(crate) fn point_in_polygon(p: [f64; 2], poly: &[[f64; 2]]) -> bool {
+    let mut inside = false;
+    let n = poly.len();
+    for i in 0..n {
+        let (a, b) = (poly[i], poly[(i + n - 1) % n]);
+        if (a[1] > p[1]) != (b[1] > p[1]) && p[0] < (b[0] - a[0]) * (p[1] - a[1]) / (b[1] - a[1]) + a[0] {
+            inside = !inside;
+        }
+    }
+    inside
+}
+
+fn point_in_region(p: [f64; 2], r: &Region) -> bool {
+    point_in_polygon(p, &r.outer) && !r.holes.iter().any(|h| point_in_polygon(p, h))
+}
+
+fn domain_origin(spec: &CitySpec) -> [f64; 2] {
+    let mut lo = [f64::INFINITY; 2];
+    for p in &spec.domain.outer {
+        lo = [lo[0].min(p[0]), lo[1].min(p[1])];
+    }
+    lo
+}
+
+/// The directory of one region's files.
+pub fn region_dir(out: &Path, index: usize, name: &str) -> PathBuf {
+    let safe: String = name.chars().map(|c| if c.is_ascii_alphanumeric() || c == '-' || c == '_' { c } else { '_' }).collect();
+    out.join("regions").join(format!("{index:02}-{safe}"))
+}
+
+fn write_atomic(path: &Path, text: &str) -> Result<(), CityError> {
+    let tmp = path.with_extension("tmp");
+    std::fs::write(&tmp, text).map_err(io_err(&tmp))?;
+    std::fs::rename(&tmp, path).map_err(io_err(path))
+}
+
+/// Runs every sub-region's levels (in parallel) and returns the outcomes in region order.
+/// Finished levels are written under `out/regions/` as they end.
+pub fn run_regions(spec: &CitySpec, out: &Path, opts: &CityRunOptions) -> Result<Vec<RegionOutcome>, CityError> {
+    let regs = regions(spec)?;
+    let origin = domain_origin(spec);
+    let workers = (opts.threads / opts.threads_per_solve.max(1)).max(1) as usize;
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(workers).build().map_err(|e| CityError::Threads(e.to_string()))?;
+    use rayon::prelude::*;
+    pool.install(|| regs.into_par_iter().enumerate().map(|(i, (reg, entry))| run_region(spec, out, opts, origin, i, reg, entry)).collect())
+}
+
+#[allow(clippy::too_many_arguments)]
+fn run_region(
+    spec: &CitySpec,
+    out: &Path,
+    opts: &CityRunOptions,
+    origin: [f64; 2],
+    index: usize,
+    reg: Region,
+    entry: Option<usize>,
+) -> Result<RegionOutcome, CityError> {
+    let name = entry.map_or_else(|| format!("region-{index}"), |i| spec.regions[i].name.clone());
+    let dir = region_dir(out, index, &name);
+    std::fs::create_dir_all(&dir).map_err(io_err(&dir))?;
+    let mut outcome = RegionOutcome { index, name: name.clone(), spec_entry: entry, outer: reg.outer.clone(), holes: reg.holes.clone(), area: reg.area, label_point: reg.label_point, levels: Vec::new(), roads: None };
+    let emit = |e: CityEvent| {
+        if let Some(o) = &opts.observer {
+            o(&e)
+        }
+    };
+    let levels = spec.region_levels(entry);
+    let mesh0 = match mesh::clipped_grid_on_lattice(&reg.outer, &reg.holes, spec.mesh.spacing, origin) {
+        Ok(m) => m,
+        Err(e) => {
+            for &n in &levels {
+                let o = LevelOutcome::bare(n, "error", format!("the sub-region cannot be meshed at spacing {}: {e}", spec.mesh.spacing));
+                emit(CityEvent::LevelDone { region: index, outcome: o.clone() });
+                outcome.levels.push(o);
+            }
+            return Ok(outcome);
+        }
+    };
+    let edge_level = mesh0.edges().map(|e| u8::from(mesh0.is_boundary_edge(e))).collect();
+    let mut roads = RegionRoads { mesh: mesh0, edge_level };
+    let mut blocked: Option<String> = None;
+    for &n in &levels {
+        if let Some(why) = &blocked {
+            let o = LevelOutcome::bare(n, "skipped", why.clone());
+            emit(CityEvent::LevelDone { region: index, outcome: o.clone() });
+            outcome.levels.push(o);
+            continue;
+        }
+        let level = spec.level(entry, n)?;
+        let (o, next) = run_level(spec, &dir, opts, index, &name, n, &level, &roads, &emit)?;
+        emit(CityEvent::LevelDone { region: index, outcome: o.clone() });
+        if let Some(r) = next {
+            roads = r;
+        } else {
+            blocked = Some(format!("level {n} ended without a network ({})", o.termination.clone().or(o.message.clone()).unwrap_or_default()));
+        }
+        outcome.levels.push(o);
+    }
+    outcome.roads = Some(roads);
+    Ok(outcome)
+}
+
+/// The input of one level: the mesh (subdivided if asked) with earlier roads, and its spec.
+pub struct LevelInput {
+    /// The level's mesh and the levels of the roads already on it.
+    pub roads: RegionRoads,
+    /// The functional spec (earlier levels' roads as `user.existing_edges`).
+    pub spec: crate::spec::Spec,
+}
+
+/// Prepares level `n` from the previous roads: subdivides when the level asks, and carries
+/// every earlier road (level ≥ 2) over as an existing edge whose vertices are sinks.
+pub fn level_input(city: &str, region: &str, n: u8, level: &LevelSpec, prev: &RegionRoads) -> LevelInput {
+    let roads = if level.subdivide {
+        let sub = mesh::subdivide(&prev.mesh);
+        let mut edge_level = vec![0u8; sub.mesh.num_edges()];
+        for (e, children) in sub.edge_children.iter().enumerate() {
+            for c in children {
+                edge_level[c.index()] = prev.edge_level[e];
+            }
+        }
+        RegionRoads { mesh: sub.mesh, edge_level }
+    } else {
+        prev.clone()
+    };
+    let mut spec = level.to_spec(format!("{city}-{region}-L{n}"), format!("city {city}, sub-region {region}, level {n}"));
+    for e in roads.mesh.edges() {
+        if roads.edge_level[e.index()] >= 2 {
+            let (a, b) = roads.mesh.edge_vertices(e);
+            spec.user.existing_edges.push([a.0, b.0]);
+        }
+    }
+    LevelInput { roads, spec }
+}
+
+#[allow(clippy::too_many_arguments)]
+fn run_level(
+    city: &CitySpec,
+    dir: &Path,
+    opts: &CityRunOptions,
+    region: usize,
+    name: &str,
+    n: u8,
+    level: &LevelSpec,
+    prev: &RegionRoads,
+    emit: &dyn Fn(CityEvent),
+) -> Result<(LevelOutcome, Option<RegionRoads>), CityError> {
+    let input = level_input(&city.name, name, n, level, prev);
+    let time_limit = opts.time_limit.or(level.time_limit);
+    let solve_opts = SolveOptions { time_limit, rel_gap: opts.gap, threads: Some(opts.threads_per_solve), seed: opts.seed, ..SolveOptions::default() };
+    let spec_json = serde_json::to_string(&input.spec).expect("specs serialise");
+    let mesh_json = serde_json::to_string(&input.roads.mesh).expect("meshes serialise");
+    let opts_json = serde_json::to_string(&(opts.solver, &solve_opts)).expect("options serialise");
+    let fingerprint = fnv1a(&[spec_json.as_bytes(), mesh_json.as_bytes(), opts_json.as_bytes()]);
+    let ldir = dir.join(format!("L{n}"));
+    let state_path = ldir.join("state.json");
+    if opts.resume {
+        if let Some(state) = std::fs::read_to_string(&state_path).ok().and_then(|t| serde_json::from_str::<LevelState>(&t).ok()) {
+            if state.fingerprint == fingerprint {
+                let mut o = state.outcome;
+                if o.has_network() {
+                    o.state = "reused".into();
+                }
+                return Ok((o, state.roads));
+            }
+        }
+    }
+    std::fs::create_dir_all(&ldir).map_err(io_err(&ldir))?;
+    let _ = std::fs::remove_file(&state_path);
+    // The level as a standalone instance: `netspec solve L<n>/spec.json` rebuilds the same model.
+    write_atomic(&ldir.join("mesh.json"), &mesh_json)?;
+    write_atomic(&ldir.join("spec.json"), &(serde_json::to_string_pretty(&input.spec).expect("specs serialise") + "\n"))?;
+    emit(CityEvent::LevelStarted { region, level: n, time_limit });
+    let problem = match input.spec.resolve_on_mesh(input.roads.mesh.clone()) {
+        Ok(p) => p,
+        Err(e) => return Ok((LevelOutcome::bare(n, "error", format!("level {n} spec: {e}")), None)),
+    };
+    let nm = pipeline::build(&problem);
+    let mut solve_opts = solve_opts;
+    if opts.observer.is_some() && opts.solver.instance().is_ok_and(|s| s.capabilities().reports_progress) {
+        let observer = opts.observer.clone().expect("checked");
+        solve_opts.progress = Some(ProgressSink(Arc::new(move |progress| observer(&CityEvent::LevelProgress { region, level: n, progress }))));
+    }
+    let res: DesignResult = match pipeline::solve_built(&problem, &nm, opts.solver, &solve_opts) {
+        Ok(r) => r,
+        Err(e) => return Ok((LevelOutcome::bare(n, "error", e.to_string()), None)),
+    };
+    let stats = res.model_stats.clone();
+    let mut o = LevelOutcome {
+        level: n,
+        state: "no_network".into(),
+        termination: Some(res.solve.termination.label()),
+        objective: res.solve.objective,
+        dual_bound: res.solve.dual_bound,
+        gap: res.solve.gap,
+        solver_time: res.solve.solver_time,
+        wall_time: Some(res.solve.wall_time),
+        valid: Some(res.validity.valid),
+        mesh: Some([problem.mesh.num_vertices(), problem.mesh.num_edges(), problem.mesh.num_faces()]),
+        model: Some([stats.vars, stats.rows, stats.nonzeros]),
+        new_edges: None,
+        message: None,
+    };
+    let next = res.network.as_ref().map(|net| {
+        let mut roads = input.roads.clone();
+        let mut added = 0;
+        for e in net.active_edges() {
+            if roads.edge_level[e.index()] == 0 {
+                roads.edge_level[e.index()] = n;
+                added += 1;
+            }
+        }
+        o.new_edges = Some(added);
+        o.state = "solved".into();
+        roads
+    });
+    let result_path = ldir.join("result.json");
+    write_atomic(&result_path, &(serde_json::to_string_pretty(&res).expect("results serialise") + "\n"))?;
+    let state = LevelState { fingerprint, outcome: o.clone(), roads: next.clone() };
+    write_atomic(&state_path, &serde_json::to_string(&state).expect("states serialise"))?;
+    Ok((o, next))
+}

@@ -1,0 +1,302 @@
+//! A finished city: the street graph of all sub-regions, smoothed; its metrics; and the files
+//! (`city.json`, `streets.geojson`, `city.svg`, `city.png`).
+
+use super::city::{self, CityError, CityRunOptions, RegionOutcome};
+use super::metrics::{street_metrics, StreetMetrics};
+use super::planar::PlanarGraph;
+use super::smooth::{self, Snake, StreetEdge, StreetGraph};
+use super::spec::{CitySpec, SmoothingMethod};
+use indexmap::IndexMap;
+use serde::{Deserialize, Serialize};
+use std::fmt::Write as _;
+use std::path::Path;
+
+/// Version of the city result schema (`city.json`).
+pub const CITY_SCHEMA_VERSION: u32 = 1;
+
+/// The smoothing step's summary.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SmoothingSummary {
+    /// The smoother.
+    pub method: SmoothingMethod,
+    /// Snakes (chains between junctions, dead-ends and level changes).
+    pub snakes: usize,
+    /// Energy before.
+    pub energy_before: f64,
+    /// Energy after.
+    pub energy_after: f64,
+    /// Iterations.
+    pub iterations: usize,
+    /// Whether the energy change fell below the tolerance.
+    pub converged: bool,
+    /// Street length after smoothing, km.
+    pub smoothed_length_km: f64,
+}
+
+/// Everything about a city run (`city.json`).
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct CityResult {
+    /// Always `netspec.city`.
+    pub schema: String,
+    /// [`CITY_SCHEMA_VERSION`].
+    pub schema_version: u32,
+    /// The netspec version.
+    pub netspec_version: String,
+    /// The city spec, echoed.
+    pub spec: CitySpec,
+    /// Backend.
+    pub solver: String,
+    /// Time limit override from the command line, if any.
+    pub time_limit_override: Option<f64>,
+    /// Thread budget and threads per solve.
+    pub threads: [u32; 2],
+    /// Sub-regions and their levels (the per-level design results are in
+    /// `regions/NN-name/L<n>/result.json`).
+    pub regions: Vec<RegionOutcome>,
+    /// Every level of every sub-region produced a network.
+    pub complete: bool,
+    /// Every network produced passed every independent check.
+    pub valid: bool,
+    /// Street metrics of the mesh network (Yang et al. §7), per km².
+    pub metrics: StreetMetrics,
+    /// Smoothing.
+    pub smoothing: SmoothingSummary,
+    /// Wall time of the run, seconds (levels reused from an earlier run count as 0).
+    pub wall_time: f64,
+}
+
+/// The city's streets as one graph: sub-region meshes' roads with coincident vertices merged,
+/// each edge with its level (1 for sub-region boundaries, the major roads).
+pub fn street_graph(regions: &[RegionOutcome], spacing: f64) -> StreetGraph {
+    let q = spacing * 1e-4;
+    let mut ids: IndexMap<(i64, i64), u32> = IndexMap::new();
+    let mut positions = Vec::new();
+    let mut edges: IndexMap<(u32, u32), u8> = IndexMap::new();
+    for r in regions {
+        let Some(roads) = &r.roads else { continue };
+        let mut vid = |p: [f64; 2]| -> u32 {
+            let key = ((p[0] / q).round() as i64, (p[1] / q).round() as i64);
+            *ids.entry(key).or_insert_with(|| {
+                positions.push(p);
+                (positions.len() - 1) as u32
+            })
+        };
+        for e in roads.mesh.edges() {
+            let level = roads.edge_level[e.index()];
+            if level == 0 {
+                continue;
+            }
+            let (a, b) = roads.mesh.edge_vertices(e);
+            let (a, b) = (vid(roads.mesh.position(a)), vid(roads.mesh.position(b)));
+            if a == b {
+                continue;
+            }
+            let key = (a.min(b), a.max(b));
+            let l = edges.entry(key).or_insert(level);
+            *l = (*l).min(level);
+        }
+    }
+    StreetGraph { positions, edges: edges.into_iter().map(|((a, b), level)| StreetEdge { a, b, level }).collect() }
+}
+
+fn polygon_area(poly: &[[f64; 2]]) -> f64 {
+    let n = poly.len();
+    (0..n).map(|i| poly[i][0] * poly[(i + 1) % n][1] - poly[(i + 1) % n][0] * poly[i][1]).sum::<f64>().abs() / 2.0
+}
+
+fn polyline_length(points: &[[f64; 2]]) -> f64 {
+    points.windows(2).map(|w| (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1])).sum()
+}
+
+/// Runs a city end to end and writes every output under `out`.
+pub fn run_city(spec: &CitySpec, out: &Path, opts: &CityRunOptions) -> Result<CityResult, CityError> {
+    let t0 = std::time::Instant::now();
+    std::fs::create_dir_all(out).map_err(|source| CityError::Io { path: out.to_path_buf(), source })?;
+    let regions = city::run_regions(spec, out, opts)?;
+    let graph = street_graph(&regions, spec.mesh.spacing);
+    let planar = PlanarGraph { positions: graph.positions.clone(), edges: graph.edges.iter().map(|e| [e.a, e.b]).collect() };
+    let metrics = street_metrics(&planar, spec.metres_per_unit, polygon_area(&spec.domain.outer));
+    let smoothed = match spec.smoothing.method {
+        SmoothingMethod::Snake => smooth::smooth(&graph, &smooth::SnakeOptions::default()),
+        SmoothingMethod::Fair => smooth::fair(&graph, &smooth::FairOptions::default()),
+        SmoothingMethod::None => {
+            let snakes = smooth::decompose(&graph);
+            smooth::SmoothResult { snakes, energy_before: 0.0, energy_after: 0.0, iterations: 0, converged: true }
+        }
+    };
+    let smoothing = SmoothingSummary {
+        method: spec.smoothing.method,
+        snakes: smoothed.snakes.len(),
+        energy_before: smoothed.energy_before,
+        energy_after: smoothed.energy_after,
+        iterations: smoothed.iterations,
+        converged: smoothed.converged,
+        smoothed_length_km: smoothed.snakes.iter().map(|s| polyline_length(&s.points)).sum::<f64>() * spec.metres_per_unit / 1000.0,
+    };
+    let levels = || regions.iter().flat_map(|r| r.levels.iter());
+    let result = CityResult {
+        schema: "netspec.city".into(),
+        schema_version: CITY_SCHEMA_VERSION,
+        netspec_version: env!("CARGO_PKG_VERSION").into(),
+        spec: spec.clone(),
+        solver: opts.solver.name().into(),
+        time_limit_override: opts.time_limit,
+        threads: [opts.threads, opts.threads_per_solve],
+        complete: levels().all(|l| l.has_network()),
+        valid: levels().filter(|l| l.has_network()).all(|l| l.valid == Some(true)),
+        regions,
+        metrics,
+        smoothing,
+        wall_time: t0.elapsed().as_secs_f64(),
+    };
+    let write = |name: &str, text: String| -> Result<(), CityError> {
+        let path = out.join(name);
+        std::fs::write(&path, text).map_err(|source| CityError::Io { path, source })
+    };
+    write("city.json", serde_json::to_string_pretty(&result).expect("results serialise") + "\n")?;
+    write("streets.geojson", geojson(spec, &result.regions, &smoothed.snakes))?;
+    let svg = city_svg(spec, &result, &smoothed.snakes);
+    if let Ok(png) = crate::render::png(&svg) {
+        let path = out.join("city.png");
+        std::fs::write(&path, png).map_err(|source| CityError::Io { path, source })?;
+    }
+    write("city.svg", svg)?;
+    Ok(result)
+}
+
+/// Level colours and stroke widths (pixels) for pictures.
+const LEVEL_STYLE: [(&str, f64); 5] = [("#999999", 1.0), ("#252525", 5.0), ("#d94801", 3.4), ("#2171b5", 2.2), ("#41ab5d", 1.5)];
+
+fn style(level: u8) -> (&'static str, f64) {
+    LEVEL_STYLE[(level as usize).min(4)]
+}
+
+/// The smoothed streets (and sub-regions) as GeoJSON. With `geo_origin`, coordinates are WGS 84
+/// degrees (RFC 7946), by an equirectangular projection around the origin (accurate to well
+/// under a metre over a few kilometres); without it, metres in the model's own frame.
+pub fn geojson(spec: &CitySpec, regions: &[RegionOutcome], snakes: &[Snake]) -> String {
+    let m = spec.metres_per_unit;
+    let proj = |p: [f64; 2]| -> [f64; 2] {
+        let (x, y) = (p[0] * m, p[1] * m);
+        match spec.geo_origin {
+            Some([lon0, lat0]) => [lon0 + x / (111_320.0 * lat0.to_radians().cos()), lat0 + y / 110_540.0],
+            None => [x, y],
+        }
+    };
+    let coords = |pts: &[[f64; 2]]| -> serde_json::Value { pts.iter().map(|&p| serde_json::json!(proj(p))).collect() };
+    let mut features = Vec::new();
+    for r in regions {
+        let mut ring = r.outer.clone();
+        ring.push(r.outer[0]);
+        let mut rings = vec![coords(&ring)];
+        for h in &r.holes {
+            let mut hr = h.clone();
+            hr.push(h[0]);
+            rings.push(coords(&hr));
+        }
+        features.push(serde_json::json!({
+            "type": "Feature",
+            "geometry": { "type": "Polygon", "coordinates": rings },
+            "properties": { "kind": "sub-region", "index": r.index, "name": r.name, "levels": r.levels.iter().map(|l| format!("L{}: {}", l.level, l.state)).collect::<Vec<_>>() },
+        }));
+    }
+    for s in snakes {
+        features.push(serde_json::json!({
+            "type": "Feature",
+            "geometry": { "type": "LineString", "coordinates": coords(&s.points) },
+            "properties": { "kind": "street", "level": s.level, "closed": s.closed },
+        }));
+    }
+    let mut doc = serde_json::json!({ "type": "FeatureCollection", "name": spec.name, "features": features });
+    if spec.geo_origin.is_none() {
+        doc["properties"] = serde_json::json!({ "units": "metres, local frame (set geo_origin for WGS 84)", "metres_per_unit": m });
+    }
+    serde_json::to_string(&doc).expect("GeoJSON serialises") + "\n"
+}
+
+/// The whole city: sub-regions tinted, streets by level (width and colour), a legend and the
+/// metrics.
+pub fn city_svg(spec: &CitySpec, result: &CityResult, snakes: &[Snake]) -> String {
+    let mut lo = [f64::INFINITY; 2];
+    let mut hi = [f64::NEG_INFINITY; 2];
+    for p in &spec.domain.outer {
+        lo = [lo[0].min(p[0]), lo[1].min(p[1])];
+        hi = [hi[0].max(p[0]), hi[1].max(p[1])];
+    }
+    let span = (hi[0] - lo[0]).max(hi[1] - lo[1]).max(1e-9);
+    let scale = 900.0 / span;
+    let (margin, title_h, legend_w) = (24.0, 58.0, 170.0);
+    let w = (hi[0] - lo[0]) * scale + 2.0 * margin + legend_w;
+    let h = ((hi[1] - lo[1]) * scale + 2.0 * margin + title_h).max(title_h + 200.0);
+    let tx = |q: [f64; 2]| ((q[0] - lo[0]) * scale + margin, (hi[1] - q[1]) * scale + margin + title_h);
+    let path = |pts: &[[f64; 2]], close: bool| -> String {
+        let mut d = String::new();
+        for (i, &p) in pts.iter().enumerate() {
+            let (x, y) = tx(p);
+            let _ = write!(d, "{}{x:.2},{y:.2}", if i == 0 { "M" } else { " L" });
+        }
+        if close {
+            d.push_str(" Z");
+        }
+        d
+    };
+    let mut s = String::new();
+    let _ = writeln!(s, r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w:.0}" height="{h:.0}" viewBox="0 0 {w:.1} {h:.1}" font-family="DejaVu Sans, sans-serif">"#);
+    let _ = writeln!(s, r#"<rect width="100%" height="100%" fill="white"/>"#);
+    let m = &result.metrics;
+    let solved = result.regions.iter().flat_map(|r| &r.levels).filter(|l| l.has_network()).count();
+    let total = result.regions.iter().map(|r| r.levels.len()).sum::<usize>();
+    let _ = writeln!(
+        s,
+        r#"<text x="{margin}" y="22" font-size="15" font-weight="bold">{} — {} sub-regions, {solved}/{total} levels with a network ({}){}</text>"#,
+        xml(&spec.name),
+        result.regions.len(),
+        result.solver,
+        if result.valid { ", all valid" } else { ", NOT ALL VALID" }
+    );
+    let _ = writeln!(
+        s,
+        r#"<text x="{margin}" y="42" font-size="12">per km²: streets {:.1} km, intersections {:.0} (3-way {:.0}, 4-way {:.0}), dead-ends {:.0}, blocks {:.0}; {:.0} m per unit</text>"#,
+        m.sl, m.si, m.si3, m.si4, m.sd, m.bn, spec.metres_per_unit
+    );
+    const TINTS: [&str; 6] = ["#f7f4ea", "#eef3f8", "#f3eef6", "#eef6ee", "#f8efea", "#f0f0f0"];
+    for r in &result.regions {
+        let mut d = path(&r.outer, true);
+        for hole in &r.holes {
+            d.push(' ');
+            d.push_str(&path(hole, true));
+        }
+        let _ = writeln!(s, r#"<path d="{d}" fill="{}" fill-rule="evenodd" stroke="none" data-region="{}"/>"#, TINTS[r.index % TINTS.len()], r.index);
+    }
+    let mut order: Vec<&Snake> = snakes.iter().collect();
+    order.sort_by_key(|sn| std::cmp::Reverse(sn.level));
+    for sn in order {
+        let (colour, width) = style(sn.level);
+        let _ = writeln!(s, r#"<path d="{}" fill="none" stroke="{colour}" stroke-width="{width}" stroke-linecap="round" stroke-linejoin="round" data-level="{}"/>"#, path(&sn.points, false), sn.level);
+    }
+    for r in &result.regions {
+        let (x, y) = tx(r.label_point);
+        let failed = r.levels.iter().any(|l| !l.has_network());
+        let _ = writeln!(
+            s,
+            r#"<text x="{x:.1}" y="{y:.1}" font-size="11" text-anchor="middle" fill="{}" stroke="white" stroke-width="3" paint-order="stroke">{}{}</text>"#,
+            if failed { "#b30000" } else { "#333333" },
+            xml(&r.name),
+            if failed { " (incomplete)" } else { "" }
+        );
+    }
+    let lx = w - legend_w + 10.0;
+    let mut ly = title_h + margin + 10.0;
+    for (level, label) in [(1u8, "level 1: major roads"), (2, "level 2: collectors"), (3, "level 3: local roads"), (4, "level 4: cul-de-sacs")] {
+        let (colour, width) = style(level);
+        let _ = writeln!(s, r#"<line x1="{lx}" y1="{ly}" x2="{}" y2="{ly}" stroke="{colour}" stroke-width="{width}"/>"#, lx + 30.0);
+        let _ = writeln!(s, r#"<text x="{}" y="{}" font-size="11">{label}</text>"#, lx + 36.0, ly + 4.0);
+        ly += 22.0;
+    }
+    s.push_str("</svg>\n");
+    s
+}
+
+fn xml(t: &str) -> String {
+    t.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;")
+}
