@@ -637,10 +637,10 @@ pub fn bar_chart_svg(manifest: &Manifest, records: &[RunRecord], solvers: &[Stri
     let ly = y(limit);
     let _ = writeln!(
         s,
-        r##"<line class="limit" x1="{left}" y1="{ly:.1}" x2="{:.1}" y2="{ly:.1}" stroke="#000" stroke-dasharray="6 4"/><text x="{:.1}" y="{:.1}">limit {limit} s</text>"##,
+        r##"<line class="limit" x1="{left}" y1="{ly:.1}" x2="{:.1}" y2="{ly:.1}" stroke="#000" stroke-dasharray="6 4"/><text x="{:.1}" y="{:.1}" text-anchor="end" paint-order="stroke" stroke="white" stroke-width="3">limit {limit} s</text>"##,
         left + pw,
-        left + pw + 4.0,
-        ly + 4.0
+        left + pw - 4.0,
+        ly - 4.0
     );
 
     // Legend.

@@ -10,7 +10,6 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 mod cli {
-    #[cfg(any())] // TEMP until urban::city is enabled
     pub mod city;
     pub mod design;
 }
@@ -267,10 +266,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
             Ok(ExitCode::SUCCESS)
         }
         Command::City { spec, solver, time_limit, threads, threads_per_solve, gap, fresh, out } => {
-            #[cfg(any())]
-            return cli::city::run_city(&spec, cli::city::CityArgs { solver, time_limit, threads, threads_per_solve, gap, fresh, out });
-            let _ = (spec, solver, time_limit, threads, threads_per_solve, gap, fresh, out);
-            bail!("TEMP")
+            cli::city::run_city(&spec, cli::city::CityArgs { solver, time_limit, threads, threads_per_solve, gap, fresh, out })
         }
         Command::Convert { input, output } => {
             let read = read_model_file(&input)?;

@@ -2,7 +2,7 @@
 //! and a set of active edges. It never reads the MILP.
 
 use super::Network;
-use crate::formulations::network::{t_configs, too_close_configs, zigzag_configs};
+use crate::formulations::network::{designed, t_configs, too_close_configs, zigzag_configs};
 use crate::formulations::paths::PathSets;
 use crate::mesh::{EdgeId, Mesh, VertexId};
 use crate::spec::{Allow, CoverageModel, Problem, Weight};
@@ -246,7 +246,8 @@ pub fn validate(p: &Problem, net: &Network, paths: Option<&PathSets>) -> Vec<Vio
             }
         }
     }
-    let all_active = |es: &[EdgeId]| es.iter().all(|e| net.active[e.index()]);
+    // Configurations made only of existing roads are given, not designed (see `designed`).
+    let all_active = |es: &[EdgeId]| designed(p, es) && es.iter().all(|e| net.active[e.index()]);
     if p.w_zigzag == Weight::Forbid {
         for (_, es) in zigzag_configs(mesh) {
             if all_active(&es) {
@@ -263,7 +264,7 @@ pub fn validate(p: &Problem, net: &Network, paths: Option<&PathSets>) -> Vec<Vio
     }
     if p.w_t_junction == Weight::Forbid {
         for (_, v, e0, others) in t_configs(mesh) {
-            if !net.active[e0.index()] && all_active(&others) {
+            if !net.active[e0.index()] && designed(p, &[e0, others[0], others[1], others[2]]) && others.iter().all(|e| net.active[e.index()]) {
                 out.push(Violation::TJunction { vertex: v });
             }
         }

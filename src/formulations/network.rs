@@ -376,10 +376,18 @@ fn branches(p: &Problem, em: &mut Emitter, nm: &NetworkModel) {
     }
 }
 
+/// Whether the design decides a configuration: at least one of its edges is a candidate. A
+/// configuration made only of existing roads (e.g. the staircase boundary of a clipped
+/// sub-region, or earlier street levels) is given, not designed: it is neither forbidden nor
+/// penalised, and the validator exempts it too.
+pub fn designed(p: &Problem, edges: &[EdgeId]) -> bool {
+    edges.iter().any(|e| p.roles[e.index()] == EdgeRole::Candidate)
+}
+
 /// Emits one local configuration: forbidden → `Σ E ≤ |S| − 1`; penalised →
 /// `0 ≤ Σ E − |S|·Z ≤ |S| − 1` with `λ·Z` in the objective.
 fn local_config(p: &Problem, em: &mut Emitter, nm: &mut NetworkModel, k: u8, tag: String, edges: Vec<EdgeId>, w: Weight) {
-    if edges.iter().any(|e| p.roles[e.index()] == EdgeRole::Excluded) {
+    if edges.iter().any(|e| p.roles[e.index()] == EdgeRole::Excluded) || !designed(p, &edges) {
         return;
     }
     let n = edges.len() as f64;
@@ -468,6 +476,9 @@ pub fn t_configs(mesh: &Mesh) -> Vec<(HalfEdgeId, VertexId, EdgeId, [EdgeId; 3])
 fn t_junctions(p: &Problem, em: &mut Emitter, nm: &mut NetworkModel) {
     let mesh = &p.mesh;
     for (h, v, e0, others) in t_configs(mesh) {
+        if !designed(p, &[e0, others[0], others[1], others[2]]) {
+            continue;
+        }
         let mut ex = Expr::new();
         for &e in &others {
             ex.add_value(nm.edge_value(e, &p.roles), 1.0);

@@ -436,7 +436,7 @@ fn run_level(
         gap: res.solve.gap,
         solver_time: res.solve.solver_time,
         wall_time: Some(res.solve.wall_time),
-        valid: Some(res.validity.valid),
+        valid: res.network.as_ref().map(|_| res.validity.valid),
         mesh: Some([problem.mesh.num_vertices(), problem.mesh.num_edges(), problem.mesh.num_faces()]),
         model: Some([stats.vars, stats.rows, stats.nonzeros]),
         new_edges: None,

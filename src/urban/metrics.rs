@@ -60,8 +60,11 @@ pub struct StreetMetrics {
 /// Computes the [`StreetMetrics`] of the street graph `g` (model units, converted with
 /// `metres_per_unit`) over a city domain of `area_units` model units². Blocks are the bounded
 /// faces of [`PlanarGraph::faces`], so `g` should be planar (e.g. built by
-/// [`PlanarGraph::from_segments`] or as a union of planar region graphs).
+/// [`PlanarGraph::from_segments`] or as a union of planar region graphs). Vertices at exactly
+/// the same position are merged, and duplicate edges and self-loops dropped, first.
 pub fn street_metrics(g: &PlanarGraph, metres_per_unit: f64, area_units: f64) -> StreetMetrics {
+    // Merge exactly coincident vertices and drop duplicate edges and self-loops first.
+    let g = &PlanarGraph::from_vertices_edges(&g.positions, &g.edges, 0.0);
     let km = metres_per_unit / 1000.0;
     let area_km2 = area_units * km * km;
     let per_km2 = |x: f64| if area_km2 > 0.0 { x / area_km2 } else { 0.0 };

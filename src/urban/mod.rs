@@ -3,11 +3,13 @@
 //! cul-de-sacs) solved per sub-region as network IPs, snake smoothing of the result, city-wide
 //! street metrics, and the outputs (picture, GeoJSON, per-level JSON).
 
-// pub mod city; (enabled once planar/smooth/metrics land)
+pub mod city;
 pub mod metrics;
-// pub mod output;
+pub mod output;
 pub mod planar;
 pub mod smooth;
 pub mod spec;
 
+pub use city::{run_regions, CityError, CityEvent, CityRunOptions, LevelOutcome, RegionOutcome, RegionRoads};
+pub use output::{run_city, CityResult};
 pub use spec::{CitySpec, CitySpecError, CitySpecErrorKind, LevelSpec};

@@ -124,6 +124,8 @@ pub fn run_city(spec: &CitySpec, out: &Path, opts: &CityRunOptions) -> Result<Ci
             smooth::SmoothResult { snakes, energy_before: 0.0, energy_after: 0.0, iterations: 0, converged: true }
         }
     };
+    let major = major_road_segments(&regions);
+    let streets = snap_to_major_roads(&graph, smoothed.snakes.clone(), &major, 1.5 * spec.mesh.spacing);
     let smoothing = SmoothingSummary {
         method: spec.smoothing.method,
         snakes: smoothed.snakes.len(),
@@ -131,7 +133,9 @@ pub fn run_city(spec: &CitySpec, out: &Path, opts: &CityRunOptions) -> Result<Ci
         energy_after: smoothed.energy_after,
         iterations: smoothed.iterations,
         converged: smoothed.converged,
-        smoothed_length_km: smoothed.snakes.iter().map(|s| polyline_length(&s.points)).sum::<f64>() * spec.metres_per_unit / 1000.0,
+        smoothed_length_km: (streets.iter().map(|s| polyline_length(&s.points)).sum::<f64>() + major.iter().map(|g| polyline_length(g)).sum::<f64>())
+            * spec.metres_per_unit
+            / 1000.0,
     };
     let levels = || regions.iter().flat_map(|r| r.levels.iter());
     let result = CityResult {
@@ -154,14 +158,96 @@ pub fn run_city(spec: &CitySpec, out: &Path, opts: &CityRunOptions) -> Result<Ci
         std::fs::write(&path, text).map_err(|source| CityError::Io { path, source })
     };
     write("city.json", serde_json::to_string_pretty(&result).expect("results serialise") + "\n")?;
-    write("streets.geojson", geojson(spec, &result.regions, &smoothed.snakes))?;
-    let svg = city_svg(spec, &result, &smoothed.snakes);
+    write("streets.geojson", geojson(spec, &result.regions, &major, &streets))?;
+    let svg = city_svg(spec, &result, &major, &streets);
     if let Ok(png) = crate::render::png(&svg) {
         let path = out.join("city.png");
         std::fs::write(&path, png).map_err(|source| CityError::Io { path, source })?;
     }
     write("city.svg", svg)?;
     Ok(result)
+}
+
+/// Level 1 as given: the sub-regions' polygons (the domain boundary and the major roads,
+/// clipped and split by the arrangement), each shared side once.
+pub fn major_road_segments(regions: &[RegionOutcome]) -> Vec<[[f64; 2]; 2]> {
+    let key = |p: [f64; 2]| ((p[0] * 1e6).round() as i64, (p[1] * 1e6).round() as i64);
+    let mut seen = IndexMap::new();
+    for r in regions {
+        for ring in std::iter::once(&r.outer).chain(&r.holes) {
+            for i in 0..ring.len() {
+                let (a, b) = (ring[i], ring[(i + 1) % ring.len()]);
+                let k = if key(a) <= key(b) { (key(a), key(b)) } else { (key(b), key(a)) };
+                if k.0 != k.1 {
+                    seen.entry(k).or_insert([a, b]);
+                }
+            }
+        }
+    }
+    seen.into_values().collect()
+}
+
+fn nearest_on_segments(p: [f64; 2], segments: &[[[f64; 2]; 2]]) -> Option<[f64; 2]> {
+    let mut best: Option<(f64, [f64; 2])> = None;
+    for &[a, b] in segments {
+        let d = [b[0] - a[0], b[1] - a[1]];
+        let len2 = d[0] * d[0] + d[1] * d[1];
+        let t = if len2 > 0.0 { (((p[0] - a[0]) * d[0] + (p[1] - a[1]) * d[1]) / len2).clamp(0.0, 1.0) } else { 0.0 };
+        let q = [a[0] + t * d[0], a[1] + t * d[1]];
+        let dist = (q[0] - p[0]).hypot(q[1] - p[1]);
+        if best.is_none_or(|(bd, _)| dist < bd) {
+            best = Some((dist, q));
+        }
+    }
+    best.map(|(_, q)| q)
+}
+
+/// The streets to draw: level-1 snakes are dropped (level 1 is drawn as given), and every end of
+/// a level ≥ 2 snake that sits on the sub-region boundary (the staircase next to a major road)
+/// is moved onto the major road itself, the move fading out linearly over `blend` of arc length,
+/// so streets meet the roads they join.
+pub fn snap_to_major_roads(g: &StreetGraph, snakes: Vec<Snake>, major: &[[[f64; 2]; 2]], blend: f64) -> Vec<Snake> {
+    let mut on_major = vec![false; g.positions.len()];
+    for e in g.edges.iter().filter(|e| e.level == 1) {
+        on_major[e.a as usize] = true;
+        on_major[e.b as usize] = true;
+    }
+    let mut out: Vec<Snake> = snakes.into_iter().filter(|s| s.level >= 2).collect();
+    for s in &mut out {
+        if s.closed || s.points.len() < 2 {
+            continue;
+        }
+        for at_end in [false, true] {
+            let v = if at_end { *s.vertices.last().expect("non-empty") } else { s.vertices[0] };
+            if !on_major[v as usize] {
+                continue;
+            }
+            if at_end {
+                s.points.reverse();
+            }
+            let p0 = s.points[0];
+            if let Some(q) = nearest_on_segments(p0, major) {
+                let shift = [q[0] - p0[0], q[1] - p0[1]];
+                let total = polyline_length(&s.points);
+                let reach = blend.min(total / 2.0).max(1e-12);
+                let mut arc = 0.0;
+                for i in 0..s.points.len() {
+                    if i > 0 {
+                        arc += (s.points[i][0] - s.points[i - 1][0]).hypot(s.points[i][1] - s.points[i - 1][1]);
+                    }
+                    let w = (1.0 - arc / reach).max(0.0);
+                    if w == 0.0 {
+                        break;
+                    }
+                    s.points[i] = [s.points[i][0] + w * shift[0], s.points[i][1] + w * shift[1]];
+                }
+            }
+            if at_end {
+                s.points.reverse();
+            }
+        }
+    }
+    out
 }
 
 /// Level colours and stroke widths (pixels) for pictures.
@@ -174,7 +260,7 @@ fn style(level: u8) -> (&'static str, f64) {
 /// The smoothed streets (and sub-regions) as GeoJSON. With `geo_origin`, coordinates are WGS 84
 /// degrees (RFC 7946), by an equirectangular projection around the origin (accurate to well
 /// under a metre over a few kilometres); without it, metres in the model's own frame.
-pub fn geojson(spec: &CitySpec, regions: &[RegionOutcome], snakes: &[Snake]) -> String {
+pub fn geojson(spec: &CitySpec, regions: &[RegionOutcome], major: &[[[f64; 2]; 2]], snakes: &[Snake]) -> String {
     let m = spec.metres_per_unit;
     let proj = |p: [f64; 2]| -> [f64; 2] {
         let (x, y) = (p[0] * m, p[1] * m);
@@ -200,6 +286,12 @@ pub fn geojson(spec: &CitySpec, regions: &[RegionOutcome], snakes: &[Snake]) -> 
             "properties": { "kind": "sub-region", "index": r.index, "name": r.name, "levels": r.levels.iter().map(|l| format!("L{}: {}", l.level, l.state)).collect::<Vec<_>>() },
         }));
     }
+    let lines: Vec<serde_json::Value> = major.iter().map(|seg| coords(seg)).collect();
+    features.push(serde_json::json!({
+        "type": "Feature",
+        "geometry": { "type": "MultiLineString", "coordinates": lines },
+        "properties": { "kind": "street", "level": 1, "closed": false, "note": "major roads and the domain boundary, as given" },
+    }));
     for s in snakes {
         features.push(serde_json::json!({
             "type": "Feature",
@@ -216,7 +308,7 @@ pub fn geojson(spec: &CitySpec, regions: &[RegionOutcome], snakes: &[Snake]) -> 
 
 /// The whole city: sub-regions tinted, streets by level (width and colour), a legend and the
 /// metrics.
-pub fn city_svg(spec: &CitySpec, result: &CityResult, snakes: &[Snake]) -> String {
+pub fn city_svg(spec: &CitySpec, result: &CityResult, major: &[[[f64; 2]; 2]], snakes: &[Snake]) -> String {
     let mut lo = [f64::INFINITY; 2];
     let mut hi = [f64::NEG_INFINITY; 2];
     for p in &spec.domain.outer {
@@ -268,6 +360,13 @@ pub fn city_svg(spec: &CitySpec, result: &CityResult, snakes: &[Snake]) -> Strin
         }
         let _ = writeln!(s, r#"<path d="{d}" fill="{}" fill-rule="evenodd" stroke="none" data-region="{}"/>"#, TINTS[r.index % TINTS.len()], r.index);
     }
+    let (colour, width) = style(1);
+    let mut d = String::new();
+    for seg in major {
+        d.push_str(&path(seg, false));
+        d.push(' ');
+    }
+    let _ = writeln!(s, r#"<path d="{}" fill="none" stroke="{colour}" stroke-width="{width}" stroke-linecap="round" data-level="1"/>"#, d.trim_end());
     let mut order: Vec<&Snake> = snakes.iter().collect();
     order.sort_by_key(|sn| std::cmp::Reverse(sn.level));
     for sn in order {

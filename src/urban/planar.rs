@@ -144,15 +144,17 @@ fn snap(points: &[P], tol: f64) -> (Vec<P>, Vec<u32>) {
 fn split_segments(segs: &[[P; 2]], tol: f64) -> (Vec<P>, Vec<([u32; 2], Vec<usize>)>) {
     let tol = if tol.is_finite() && tol > 0.0 { tol } else { 0.0 };
     let ok: Vec<bool> = segs.iter().map(|s| finite(s[0]) && finite(s[1]) && s[0] != s[1]).collect();
-    let mut on: Vec<Vec<P>> = segs.iter().map(|s| vec![s[0], s[1]]).collect();
+    let mut on: Vec<Vec<P>> = segs.iter().zip(&ok).map(|(s, &ok)| if ok { vec![s[0], s[1]] } else { vec![] }).collect();
     let bbox = |s: &[P; 2]| {
         [s[0][0].min(s[1][0]) - tol, s[0][1].min(s[1][1]) - tol, s[0][0].max(s[1][0]) + tol, s[0][1].max(s[1][1]) + tol]
     };
     let boxes: Vec<[f64; 4]> = segs.iter().map(bbox).collect();
-    for i in (0..segs.len()).filter(|&i| ok[i]) {
-        for j in (i + 1..segs.len()).filter(|&j| ok[j]) {
-            let (bi, bj) = (boxes[i], boxes[j]);
-            if bi[0] > bj[2] || bj[0] > bi[2] || bi[1] > bj[3] || bj[1] > bi[3] {
+    // Sweep in x: only pairs whose bounding boxes overlap are tested.
+    let mut by_x: Vec<usize> = (0..segs.len()).filter(|&i| ok[i]).collect();
+    by_x.sort_by(|&a, &b| boxes[a][0].total_cmp(&boxes[b][0]).then(a.cmp(&b)));
+    for (n, &i) in by_x.iter().enumerate() {
+        for &j in by_x[n + 1..].iter().take_while(|&&j| boxes[j][0] <= boxes[i][2]) {
+            if boxes[i][1] > boxes[j][3] || boxes[j][1] > boxes[i][3] {
                 continue;
             }
             let (a, b) = (segs[i], segs[j]);
@@ -176,15 +178,9 @@ fn split_segments(segs: &[[P; 2]], tol: f64) -> (Vec<P>, Vec<([u32; 2], Vec<usiz
     let mut edges: BTreeMap<[u32; 2], Vec<usize>> = BTreeMap::new();
     let mut k = 0;
     for (s, pts) in on.iter().enumerate() {
-        let mut along: Vec<(f64, u32)> = pts
-            .iter()
-            .enumerate()
-            .map(|(m, &p)| (param(p, segs[s][0], segs[s][1]), ids[k + m]))
-            .collect();
+        let mut along: Vec<(f64, u32)> =
+            pts.iter().enumerate().map(|(m, &p)| (param(p, segs[s][0], segs[s][1]), ids[k + m])).collect();
         k += pts.len();
-        if !ok[s] {
-            continue;
-        }
         along.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
         for w in along.windows(2) {
             let (u, v) = (w[0].1, w[1].1);
@@ -193,27 +189,24 @@ fn split_segments(segs: &[[P; 2]], tol: f64) -> (Vec<P>, Vec<([u32; 2], Vec<usiz
             }
         }
     }
-    // Keep only vertices that carry an edge; representatives are already in sorted order.
-    let mut used = vec![u32::MAX; reps.len()];
-    for e in edges.keys() {
-        used[e[0] as usize] = 0;
-        used[e[1] as usize] = 0;
+    let (keys, sources): (Vec<[u32; 2]>, Vec<Vec<usize>>) = edges.into_iter().unzip();
+    let g = compact(&reps, &keys);
+    (g.positions, g.edges.into_iter().zip(sources).collect())
+}
+
+/// The graph without its isolated vertices (the order of vertices and edges is kept).
+fn compact(positions: &[P], edges: &[[u32; 2]]) -> PlanarGraph {
+    let mut map = vec![u32::MAX; positions.len()];
+    for e in edges {
+        map[e[0] as usize] = 0;
+        map[e[1] as usize] = 0;
     }
-    let mut positions = Vec::new();
-    for (r, u) in used.iter_mut().enumerate() {
-        if *u == 0 {
-            *u = positions.len() as u32;
-            positions.push(reps[r]);
-        }
+    let mut kept = Vec::new();
+    for (v, m) in map.iter_mut().enumerate().filter(|(_, m)| **m == 0) {
+        *m = kept.len() as u32;
+        kept.push(positions[v]);
     }
-    let edges = edges
-        .into_iter()
-        .map(|(e, mut src)| {
-            src.dedup();
-            ([used[e[0] as usize], used[e[1] as usize]], src)
-        })
-        .collect();
-    (positions, edges)
+    PlanarGraph { positions: kept, edges: edges.iter().map(|e| [map[e[0] as usize], map[e[1] as usize]]).collect() }
 }
 
 /// An undirected planar straight-line graph: vertex positions and edges `[u, v]` with `u < v`.
@@ -380,27 +373,35 @@ impl PlanarGraph {
             let (a, b) = (find(&mut parent, e[0] as usize), find(&mut parent, e[1] as usize));
             parent[a.max(b)] = a.min(b);
         }
-        let mut low: BTreeMap<usize, usize> = BTreeMap::new(); // root -> lowest-left vertex
+        let comp: Vec<usize> = (0..nv).map(|v| find(&mut parent, v)).collect();
+        let mut low: BTreeMap<usize, usize> = BTreeMap::new(); // component -> lowest-left vertex
         for v in (0..nv).filter(|&v| !out[v].is_empty()) {
-            let r = find(&mut parent, v);
-            let l = low.entry(r).or_insert(v);
+            let l = low.entry(comp[v]).or_insert(v);
             if cmp_yx(pos(v), pos(*l)).is_lt() {
                 *l = v;
             }
         }
-        let outer_walk: BTreeMap<usize, usize> = low.iter().map(|(&r, &v)| (r, walk_of[*out[v].last().unwrap()])).collect();
-        let is_outer = |w: usize, parent: &mut [usize]| outer_walk[&find(parent, org(walks[w][0]))] == w;
+        let outer_walk: BTreeMap<usize, usize> =
+            low.iter().map(|(&r, &v)| (r, walk_of[*out[v].last().unwrap()])).collect();
         let ring = |w: usize| walks[w].iter().map(|&h| pos(org(h))).collect::<Vec<P>>();
         let mut walk_face: Vec<Option<u32>> = vec![None; walks.len()];
         let mut faces: Vec<Face> = Vec::new();
         let mut face_comp = Vec::new();
         for w in 0..walks.len() {
-            if !is_outer(w, &mut parent) {
+            let c = comp[org(walks[w][0])];
+            if outer_walk[&c] != w {
                 walk_face[w] = Some(faces.len() as u32);
-                face_comp.push(find(&mut parent, org(walks[w][0])));
+                face_comp.push(c);
                 let boundary = walks[w].iter().map(|&h| org(h) as u32).collect();
                 let area = signed_area(&ring(w));
-                faces.push(Face { boundary, holes: vec![], area, perimeter: 0.0, dangling_edges: 0, dangling_length: 0.0 });
+                faces.push(Face {
+                    boundary,
+                    holes: vec![],
+                    area,
+                    perimeter: 0.0,
+                    dangling_edges: 0,
+                    dangling_length: 0.0,
+                });
             }
         }
         // Nesting: each component's outer walk lies in the smallest containing face, if any.
@@ -621,7 +622,7 @@ pub fn arrangement(domain: &[[f64; 2]], roads: &[Vec<[f64; 2]>], tol: f64) -> Re
     }
     check_simple(&poly, tol)?;
     let perimeter: f64 = (0..poly.len()).map(|k| dist(poly[k], poly[(k + 1) % poly.len()])).sum();
-    if signed_area(&poly).abs() <= tol * perimeter || signed_area(&poly) == 0.0 {
+    if signed_area(&poly).abs() <= tol * perimeter {
         return Err(E::DomainDegenerate);
     }
     let nb = poly.len();
@@ -659,7 +660,7 @@ pub fn arrangement(domain: &[[f64; 2]], roads: &[Vec<[f64; 2]>], tol: f64) -> Re
         return Err(E::RoadOutsideDomain { road });
     }
     let edges: Vec<[u32; 2]> = kept.iter().map(|k| k.0).collect();
-    let full = PlanarGraph { positions: positions.clone(), edges };
+    let full = PlanarGraph { positions, edges };
     let ef = full.faces().edge_faces;
     let mut pruned: BTreeMap<usize, f64> = BTreeMap::new();
     let mut keep = Vec::new();
@@ -672,13 +673,7 @@ pub fn arrangement(domain: &[[f64; 2]], roads: &[Vec<[f64; 2]>], tol: f64) -> Re
             keep.push(full.edges[e]);
         }
     }
-    let used: Vec<bool> = (0..positions.len()).map(|v| keep.iter().any(|e| e.contains(&(v as u32)))).collect();
-    let (lpos, ledges): (Vec<P>, Vec<[u32; 2]>) = {
-        let map: Vec<u32> = used.iter().scan(0u32, |n, &u| { let i = *n; *n += u as u32; Some(i) }).collect();
-        let lpos = positions.iter().zip(&used).filter(|(_, &u)| u).map(|(p, _)| *p).collect();
-        (lpos, keep.iter().map(|e| [map[e[0] as usize], map[e[1] as usize]]).collect())
-    };
-    let graph = PlanarGraph { positions: lpos, edges: ledges };
+    let graph = compact(&full.positions, &keep);
     let pts = |vs: &[u32]| vs.iter().map(|&v| graph.positions[v as usize]).collect::<Vec<P>>();
     let mut regions: Vec<Region> = graph
         .faces()
@@ -748,7 +743,10 @@ mod tests {
     #[test]
     fn merge_vertices() {
         let a = PlanarGraph { positions: vec![[0.0, 0.0], [1.0, 0.0]], edges: vec![[0, 1]] };
-        let b = PlanarGraph { positions: vec![[1.0 + 1e-12, 0.0], [1.0, 1.0], [1.0, 0.0]], edges: vec![[0, 1], [1, 2], [2, 0]] };
+        let b = PlanarGraph {
+            positions: vec![[1.0 + 1e-12, 0.0], [1.0, 1.0], [1.0, 0.0]],
+            edges: vec![[0, 1], [1, 2], [2, 0]],
+        };
         let g = PlanarGraph::union(&[a, b], 1e-9);
         assert_eq!(g.positions, vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0]]);
         assert_eq!(g.edges, vec![[0, 1], [1, 2]]);
@@ -858,7 +856,7 @@ mod tests {
     #[test]
     fn ring_road_makes_a_hole() {
         let ring = vec![[3.0, 3.0], [7.0, 3.0], [7.0, 7.0], [3.0, 7.0], [3.0, 3.0]];
-        let a = arrangement(&SQ, &[ring.clone()], TOL).unwrap();
+        let a = arrangement(&SQ, std::slice::from_ref(&ring), TOL).unwrap();
         assert_eq!(areas(&a), vec![84.0, 16.0]);
         assert_eq!(a.regions[0].holes.len(), 1);
         assert!(a.regions[1].holes.is_empty());
@@ -895,5 +893,20 @@ mod tests {
         let e = arrangement(&SQ, &outside, TOL).unwrap_err();
         assert_eq!(e.to_string(), "road 1 lies entirely outside the domain");
         assert!(matches!(arrangement(&SQ, &road, -1.0), Err(E::BadTolerance(_))));
+    }
+    /// Pseudo-random roads: the regions partition the domain.
+    #[test]
+    fn regions_partition_the_domain() {
+        let mut x = 12345u64;
+        let mut rnd = move || {
+            x = x.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (x >> 11) as f64 / (1u64 << 53) as f64 * 14.0 - 2.0
+        };
+        let roads: Vec<Vec<P>> = (0..12).map(|_| (0..3).map(|_| [rnd(), rnd()]).collect()).collect();
+        let a = arrangement(&SQ, &roads, TOL).unwrap();
+        assert!(a.regions.len() > 10);
+        assert!((a.regions.iter().map(|r| r.area).sum::<f64>() - 100.0).abs() < 1e-9);
+        check_labels(&a);
+        assert_eq!(arrangement(&SQ, &roads, TOL).unwrap(), a);
     }
 }
