@@ -535,14 +535,14 @@ pub fn smooth(g: &StreetGraph, opts: &SnakeOptions) -> SmoothResult {
 /// Yang et al. 2013, §6 fairing: per snake, minimise `w_fair·Σ|p_{i−1} − 2p_i + p_{i+1}|²`
 /// (eq. 6) `+ w_close·Σ|p_i − p_i⁰|²` (eq. 7), closeness always to the ORIGINAL positions,
 /// snake ends fixed, same subdivision and scaling as [`smooth`]. The energy is quadratic, so
-/// the free points are found exactly by one banded Cholesky solve per coordinate (pentadiagonal
-/// for open snakes; closed ones are ordered 1, m−1, 2, m−2, … to keep the cycle in a band of
+/// the free points are found exactly by one banded Cholesky solve (pentadiagonal for open
+/// snakes; a closed one's points are ordered 1, m−1, 2, m−2, … to keep the cycle in a band of
 /// width 4). Points next to junctions (with `junction_tangents`) slide on their edge line,
-/// like Yang's intersections slide on the boundary: each iteration first moves each of them
-/// to its exact optimum on the line with the rest held, then solves for the rest. This block
-/// coordinate descent never raises the energy; it runs `opts.iterations` times or until an
-/// iteration changes the energy by less than 1e-12 relatively (`converged`). Without sliding
-/// points one solve is exact and the result converges after one iteration.
+/// as Yang's intersections slide on the boundary, and this is what the iterations are for:
+/// each first moves those points to their exact optimum on the line with the rest held, then
+/// solves for the rest. This block coordinate descent never raises the energy; it runs
+/// `opts.iterations` times or until an iteration changes the energy by less than 1e-12
+/// relatively (`converged`). Without sliding points the first solve is exact and final.
 pub fn fair(g: &StreetGraph, opts: &FairOptions) -> SmoothResult {
     let w = SnakeWeights { tension: 0.0, stiffness: opts.fairness, inertia: opts.closeness };
     run(g, opts.subdivisions, opts.junction_tangents, |s, work| {
