@@ -59,7 +59,8 @@ fn snapshot(r: &CityResult) -> Vec<LevelSnap> {
 #[test]
 fn two_region_city_on_every_backend() {
     let text = std::fs::read_to_string(fixture()).unwrap();
-    let mut first: Option<(SolverKind, Vec<(String, u8, Option<f64>)>)> = None;
+    type Objectives = Vec<(String, u8, Option<f64>)>;
+    let mut first: Option<(SolverKind, Objectives)> = None;
     for kind in backends(false) {
         let dir = tempfile::tempdir().unwrap();
         let r = run(&text, kind, dir.path());

@@ -564,9 +564,14 @@ pub(crate) fn shortest_path(mesh: &Mesh, roles: &[EdgeRole], a: VertexId, b: Ver
 }
 
 /// A totally ordered f64 for heaps (no NaN ever enters).
-#[derive(Copy, Clone, PartialEq, PartialOrd)]
+#[derive(Copy, Clone, PartialEq)]
 pub(crate) struct OrdF64(pub f64);
 impl Eq for OrdF64 {}
+impl PartialOrd for OrdF64 {
+    fn partial_cmp(&self, other: &Self) -> Option<std::cmp::Ordering> {
+        Some(self.cmp(other))
+    }
+}
 impl Ord for OrdF64 {
     fn cmp(&self, other: &Self) -> std::cmp::Ordering {
         self.0.total_cmp(&other.0)

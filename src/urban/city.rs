@@ -55,8 +55,11 @@ pub struct CityRunOptions {
     /// Reuse finished levels found in the output directory (same inputs only).
     pub resume: bool,
     /// Receives events as the run goes (from worker threads).
-    pub observer: Option<Arc<dyn Fn(&CityEvent) + Send + Sync>>,
+    pub observer: Option<CityObserver>,
 }
+
+/// A receiver of [`CityEvent`]s, called from the worker threads.
+pub type CityObserver = Arc<dyn Fn(&CityEvent) + Send + Sync>;
 
 impl CityRunOptions {
     /// Options from a city spec's `[solver]` section, with the embedded default backend.
@@ -426,7 +429,7 @@ fn run_level(
         Ok(r) => r,
         Err(e) => return Ok((LevelOutcome::bare(n, "error", e.to_string()), None)),
     };
-    let stats = res.model_stats.clone();
+    let stats = res.model_stats;
     let mut o = LevelOutcome {
         level: n,
         state: "no_network".into(),
