@@ -55,7 +55,7 @@ fn table1(c: &mut Criterion) {
     let mut models = Vec::new();
     for row in &manifest.row {
         let Some(spec) = &row.spec else { continue };
-        let problem = Spec::load(spec).unwrap().resolve(&dir).unwrap();
+        let problem = Spec::load(spec).unwrap().resolve(spec.parent().unwrap_or(&dir)).unwrap();
         build.bench_function(&row.name, |b| b.iter(|| black_box(netspec::pipeline::build(&problem))));
         models.push((row.name.clone(), netspec::pipeline::build(&problem).model));
     }

@@ -49,6 +49,9 @@ pub struct RunRecord {
     pub solver_version: Option<String>,
     /// The child's exit code.
     pub exit_code: Option<i32>,
+    /// The time limit this run had, seconds (with `--paper-limits`, the row's own).
+    #[serde(default)]
+    pub time_limit: Option<f64>,
 }
 
 /// The paper's figures for one instance (Table 1).
@@ -130,6 +133,20 @@ pub struct CompareSettings {
     pub seeds: Vec<u64>,
     /// Threads per run, if set.
     pub threads: Option<u32>,
+    /// Give each row the paper's own time for it (a single number in `paper.time`) as its
+    /// limit, capped at `time_limit`; rows without one get `time_limit`.
+    #[serde(default)]
+    pub paper_limits: bool,
+}
+
+impl CompareSettings {
+    /// The time limit of one row.
+    pub fn limit_for(&self, row: &ManifestRow) -> f64 {
+        match (self.paper_limits, paper_seconds(&row.paper)) {
+            (true, Some(t)) if t > 0.0 => t.min(self.time_limit),
+            _ => self.time_limit,
+        }
+    }
 }
 
 fn instance_name(spec: &Path) -> String {
@@ -156,7 +173,7 @@ pub fn run_all(exe: &Path, settings: &CompareSettings, out: &Path, mut progress:
                     }
                 }
                 std::fs::create_dir_all(&dir)?;
-                let mut r = run_one(exe, spec, solver, seed, settings, &dir)?;
+                let mut r = run_one(exe, spec, solver, seed, settings, settings.limit_for(row), &dir)?;
                 r.instance = name;
                 let tmp = dir.join("run.json.tmp");
                 std::fs::write(&tmp, serde_json::to_string_pretty(&r)? + "\n")?;
@@ -169,9 +186,9 @@ pub fn run_all(exe: &Path, settings: &CompareSettings, out: &Path, mut progress:
     Ok(records)
 }
 
-fn run_one(exe: &Path, spec: &Path, solver: &str, seed: Option<u64>, s: &CompareSettings, dir: &Path) -> std::io::Result<RunRecord> {
+fn run_one(exe: &Path, spec: &Path, solver: &str, seed: Option<u64>, s: &CompareSettings, limit: f64, dir: &Path) -> std::io::Result<RunRecord> {
     let mut cmd = Command::new(exe);
-    cmd.arg("solve").arg(spec).args(["--solver", solver, "--time-limit", &s.time_limit.to_string(), "--out"]).arg(dir);
+    cmd.arg("solve").arg(spec).args(["--solver", solver, "--time-limit", &limit.to_string(), "--out"]).arg(dir);
     if let Some(seed) = seed {
         cmd.args(["--seed", &seed.to_string()]);
     }
@@ -182,7 +199,7 @@ fn run_one(exe: &Path, spec: &Path, solver: &str, seed: Option<u64>, s: &Compare
     let _ = std::fs::remove_file(dir.join("result.json"));
     let t0 = Instant::now();
     let mut child = cmd.spawn()?;
-    let deadline = Duration::from_secs_f64(s.time_limit + s.grace);
+    let deadline = Duration::from_secs_f64(limit + s.grace);
     let mut killed = false;
     let status = loop {
         if let Some(st) = child.try_wait()? {
@@ -218,6 +235,7 @@ fn run_one(exe: &Path, spec: &Path, solver: &str, seed: Option<u64>, s: &Compare
         killed,
         solver_version: None,
         exit_code: status.and_then(|s| s.code()),
+        time_limit: Some(limit),
     };
     if let (Some(res), false) = (result, killed) {
         r.edges = Some(res.mesh.num_edges());
@@ -271,7 +289,17 @@ pub fn summarize(records: &[RunRecord], solvers: &[String], limit: f64) -> Vec<B
         .iter()
         .map(|s| {
             let mine: Vec<&RunRecord> = records.iter().filter(|r| &r.solver == s).collect();
-            let times: Vec<f64> = mine.iter().map(|r| if solved(r) { r.wall_time.min(limit) } else { limit }).collect();
+            let times: Vec<f64> = mine
+                .iter()
+                .map(|r| {
+                    let limit = r.time_limit.unwrap_or(limit);
+                    if solved(r) {
+                        r.wall_time.min(limit)
+                    } else {
+                        limit
+                    }
+                })
+                .collect();
             let wins = instances
                 .iter()
                 .filter(|i| {

@@ -80,6 +80,9 @@ enum Command {
         /// Threads per run.
         #[arg(long)]
         threads: Option<u32>,
+        /// Give each row the paper's own time for it as its limit (capped at --time-limit).
+        #[arg(long)]
+        paper_limits: bool,
         /// Output directory.
         #[arg(long, default_value = "out/compare")]
         out: PathBuf,
@@ -218,7 +221,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
     match cli.command {
         Command::SolveFile { file, solve, json } => solve_file(&file, &solve, json.as_deref()),
         Command::Solve { spec, solve, out, export, no_solve } => cli::design::solve_spec(&spec, &solve, out, export, no_solve),
-        Command::Compare { specs, manifest, solvers, time_limit, grace, seeds, threads, out } => {
+        Command::Compare { specs, manifest, solvers, time_limit, grace, seeds, threads, paper_limits, out } => {
             let manifest = match manifest {
                 Some(m) => netspec::compare::Manifest::load(&m).map_err(anyhow::Error::msg)?,
                 None => netspec::compare::Manifest::from_specs(&specs),
@@ -228,7 +231,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
             } else {
                 solvers.iter().map(|k| k.name().to_string()).collect()
             };
-            let settings = netspec::compare::CompareSettings { manifest, solvers: solvers.clone(), time_limit, grace, seeds, threads };
+            let settings = netspec::compare::CompareSettings { manifest, solvers: solvers.clone(), time_limit, grace, seeds, threads, paper_limits };
             std::fs::create_dir_all(&out).with_context(|| format!("creating {}", out.display()))?;
             let exe = std::env::current_exe().context("locating the netspec binary")?;
             let records = netspec::compare::run_all(&exe, &settings, &out, |r, resumed| {
@@ -251,8 +254,9 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 .unwrap_or_else(|| "unknown CPU".into());
             let command: Vec<String> = std::env::args().collect();
             let header = format!(
-                "netspec {} compare, time limit {time_limit} s, grace {grace} s; {cpu}, {} cores\n\nCommand: `{}`\n\n",
+                "netspec {} compare, time limit {time_limit} s{}, grace {grace} s; {cpu}, {} cores\n\nCommand: `{}`\n\n",
                 env!("CARGO_PKG_VERSION"),
+                if paper_limits { " (each row at most the paper's time for it)" } else { "" },
                 std::thread::available_parallelism().map_or(0, |n| n.get()),
                 command.join(" ")
             );

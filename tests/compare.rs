@@ -128,6 +128,7 @@ fn record(instance: &str, solver: &str, status: &str, t: f64) -> RunRecord {
         killed: false,
         solver_version: None,
         exit_code: Some(0),
+        time_limit: None,
     }
 }
 
@@ -195,6 +196,7 @@ fn unsolved_runs_are_charged_the_limit() {
         killed: false,
         solver_version: None,
         exit_code: Some(0),
+        time_limit: None,
     };
     let recs = vec![rec("x", "optimal", 2.0), rec("y", "limit(time)", 7.0)];
     let s = summarize(&recs, &["x".into(), "y".into()], 60.0);
@@ -234,13 +236,36 @@ paper = { edges = 657, time = "379/366/49" }
     assert!(md.contains("| net | 40 (40) |"), "{md}");
     assert!(md.contains("| street | - (657) | - (-) | 379/366/49 | missing | missing: not built yet |"), "{md}");
     assert!(md.contains("Command: `"), "{md}");
-    // The repository's Table 1 manifest loads, lists every row of the paper's table, and every
-    // spec it names exists.
+    // The repository's Table 1 manifest loads and lists every row of the paper's table (street
+    // rows once per level: 11 street rows → 9 × 3 levels + 5L3 + 5L4 = 29 entries, plus the 15
+    // others), and every spec it names exists and resolves.
     let m = netspec::compare::Manifest::load(&std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("models/table1.toml")).unwrap();
-    assert_eq!(m.row.len(), 26);
+    assert_eq!(m.row.len(), 44);
+    for fig in ["1a-L2", "1c-L4", "1d", "1e", "2a", "2g", "5L3", "5L4", "7a-L2", "7e-L4", "8-L3", "9b1", "9b4", "11a", "11b"] {
+        assert!(m.row.iter().any(|r| r.name == fig), "{fig} missing from table1.toml");
+    }
     for r in &m.row {
         if let Some(spec) = &r.spec {
-            assert!(spec.exists(), "{}: {}", r.name, spec.display());
+            let s = netspec::spec::Spec::load(spec).unwrap_or_else(|e| panic!("{}: {e}", r.name));
+            s.resolve(spec.parent().unwrap()).unwrap_or_else(|e| panic!("{}: {e}", r.name));
         }
     }
+}
+
+/// `--paper-limits`: each row gets the paper's own time as its limit, capped; unsolved runs are
+/// charged their own limit in the shifted geometric mean.
+#[test]
+fn paper_limits_per_row() {
+    use netspec::compare::CompareSettings;
+    let row = |time: &str| ManifestRow { name: "r".into(), spec: None, missing: Some("-".into()), paper: PaperRow { edges: None, variables: None, time: Some(time.into()) } };
+    let mut s = CompareSettings { manifest: Manifest { row: vec![] }, solvers: vec![], time_limit: 100.0, grace: 1.0, seeds: vec![], threads: None, paper_limits: true };
+    assert_eq!(s.limit_for(&row("35")), 35.0);
+    assert_eq!(s.limit_for(&row("1018")), 100.0);
+    assert_eq!(s.limit_for(&row("379/366/49")), 100.0);
+    s.paper_limits = false;
+    assert_eq!(s.limit_for(&row("35")), 100.0);
+    let mut a = record("i", "x", "limit(time)", 35.0);
+    a.time_limit = Some(35.0);
+    let summary = summarize(&[a], &["x".into()], 100.0);
+    assert!((summary[0].sgm_time - 35.0).abs() < 1e-9, "{summary:?}");
 }
