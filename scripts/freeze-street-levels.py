@@ -19,6 +19,11 @@ def level_dir(fig, n):
 def freeze(fig, n):
     src = level_dir(fig, n)
     if not src:
+        prev = level_dir(fig, n - 1)
+        if prev:
+            o = json.load(open(os.path.join(prev, "state.json")))["outcome"]
+            if not o["state"] in ("solved", "reused"):
+                return None, f"no level-{n} instance: level {n - 1} of the city run ended without a network ({o['termination'] or o['message']}, {o['wall_time']:.0f} s)"
         return None, f"no level-{n} instance yet: run `netspec city models/city/{fig}.toml --out out/city/{fig}`"
     state = json.load(open(os.path.join(src, "state.json")))
     dst = os.path.join(ROOT, "models/streets", fig, f"L{n}")
