@@ -172,6 +172,10 @@ pub struct RegionRoads {
     pub mesh: Mesh,
     /// Level per edge.
     pub edge_level: Vec<u8>,
+    /// Per vertex: whether streets may join the major road there (a sink at the last level; on
+    /// a `wall` boundary only the given sinks). Empty: everywhere (states from older runs).
+    #[serde(default)]
+    pub joins_major: Vec<bool>,
 }
 
 /// Everything about one sub-region.
@@ -321,7 +325,7 @@ fn run_region(
         }
     };
     let edge_level = mesh0.edges().map(|e| u8::from(mesh0.is_boundary_edge(e))).collect();
-    let mut roads = RegionRoads { mesh: mesh0, edge_level };
+    let mut roads = RegionRoads { mesh: mesh0, edge_level, joins_major: Vec::new() };
     let mut blocked: Option<String> = None;
     for &n in &levels {
         if let Some(why) = &blocked {
@@ -363,7 +367,7 @@ pub fn level_input(city: &str, region: &str, n: u8, level: &LevelSpec, prev: &Re
                 edge_level[c.index()] = prev.edge_level[e];
             }
         }
-        RegionRoads { mesh: sub.mesh, edge_level }
+        RegionRoads { mesh: sub.mesh, edge_level, joins_major: Vec::new() }
     } else {
         prev.clone()
     };
@@ -405,7 +409,14 @@ fn run_level(
                 if o.has_network() {
                     o.state = "reused".into();
                 }
-                return Ok((o, state.roads));
+                let mut roads = state.roads;
+                if let Some(r) = roads.as_mut().filter(|r| r.joins_major.is_empty()) {
+                    // A state from before `joins_major` existed: the sinks come from the spec.
+                    if let Ok(p) = input.spec.resolve_on_mesh(r.mesh.clone()) {
+                        r.joins_major = p.is_sink;
+                    }
+                }
+                return Ok((o, roads));
             }
         }
     }
@@ -454,6 +465,7 @@ fn run_level(
                 added += 1;
             }
         }
+        roads.joins_major = problem.is_sink.clone();
         o.new_edges = Some(added);
         o.state = "solved".into();
         roads

@@ -66,14 +66,17 @@ pub struct CityResult {
 }
 
 /// The city's streets as one graph: sub-region meshes' roads with coincident vertices merged,
-/// each edge with its level (1 for sub-region boundaries, the major roads).
-pub fn street_graph(regions: &[RegionOutcome], spacing: f64) -> StreetGraph {
+/// each edge with its level (1 for sub-region boundaries, the major roads); and per merged vertex
+/// whether streets may join the major road there (see [`super::city::RegionRoads::joins_major`]).
+pub fn street_graph(regions: &[RegionOutcome], spacing: f64) -> (StreetGraph, Vec<bool>) {
     let q = spacing * 1e-4;
     let mut ids: IndexMap<(i64, i64), u32> = IndexMap::new();
     let mut positions = Vec::new();
     let mut edges: IndexMap<(u32, u32), u8> = IndexMap::new();
+    let mut joins: Vec<bool> = Vec::new();
     for r in regions {
         let Some(roads) = &r.roads else { continue };
+        let joinable = |v: crate::mesh::VertexId| roads.joins_major.get(v.index()).copied().unwrap_or(roads.joins_major.is_empty());
         let mut vid = |p: [f64; 2]| -> u32 {
             let key = ((p[0] / q).round() as i64, (p[1] / q).round() as i64);
             *ids.entry(key).or_insert_with(|| {
@@ -86,8 +89,11 @@ pub fn street_graph(regions: &[RegionOutcome], spacing: f64) -> StreetGraph {
             if level == 0 {
                 continue;
             }
-            let (a, b) = roads.mesh.edge_vertices(e);
-            let (a, b) = (vid(roads.mesh.position(a)), vid(roads.mesh.position(b)));
+            let (va, vb) = roads.mesh.edge_vertices(e);
+            let (a, b) = (vid(roads.mesh.position(va)), vid(roads.mesh.position(vb)));
+            joins.resize(joins.len().max(a.max(b) as usize + 1), false);
+            joins[a as usize] |= joinable(va);
+            joins[b as usize] |= joinable(vb);
             if a == b {
                 continue;
             }
@@ -96,7 +102,8 @@ pub fn street_graph(regions: &[RegionOutcome], spacing: f64) -> StreetGraph {
             *l = (*l).min(level);
         }
     }
-    StreetGraph { positions, edges: edges.into_iter().map(|((a, b), level)| StreetEdge { a, b, level }).collect() }
+    joins.resize(positions.len(), false);
+    (StreetGraph { positions, edges: edges.into_iter().map(|((a, b), level)| StreetEdge { a, b, level }).collect() }, joins)
 }
 
 fn polygon_area(poly: &[[f64; 2]]) -> f64 {
@@ -113,7 +120,7 @@ pub fn run_city(spec: &CitySpec, out: &Path, opts: &CityRunOptions) -> Result<Ci
     let t0 = std::time::Instant::now();
     std::fs::create_dir_all(out).map_err(|source| CityError::Io { path: out.to_path_buf(), source })?;
     let regions = city::run_regions(spec, out, opts)?;
-    let graph = street_graph(&regions, spec.mesh.spacing);
+    let (graph, joins) = street_graph(&regions, spec.mesh.spacing);
     let planar = PlanarGraph { positions: graph.positions.clone(), edges: graph.edges.iter().map(|e| [e.a, e.b]).collect() };
     let metrics = street_metrics(&planar, spec.metres_per_unit, polygon_area(&spec.domain.outer));
     let smoothed = match spec.smoothing.method {
@@ -125,7 +132,7 @@ pub fn run_city(spec: &CitySpec, out: &Path, opts: &CityRunOptions) -> Result<Ci
         }
     };
     let major = major_road_segments(&regions);
-    let streets = snap_to_major_roads(&graph, smoothed.snakes.clone(), &major, 1.5 * spec.mesh.spacing);
+    let streets = snap_to_major_roads(&graph, &joins, smoothed.snakes.clone(), &major, 1.5 * spec.mesh.spacing);
     let smoothing = SmoothingSummary {
         method: spec.smoothing.method,
         snakes: smoothed.snakes.len(),
@@ -204,13 +211,14 @@ fn nearest_on_segments(p: [f64; 2], segments: &[[[f64; 2]; 2]]) -> Option<[f64; 
 
 /// The streets to draw: level-1 snakes are dropped (level 1 is drawn as given), and every end of
 /// a level ≥ 2 snake that sits on the sub-region boundary (the staircase next to a major road)
-/// is moved onto the major road itself, the move fading out linearly over `blend` of arc length,
+/// where streets may join it (`joins`) is moved onto the major road itself, the move fading out linearly over `blend` of arc length,
 /// so streets meet the roads they join.
-pub fn snap_to_major_roads(g: &StreetGraph, snakes: Vec<Snake>, major: &[[[f64; 2]; 2]], blend: f64) -> Vec<Snake> {
+pub fn snap_to_major_roads(g: &StreetGraph, joins: &[bool], snakes: Vec<Snake>, major: &[[[f64; 2]; 2]], blend: f64) -> Vec<Snake> {
     let mut on_major = vec![false; g.positions.len()];
     for e in g.edges.iter().filter(|e| e.level == 1) {
-        on_major[e.a as usize] = true;
-        on_major[e.b as usize] = true;
+        for v in [e.a as usize, e.b as usize] {
+            on_major[v] = joins.get(v).copied().unwrap_or(true);
+        }
     }
     let mut out: Vec<Snake> = snakes.into_iter().filter(|s| s.level >= 2).collect();
     for s in &mut out {
