@@ -209,18 +209,6 @@ fn weight(name: &str, w: &WeightValue, forbid_ok: bool) -> Result<Weight, SpecEr
     }
 }
 
-fn point_in_polygon(p: [f64; 2], poly: &[[f64; 2]]) -> bool {
-    let mut inside = false;
-    let n = poly.len();
-    for i in 0..n {
-        let (a, b) = (poly[i], poly[(i + n - 1) % n]);
-        if (a[1] > p[1]) != (b[1] > p[1]) && p[0] < (b[0] - a[0]) * (p[1] - a[1]) / (b[1] - a[1]) + a[0] {
-            inside = !inside;
-        }
-    }
-    inside
-}
-
 impl Spec {
     /// Builds the mesh and resolves every field. `base` is the directory relative to which
     /// mesh files are found.
@@ -277,7 +265,7 @@ impl Spec {
                 return Err(field(format!("user.obstacle_polygons[{i}]"), "a polygon needs at least 3 points"));
             }
             for f in mesh.faces() {
-                if point_in_polygon(mesh.face_centroid(f), poly) {
+                if mesh::point_in_polygon(mesh.face_centroid(f), poly) {
                     is_obstacle_face[f.index()] = true;
                 }
             }

@@ -245,21 +245,8 @@ pub fn regions(spec: &CitySpec) -> Result<Vec<(Region, Option<usize>)>, CityErro
     Ok(arr.regions.into_iter().zip(entries).collect())
 }
 
-/// Even-odd point-in-polygon test.
-pub(crate) fn point_in_polygon(p: [f64; 2], poly: &[[f64; 2]]) -> bool {
-    let mut inside = false;
-    let n = poly.len();
-    for i in 0..n {
-        let (a, b) = (poly[i], poly[(i + n - 1) % n]);
-        if (a[1] > p[1]) != (b[1] > p[1]) && p[0] < (b[0] - a[0]) * (p[1] - a[1]) / (b[1] - a[1]) + a[0] {
-            inside = !inside;
-        }
-    }
-    inside
-}
-
 fn point_in_region(p: [f64; 2], r: &Region) -> bool {
-    point_in_polygon(p, &r.outer) && !r.holes.iter().any(|h| point_in_polygon(p, h))
+    mesh::point_in_polygon(p, &r.outer) && !r.holes.iter().any(|h| mesh::point_in_polygon(p, h))
 }
 
 fn domain_origin(spec: &CitySpec) -> [f64; 2] {
