@@ -31,6 +31,24 @@ pub(crate) fn orient(a: P, b: P, c: P) -> f64 {
     cross(sub(b, a), sub(c, a))
 }
 
+/// Parameter of the projection of `p` on the line `a → b` (0 at `a`, 1 at `b`; 0 for a
+/// zero-length segment).
+pub(crate) fn projection_param(p: P, a: P, b: P) -> f64 {
+    let d = sub(b, a);
+    let l2 = dot(d, d);
+    if l2 > 0.0 {
+        dot(sub(p, a), d) / l2
+    } else {
+        0.0
+    }
+}
+
+/// The point of segment `a b` closest to `p`.
+pub(crate) fn closest_on_segment(p: P, a: P, b: P) -> P {
+    let t = projection_param(p, a, b).clamp(0.0, 1.0);
+    [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])]
+}
+
 /// Signed area of a closed polygon (positive if counter-clockwise).
 pub(crate) fn signed_area(pts: &[P]) -> f64 {
     let n = pts.len();

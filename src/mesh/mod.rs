@@ -39,7 +39,7 @@
 
 mod error;
 pub mod generate;
-mod geom;
+pub(crate) mod geom;
 pub(crate) use self::geom::point_in_polygon;
 mod halfedge;
 mod ids;

@@ -2,6 +2,7 @@
 //! (`city.json`, `streets.geojson`, `city.svg`, `city.png`).
 
 use super::city::{self, CityError, CityRunOptions, RegionOutcome};
+use crate::mesh::geom;
 use super::metrics::{street_metrics, StreetMetrics};
 use super::planar::PlanarGraph;
 use super::smooth::{self, Snake, StreetEdge, StreetGraph};
@@ -106,13 +107,8 @@ pub fn street_graph(regions: &[RegionOutcome], spacing: f64) -> (StreetGraph, Ve
     (StreetGraph { positions, edges: edges.into_iter().map(|((a, b), level)| StreetEdge { a, b, level }).collect() }, joins)
 }
 
-fn polygon_area(poly: &[[f64; 2]]) -> f64 {
-    let n = poly.len();
-    (0..n).map(|i| poly[i][0] * poly[(i + 1) % n][1] - poly[(i + 1) % n][0] * poly[i][1]).sum::<f64>().abs() / 2.0
-}
-
 fn polyline_length(points: &[[f64; 2]]) -> f64 {
-    points.windows(2).map(|w| (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1])).sum()
+    points.windows(2).map(|w| geom::dist(w[0], w[1])).sum()
 }
 
 /// Runs a city end to end and writes every output under `out`.
@@ -122,7 +118,7 @@ pub fn run_city(spec: &CitySpec, out: &Path, opts: &CityRunOptions) -> Result<Ci
     let regions = city::run_regions(spec, out, opts)?;
     let (graph, joins) = street_graph(&regions, spec.mesh.spacing);
     let planar = PlanarGraph { positions: graph.positions.clone(), edges: graph.edges.iter().map(|e| [e.a, e.b]).collect() };
-    let metrics = street_metrics(&planar, spec.metres_per_unit, polygon_area(&spec.domain.outer));
+    let metrics = street_metrics(&planar, spec.metres_per_unit, geom::signed_area(&spec.domain.outer).abs());
     let smoothed = match spec.smoothing.method {
         SmoothingMethod::Snake => smooth::smooth(&graph, &smooth::SnakeOptions::default()),
         SmoothingMethod::Fair => smooth::fair(&graph, &smooth::FairOptions::default()),
@@ -195,18 +191,7 @@ pub fn major_road_segments(regions: &[RegionOutcome]) -> Vec<[[f64; 2]; 2]> {
 }
 
 fn nearest_on_segments(p: [f64; 2], segments: &[[[f64; 2]; 2]]) -> Option<[f64; 2]> {
-    let mut best: Option<(f64, [f64; 2])> = None;
-    for &[a, b] in segments {
-        let d = [b[0] - a[0], b[1] - a[1]];
-        let len2 = d[0] * d[0] + d[1] * d[1];
-        let t = if len2 > 0.0 { (((p[0] - a[0]) * d[0] + (p[1] - a[1]) * d[1]) / len2).clamp(0.0, 1.0) } else { 0.0 };
-        let q = [a[0] + t * d[0], a[1] + t * d[1]];
-        let dist = (q[0] - p[0]).hypot(q[1] - p[1]);
-        if best.is_none_or(|(bd, _)| dist < bd) {
-            best = Some((dist, q));
-        }
-    }
-    best.map(|(_, q)| q)
+    segments.iter().map(|&[a, b]| geom::closest_on_segment(p, a, b)).min_by(|q, r| geom::dist(p, *q).total_cmp(&geom::dist(p, *r)))
 }
 
 /// The streets to draw: level-1 snakes are dropped (level 1 is drawn as given), and every end of
@@ -241,7 +226,7 @@ pub fn snap_to_major_roads(g: &StreetGraph, joins: &[bool], snakes: Vec<Snake>, 
                 let mut arc = 0.0;
                 for i in 0..s.points.len() {
                     if i > 0 {
-                        arc += (s.points[i][0] - s.points[i - 1][0]).hypot(s.points[i][1] - s.points[i - 1][1]);
+                        arc += geom::dist(s.points[i], s.points[i - 1]);
                     }
                     let w = (1.0 - arc / reach).max(0.0);
                     if w == 0.0 {

@@ -8,59 +8,13 @@
 //! All outputs are deterministic: vertices are numbered in lexicographic (x, then y) order of
 //! their positions, edges are sorted, and no hash-map iteration order leaks into a result.
 
+use crate::mesh::geom::{closest_on_segment, dist, orient, point_in_polygon, projection_param, signed_area, sub, P};
 use serde::{Deserialize, Serialize};
 use std::collections::{BTreeMap, HashMap};
 
-type P = [f64; 2];
-
-fn sub(a: P, b: P) -> P {
-    [a[0] - b[0], a[1] - b[1]]
-}
-fn cross(a: P, b: P) -> f64 {
-    a[0] * b[1] - a[1] * b[0]
-}
-fn dot(a: P, b: P) -> f64 {
-    a[0] * b[0] + a[1] * b[1]
-}
-fn dist(a: P, b: P) -> f64 {
-    let d = sub(a, b);
-    d[0].hypot(d[1])
-}
-/// > 0 if `c` is left of the directed line `a → b`.
-fn orient(a: P, b: P, c: P) -> f64 {
-    cross(sub(b, a), sub(c, a))
-}
-/// Signed area of a closed ring (positive if counter-clockwise).
-fn signed_area(ring: &[P]) -> f64 {
-    let n = ring.len();
-    0.5 * (0..n).map(|i| cross(ring[i], ring[(i + 1) % n])).sum::<f64>()
-}
-/// Even-odd point-in-ring test (points on the ring may go either way).
-fn in_ring(p: P, ring: &[P]) -> bool {
-    let n = ring.len();
-    let mut inside = false;
-    for i in 0..n {
-        let (a, b) = (ring[i], ring[(i + 1) % n]);
-        if (a[1] > p[1]) != (b[1] > p[1]) && p[0] < a[0] + (p[1] - a[1]) / (b[1] - a[1]) * (b[0] - a[0]) {
-            inside = !inside;
-        }
-    }
-    inside
-}
-/// Parameter of the projection of `p` on the line `a → b` (0 at `a`, 1 at `b`).
-fn param(p: P, a: P, b: P) -> f64 {
-    let d = sub(b, a);
-    let l2 = dot(d, d);
-    if l2 > 0.0 {
-        dot(sub(p, a), d) / l2
-    } else {
-        0.0
-    }
-}
 /// Distance from `p` to the segment `a b`.
 fn seg_dist(p: P, a: P, b: P) -> f64 {
-    let t = param(p, a, b).clamp(0.0, 1.0);
-    dist(p, [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])])
+    dist(p, closest_on_segment(p, a, b))
 }
 /// The crossing point of two segments that cross properly (each strictly separates the other's
 /// endpoints), else `None`.
@@ -179,7 +133,7 @@ fn split_segments(segs: &[[P; 2]], tol: f64) -> (Vec<P>, Vec<([u32; 2], Vec<usiz
     let mut k = 0;
     for (s, pts) in on.iter().enumerate() {
         let mut along: Vec<(f64, u32)> =
-            pts.iter().enumerate().map(|(m, &p)| (param(p, segs[s][0], segs[s][1]), ids[k + m])).collect();
+            pts.iter().enumerate().map(|(m, &p)| (projection_param(p, segs[s][0], segs[s][1]), ids[k + m])).collect();
         k += pts.len();
         along.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
         for w in along.windows(2) {
@@ -411,7 +365,7 @@ impl PlanarGraph {
         for (&r, &v) in &low {
             let p = pos(v);
             let container = (0..faces.len())
-                .filter(|&f| face_comp[f] != r && in_ring(p, &rings[f]))
+                .filter(|&f| face_comp[f] != r && point_in_polygon(p, &rings[f]))
                 .min_by(|&a, &b| outer_area[a].total_cmp(&outer_area[b]).then(a.cmp(&b)));
             let w = outer_walk[&r];
             walk_face[w] = container.map(|f| f as u32);
@@ -648,7 +602,7 @@ pub fn arrangement(domain: &[[f64; 2]], roads: &[Vec<[f64; 2]>], tol: f64) -> Re
     for (e, src) in split {
         let (a, b) = (positions[e[0] as usize], positions[e[1] as usize]);
         let on_boundary = src.iter().any(|&s| s < nb);
-        if on_boundary || in_ring([0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])], &poly) {
+        if on_boundary || point_in_polygon([0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])], &poly) {
             let rs: Vec<usize> = src.iter().filter(|&&s| s >= nb).map(|&s| seg_road[s - nb]).collect();
             for &r in &rs {
                 inside_road[r] = true;
@@ -709,8 +663,8 @@ mod tests {
     }
     fn check_labels(a: &Arrangement) {
         for r in &a.regions {
-            assert!(in_ring(r.label_point, &r.outer), "{r:?}");
-            assert!(r.holes.iter().all(|h| !in_ring(r.label_point, h)), "{r:?}");
+            assert!(point_in_polygon(r.label_point, &r.outer), "{r:?}");
+            assert!(r.holes.iter().all(|h| !point_in_polygon(r.label_point, h)), "{r:?}");
             assert!(signed_area(&r.outer) > 0.0);
             assert!(r.holes.iter().all(|h| signed_area(h) < 0.0));
         }

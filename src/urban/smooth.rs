@@ -21,10 +21,10 @@
 //! stiffness against inertia is `(β/γ)^¼` original edges.
 //!
 //! End points of snakes never move; they are copied bit for bit into the output.
+use crate::mesh::geom::{dist, dot, sub, P};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeSet;
 
-type P = [f64; 2];
 
 /// A street network drawn on a mesh: positions and undirected edges with a level (1 = major
 /// roads, 2 = collector, 3 = local, 4 = cul-de-sacs).
@@ -232,16 +232,6 @@ impl Topology {
             1.0
         }
     }
-}
-
-fn sub(a: P, b: P) -> P {
-    [a[0] - b[0], a[1] - b[1]]
-}
-fn dot(a: P, b: P) -> f64 {
-    a[0] * b[0] + a[1] * b[1]
-}
-fn dist(a: P, b: P) -> f64 {
-    dot(sub(a, b), sub(a, b)).sqrt()
 }
 
 /// Splits the network into snakes (paper appendix): maximal chains between vertices of valence
