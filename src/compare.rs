@@ -175,9 +175,7 @@ pub fn run_all(exe: &Path, settings: &CompareSettings, out: &Path, mut progress:
                 std::fs::create_dir_all(&dir)?;
                 let mut r = run_one(exe, spec, solver, seed, settings, settings.limit_for(row), &dir)?;
                 r.instance = name;
-                let tmp = dir.join("run.json.tmp");
-                std::fs::write(&tmp, serde_json::to_string_pretty(&r)? + "\n")?;
-                std::fs::rename(&tmp, &record_path)?;
+                crate::io::write_atomic(&record_path, &(serde_json::to_string_pretty(&r)? + "\n"))?;
                 progress(&r, false);
                 records.push(r);
             }

@@ -104,7 +104,7 @@ fn check_carried_over(out: &Path, reg: &netspec::urban::RegionOutcome) {
         }
     }
     assert!(level2 > 0, "{}: level 2 built no road", reg.name);
-    // Level 2's result has exactly half as many of these (each was split in two).
+    // Level 2's own network passed every check.
     let l2: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(dir.join("L2/result.json")).unwrap()).unwrap();
     assert_eq!(l2["validity"]["valid"], serde_json::json!(true));
 }

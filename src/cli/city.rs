@@ -6,7 +6,7 @@ use netspec::solvers::SolverKind;
 use netspec::urban::{self, CityEvent, CityRunOptions, CitySpec};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use std::sync::{Arc, Mutex};
+use std::sync::Arc;
 use std::time::Duration;
 
 /// Exit code when some level produced no network (infeasible, time limit without a solution,
@@ -56,7 +56,7 @@ pub fn run_city(path: &Path, args: CityArgs) -> Result<ExitCode> {
         .iter()
         .enumerate()
         .map(|(i, (_, entry))| {
-            let name = entry.map_or_else(|| format!("region-{i}"), |k| spec.regions[k].name.clone());
+            let name = spec.region_name(i, *entry);
             let b = multi.add(ProgressBar::new(spec.region_levels(*entry).len() as u64));
             b.set_style(style.clone());
             b.set_prefix(format!("{i:02} {name}"));
@@ -65,10 +65,10 @@ pub fn run_city(path: &Path, args: CityArgs) -> Result<ExitCode> {
             b
         })
         .collect();
-    let bars = Arc::new(Mutex::new(bars));
-    let b2 = bars.clone();
+    // Progress bars are shared handles: the observer (called from the worker threads) gets clones.
+    let handles = bars.clone();
     opts.observer = Some(Arc::new(move |e: &CityEvent| {
-        let bars = b2.lock().expect("progress bars");
+        let bars = &handles;
         match e {
             CityEvent::LevelStarted { region, level, time_limit } => {
                 bars[*region].set_message(format!("L{level} solving{}", time_limit.map_or(String::new(), |t| format!(" (limit {t} s)"))));
@@ -86,8 +86,8 @@ pub fn run_city(path: &Path, args: CityArgs) -> Result<ExitCode> {
             }
         }
     }));
-    let result = urban::run_city(&spec, &out, &opts);
-    for b in bars.lock().expect("progress bars").iter() {
+    let result = urban::run_city_on(&spec, regions, &out, &opts);
+    for b in &bars {
         b.finish();
     }
     let result = result.with_context(|| format!("{}", path.display()))?;

@@ -133,3 +133,12 @@ pub fn write_model_file(model: &Model, path: &Path) -> Result<NameMap, FileError
     std::io::Write::flush(&mut w).map_err(|e| file_err(path, e))?;
     Ok(map)
 }
+
+/// Writes `text` to `path` through a temporary file and a rename, so a reader (or a resumed run)
+/// never sees a half-written file.
+pub(crate) fn write_atomic(path: &Path, text: &str) -> std::io::Result<()> {
+    let mut tmp = path.as_os_str().to_owned();
+    tmp.push(".tmp");
+    std::fs::write(&tmp, text)?;
+    std::fs::rename(&tmp, path)
+}

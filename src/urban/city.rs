@@ -173,8 +173,7 @@ pub struct RegionRoads {
     /// Level per edge.
     pub edge_level: Vec<u8>,
     /// Per vertex: whether streets may join the major road there (a sink at the last level; on
-    /// a `wall` boundary only the given sinks). Empty: everywhere (states from older runs).
-    #[serde(default)]
+    /// a `wall` boundary only the given sinks). Empty until a level has found a network.
     pub joins_major: Vec<bool>,
 }
 
@@ -249,14 +248,6 @@ fn point_in_region(p: [f64; 2], r: &Region) -> bool {
     mesh::point_in_polygon(p, &r.outer) && !r.holes.iter().any(|h| mesh::point_in_polygon(p, h))
 }
 
-fn domain_origin(spec: &CitySpec) -> [f64; 2] {
-    let mut lo = [f64::INFINITY; 2];
-    for p in &spec.domain.outer {
-        lo = [lo[0].min(p[0]), lo[1].min(p[1])];
-    }
-    lo
-}
-
 /// The directory of one region's files.
 pub fn region_dir(out: &Path, index: usize, name: &str) -> PathBuf {
     let safe: String = name.chars().map(|c| if c.is_ascii_alphanumeric() || c == '-' || c == '_' { c } else { '_' }).collect();
@@ -264,16 +255,15 @@ pub fn region_dir(out: &Path, index: usize, name: &str) -> PathBuf {
 }
 
 fn write_atomic(path: &Path, text: &str) -> Result<(), CityError> {
-    let tmp = path.with_extension("tmp");
-    std::fs::write(&tmp, text).map_err(io_err(&tmp))?;
-    std::fs::rename(&tmp, path).map_err(io_err(path))
+    crate::io::write_atomic(path, text).map_err(io_err(path))
 }
 
-/// Runs every sub-region's levels (in parallel) and returns the outcomes in region order.
+/// Runs every sub-region's levels (in parallel) and returns the outcomes in region order;
+/// `regs` are the city's sub-regions from [`regions`].
 /// Finished levels are written under `out/regions/` as they end.
-pub fn run_regions(spec: &CitySpec, out: &Path, opts: &CityRunOptions) -> Result<Vec<RegionOutcome>, CityError> {
-    let regs = regions(spec)?;
-    let origin = domain_origin(spec);
+pub fn run_regions(spec: &CitySpec, regs: Vec<(Region, Option<usize>)>, out: &Path, opts: &CityRunOptions) -> Result<Vec<RegionOutcome>, CityError> {
+    // One lattice for the whole city, through the domain's lower-left corner.
+    let origin = spec.domain_bounds().0;
     let workers = (opts.threads / opts.threads_per_solve.max(1)).max(1) as usize;
     let pool = rayon::ThreadPoolBuilder::new().num_threads(workers).build().map_err(|e| CityError::Threads(e.to_string()))?;
     use rayon::prelude::*;
@@ -290,7 +280,7 @@ fn run_region(
     reg: Region,
     entry: Option<usize>,
 ) -> Result<RegionOutcome, CityError> {
-    let name = entry.map_or_else(|| format!("region-{index}"), |i| spec.regions[i].name.clone());
+    let name = spec.region_name(index, entry);
     let dir = region_dir(out, index, &name);
     std::fs::create_dir_all(&dir).map_err(io_err(&dir))?;
     let mut outcome = RegionOutcome { index, name: name.clone(), spec_entry: entry, outer: reg.outer.clone(), holes: reg.holes.clone(), area: reg.area, label_point: reg.label_point, levels: Vec::new(), roads: None };
@@ -396,14 +386,7 @@ fn run_level(
                 if o.has_network() {
                     o.state = "reused".into();
                 }
-                let mut roads = state.roads;
-                if let Some(r) = roads.as_mut().filter(|r| r.joins_major.is_empty()) {
-                    // A state from before `joins_major` existed: the sinks come from the spec.
-                    if let Ok(p) = input.spec.resolve_on_mesh(r.mesh.clone()) {
-                        r.joins_major = p.is_sink;
-                    }
-                }
-                return Ok((o, roads));
+                return Ok((o, state.roads));
             }
         }
     }

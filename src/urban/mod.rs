@@ -11,5 +11,5 @@ pub mod smooth;
 pub mod spec;
 
 pub use city::{run_regions, CityError, CityEvent, CityRunOptions, LevelOutcome, RegionOutcome, RegionRoads};
-pub use output::{run_city, CityResult};
+pub use output::{run_city, run_city_on, CityResult};
 pub use spec::{CitySpec, CitySpecError, CitySpecErrorKind, LevelSpec};

@@ -4,7 +4,7 @@
 use super::city::{self, CityError, CityRunOptions, RegionOutcome};
 use crate::mesh::geom;
 use super::metrics::{street_metrics, StreetMetrics};
-use super::planar::PlanarGraph;
+use super::planar::{PlanarGraph, Region};
 use super::smooth::{self, Snake, StreetEdge, StreetGraph};
 use super::spec::{CitySpec, SmoothingMethod};
 use indexmap::IndexMap;
@@ -66,45 +66,39 @@ pub struct CityResult {
     pub wall_time: f64,
 }
 
-/// The city's streets as one graph: sub-region meshes' roads with coincident vertices merged,
-/// each edge with its level (1 for sub-region boundaries, the major roads); and per merged vertex
-/// whether streets may join the major road there (see [`super::city::RegionRoads::joins_major`]).
-pub fn street_graph(regions: &[RegionOutcome], spacing: f64) -> (StreetGraph, Vec<bool>) {
-    let q = spacing * 1e-4;
-    let mut ids: IndexMap<(i64, i64), u32> = IndexMap::new();
-    let mut positions = Vec::new();
-    let mut edges: IndexMap<(u32, u32), u8> = IndexMap::new();
-    let mut joins: Vec<bool> = Vec::new();
-    for r in regions {
-        let Some(roads) = &r.roads else { continue };
-        let joinable = |v: crate::mesh::VertexId| roads.joins_major.get(v.index()).copied().unwrap_or(roads.joins_major.is_empty());
-        let mut vid = |p: [f64; 2]| -> u32 {
-            let key = ((p[0] / q).round() as i64, (p[1] / q).round() as i64);
-            *ids.entry(key).or_insert_with(|| {
-                positions.push(p);
-                (positions.len() - 1) as u32
-            })
-        };
-        for e in roads.mesh.edges() {
-            let level = roads.edge_level[e.index()];
-            if level == 0 {
-                continue;
-            }
+/// The city's streets as one graph: sub-region meshes' roads with coincident vertices merged
+/// ([`PlanarGraph::from_vertices_edges_mapped`]), each edge with its level (1 for sub-region
+/// boundaries, the major roads; the lowest where regions share an edge); the same graph without
+/// levels (for the metrics); and per merged vertex whether streets may join the major road there
+/// (see [`super::city::RegionRoads::joins_major`]).
+pub fn street_graph(regions: &[RegionOutcome], spacing: f64) -> (StreetGraph, PlanarGraph, Vec<bool>) {
+    // Both ends of every road edge, each edge with its level, each end with whether it joins.
+    let (mut ends, mut pairs, mut levels, mut joinable) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    for roads in regions.iter().filter_map(|r| r.roads.as_ref()) {
+        for e in roads.mesh.edges().filter(|e| roads.edge_level[e.index()] > 0) {
             let (va, vb) = roads.mesh.edge_vertices(e);
-            let (a, b) = (vid(roads.mesh.position(va)), vid(roads.mesh.position(vb)));
-            joins.resize(joins.len().max(a.max(b) as usize + 1), false);
-            joins[a as usize] |= joinable(va);
-            joins[b as usize] |= joinable(vb);
-            if a == b {
-                continue;
+            let k = ends.len() as u32;
+            for v in [va, vb] {
+                ends.push(roads.mesh.position(v));
+                joinable.push(roads.joins_major.get(v.index()).copied().unwrap_or(roads.joins_major.is_empty()));
             }
-            let key = (a.min(b), a.max(b));
-            let l = edges.entry(key).or_insert(level);
-            *l = (*l).min(level);
+            pairs.push([k, k + 1]);
+            levels.push(roads.edge_level[e.index()]);
         }
     }
-    joins.resize(positions.len(), false);
-    (StreetGraph { positions, edges: edges.into_iter().map(|((a, b), level)| StreetEdge { a, b, level }).collect() }, joins)
+    let (planar, map) = PlanarGraph::from_vertices_edges_mapped(&ends, &pairs, spacing * 1e-6);
+    let mut level_of: std::collections::BTreeMap<[u32; 2], u8> = std::collections::BTreeMap::new();
+    for (pair, level) in pairs.iter().zip(levels) {
+        let (a, b) = (map[pair[0] as usize], map[pair[1] as usize]);
+        let l = level_of.entry([a.min(b), a.max(b)]).or_insert(level);
+        *l = (*l).min(level);
+    }
+    let mut joins = vec![false; planar.positions.len()];
+    for (i, j) in joinable.into_iter().enumerate() {
+        joins[map[i] as usize] |= j;
+    }
+    let edges = planar.edges.iter().map(|&[a, b]| StreetEdge { a, b, level: level_of[&[a, b]] }).collect();
+    (StreetGraph { positions: planar.positions.clone(), edges }, planar, joins)
 }
 
 fn polyline_length(points: &[[f64; 2]]) -> f64 {
@@ -113,11 +107,16 @@ fn polyline_length(points: &[[f64; 2]]) -> f64 {
 
 /// Runs a city end to end and writes every output under `out`.
 pub fn run_city(spec: &CitySpec, out: &Path, opts: &CityRunOptions) -> Result<CityResult, CityError> {
+    run_city_on(spec, city::regions(spec)?, out, opts)
+}
+
+/// [`run_city`] on sub-regions already computed with [`city::regions`] (the command line needs
+/// them first, for its progress bars).
+pub fn run_city_on(spec: &CitySpec, regs: Vec<(Region, Option<usize>)>, out: &Path, opts: &CityRunOptions) -> Result<CityResult, CityError> {
     let t0 = std::time::Instant::now();
     std::fs::create_dir_all(out).map_err(|source| CityError::Io { path: out.to_path_buf(), source })?;
-    let regions = city::run_regions(spec, out, opts)?;
-    let (graph, joins) = street_graph(&regions, spec.mesh.spacing);
-    let planar = PlanarGraph { positions: graph.positions.clone(), edges: graph.edges.iter().map(|e| [e.a, e.b]).collect() };
+    let regions = city::run_regions(spec, regs, out, opts)?;
+    let (graph, planar, joins) = street_graph(&regions, spec.mesh.spacing);
     let metrics = street_metrics(&planar, spec.metres_per_unit, geom::signed_area(&spec.domain.outer).abs());
     let smoothed = match spec.smoothing.method {
         SmoothingMethod::Snake => smooth::smooth(&graph, &smooth::SnakeOptions::default()),
@@ -128,10 +127,11 @@ pub fn run_city(spec: &CitySpec, out: &Path, opts: &CityRunOptions) -> Result<Ci
         }
     };
     let major = major_road_segments(&regions);
-    let streets = snap_to_major_roads(&graph, &joins, smoothed.snakes.clone(), &major, 1.5 * spec.mesh.spacing);
+    let snakes = smoothed.snakes.len();
+    let streets = snap_to_major_roads(&graph, &joins, smoothed.snakes, &major, 1.5 * spec.mesh.spacing);
     let smoothing = SmoothingSummary {
         method: spec.smoothing.method,
-        snakes: smoothed.snakes.len(),
+        snakes,
         energy_before: smoothed.energy_before,
         energy_after: smoothed.energy_after,
         iterations: smoothed.iterations,
@@ -302,12 +302,7 @@ pub fn geojson(spec: &CitySpec, regions: &[RegionOutcome], major: &[[[f64; 2]; 2
 /// The whole city: sub-regions tinted, streets by level (width and colour), a legend and the
 /// metrics.
 pub fn city_svg(spec: &CitySpec, result: &CityResult, major: &[[[f64; 2]; 2]], snakes: &[Snake]) -> String {
-    let mut lo = [f64::INFINITY; 2];
-    let mut hi = [f64::NEG_INFINITY; 2];
-    for p in &spec.domain.outer {
-        lo = [lo[0].min(p[0]), lo[1].min(p[1])];
-        hi = [hi[0].max(p[0]), hi[1].max(p[1])];
-    }
+    let (lo, hi) = spec.domain_bounds();
     let span = (hi[0] - lo[0]).max(hi[1] - lo[1]).max(1e-9);
     let scale = 900.0 / span;
     let (margin, title_h, legend_w) = (24.0, 58.0, 170.0);

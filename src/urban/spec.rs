@@ -339,6 +339,18 @@ impl CitySpec {
         }
     }
 
+    /// The domain's bounding box (lower-left, upper-right corners).
+    pub fn domain_bounds(&self) -> ([f64; 2], [f64; 2]) {
+        self.domain.outer.iter().fold(([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]), |(lo, hi), p| {
+            ([lo[0].min(p[0]), lo[1].min(p[1])], [hi[0].max(p[0]), hi[1].max(p[1])])
+        })
+    }
+
+    /// A sub-region's name: its `[[region]]` entry's, else `region-<index>`.
+    pub fn region_name(&self, index: usize, entry: Option<usize>) -> String {
+        entry.map_or_else(|| format!("region-{index}"), |i| self.regions[i].name.clone())
+    }
+
     /// Level `n`'s spec for a region (`None`: the defaults), overrides merged.
     pub fn level(&self, region: Option<usize>, n: u8) -> Result<LevelSpec, CitySpecErrorKind> {
         let key = n.to_string();
