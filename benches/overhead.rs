@@ -89,16 +89,8 @@ fn flow_lp() -> Model {
 /// The network IP (paper §4, tight formulation) on a 4×4 grid with every boundary vertex a sink
 /// (the `tiny_network` of the compare tests): 249 variables, 331 rows.
 fn network() -> Model {
-    const SPEC: &str = r#"
-name = "tiny_network"
-boundary = "wall"
-formulation = "tight"
-[mesh]
-grid = { width = 4, height = 4 }
-[sinks]
-all_boundary = true
-"#;
-    let problem = Spec::from_toml(SPEC).unwrap().resolve(Path::new(".")).unwrap();
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/specs/tiny_network.toml");
+    let problem = Spec::load(&path).unwrap().resolve(Path::new(".")).unwrap();
     netspec::pipeline::build(&problem).model
 }
 

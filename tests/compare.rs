@@ -3,37 +3,17 @@
 use netspec::compare::{bar_chart_svg, paper_seconds, shifted_geometric_mean, summarize, Manifest, ManifestRow, PaperRow, RunRecord};
 use std::process::Command;
 
-const FLOORPLAN: &str = r#"
-name = "tiny_floorplan"
-boundary = "wall"
-formulation = "tight"
-[mesh]
-grid = { width = 4, height = 4 }
-[sinks]
-vertices = [2]
-[features]
-dead_ends = "allow"
-[rooms]
-mode = "floorplan"
-templates = [{ name = "office", shape = "rect 2x2" }]
-"#;
-
-const NETWORK: &str = r#"
-name = "tiny_network"
-boundary = "wall"
-formulation = "tight"
-[mesh]
-grid = { width = 4, height = 4 }
-[sinks]
-all_boundary = true
-"#;
+/// The compare tests' two tiny instances (fixtures/specs).
+fn fixture(name: &str) -> String {
+    std::fs::read_to_string(std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/specs").join(name)).unwrap()
+}
 
 #[test]
 fn compare_runs_tables_and_resumes() {
     let dir = tempfile::tempdir().unwrap();
     let (a, b) = (dir.path().join("a.toml"), dir.path().join("b.toml"));
-    std::fs::write(&a, FLOORPLAN).unwrap();
-    std::fs::write(&b, NETWORK).unwrap();
+    std::fs::write(&a, fixture("tiny_floorplan.toml")).unwrap();
+    std::fs::write(&b, fixture("tiny_network.toml")).unwrap();
     let out = dir.path().join("out");
     let run = || {
         let o = Command::new(env!("CARGO_BIN_EXE_netspec"))
@@ -177,27 +157,7 @@ fn bar_chart_marks_unsolved_killed_failed_and_paper_times() {
 
 #[test]
 fn unsolved_runs_are_charged_the_limit() {
-    let rec = |solver: &str, status: &str, t: f64| RunRecord {
-        instance: "i".into(),
-        solver: solver.into(),
-        seed: None,
-        edges: None,
-        vars: None,
-        rows: None,
-        nonzeros: None,
-        status: status.into(),
-        objective: None,
-        dual_bound: None,
-        gap: None,
-        nodes: None,
-        solver_time: None,
-        wall_time: t,
-        valid: status == "optimal",
-        killed: false,
-        solver_version: None,
-        exit_code: Some(0),
-        time_limit: None,
-    };
+    let rec = |solver: &str, status: &str, t: f64| RunRecord { solver_time: None, wall_time: t, ..record("i", solver, status, t) };
     let recs = vec![rec("x", "optimal", 2.0), rec("y", "limit(time)", 7.0)];
     let s = summarize(&recs, &["x".into(), "y".into()], 60.0);
     assert!((s[0].sgm_time - 2.0).abs() < 1e-9 && s[0].solved == 1 && s[0].wins == 1);
@@ -207,7 +167,7 @@ fn unsolved_runs_are_charged_the_limit() {
 #[test]
 fn manifest_rows_that_cannot_run_are_shown_missing() {
     let dir = tempfile::tempdir().unwrap();
-    std::fs::write(dir.path().join("n.toml"), NETWORK).unwrap();
+    std::fs::write(dir.path().join("n.toml"), fixture("tiny_network.toml")).unwrap();
     std::fs::write(
         dir.path().join("m.toml"),
         r#"
