@@ -3,7 +3,7 @@
 //! errors for bad or infeasible specs.
 
 use netspec::design::{self, Network, Violation};
-use netspec::formulations::network;
+use netspec::formulations;
 use netspec::mesh::{EdgeId, VertexId};
 use netspec::milp::objectives_agree;
 use netspec::pipeline;
@@ -372,7 +372,7 @@ fn validator_finds_an_uncovered_vertex_and_a_branch() {
 #[test]
 fn validator_accepts_a_good_network_and_objective_recomputes() {
     let p = problem(&spec("good", &format!("boundary = \"wall\"\nformulation = \"tight\"\n{BASE}")));
-    let nm = network::build(&p);
+    let nm = formulations::build(&p);
     let r = pipeline::solve_built(&p, &nm, SolverKind::default_kind().unwrap(), &SolveOptions::default()).unwrap();
     assert!(r.validity.valid);
     assert!(design::validate(&p, r.network.as_ref().unwrap(), None).is_empty());

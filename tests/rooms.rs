@@ -159,7 +159,7 @@ fn infeasible_tiling_is_a_result() {
 fn validator_item_6_on_hand_built_violations() {
     let p = problem(FLOORPLAN_4X4);
     let nm = pipeline::build(&p);
-    let pls = &nm.rooms.as_ref().unwrap().report.placements;
+    let pls = &nm.placements.as_ref().unwrap().placements;
     let find = |faces: &[u32]| pls.iter().position(|pl| pl.faces.iter().map(|f| f.0).collect::<Vec<_>>() == faces).unwrap();
     // Faces are numbered row by row (4 per row).
     let (a, b, c, d) = (find(&[0, 1, 4, 5]), find(&[2, 3, 6, 7]), find(&[8, 9, 12, 13]), find(&[10, 11, 14, 15]));
@@ -233,8 +233,8 @@ fn paper_examples_resolve_and_build() {
         let edges = p.mesh.num_edges();
         assert!((lo..=hi).contains(&edges), "{name}: {edges} edges");
         let nm = pipeline::build(&p);
-        let rm = nm.rooms.as_ref().unwrap();
-        assert!(!rm.report.truncated && rm.report.per_template.iter().all(|&n| n > 0), "{name}: {:?}", rm.report.per_template);
+        let rm = nm.placements.as_ref().unwrap();
+        assert!(!rm.truncated && rm.per_template.iter().all(|&n| n > 0), "{name}: {:?}", rm.per_template);
         nm.model.validate().unwrap();
     }
 }

@@ -29,7 +29,8 @@ pub fn solve_spec(path: &Path, args: &SolveArgs, out: Option<PathBuf>, export: O
         problem.mesh.num_faces(),
         problem.is_sink.iter().filter(|&&s| s).count()
     );
-    println!("model      {} (built in {build_ms:.1} ms, big-M {:.1})", nm.model.stats(), nm.big_m);
+    let big_m = nm.big_m.map_or(String::new(), |m| format!(", big-M {m:.1}"));
+    println!("model      {} — formulation {} (built in {build_ms:.1} ms{big_m})", nm.model.stats(), nm.recipe.label);
     for (family, st) in &nm.families {
         println!("  {family:<24} {:>7} vars {:>7} rows {:>8} nonzeros", st.vars, st.rows, st.nonzeros);
     }
@@ -38,7 +39,19 @@ pub fn solve_spec(path: &Path, args: &SolveArgs, out: Option<PathBuf>, export: O
         println!("paths      {} pairs, {} paths enumerated in {:.3} s ({truncated} pairs truncated)", ps.pairs.len(), ps.total_paths, ps.seconds);
     }
     if let Some(file) = &export {
-        netspec::io::write_model_file(&nm.model, file)?;
+        if nm.is_complete() {
+            // No comment: the `paper` recipe's files stay byte for byte what they always were.
+            netspec::io::write_model_file(&nm.model, file)?;
+        } else {
+            // Lazily separated rows cannot be written out: write the same recipe with them in
+            // their compact form, and say so.
+            let compact = netspec::formulations::build_compact(&problem);
+            let note = format!(
+                "netspec formulation: {} — written complete: its lazily separated cutset rows are\nreplaced by the equivalent single-commodity flow ({}); same optimum.",
+                nm.recipe.label, compact.recipe.label
+            );
+            netspec::io::write_model_file_with_comments(&compact.model, file, &[note])?;
+        }
         println!("exported   {}", file.display());
     }
     if no_solve {
@@ -86,7 +99,7 @@ pub fn solve_spec(path: &Path, args: &SolveArgs, out: Option<PathBuf>, export: O
         verdict: verdict(&res),
     };
     if let Some(net) = &res.network {
-        let placements = nm.rooms.as_ref().map(|r| r.report.placements.as_slice());
+        let placements = nm.placements.as_ref().map(|r| r.placements.as_slice());
         let svg = render::svg(&problem, net, nm.path_sets.as_ref(), placements, &caption);
         let svg_path = dir.join("network.svg");
         std::fs::write(&svg_path, &svg).with_context(|| format!("writing {}", svg_path.display()))?;

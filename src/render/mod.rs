@@ -7,8 +7,8 @@
 //! title line names the spec, solver, status, objective and gap.
 
 use crate::design::{travel_distances, Network};
-use crate::formulations::paths::PathSets;
-use crate::formulations::placements::Placement;
+use crate::rules::paths::PathSets;
+use crate::rules::placements::Placement;
 use crate::mesh::EdgeId;
 use crate::spec::Problem;
 use std::fmt::Write;

@@ -241,6 +241,7 @@ impl Solver for ScipSolver {
             reports_nodes: true,
             reports_solver_time: true,
             reports_progress: false,
+            lazy_constraints: true,
         }
     }
 
