@@ -6,7 +6,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use netspec::pipeline::{self, DesignResult};
 use netspec::render::{self, Caption};
 use netspec::solvers::SolverKind;
-use netspec::spec::Spec;
+use netspec::spec::{RecipeName, Spec};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Duration;
@@ -14,8 +14,11 @@ use std::time::Duration;
 /// Exit code when the design fails an independent check.
 const EXIT_INVALID: u8 = 3;
 
-pub fn solve_spec(path: &Path, args: &SolveArgs, out: Option<PathBuf>, export: Option<PathBuf>, no_solve: bool) -> Result<ExitCode> {
-    let spec = Spec::load(path)?;
+pub fn solve_spec(path: &Path, args: &SolveArgs, out: Option<PathBuf>, export: Option<PathBuf>, no_solve: bool, formulation: Option<RecipeName>) -> Result<ExitCode> {
+    let mut spec = Spec::load(path)?;
+    if let Some(r) = formulation {
+        spec.formulation = r.into();
+    }
     let base = path.parent().unwrap_or(Path::new("."));
     let problem = spec.resolve(base).map_err(|kind| netspec::spec::SpecError { path: path.to_path_buf(), kind })?;
     let t0 = std::time::Instant::now();
@@ -147,6 +150,23 @@ fn print_summary(r: &DesignResult) {
             m.edges, m.length, m.dead_ends, m.junctions_3way, m.junctions_4way, m.t_junctions, m.too_close, m.zigzags
         );
         println!("travel     mean {:.3}, max {:.3} to the nearest sink; coverage slack {}", m.mean_travel, m.max_travel, m.coverage_slack);
+    }
+    if let Some(o) = &r.objective {
+        println!(
+            "design     objective {:.6} recomputed from the network: length {:.3}, distance term {:.3}, travel {:.3} (weights length {}, distance {}, travel {})",
+            o.total, o.length, o.distance, o.travel, r.spec.weights.length.describe(), r.spec.weights.distance.describe(), r.spec.weights.travel.describe()
+        );
+    }
+    if let Some(l) = &r.lazy {
+        println!(
+            "lazy rows  {} by {:?}: {} rounds, {} rows added, {:.2} s separating{}",
+            l.separator,
+            l.mode,
+            l.rounds,
+            l.rows_added,
+            l.separation_seconds,
+            l.root_bounds.map_or(String::new(), |(a, b)| format!("; root LP {a:.4} → {b:.4} in {} cut rounds", l.root_rounds))
+        );
     }
     println!("validity   {}", verdict(r));
     for v in r.validity.design_violations.iter().take(10) {

@@ -100,6 +100,13 @@ pub struct LazyReport {
     /// Loop: whether a start was handed to a round after the first.
     #[serde(default)]
     pub repaired_starts: u64,
+    /// Loop: cutting-plane rounds on the LP relaxation before the first solve, and the rows
+    /// they added (part of `rows_added`).
+    #[serde(default)]
+    pub root_rounds: u64,
+    /// The LP relaxation's bound after the root rounds (before: the first round's value).
+    #[serde(default)]
+    pub root_bounds: Option<(f64, f64)>,
 }
 
 /// A solve with lazy rows: the result, the rows added, and the report.
@@ -125,7 +132,17 @@ pub fn solve_loop<S: Solver + ?Sized>(solver: &S, model: &Model, sep: &mut dyn S
     let tol = Tolerances::default();
     let mut work = model.clone();
     let mut rows: Vec<LazyRow> = Vec::new();
-    let mut report = LazyReport { separator: sep.name().to_string(), mode: LazyMode::Loop, rounds: 0, rows_added: 0, separation_seconds: 0.0, repaired_starts: 0 };
+    let mut report = LazyReport {
+        separator: sep.name().to_string(),
+        mode: LazyMode::Loop,
+        rounds: 0,
+        rows_added: 0,
+        separation_seconds: 0.0,
+        repaired_starts: 0,
+        root_rounds: 0,
+        root_bounds: None,
+    };
+    root_rounds(solver, &mut work, &mut rows, sep, o, t0, &mut report)?;
     // The best point known to satisfy every row (emitted and lazy), with its objective.
     let mut best: Option<(Vec<f64>, f64)> = None;
     let better = |a: f64, b: f64| match model.sense {
@@ -224,3 +241,69 @@ pub fn solve_loop<S: Solver + ?Sized>(solver: &S, model: &Model, sep: &mut dyn S
         }
     }
 }
+
+/// Cutting-plane rounds at the root: solve the LP relaxation, add the separator's rows for the
+/// fractional point, repeat while they move the bound (at most [`MAX_ROOT_ROUNDS`] rounds, and a
+/// fifth of the time limit). The rows are valid everywhere, so they simply join the model: a
+/// backend without callbacks then branches on the strengthened relaxation.
+fn root_rounds<S: Solver + ?Sized>(
+    solver: &S,
+    work: &mut Model,
+    rows: &mut Vec<LazyRow>,
+    sep: &mut dyn Separator,
+    o: &SolveOptions,
+    t0: Instant,
+    report: &mut LazyReport,
+) -> Result<(), SolverError> {
+    let budget = o.time_limit.map(|l| 0.2 * l);
+    let mut first = None;
+    let mut last = f64::NAN;
+    let mut stalled = 0;
+    for _ in 0..MAX_ROOT_ROUNDS {
+        if budget.is_some_and(|b| t0.elapsed().as_secs_f64() >= b) {
+            break;
+        }
+        let mut relaxed = work.clone();
+        for j in 0..relaxed.num_vars() {
+            relaxed.var_mut(VarId(j as u32)).kind = crate::milp::VarKind::Continuous;
+        }
+        let mut oi = SolveOptions { log: super::LogTarget::Quiet, threads: o.threads, ..SolveOptions::default() };
+        oi.time_limit = budget.map(|b| (b - t0.elapsed().as_secs_f64()).max(0.0));
+        let r = solver.solve(&relaxed, &oi)?;
+        let (Some(x), Some(obj)) = (r.primal, r.objective) else { break };
+        if r.termination != Termination::Optimal {
+            break;
+        }
+        first.get_or_insert(obj);
+        let ts = Instant::now();
+        let cuts = sep.separate_fractional(&x);
+        report.separation_seconds += ts.elapsed().as_secs_f64();
+        if cuts.is_empty() {
+            last = obj;
+            break;
+        }
+        if last.is_finite() && (obj - last).abs() <= 1e-4 * obj.abs().max(1.0) {
+            stalled += 1;
+            if stalled >= 3 {
+                last = obj;
+                break;
+            }
+        } else {
+            stalled = 0;
+        }
+        last = obj;
+        report.root_rounds += 1;
+        report.rows_added += cuts.len();
+        for c in &cuts {
+            c.add_to(work);
+        }
+        rows.extend(cuts);
+    }
+    if let Some(f) = first {
+        report.root_bounds = Some((f, last));
+    }
+    Ok(())
+}
+
+/// Cap on the cutting-plane rounds at the root.
+const MAX_ROOT_ROUNDS: usize = 200;

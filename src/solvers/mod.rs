@@ -15,6 +15,8 @@ pub mod highs;
 pub mod microlp;
 #[cfg(feature = "scip")]
 pub mod scip;
+#[cfg(feature = "scip")]
+mod scip_lazy;
 
 pub mod lazy;
 mod options;

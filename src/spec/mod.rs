@@ -192,6 +192,16 @@ pub enum WeightValue {
     Word(String),
 }
 
+impl WeightValue {
+    /// The value as written: `1`, `0.0001`, `forbid`.
+    pub fn describe(&self) -> String {
+        match self {
+            WeightValue::Number(x) => format!("{x}"),
+            WeightValue::Word(s) => s.clone(),
+        }
+    }
+}
+
 impl Default for WeightValue {
     fn default() -> Self {
         WeightValue::Number(0.0)

@@ -384,6 +384,17 @@ impl Spec {
             match (r.mode, r.level) {
                 (RoomMode::Floorplan, Some(_)) => return Err(field("rooms.level", "level types are for mode = \"game\"")),
                 (RoomMode::Game, Some(LevelType::Branching)) => branches = Allow::Allow,
+                (RoomMode::Game, Some(level @ (LevelType::Circular | LevelType::Linear))) if self.features.dead_ends == Allow::Allow => {
+                    let what = if level == LevelType::Linear {
+                        "a linear level is one path from one boundary sink to the other through every block"
+                    } else {
+                        "a circular level is one cycle through the sink and every block"
+                    };
+                    return Err(field(
+                        "features.dead_ends",
+                        format!("\"allow\" contradicts rooms.level = \"{}\": {what}, so it has no dead-ends (leave features.dead_ends at its default, \"forbid\")", if level == LevelType::Linear { "linear" } else { "circular" }),
+                    ));
+                }
                 (RoomMode::Game, Some(LevelType::Circular)) => {
                     if sinks.len() != 1 {
                         return Err(field("sinks", format!("a circular level has exactly one sink, the spec gives {}", sinks.len())));

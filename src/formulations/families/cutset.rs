@@ -141,17 +141,18 @@ impl FlowGraph {
     /// Max-flow from `s` to `t`, stopping once it reaches `enough`.
     fn max_flow(&mut self, s: usize, t: usize, enough: f64) -> f64 {
         let mut flow = 0.0;
-        while flow < enough && self.bfs(s, t) {
+        while enough - flow > EPS && self.bfs(s, t) {
             self.iter.iter_mut().for_each(|i| *i = 0);
-            loop {
+            let before = flow;
+            while enough - flow > EPS {
                 let f = self.dfs(s, t, enough - flow);
                 if f <= EPS {
                     break;
                 }
                 flow += f;
-                if flow >= enough {
-                    break;
-                }
+            }
+            if flow - before <= EPS {
+                break; // only paths of negligible capacity are left
             }
         }
         flow
