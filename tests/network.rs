@@ -472,3 +472,78 @@ fn corner_sink_behind_a_wall_is_infeasible() {
         assert!(r.network.is_none());
     }
 }
+
+/// The name of a validator check (an exhaustive match: a new check must be added to
+/// [`validator_guard`]'s list).
+fn check_name(v: &Violation) -> &'static str {
+    match v {
+        Violation::Island { .. } => "island",
+        Violation::Uncovered { .. } => "uncovered",
+        Violation::DeadEnd { .. } => "dead_end",
+        Violation::Branch { .. } => "branch",
+        Violation::ZigZag { .. } => "zigzag",
+        Violation::TooClose { .. } => "too_close",
+        Violation::TJunction { .. } => "t_junction",
+        Violation::ExcludedActive { .. } => "excluded_active",
+        Violation::ForcedInactive { .. } => "forced_inactive",
+        Violation::ForcedVertexInactive { .. } => "forced_vertex_inactive",
+        Violation::ThroughRoute { .. } => "through_route",
+        Violation::PointToPoint { .. } => "point_to_point",
+        Violation::Cover { .. } => "cover",
+        Violation::Room { .. } => "room",
+        Violation::LevelShape { .. } => "level_shape",
+        Violation::RoomCount { .. } => "room_count",
+    }
+}
+
+/// Issue 15's guard: for every check the validator makes, a spec that drives the solver to the
+/// edge of it, solved under the `paper` and `strong` recipes by HiGHS and SCIP — a design that
+/// passes the MILP check but fails the validator would be a bug in the model.
+#[test]
+fn validator_guard() {
+    let g = |w: u32, h: u32| format!("[mesh]\ngrid = {{ width = {w}, height = {h} }}\n");
+    let cases: Vec<(&[&str], String)> = vec![
+        (&["island", "uncovered", "dead_end"], format!("boundary = \"wall\"\n{}[sinks]\npoints = [[2, 2]]\n[coverage]\nrange = 2\n", g(5, 5))),
+        (&["branch"], format!("boundary = \"wall\"\n{}[sinks]\nall_boundary = true\n[coverage]\nrange = 1\n[features]\nbranches = \"forbid\"\n", g(5, 5))),
+        (&["zigzag", "too_close", "t_junction"], format!("boundary = \"wall\"\n{}[sinks]\nall_boundary = true\n[coverage]\nrange = 1\n[weights]\nzigzag = \"forbid\"\ntoo_close = \"forbid\"\nt_junction = \"forbid\"\n", g(5, 5))),
+        (&["excluded_active", "forced_inactive", "forced_vertex_inactive"], format!("boundary = \"wall\"\n{}[sinks]\nall_boundary = true\n[user]\nobstacle_faces = [6, 7]\nforced_edges = [[1, 6]]\nforced_vertices = [18]\n", g(4, 4))),
+        (&["through_route"], format!("boundary = \"road\"\n{}[sinks]\nall_boundary = true\n[coverage]\nrange = 1\n[user]\nthrough_routes = [{{ from = [2, 0], to = [2, 4] }}]\n", g(4, 4))),
+        (&["point_to_point"], format!("boundary = \"road\"\n{}[sinks]\nall_boundary = true\n[point_to_point]\nblocks = 2\n", g(4, 4))),
+        (&["cover", "room", "room_count"], format!("boundary = \"wall\"\n{}[sinks]\nvertices = [2]\n[features]\ndead_ends = \"allow\"\n[rooms]\nmode = \"floorplan\"\ntemplates = [{{ name = \"office\", shape = \"rect 2x2\" }}, {{ name = \"lab\", shape = \"rect 2x1\", exact = 2 }}]\n", g(4, 4))),
+        (&["level_shape"], format!("boundary = \"wall\"\n{}[sinks]\nvertices = [1, 3]\n[rooms]\nmode = \"game\"\nlevel = \"linear\"\ntemplates = [{{ name = \"block\", shape = \"rect 2x2\" }}]\n", g(4, 4))),
+    ];
+    let samples = [
+        Violation::Island { edges: vec![] },
+        Violation::Uncovered { vertex: VertexId(0) },
+        Violation::DeadEnd { vertex: VertexId(0) },
+        Violation::Branch { vertex: VertexId(0), degree: 3 },
+        Violation::ZigZag { edges: vec![] },
+        Violation::TooClose { edges: vec![] },
+        Violation::TJunction { vertex: VertexId(0) },
+        Violation::ExcludedActive { edge: EdgeId(0) },
+        Violation::ForcedInactive { edge: EdgeId(0) },
+        Violation::ForcedVertexInactive { vertex: VertexId(0) },
+        Violation::ThroughRoute { route: 0, detail: String::new() },
+        Violation::PointToPoint { parts: (0, 1) },
+        Violation::Cover { face: netspec::mesh::FaceId(0), rooms: 0 },
+        Violation::Room { placement: 0, detail: String::new() },
+        Violation::LevelShape { level: netspec::spec::LevelType::Linear, shape: design::GraphShape::Tree },
+        Violation::RoomCount { template: 0, count: 0 },
+    ];
+    let mut covered: Vec<&str> = cases.iter().flat_map(|(names, _)| names.iter().copied()).collect();
+    covered.sort();
+    let mut all: Vec<&str> = samples.iter().map(check_name).collect();
+    all.sort();
+    assert_eq!(covered, all, "every validator check has a guard spec");
+    for (i, (names, body)) in cases.iter().enumerate() {
+        let p = problem(&spec(&format!("guard{i}"), body));
+        for recipe in [RecipeName::Paper, RecipeName::Strong] {
+            let f = formulations::build_with(&p, &formulations::Recipe::named(recipe));
+            for k in [SolverKind::Highs, SolverKind::Scip].into_iter().filter(|k| k.is_compiled()) {
+                let r = pipeline::solve_built(&p, &f, k, &SolveOptions { time_limit: Some(60.0), ..Default::default() }).unwrap();
+                assert_eq!(r.solve.termination, Termination::Optimal, "{names:?} {recipe} {k}");
+                assert!(r.validity.valid, "{names:?} {recipe} {k}: {:?}", r.validity);
+            }
+        }
+    }
+}
