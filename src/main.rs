@@ -56,6 +56,10 @@ enum Command {
         /// Formulation recipe, replacing the spec's: paper, tight or strong.
         #[arg(long, value_name = "RECIPE")]
         formulation: Option<netspec::spec::RecipeName>,
+        /// Solve only the LP relaxation (with the recipe's cutting-plane rounds) and print its
+        /// bound.
+        #[arg(long, conflicts_with = "no_solve")]
+        relax: bool,
     },
     /// Compare backends on spec files: each run in its own process, killed at the time limit
     /// plus a grace period, recorded as it ends (rerun to resume); writes results.md,
@@ -223,8 +227,8 @@ fn main() -> ExitCode {
 fn run(cli: Cli) -> Result<ExitCode> {
     match cli.command {
         Command::SolveFile { file, solve, json } => solve_file(&file, &solve, json.as_deref()),
-        Command::Solve { spec, solve, out, export, no_solve, formulation } => {
-            cli::design::solve_spec(&spec, &solve, out, export, no_solve, formulation)
+        Command::Solve { spec, solve, out, export, no_solve, formulation, relax } => {
+            cli::design::solve_spec(&spec, &solve, out, export, no_solve || relax, formulation, relax)
         }
         Command::Compare { specs, manifest, solvers, time_limit, grace, seeds, threads, paper_limits, out } => {
             let manifest = match manifest {

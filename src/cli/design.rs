@@ -14,7 +14,15 @@ use std::time::Duration;
 /// Exit code when the design fails an independent check.
 const EXIT_INVALID: u8 = 3;
 
-pub fn solve_spec(path: &Path, args: &SolveArgs, out: Option<PathBuf>, export: Option<PathBuf>, no_solve: bool, formulation: Option<RecipeName>) -> Result<ExitCode> {
+pub fn solve_spec(
+    path: &Path,
+    args: &SolveArgs,
+    out: Option<PathBuf>,
+    export: Option<PathBuf>,
+    no_solve: bool,
+    formulation: Option<RecipeName>,
+    relax: bool,
+) -> Result<ExitCode> {
     let mut spec = Spec::load(path)?;
     if let Some(r) = formulation {
         spec.formulation = r.into();
@@ -56,6 +64,14 @@ pub fn solve_spec(path: &Path, args: &SolveArgs, out: Option<PathBuf>, export: O
             netspec::io::write_model_file_with_comments(&compact.model, file, &[note])?;
         }
         println!("exported   {}", file.display());
+    }
+    if relax {
+        let kind = args.solver()?;
+        let solver = kind.instance()?;
+        let mut sep = nm.separator();
+        let b = netspec::solvers::lazy::lp_bound(solver.as_ref(), &nm.model, sep.as_mut().map(|s| s as &mut dyn netspec::solvers::Separator), &args.options())?;
+        let f = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.6}"));
+        println!("LP bound   {} as written, {} after {} cut rounds ({} rows), {:.2} s with {kind}", f(b.plain), f(b.with_cuts), b.rounds, b.rows, b.seconds);
     }
     if no_solve {
         return Ok(ExitCode::SUCCESS);

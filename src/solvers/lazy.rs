@@ -142,7 +142,7 @@ pub fn solve_loop<S: Solver + ?Sized>(solver: &S, model: &Model, sep: &mut dyn S
         root_rounds: 0,
         root_bounds: None,
     };
-    root_rounds(solver, &mut work, &mut rows, sep, o, t0, &mut report)?;
+    root_rounds(solver, &mut work, &mut rows, sep, o, t0, o.time_limit.map(|l| 0.2 * l), &mut report)?;
     // The best point known to satisfy every row (emitted and lazy), with its objective.
     let mut best: Option<(Vec<f64>, f64)> = None;
     let better = |a: f64, b: f64| match model.sense {
@@ -253,9 +253,9 @@ fn root_rounds<S: Solver + ?Sized>(
     sep: &mut dyn Separator,
     o: &SolveOptions,
     t0: Instant,
+    budget: Option<f64>,
     report: &mut LazyReport,
 ) -> Result<(), SolverError> {
-    let budget = o.time_limit.map(|l| 0.2 * l);
     let mut first = None;
     let mut last = f64::NAN;
     let mut stalled = 0;
@@ -307,3 +307,57 @@ fn root_rounds<S: Solver + ?Sized>(
 
 /// Cap on the cutting-plane rounds at the root.
 const MAX_ROOT_ROUNDS: usize = 200;
+
+/// The LP relaxation's bound: of the model as written, and after cutting-plane rounds with the
+/// separator's fractional rows (when one is given).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct LpBound {
+    /// The relaxation's optimum as written (`None` when it has none: infeasible, a limit).
+    pub plain: Option<f64>,
+    /// After the cutting-plane rounds.
+    pub with_cuts: Option<f64>,
+    /// Rounds run and rows added.
+    pub rounds: u64,
+    /// Rows added.
+    pub rows: usize,
+    /// Seconds in all.
+    pub seconds: f64,
+}
+
+/// Solves the LP relaxation of `model` (and runs the separator's cutting-plane rounds on it, if
+/// given) within `o.time_limit`.
+pub fn lp_bound<S: Solver + ?Sized>(solver: &S, model: &Model, sep: Option<&mut dyn Separator>, o: &SolveOptions) -> Result<LpBound, SolverError> {
+    let t0 = Instant::now();
+    let mut report = LazyReport {
+        separator: String::new(),
+        mode: LazyMode::Loop,
+        rounds: 0,
+        rows_added: 0,
+        separation_seconds: 0.0,
+        repaired_starts: 0,
+        root_rounds: 0,
+        root_bounds: None,
+    };
+    let mut work = model.clone();
+    let mut rows = Vec::new();
+    struct NoRows;
+    impl Separator for NoRows {
+        fn name(&self) -> &str {
+            "none"
+        }
+        fn separate_integral(&mut self, _: &[f64]) -> Vec<LazyRow> {
+            Vec::new()
+        }
+        fn locks(&self) -> Vec<(VarId, Lock)> {
+            Vec::new()
+        }
+    }
+    let mut none = NoRows;
+    let sep: &mut dyn Separator = match sep {
+        Some(s) => s,
+        None => &mut none,
+    };
+    root_rounds(solver, &mut work, &mut rows, sep, o, t0, o.time_limit, &mut report)?;
+    let (plain, with_cuts) = report.root_bounds.map_or((None, None), |(a, b)| (Some(a), Some(b)));
+    Ok(LpBound { plain, with_cuts, rounds: report.root_rounds, rows: rows.len(), seconds: t0.elapsed().as_secs_f64() })
+}

@@ -65,6 +65,7 @@ pub fn coverage(c: &mut Ctx) {
     let p = c.p;
     let mesh = &p.mesh;
     let strong = c.recipe.coverage == CoverageForm::Strong;
+    let girth = girth(p);
     let mut in_ball = vec![false; mesh.num_vertices()];
     for v in mesh.vertices() {
         if p.is_obstacle_vertex[v.index()] {
@@ -98,5 +99,49 @@ pub fn coverage(c: &mut Ctx) {
         let sink_in_ball = cover.iter().any(|u| p.is_sink[u.index()]);
         let need = if !sink_in_ball && p.dead_ends == Allow::Forbid { 2.0 } else { 1.0 };
         c.em.ge(format!("covedge_{}", vname(v)), &edges, need);
+        if !sink_in_ball {
+            ball_cut(c, v, &cover, girth);
+        }
+    }
+}
+
+/// The ball cut of FORMULATION §8 (this project's strengthening): some vertex of `cover(v)` is
+/// active and no sink is in the ball, so the network crosses the ball's boundary `δ(C)`, `C =
+/// cover(v)`: `Σ_{x∈δ(C)} E_x ≥ 1`. With dead-ends forbidden, a single crossing leaves every
+/// active vertex inside with degree ≥ 2, so the active part inside holds a cycle of at least
+/// `g` edges (`g` the mesh's girth, 4 on quad meshes): `Σ_{x∈δ(C)} E_x + (1/g)·Σ_{x∈E(C)} E_x ≥ 2`
+/// (two crossings, or one and a cycle inside). Unlike a cutset `Σ_{δ(C)} E_x ≥ V_u` it does not
+/// weaken when the ball's activity is spread thinly over many vertices.
+fn ball_cut(c: &mut Ctx, v: crate::mesh::VertexId, cover: &[crate::mesh::VertexId], girth: f64) {
+    let p = c.p;
+    let mesh = &p.mesh;
+    let mut inside = vec![false; mesh.num_vertices()];
+    for &u in cover {
+        inside[u.index()] = true;
+    }
+    let mut edges: Vec<crate::mesh::EdgeId> = cover.iter().flat_map(|&u| mesh.incident_edges(u)).filter(|&e| c.is_candidate(e)).collect();
+    edges.sort();
+    edges.dedup();
+    let mut ex = Expr::new();
+    let forbid = p.dead_ends == Allow::Forbid;
+    for e in edges {
+        let (a, b) = mesh.edge_vertices(e);
+        let crossing = inside[a.index()] != inside[b.index()];
+        let w = if crossing { 1.0 } else if forbid { 1.0 / girth } else { 0.0 };
+        if w > 0.0 {
+            ex.add_value(c.edge_value(e), w);
+        }
+    }
+    c.em.ge(format!("covball_{}", vname(v)), &ex, if forbid { 2.0 } else { 1.0 });
+}
+
+/// The shortest cycle a mesh can hold, as far as the ball cuts need: 4 when every face is a
+/// quadrilateral (a planar graph whose faces are all even is bipartite, and a simple graph has
+/// no 2-cycles), else 3.
+fn girth(p: &crate::spec::Problem) -> f64 {
+    if p.mesh.faces().all(|f| p.mesh.face_size(f) == 4) {
+        4.0
+    } else {
+        3.0
     }
 }
