@@ -6,7 +6,8 @@
 //! (MPS and LP files), [`solvers`] (HiGHS, CBC, SCIP, microlp and a good_lp bridge behind one
 //! trait), [`mesh`] (2D half-edge meshes), [`spec`] (functional specifications),
 //! [`formulations`] (the paper's integer programs), [`design`] (decoding, metrics and the
-//! independent validator), [`render`] (pictures), and [`pipeline`] (spec → checked design).
+//! independent validator), [`render`] (pictures), and [`pipeline`] (spec → checked design). [`urban`] lays out cities;
+//! [`traffic`] evaluates designed street networks in SUMO.
 #![deny(missing_docs)]
 
 pub mod compare;
@@ -20,6 +21,7 @@ pub mod render;
 pub mod report;
 pub mod solvers;
 pub mod spec;
+pub mod traffic;
 pub mod urban;
 
 /// The README's code examples, compiled and run as doctests.
