@@ -149,10 +149,9 @@ fn solve_export_is_exactly_the_design() {
             assert_eq!((x["from"].as_str(), x["to"].as_str(), x["type"].as_str()), (format!("n{from}").as_str(), format!("n{to}").as_str(), "L2"));
         }
     }
-    // Entrances are the streets at sinks.
-    for e in &net.edges {
-        let (a, b) = (net.nodes[e.a].id, net.nodes[e.b].id);
-        assert_eq!(e.entrance, res.sinks.contains(&a) || res.sinks.contains(&b));
+    // Entrances are the sinks.
+    for n in &net.nodes {
+        assert_eq!(n.entrance, res.sinks.contains(&n.id));
     }
 }
 
@@ -193,6 +192,14 @@ fn city_export_is_exactly_the_street_graph() {
             let p = graph.positions[n.id as usize];
             assert_eq!(n.pos, [p[0] * 100.0, p[1] * 100.0]);
         }
+    }
+    // Through traffic enters and leaves on the major roads of the domain's boundary.
+    // (the 8 × 4 rectangle at level 3's half-unit spacing: 2 × (16 + 8) nodes)
+    assert_eq!(net.nodes.iter().filter(|n| n.entrance).count(), 48);
+    for (k, n) in net.nodes.iter().enumerate().filter(|(_, n)| n.entrance) {
+        assert!(net.edges.iter().any(|e| e.level == 1 && (e.a == k || e.b == k)), "{n:?}");
+        let p = graph.positions[n.id as usize];
+        assert!(p[0].min(p[1]).abs() < 1e-9 || (p[0] - 8.0).abs() < 1e-9 || (p[1] - 4.0).abs() < 1e-9, "{n:?} is not on the domain boundary");
     }
     // Shapes start and end at their nodes.
     for e in &net.edges {

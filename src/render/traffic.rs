@@ -93,7 +93,7 @@ pub fn volume_svg(net: &RoadNetwork, r: &TrafficReport) -> String {
     for k in order {
         let e = &net.edges[k];
         let v = volume.get(k).copied().unwrap_or(0.0);
-        let colour = if v > 0.0 { heat(log_t(v, vmax)) } else { "#c8c8c8".to_string() };
+        let colour = if v > 0.0 { heat((v / vmax).sqrt()) } else { "#c8c8c8".to_string() };
         let _ = writeln!(
             s,
             r#"<path d="{}" fill="none" stroke="{colour}" stroke-width="{:.1}" stroke-linecap="round" stroke-linejoin="round" data-street="{}" data-volume="{v:.0}"/>"#,
@@ -104,12 +104,12 @@ pub fn volume_svg(net: &RoadNetwork, r: &TrafficReport) -> String {
     }
     let lx = w - legend_w + 10.0;
     let ly = margin + title_h;
-    let _ = writeln!(s, r#"<text x="{lx:.1}" y="{ly:.1}" font-size="12">vehicles per street (log)</text>"#);
+    let _ = writeln!(s, r#"<text x="{lx:.1}" y="{ly:.1}" font-size="12">vehicles per street (√ scale)</text>"#);
     for k in 0..=10 {
         let _ = writeln!(s, r#"<rect x="{lx:.1}" y="{:.1}" width="18" height="14" fill="{}"/>"#, ly + 8.0 + k as f64 * 14.0, heat(k as f64 / 10.0));
     }
     for k in [0, 5, 10] {
-        let v = vmax.max(1.0).powf(k as f64 / 10.0);
+        let v = vmax * (k as f64 / 10.0).powi(2);
         let _ = writeln!(s, r#"<text x="{:.1}" y="{:.1}" font-size="11">{v:.0}</text>"#, lx + 24.0, ly + 19.0 + k as f64 * 14.0);
     }
     let _ = writeln!(s, r##"<line x1="{lx:.1}" y1="{:.1}" x2="{:.1}" y2="{:.1}" stroke="#c8c8c8" stroke-width="3"/>"##, ly + 180.0, lx + 18.0, ly + 180.0);
@@ -121,15 +121,6 @@ pub fn volume_svg(net: &RoadNetwork, r: &TrafficReport) -> String {
     }
     s.push_str("</svg>\n");
     s
-}
-
-/// Position of `v` ≥ 1 on a logarithmic scale from 1 to `max`.
-fn log_t(v: f64, max: f64) -> f64 {
-    if max > 1.0 {
-        v.max(1.0).ln() / max.ln()
-    } else {
-        1.0
-    }
 }
 
 /// Bins of width `width` from 0 holding `v` (counts).
@@ -224,7 +215,7 @@ fn tick(v: f64) -> String {
 /// vehicles) next to bars of mean and 95th-percentile travel time, mean waiting time and the
 /// share of through traffic's distance on local streets.
 pub fn comparison_svg(rows: &[(String, &TrafficReport)]) -> String {
-    let (w, h) = (1180.0, 520.0);
+    let (w, h) = (1220.0, 520.0);
     let mut s = String::new();
     svg_open(&mut s, w, h);
     let title = rows.iter().map(|(l, _)| l.as_str()).collect::<Vec<_>>().join(" vs ");
@@ -263,7 +254,7 @@ pub fn comparison_svg(rows: &[(String, &TrafficReport)]) -> String {
         ("mean travel time (s)", |r| r.all.travel_time_mean),
         ("p95 travel time (s)", |r| r.all.travel_time_p95),
         ("mean waiting time (s)", |r| r.all.waiting_time_mean),
-        ("through traffic on local streets (% of distance)", |r| r.through_on_local.distance_share.map(|v| 100.0 * v)),
+        ("through traffic's distance on local streets (%)", |r| r.through_on_local.distance_share.map(|v| 100.0 * v)),
     ];
     let (px0, py0, pw2, ph2) = (580.0, 80.0, 260.0, 150.0);
     for (k, (title, f)) in panels.iter().enumerate() {

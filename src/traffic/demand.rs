@@ -4,15 +4,19 @@
 //!
 //! * **Through traffic**: departures a Poisson process of `through_per_hour`; each trip starts
 //!   at a uniformly random point of the region's boundary and ends 30–70 % of the perimeter
-//!   further along it (the other side of the region), each end on the nearest *entrance*
-//!   street (a major road on the region's boundary; a street at a sink of a `solve` design).
+//!   further along it (the other side of the region), each end at the nearest *entrance* node
+//!   (a node of a major road on the region's boundary; a sink of a `solve` design). Vehicles
+//!   leave and reach these junctions in whichever direction their route needs (`duarouter
+//!   --junction-taz`).
 //! * **Local traffic**: a Poisson process of `local_per_hour`; both ends uniformly random
-//!   points of the region, each on the nearest *local* street (level ≥ 2 in a city).
+//!   points of the region, each on the nearest *local* street (level ≥ 2 in a city), at the
+//!   point's projection, driving in a direction drawn with the trip (a car parked one way or
+//!   the other: it may have to go round a block, as there are U-turns only at dead ends).
 //!
-//! A trip whose two ends fall on the same street is dropped (and counted). Departure and arrival
-//! positions are where the points project onto their street. Routes are `duarouter`'s.
+//! A trip whose two ends fall on the same street or junction is dropped (and counted). Routes
+//! are `duarouter`'s.
 
-use super::export::edge_id;
+use super::export::{edge_id, node_id};
 use super::network::{Region, RoadNetwork};
 use super::parse::SumoNet;
 use crate::mesh::geom;
@@ -163,6 +167,39 @@ pub struct EdgePlace {
     pub pos: f64,
 }
 
+/// Where one end of a trip is on a design.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "lowercase")]
+pub enum Place {
+    /// A junction (through traffic).
+    Junction {
+        /// The node (index into [`RoadNetwork::nodes`]).
+        node: usize,
+        /// SUMO's junction id.
+        sumo_node: String,
+    },
+    /// A point on a street (local traffic).
+    Street(EdgePlace),
+}
+
+impl Place {
+    fn key(&self) -> (bool, usize) {
+        match self {
+            Place::Junction { node, .. } => (true, *node),
+            Place::Street(e) => (false, e.edge),
+        }
+    }
+
+    /// The trip-file attributes of this end: `prefix` is `from`/`to`, `pos` is
+    /// `departPos`/`arrivalPos`.
+    fn attrs(&self, prefix: &str, pos: &str) -> String {
+        match self {
+            Place::Junction { sumo_node, .. } => format!(r#"{prefix}Junction="{sumo_node}""#),
+            Place::Street(e) => format!(r#"{prefix}="{}" {pos}="{:.2}""#, e.sumo_edge, e.pos),
+        }
+    }
+}
+
 /// A trip placed on a design.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct PlacedTrip {
@@ -175,18 +212,18 @@ pub struct PlacedTrip {
     /// Departure, seconds.
     pub depart: f64,
     /// Origin.
-    pub from: EdgePlace,
+    pub from: Place,
     /// Destination.
-    pub to: EdgePlace,
+    pub to: Place,
 }
 
 /// The trips of a design.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct Placement {
-    /// Trips with both ends on different streets.
+    /// Trips with their ends at different places.
     pub trips: Vec<PlacedTrip>,
-    /// Trips dropped because both ends fell on the same street.
-    pub same_street: usize,
+    /// Trips dropped because both ends fell on the same street or junction.
+    pub same_place: usize,
     /// Trips dropped because the design has no street of the kind they need.
     pub no_street: usize,
 }
@@ -215,27 +252,34 @@ fn nearest(net: &RoadNetwork, candidates: &[usize], p: [f64; 2]) -> Option<(usiz
 
 /// Places the trips on a design, with positions on SUMO's edges (`sumo_net`'s lengths).
 pub fn place(trips: &[Trip], net: &RoadNetwork, sumo_net: &SumoNet) -> Placement {
-    let entrances: Vec<usize> = (0..net.edges.len()).filter(|&k| net.edges[k].entrance).collect();
+    let gates: Vec<usize> = (0..net.nodes.len()).filter(|&k| net.nodes[k].entrance).collect();
     let locals: Vec<usize> = (0..net.edges.len()).filter(|&k| net.edges[k].local).collect();
+    let gate = |p: [f64; 2]| {
+        let k = *gates.iter().min_by(|&&a, &&b| geom::dist(p, net.nodes[a].pos).total_cmp(&geom::dist(p, net.nodes[b].pos)))?;
+        Some(Place::Junction { node: k, sumo_node: node_id(net.nodes[k].id) })
+    };
+    let street = |p: [f64; 2], forward: bool| {
+        let (k, f) = nearest(net, &locals, p)?;
+        let id = edge_id(net.edges[k].id, forward);
+        let len = sumo_net.edges.get(&id).map_or_else(|| net.edges[k].length(), |e| e.length);
+        let frac = if forward { f } else { 1.0 - f };
+        Some(Place::Street(EdgePlace { edge: k, forward, sumo_edge: id, pos: (frac * len).clamp(0.0, (len - 0.1).max(0.0)) }))
+    };
     let mut out = Placement::default();
     for (i, t) in trips.iter().enumerate() {
-        let cands = if t.class == TripClass::Through { &entrances } else { &locals };
-        let ends = [t.from, t.to].map(|p| nearest(net, cands, p));
-        let (Some(a), Some(b)) = (ends[0], ends[1]) else {
+        let ends = match t.class {
+            TripClass::Through => (gate(t.from), gate(t.to)),
+            TripClass::Local => (street(t.from, t.forward[0]), street(t.to, t.forward[1])),
+        };
+        let (Some(from), Some(to)) = ends else {
             out.no_street += 1;
             continue;
         };
-        if a.0 == b.0 {
-            out.same_street += 1;
+        if from.key() == to.key() {
+            out.same_place += 1;
             continue;
         }
-        let at = |(k, f): (usize, f64), forward: bool| {
-            let id = edge_id(net.edges[k].id, forward);
-            let len = sumo_net.edges.get(&id).map_or_else(|| net.edges[k].length(), |e| e.length);
-            let frac = if forward { f } else { 1.0 - f };
-            EdgePlace { edge: k, forward, sumo_edge: id, pos: (frac * len).clamp(0.0, (len - 0.1).max(0.0)) }
-        };
-        out.trips.push(PlacedTrip { trip: i, id: t.id.clone(), class: t.class, depart: t.depart, from: at(a, t.forward[0]), to: at(b, t.forward[1]) });
+        out.trips.push(PlacedTrip { trip: i, id: t.id.clone(), class: t.class, depart: t.depart, from, to });
     }
     out
 }
@@ -250,14 +294,12 @@ pub fn trips_xml(p: &Placement) -> String {
     for t in &p.trips {
         let _ = writeln!(
             s,
-            r#"    <trip id="{}" type="{}" depart="{:.2}" from="{}" to="{}" departLane="best" departPos="{:.2}" arrivalPos="{:.2}"/>"#,
+            r#"    <trip id="{}" type="{}" depart="{:.2}" {} {} departLane="best"/>"#,
             t.id,
             t.class.name(),
             t.depart,
-            t.from.sumo_edge,
-            t.to.sumo_edge,
-            t.from.pos,
-            t.to.pos
+            t.from.attrs("from", "departPos"),
+            t.to.attrs("to", "arrivalPos")
         );
     }
     s.push_str("</routes>\n");

@@ -48,6 +48,9 @@ pub struct RoadNode {
     pub id: u32,
     /// Position, metres.
     pub pos: [f64; 2],
+    /// Through traffic may start and end here: a node of a major road on the region's
+    /// boundary (a city), a sink (a `solve` design).
+    pub entrance: bool,
 }
 
 /// A street between two nodes.
@@ -64,9 +67,6 @@ pub struct RoadEdge {
     /// Its geometry from `a` to `b`, metres (both ends included; the smoothed street where
     /// there is one, else the straight segment).
     pub shape: Vec<[f64; 2]>,
-    /// Through traffic may start and end here (a major road on the region's boundary, or a
-    /// street at a sink of a `solve` design).
-    pub entrance: bool,
     /// Local traffic may start and end here (streets of levels ≥ 2 in a city; every street of
     /// a `solve` design).
     pub local: bool,
@@ -167,7 +167,7 @@ pub fn from_design(res: &DesignResult, path: &Path, opts: &LoadOptions) -> Resul
         let mut ends = [0usize; 2];
         for (k, v) in [va, vb].into_iter().enumerate() {
             ends[k] = *node_of.entry(v.0).or_insert_with(|| {
-                nodes.push(RoadNode { id: v.0, pos: scaled(mesh.position(v)) });
+                nodes.push(RoadNode { id: v.0, pos: scaled(mesh.position(v)), entrance: is_sink[v.index()] });
                 nodes.len() - 1
             });
         }
@@ -177,7 +177,6 @@ pub fn from_design(res: &DesignResult, path: &Path, opts: &LoadOptions) -> Resul
             b: ends[1],
             level,
             shape: vec![nodes[ends[0]].pos, nodes[ends[1]].pos],
-            entrance: is_sink[va.index()] || is_sink[vb.index()],
             local: true,
         });
     }
@@ -248,9 +247,17 @@ pub fn from_city(dir: &Path, opts: &LoadOptions) -> Result<RoadNetwork, TrafficE
     let (positions, shapes) = smoothed_geometry(&graph, &smoothed.snakes);
     let scaled = |p: [f64; 2]| [p[0] * m, p[1] * m];
     let outer: Vec<[f64; 2]> = spec.domain.outer.iter().map(|&p| scaled(p)).collect();
-    let near_boundary = |p: [f64; 2]| {
-        (0..outer.len()).any(|i| geom::dist(p, geom::closest_on_segment(p, outer[i], outer[(i + 1) % outer.len()])) <= 1.5 * spec.mesh.spacing * m)
-    };
+    // The domain's boundary: mesh boundary edges of exactly one sub-region (a major road
+    // between two sub-regions bounds both).
+    let key = |p: [f64; 2]| ((p[0] / spec.mesh.spacing * 1e3).round() as i64, (p[1] / spec.mesh.spacing * 1e3).round() as i64);
+    let edge_key = |p: [f64; 2], q: [f64; 2]| if key(p) <= key(q) { (key(p), key(q)) } else { (key(q), key(p)) };
+    let mut bounding: BTreeMap<_, usize> = BTreeMap::new();
+    for roads in city.regions.iter().filter_map(|r| r.roads.as_ref()) {
+        for e in roads.mesh.boundary_edges() {
+            let (a, b) = roads.mesh.edge_vertices(e);
+            *bounding.entry(edge_key(roads.mesh.position(a), roads.mesh.position(b))).or_default() += 1;
+        }
+    }
     let mut node_of = BTreeMap::new();
     let mut nodes = Vec::new();
     let mut edges = Vec::new();
@@ -258,14 +265,17 @@ pub fn from_city(dir: &Path, opts: &LoadOptions) -> Result<RoadNetwork, TrafficE
         let mut ends = [0usize; 2];
         for (j, v) in [e.a, e.b].into_iter().enumerate() {
             ends[j] = *node_of.entry(v).or_insert_with(|| {
-                nodes.push(RoadNode { id: v, pos: scaled(positions[v as usize]) });
+                nodes.push(RoadNode { id: v, pos: scaled(positions[v as usize]), entrance: false });
                 nodes.len() - 1
             });
         }
         let shape: Vec<[f64; 2]> = shapes[k].iter().map(|&p| scaled(p)).collect();
-        let mid = shape[shape.len() / 2];
-        let entrance = e.level == 1 && near_boundary(scaled(graph.positions[e.a as usize])) && near_boundary(scaled(graph.positions[e.b as usize])) && near_boundary(mid);
-        edges.push(RoadEdge { id: k as u32, a: ends[0], b: ends[1], level: e.level, shape, entrance, local: e.level >= 2 });
+        // A major road along the domain's boundary: through traffic enters and leaves there.
+        if e.level == 1 && bounding.get(&edge_key(graph.positions[e.a as usize], graph.positions[e.b as usize])) == Some(&1) {
+            nodes[ends[0]].entrance = true;
+            nodes[ends[1]].entrance = true;
+        }
+        edges.push(RoadEdge { id: k as u32, a: ends[0], b: ends[1], level: e.level, shape, local: e.level >= 2 });
     }
     if edges.is_empty() {
         return Err(TrafficError::new(&file, TrafficErrorKind::NoNetwork("the city has no streets".into())));

@@ -91,8 +91,8 @@ pub struct DemandSummary {
     pub through_drawn: usize,
     /// Local trips drawn.
     pub local_drawn: usize,
-    /// Dropped: both ends on one street.
-    pub same_street: usize,
+    /// Dropped: both ends at one street or junction.
+    pub same_place: usize,
     /// Dropped: no street of the kind needed.
     pub no_street: usize,
     /// Trips placed on the design.
@@ -291,7 +291,7 @@ pub fn build(
             digest: demand_digest(trips),
             through_drawn: count(TripClass::Through),
             local_drawn: count(TripClass::Local),
-            same_street: placed.same_street,
+            same_place: placed.same_place,
             no_street: placed.no_street,
             placed: placed.trips.len(),
             routed,
@@ -349,8 +349,8 @@ impl TrafficReport {
         );
         let _ = writeln!(
             s,
-            "demand     {:.0} s, {:.0} through + {:.0} local per hour, seed {} (digest {}): drawn {} + {}, dropped {} same street + {} no street, routed {}/{}",
-            d.settings.duration, d.settings.through_per_hour, d.settings.local_per_hour, d.settings.seed, d.digest, d.through_drawn, d.local_drawn, d.same_street, d.no_street, d.routed, d.placed
+            "demand     {:.0} s, {:.0} through + {:.0} local per hour, seed {} (digest {}): drawn {} + {}, dropped {} same place + {} no street, routed {}/{}",
+            d.settings.duration, d.settings.through_per_hour, d.settings.local_per_hour, d.settings.seed, d.digest, d.through_drawn, d.local_drawn, d.same_place, d.no_street, d.routed, d.placed
         );
         let _ = writeln!(s, "vehicles   inserted {}, arrived {}, teleported {}, still running {}, never inserted {}", v.inserted, v.arrived, v.teleported, v.running_at_end, v.waiting_at_end);
         for (label, c) in [("all", &self.all), ("through", &self.through), ("local", &self.local)] {

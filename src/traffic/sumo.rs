@@ -111,8 +111,9 @@ impl Sumo {
         self.run("netconvert", &args, &files.edges, &net.with_extension("log"))
     }
 
-    /// `duarouter`: the fastest route (free-flow travel times) of every trip; trips without a
-    /// route are dropped (and counted by the caller).
+    /// `duarouter`: the fastest route (free-flow travel times) of every trip (trips between
+    /// junctions leave and reach them on any edge); trips without a route are dropped (and
+    /// counted by the caller).
     pub fn duarouter(&self, net: &Path, trips: &Path, routes: &Path, seed: u64) -> Result<(), TrafficError> {
         let p = |p: &Path| p.display().to_string();
         let args = vec![
@@ -125,6 +126,8 @@ impl Sumo {
             "--seed".into(),
             seed.to_string(),
             "--ignore-errors".into(),
+            "true".into(),
+            "--junction-taz".into(),
             "true".into(),
             "--no-step-log".into(),
             "true".into(),
