@@ -98,6 +98,8 @@ fn tiny_design_through_netconvert_and_sumo() {
     assert!((r.all.route_length_mean.unwrap() - mean_len).abs() <= 1e-9 * mean_len);
     // One level: every through vehicle drives only on "local" streets (level 3).
     assert_eq!(r.through_on_local.distance_share, Some(1.0));
+    let km = r.through_on_local.km_by_level;
+    assert!(km[2] > 0.0 && km[0] == 0.0 && km[1] == 0.0 && km[3] == 0.0, "{km:?}");
     // Volumes: every vehicle departs somewhere, so the departures over all streets add up.
     let edgedata = dir.path().join("sumo/edgedata.xml");
     let departed: f64 = attr_values(&edgedata, "edge", "departed").iter().map(|d| d.parse::<f64>().unwrap()).sum();

@@ -254,7 +254,11 @@ pub fn comparison_svg(rows: &[(String, &TrafficReport)]) -> String {
         ("mean travel time (s)", |r| r.all.travel_time_mean),
         ("p95 travel time (s)", |r| r.all.travel_time_p95),
         ("mean waiting time (s)", |r| r.all.waiting_time_mean),
-        ("through traffic's distance on local streets (%)", |r| r.through_on_local.distance_share.map(|v| 100.0 * v)),
+        ("through traffic's distance inside the region (levels 2–4, %)", |r| {
+            let k = &r.through_on_local.km_by_level;
+            let total: f64 = k.iter().sum();
+            (total > 0.0).then(|| 100.0 * (total - k[0]) / total)
+        }),
     ];
     let (px0, py0, pw2, ph2) = (580.0, 80.0, 260.0, 150.0);
     for (k, (title, f)) in panels.iter().enumerate() {

@@ -140,6 +140,8 @@ pub struct ClassStats {
 pub struct LocalShare {
     /// Through vehicles measured (arrived, with a route).
     pub vehicles: usize,
+    /// Their vehicle-kilometres on each level 1–4.
+    pub km_by_level: [f64; 4],
     /// Share of their distance on local streets.
     pub distance_share: Option<f64>,
     /// Share of them that used a local street.
@@ -240,6 +242,7 @@ pub fn build(
 
     let street_of: BTreeMap<u32, usize> = net.edges.iter().enumerate().map(|(k, e)| (e.id, k)).collect();
     let (mut local_m, mut total_m, mut used_local, mut measured) = (0.0, 0.0, 0usize, 0usize);
+    let mut km_by_level = [0.0; 4];
     for t in of(Some(TripClass::Through)) {
         let Some(edges) = routes.get(&t.id) else { continue };
         measured += 1;
@@ -248,6 +251,7 @@ pub fn build(
             let (Some((id, _)), Some(ne)) = (parse_edge_id(e), sumo_net.edges.get(e)) else { continue };
             let Some(&k) = street_of.get(&id) else { continue };
             total_m += ne.length;
+            km_by_level[(net.edges[k].level.clamp(1, 4) - 1) as usize] += ne.length / 1000.0;
             if net.edges[k].level >= 3 {
                 local_m += ne.length;
                 any = true;
@@ -257,6 +261,7 @@ pub fn build(
     }
     let through_on_local = LocalShare {
         vehicles: measured,
+        km_by_level,
         distance_share: (total_m > 0.0).then(|| local_m / total_m),
         vehicle_share: (measured > 0).then(|| used_local as f64 / measured as f64),
     };
@@ -364,12 +369,19 @@ impl TrafficReport {
                 num(c.waiting_time_mean, 1)
             );
         }
+        let l = &self.through_on_local;
+        let km: f64 = l.km_by_level.iter().sum();
+        let share = |k: usize| pct((km > 0.0).then(|| l.km_by_level[k] / km));
         let _ = writeln!(
             s,
-            "through    on local streets: {} of the distance, {} of the vehicles ({} measured)",
-            pct(self.through_on_local.distance_share),
-            pct(self.through_on_local.vehicle_share),
-            self.through_on_local.vehicles
+            "through    on local streets: {} of the distance, {} of the vehicles ({} measured); distance by level 1–4: {} / {} / {} / {}",
+            pct(l.distance_share),
+            pct(l.vehicle_share),
+            l.vehicles,
+            share(0),
+            share(1),
+            share(2),
+            share(3)
         );
         let t = &self.timings;
         let _ = writeln!(
@@ -398,13 +410,13 @@ pub fn comparison_markdown(rows: &[(String, &TrafficReport)]) -> String {
             r.sumo_version
         );
     }
-    s.push_str("| design | streets (L1/L2/L3/L4) | km | inserted | arrived | teleported | travel time mean / p95 (s) | route mean (m) | waiting mean (s) | through: travel time mean (s) | through on local streets: distance / vehicles | local: travel time mean (s) | wall time (s) |\n");
-    s.push_str("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+    s.push_str("| design | streets (L1/L2/L3/L4) | km | inserted | arrived | teleported | travel time mean / p95 (s) | route mean (m) | waiting mean (s) | through: travel time mean (s) | through on collectors (distance) | through on local streets: distance / vehicles | local: travel time mean (s) | wall time (s) |\n");
+    s.push_str("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
     for (label, r) in rows {
         let n = &r.network;
         let _ = writeln!(
             s,
-            "| {label} | {} ({}) | {:.2} | {} | {} | {} | {} / {} | {} | {} | {} | {} / {} | {} | {:.1} |",
+            "| {label} | {} ({}) | {:.2} | {} | {} | {} | {} / {} | {} | {} | {} | {} | {} / {} | {} | {:.1} |",
             n.streets,
             n.streets_per_level.iter().map(|c| c.to_string()).collect::<Vec<_>>().join("/"),
             n.km_per_level.iter().sum::<f64>(),
@@ -416,6 +428,11 @@ pub fn comparison_markdown(rows: &[(String, &TrafficReport)]) -> String {
             num(r.all.route_length_mean, 0),
             num(r.all.waiting_time_mean, 1),
             num(r.through.travel_time_mean, 1),
+            pct({
+                let k = &r.through_on_local.km_by_level;
+                let total: f64 = k.iter().sum();
+                (total > 0.0).then(|| k[1] / total)
+            }),
             pct(r.through_on_local.distance_share),
             pct(r.through_on_local.vehicle_share),
             num(r.local.travel_time_mean, 1),
