@@ -141,7 +141,8 @@ pub fn histogram_svg(r: &TrafficReport) -> String {
     let local = r.travel_times.get("local").unwrap_or(&empty);
     let max = through.iter().chain(local).copied().fold(0.0, f64::max);
     let width = nice_ceil((max / 30.0).max(1.0));
-    let bins = ((max / width).floor() as usize + 1).max(1);
+    // A multiple of five bins, so the axis ticks fall on bin edges.
+    let bins = ((max / width).floor() as usize + 1).div_ceil(5).max(1) * 5;
     let (ht, hl) = (histogram(through, width, bins), histogram(local, width, bins));
     let top = nice_ceil((0..bins).map(|i| ht[i] + hl[i]).max().unwrap_or(0) as f64);
     let (w, h) = (760.0, 420.0);
@@ -254,7 +255,7 @@ pub fn comparison_svg(rows: &[(String, &TrafficReport)]) -> String {
         ("mean travel time (s)", |r| r.all.travel_time_mean),
         ("p95 travel time (s)", |r| r.all.travel_time_p95),
         ("mean waiting time (s)", |r| r.all.waiting_time_mean),
-        ("through traffic's distance inside the region (levels 2–4, %)", |r| {
+        ("through traffic inside the region (% of its km)", |r| {
             let k = &r.through_on_local.km_by_level;
             let total: f64 = k.iter().sum();
             (total > 0.0).then(|| 100.0 * (total - k[0]) / total)
