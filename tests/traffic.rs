@@ -292,6 +292,10 @@ fn bad_input_names_the_file_and_the_cause() {
     let e = sumo().netconvert(&files, &dir.path().join("bad.net.xml")).unwrap_err().to_string();
     assert!(e.contains(&files.edges.display().to_string()) && e.contains("`netconvert` failed") && e.contains("nowhere") && e.contains("bad.net.log"), "{e}");
 
+    // A SUMO_HOME given by name must hold SUMO.
+    let e = Sumo::locate(Some(&dir.path().join("not-sumo"))).unwrap_err().to_string();
+    assert!(e.contains("not-sumo") && e.contains("SUMO not found") && e.contains("scripts/setup.sh"), "{e}");
+
     // No SUMO anywhere: the command names the setup script.
     std::fs::write(&file, serde_json::to_string(&good).unwrap()).unwrap();
     let out = netspec()
@@ -352,4 +356,12 @@ fn cli_compares_designs_and_solve_writes_geojson() {
     for f in ["comparison.svg", "comparison.png", "comparison.json", "short/traffic.json", "short/volume.png", "direct/traveltime.png"] {
         assert!(out_dir.join(f).is_file(), "{f}");
     }
+}
+
+/// The version the library names is the one scripts/setup.sh installs.
+#[test]
+fn setup_installs_the_named_sumo_version() {
+    let setup = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("scripts/setup.sh")).unwrap();
+    let line = setup.lines().find(|l| l.starts_with("SUMO_VERSION=")).unwrap();
+    assert_eq!(line.trim_start_matches("SUMO_VERSION="), netspec::traffic::sumo::SETUP_SUMO_VERSION);
 }

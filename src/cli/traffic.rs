@@ -35,7 +35,8 @@ fn write_picture(dir: &Path, stem: &str, svg: &str) -> Result<()> {
 
 pub fn run_traffic(args: TrafficArgs) -> Result<ExitCode> {
     let sumo = Sumo::locate(args.sumo_home.as_deref())?;
-    println!("sumo       {} ({})", sumo.version, sumo.bin.display());
+    let note = if sumo.version == traffic::sumo::SETUP_SUMO_VERSION { String::new() } else { format!(", not the {} scripts/setup.sh installs", traffic::sumo::SETUP_SUMO_VERSION) };
+    println!("sumo       {} ({}{note})", sumo.version, sumo.bin.display());
     let mut labels: Vec<String> = args.designs.iter().enumerate().map(|(i, p)| args.labels.get(i).cloned().unwrap_or_else(|| default_label(p))).collect();
     // Distinct labels (they name the output directories).
     let mut seen = BTreeSet::new();

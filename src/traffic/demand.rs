@@ -99,13 +99,14 @@ pub fn generate(region: &Region, s: &DemandSettings) -> Vec<Trip> {
     let (lo, hi) = bounds(region.areas.iter().flatten());
     if lo[0] < hi[0] && lo[1] < hi[1] {
         for (k, depart) in poisson(&mut rng, s.local_per_hour, s.duration).into_iter().enumerate() {
-            let mut point = || loop {
-                let p = [lo[0] + rng.random::<f64>() * (hi[0] - lo[0]), lo[1] + rng.random::<f64>() * (hi[1] - lo[1])];
-                if region.areas.iter().any(|a| geom::point_in_polygon(p, a)) {
-                    return p;
-                }
+            // Rejection sampling in the bounding box (given up on an area of measure zero).
+            let mut point = || {
+                (0..10_000).find_map(|_| {
+                    let p = [lo[0] + rng.random::<f64>() * (hi[0] - lo[0]), lo[1] + rng.random::<f64>() * (hi[1] - lo[1])];
+                    region.areas.iter().any(|a| geom::point_in_polygon(p, a)).then_some(p)
+                })
             };
-            let (from, to) = (point(), point());
+            let (Some(from), Some(to)) = (point(), point()) else { break };
             let forward = [rng.random::<bool>(), rng.random::<bool>()];
             trips.push(Trip { id: format!("local{k}"), class: TripClass::Local, depart, from, to, forward });
         }

@@ -33,11 +33,18 @@ pub fn setup_location() -> Option<PathBuf> {
 }
 
 impl Sumo {
-    /// Finds SUMO (see the module docs); `home` is an explicit `SUMO_HOME` to use first.
+    /// Finds SUMO (see the module docs); `home` is an explicit `SUMO_HOME`, used alone.
     pub fn locate(home: Option<&Path>) -> Result<Sumo, TrafficError> {
+        if let Some(h) = home {
+            // Asked for by name: that one or an error.
+            let bin = h.join("bin");
+            if !bin.join("sumo").is_file() {
+                return Err(TrafficError::new(h, TrafficErrorKind::SumoMissing { looked: bin.display().to_string() }));
+            }
+            return Sumo::at(bin, Some(h.to_path_buf()));
+        }
         let mut looked = Vec::new();
         let mut homes: Vec<PathBuf> = Vec::new();
-        homes.extend(home.map(Path::to_path_buf));
         homes.extend(std::env::var_os("SUMO_HOME").filter(|v| !v.is_empty()).map(PathBuf::from));
         homes.extend(setup_location());
         for h in homes {
