@@ -5,7 +5,8 @@
 //! Layers, bottom up: [`milp`] (the solver-neutral model and its independent checker), [`io`]
 //! (MPS and LP files), [`solvers`] (HiGHS, CBC, SCIP, microlp and a good_lp bridge behind one
 //! trait), [`mesh`] (2D half-edge meshes), [`spec`] (functional specifications),
-//! [`formulations`] (the paper's integer programs), [`design`] (decoding, metrics and the
+//! [`rules`] (what a spec's rules mean on a mesh, enumerated), [`formulations`] (recipes of
+//! constraint families: the paper's integer program and stronger ones), [`design`] (decoding, metrics and the
 //! independent validator), [`render`] (pictures), and [`pipeline`] (spec → checked design). [`urban`] lays out cities;
 //! [`traffic`] evaluates designed street networks in SUMO.
 #![deny(missing_docs)]
@@ -19,6 +20,7 @@ pub mod milp;
 pub mod pipeline;
 pub mod render;
 pub mod report;
+pub mod rules;
 pub mod solvers;
 pub mod spec;
 pub mod traffic;

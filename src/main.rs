@@ -54,6 +54,9 @@ enum Command {
         /// Build and export the model without solving it.
         #[arg(long)]
         no_solve: bool,
+        /// Formulation recipe, replacing the spec's: paper, tight or strong.
+        #[arg(long, value_name = "RECIPE")]
+        formulation: Option<netspec::spec::RecipeName>,
     },
     /// Compare backends on spec files: each run in its own process, killed at the time limit
     /// plus a grace period, recorded as it ends (rerun to resume); writes results.md,
@@ -259,7 +262,9 @@ fn main() -> ExitCode {
 fn run(cli: Cli) -> Result<ExitCode> {
     match cli.command {
         Command::SolveFile { file, solve, json } => solve_file(&file, &solve, json.as_deref()),
-        Command::Solve { spec, solve, out, export, no_solve } => cli::design::solve_spec(&spec, &solve, out, export, no_solve),
+        Command::Solve { spec, solve, out, export, no_solve, formulation } => {
+            cli::design::solve_spec(&spec, &solve, out, export, no_solve, formulation)
+        }
         Command::Compare { specs, manifest, solvers, time_limit, grace, seeds, threads, paper_limits, out } => {
             let manifest = match manifest {
                 Some(m) => netspec::compare::Manifest::load(&m).map_err(anyhow::Error::msg)?,

@@ -1,19 +1,19 @@
 //! From a resolved problem to a checked design: build the MILP, solve it, check every row and
 //! bound with the MILP checker, decode the network, validate it independently, measure it.
 
-use crate::design::{self, Metrics, Network, Violation};
+use crate::design::{self, Metrics, Network, Objective, Violation};
 use crate::formulations::expr::FamilyStats;
-use crate::formulations::network::{self, NetworkModel};
-use crate::formulations::paths::PathSets;
+use crate::formulations::{self, Formulation};
 use crate::mesh::Mesh;
-use crate::milp::{check_point, objectives_agree, CheckReport, ModelStats, Tolerances};
-use crate::solvers::{SolveOptions, SolveResult, SolverError, SolverKind};
+use crate::milp::{check_point, objectives_agree, CheckReport, Model, ModelStats, Tolerances};
+use crate::rules::paths::PathSets;
+use crate::solvers::{LazyReport, LazyRow, Separator, SolveOptions, SolveResult, SolverError, SolverKind};
 use crate::spec::{Problem, Spec};
 use indexmap::IndexMap;
 use serde::{Deserialize, Serialize};
 
 /// Version of the design result schema (`result.json`).
-pub const DESIGN_SCHEMA_VERSION: u32 = 1;
+pub const DESIGN_SCHEMA_VERSION: u32 = 2;
 
 /// The verdict of every independent check.
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -24,9 +24,11 @@ pub struct Validity {
     pub design_violations: Vec<Violation>,
     /// §6 item 7: every row and bound of the emitted MILP at the returned point.
     pub milp_check: Option<CheckReport>,
-    /// §6 item 7: the objective recomputed from the decoded design.
+    /// §6 item 7: the objective recomputed from the decoded design alone (see
+    /// [`crate::design::Objective`]).
     pub objective_recomputed: Option<f64>,
-    /// Whether it agrees with the solver's objective (1e-6 relative).
+    /// Whether the solver's objective equals the model's objective at its point (the
+    /// formulation's surrogate, 1e-6 relative) and the design's own objective is not above it.
     pub objective_agrees: Option<bool>,
 }
 
@@ -43,7 +45,7 @@ pub struct RoomsResult {
     pub block_graph: Option<crate::design::BlockGraph>,
     /// The chosen placements (faces, inner and boundary edges), in placement order; the
     /// network's `rooms` indices refer to the model's full list, these are the rooms themselves.
-    pub chosen: Vec<crate::formulations::placements::Placement>,
+    pub chosen: Vec<crate::rules::placements::Placement>,
 }
 
 /// Everything about one design run (`result.json`).
@@ -67,6 +69,9 @@ pub struct DesignResult {
     pub network: Option<Network>,
     /// Metrics of the network.
     pub metrics: Option<Metrics>,
+    /// The objective recomputed from the design alone, term by term (the paper's distance term,
+    /// total travel, counts of penalised features).
+    pub objective: Option<Objective>,
     /// The independent checks.
     pub validity: Validity,
     /// The solver's result (the primal point is omitted here; see `--export` for the model).
@@ -75,39 +80,136 @@ pub struct DesignResult {
     pub model_stats: ModelStats,
     /// Variables and rows per constraint family.
     pub families: IndexMap<String, FamilyStats>,
-    /// The big-M of (2).
-    pub big_m: f64,
+    /// The recipe, with its overrides (`strong`, `paper(coverage=strong)`).
+    pub formulation: String,
+    /// The big-M of the label rows (2), when the recipe has labels.
+    pub big_m: Option<f64>,
+    /// Lazily separated rows: how they were handled and how many were added.
+    #[serde(default)]
+    pub lazy: Option<LazyReport>,
+    /// The MIP start handed to the solver (or refused), if one was prepared.
+    #[serde(default)]
+    pub start: Option<StartReport>,
     /// Point-to-point path sets, if on.
     pub path_sets: Option<PathSets>,
     /// Room tiling, if on.
     pub rooms: Option<RoomsResult>,
 }
 
-/// Builds the MILP of a problem (no solve).
-pub fn build(p: &Problem) -> NetworkModel {
-    network::build(p)
+/// A MIP start: where it came from, what it is worth, and whether the checker let it through.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct StartReport {
+    /// Where the design came from (`heuristic`, a file name).
+    pub source: String,
+    /// The design's own objective.
+    pub objective: Option<f64>,
+    /// Whether the point passed the MILP checker (every emitted row and bound, and every lazy
+    /// row) and was handed to the solver.
+    pub accepted: bool,
+    /// Why it was refused.
+    pub reason: Option<String>,
 }
 
-/// Solves a built model and checks the answer.
-pub fn solve_built(p: &Problem, nm: &NetworkModel, kind: SolverKind, options: &SolveOptions) -> Result<DesignResult, SolverError> {
+/// Builds the MILP of a problem under the recipe its spec asks for (no solve).
+pub fn build(p: &Problem) -> Formulation {
+    formulations::build(p)
+}
+
+/// Turns a design into a checked MIP start for `f`: the point is encoded, then checked by the
+/// MILP checker against every row and bound (and the lazy rows); a point that fails is
+/// reported and not returned, never passed to a solver.
+pub fn prepare_start(p: &Problem, f: &Formulation, net: &Network, source: &str) -> (Option<Vec<f64>>, StartReport) {
+    let objective = Some(Objective::of(p, net).total);
+    let mut report = StartReport { source: source.to_string(), objective, accepted: false, reason: None };
+    let x = match f.encode(p, net) {
+        Ok(x) => x,
+        Err(e) => {
+            report.reason = Some(e.to_string());
+            return (None, report);
+        }
+    };
+    let check = check_point(&f.model, &x, &Tolerances::default());
+    if !check.is_feasible() {
+        let first: Vec<String> = check.violations.iter().take(3).map(|v| v.to_string()).collect();
+        report.reason = Some(format!("{} violations of the model, e.g. {}", check.violations.len(), first.join("; ")));
+        return (None, report);
+    }
+    if let Some(mut sep) = f.separator() {
+        let cuts = sep.separate_integral(&x);
+        if !cuts.is_empty() {
+            report.reason = Some(format!("violates {} connectivity rows (an island)", cuts.len()));
+            return (None, report);
+        }
+    }
+    report.accepted = true;
+    (Some(x), report)
+}
+
+/// The formulation's point for a repaired version of a disconnected integral point: islands
+/// (components without a sink) are dropped, and the rest encoded. `None` when the rest is not a
+/// valid design (e.g. coverage needed an island).
+fn repair_point(p: &Problem, f: &Formulation, x: &[f64]) -> Option<Vec<f64>> {
+    let mut net = f.decode(p, x);
+    for v in design::validate(p, &net, f.path_sets.as_ref()) {
+        if let Violation::Island { edges } = v {
+            for e in edges {
+                net.active[e.index()] = false;
+            }
+        }
+    }
+    net.rooms.clear();
+    if !design::validate(p, &net, f.path_sets.as_ref()).is_empty() || f.placements.is_some() {
+        return None;
+    }
+    f.encode(p, &net).ok()
+}
+
+/// Solves a built formulation and checks the answer: lazily separated rows go through the
+/// backend's `solve_lazy` (its callback, or the solve–cut–resolve loop), every row and bound of
+/// the model and every separated row is checked at the returned point, the network is decoded,
+/// validated and measured, and its objective recomputed from the design alone.
+pub fn solve_built(p: &Problem, f: &Formulation, kind: SolverKind, options: &SolveOptions) -> Result<DesignResult, SolverError> {
     let solver = kind.instance()?;
-    let mut result = solver.solve(&nm.model, options)?;
+    let (mut result, lazy_rows, lazy): (SolveResult, Vec<LazyRow>, Option<LazyReport>) = match f.separator() {
+        Some(sep) => {
+            let mut sep = sep.with_repair(Box::new(|x: &[f64]| repair_point(p, f, x)));
+            let ls = solver.solve_lazy(&f.model, &mut sep, options)?;
+            (ls.result, ls.rows, Some(ls.report))
+        }
+        None => (solver.solve(&f.model, options)?, Vec::new(), None),
+    };
     let mut validity = Validity { valid: false, design_violations: Vec::new(), milp_check: None, objective_recomputed: None, objective_agrees: None };
     let mut net = None;
     let mut metrics = None;
+    let mut objective = None;
     if let Some(x) = &result.primal {
-        let check = check_point(&nm.model, x, &Tolerances::default());
-        let n = design::decode(p, nm, x);
-        validity.design_violations = design::validate(p, &n, nm.path_sets.as_ref());
-        if let Some(rm) = &nm.rooms {
-            validity.design_violations.extend(design::validate_rooms(p, &n, &rm.report.placements, &n.rooms));
+        let check = if lazy_rows.is_empty() {
+            check_point(&f.model, x, &Tolerances::default())
+        } else {
+            let mut full: Model = f.model.clone();
+            for r in &lazy_rows {
+                r.add_to(&mut full);
+            }
+            check_point(&full, x, &Tolerances::default())
+        };
+        let n = f.decode(p, x);
+        validity.design_violations = design::validate(p, &n, f.path_sets.as_ref());
+        if let Some(pl) = &f.placements {
+            validity.design_violations.extend(design::validate_rooms(p, &n, &pl.placements, &n.rooms));
         }
-        let recomputed = design::recompute_objective(p, nm, &n, x);
-        validity.objective_recomputed = Some(recomputed);
-        validity.objective_agrees = result.objective.map(|o| objectives_agree(o, recomputed, 1e-6));
+        // The solver's objective must be the model's objective at its point (the checker
+        // recomputes it), and the design's own objective can only be lower: a formulation's
+        // surrogate (labels, flows, indicators) overestimates off the optimum, never under.
+        let design_objective = Objective::of(p, &n);
+        let surrogate = check.objective;
+        validity.objective_recomputed = Some(design_objective.total);
+        validity.objective_agrees = result.objective.map(|o| {
+            objectives_agree(o, surrogate, 1e-6) && design_objective.total <= surrogate + 1e-6 * surrogate.abs().max(1.0)
+        });
         validity.valid = check.is_feasible() && validity.design_violations.is_empty() && validity.objective_agrees == Some(true);
         validity.milp_check = Some(check);
         metrics = Some(Metrics::of(p, &n));
+        objective = Some(design_objective);
         net = Some(n);
     }
     let active_edges = net.as_ref().map_or(Vec::new(), |n: &Network| {
@@ -120,15 +222,15 @@ pub fn solve_built(p: &Problem, nm: &NetworkModel, kind: SolverKind, options: &S
             .collect()
     });
     result.primal = None;
-    let rooms = nm.rooms.as_ref().map(|rm| RoomsResult {
-        enumerated_per_template: rm.report.per_template.clone(),
-        truncated: rm.report.truncated,
-        seconds: rm.report.seconds,
+    let rooms = f.placements.as_ref().map(|pl| RoomsResult {
+        enumerated_per_template: pl.per_template.clone(),
+        truncated: pl.truncated,
+        seconds: pl.seconds,
         block_graph: match (&p.rooms, &net) {
-            (Some(r), Some(n)) if r.mode == crate::spec::RoomMode::Game => Some(design::block_graph(p, n, &rm.report.placements)),
+            (Some(r), Some(n)) if r.mode == crate::spec::RoomMode::Game => Some(design::block_graph(p, n, &pl.placements)),
             _ => None,
         },
-        chosen: net.as_ref().map_or(Vec::new(), |n| n.rooms.iter().map(|&k| rm.report.placements[k].clone()).collect()),
+        chosen: net.as_ref().map_or(Vec::new(), |n| n.rooms.iter().map(|&k| pl.placements[k].clone()).collect()),
     });
     Ok(DesignResult {
         schema: "netspec.design".into(),
@@ -140,12 +242,16 @@ pub fn solve_built(p: &Problem, nm: &NetworkModel, kind: SolverKind, options: &S
         active_edges,
         network: net,
         metrics,
+        objective,
         validity,
         solve: result,
-        model_stats: nm.model.stats(),
-        families: nm.families.clone(),
-        big_m: nm.big_m,
-        path_sets: nm.path_sets.clone(),
+        model_stats: f.model.stats(),
+        families: f.families.clone(),
+        formulation: f.recipe.label.clone(),
+        big_m: f.big_m,
+        lazy,
+        start: None,
+        path_sets: f.path_sets.clone(),
         rooms,
     })
 }

@@ -3,12 +3,12 @@
 //! errors for bad or infeasible specs.
 
 use netspec::design::{self, Network, Violation};
-use netspec::formulations::network;
+use netspec::formulations;
 use netspec::mesh::{EdgeId, VertexId};
 use netspec::milp::objectives_agree;
 use netspec::pipeline;
 use netspec::solvers::{SolveOptions, SolverKind, Termination};
-use netspec::spec::{Problem, Spec, SpecErrorKind};
+use netspec::spec::{Problem, RecipeName, Spec, SpecErrorKind};
 use serde::Serialize;
 use std::path::Path;
 
@@ -53,6 +53,24 @@ fn solve_all(p: &Problem, small: bool) -> Snapshot {
     }
     for w in objs.windows(2) {
         assert!(objectives_agree(w[0].1, w[1].1, 1e-6), "{}: backends disagree {objs:?}", p.spec.name);
+    }
+    // Every recipe has the same optimum (the distance term means the same in all of them), and
+    // the design's own objective equals it at the optimum. `strong` is also solved by SCIP
+    // (cutsets in its branch and cut) and by HiGHS (the solve–cut–resolve loop).
+    let expected = objs[0].1;
+    for recipe in RecipeName::ALL {
+        let f = formulations::build_with(p, &formulations::Recipe::named(recipe));
+        let kinds: &[SolverKind] = if recipe == RecipeName::Strong { &[SolverKind::Highs, SolverKind::Scip] } else { &[SolverKind::Highs] };
+        for &k in kinds.iter().filter(|k| k.is_compiled()) {
+            let o = SolveOptions { time_limit: Some(60.0), ..Default::default() };
+            let r = pipeline::solve_built(p, &f, k, &o).unwrap_or_else(|e| panic!("{recipe} {k}: {e}"));
+            assert_eq!(r.solve.termination, Termination::Optimal, "{recipe} {k} on {}", p.spec.name);
+            assert!(r.validity.valid, "{recipe} {k} on {}: {:?}", p.spec.name, r.validity);
+            let got = r.solve.objective.unwrap();
+            assert!(objectives_agree(got, expected, 1e-6), "{}: {recipe} on {k} gives {got}, expected {expected}", p.spec.name);
+            let design = r.objective.as_ref().unwrap().total;
+            assert!(objectives_agree(design, expected, 1e-6), "{}: {recipe} on {k}: design objective {design}, solver {expected}", p.spec.name);
+        }
     }
     let r = first.unwrap();
     let m = r.metrics.unwrap();
@@ -246,7 +264,8 @@ fn fig2_models_export_and_read_back() {
         let spec = Spec::load(&spec_path).unwrap();
         let p = spec.resolve(spec_path.parent().unwrap()).unwrap();
         assert_eq!(p.mesh.num_edges(), 312, "Fig. 2 meshes have the paper's 312 edges");
-        let nm = pipeline::build(&p);
+        // The paper's own recipe: these fixtures pin its rows, names and order byte for byte.
+        let nm = formulations::build_with(&p, &formulations::Recipe::named(RecipeName::Paper));
         let fixture = dir.join(format!("fixtures/fig2/fig2{f}.mps"));
         // The committed fixture must equal what we emit now (byte for byte), and read back.
         let mut now = Vec::new();
@@ -372,9 +391,84 @@ fn validator_finds_an_uncovered_vertex_and_a_branch() {
 #[test]
 fn validator_accepts_a_good_network_and_objective_recomputes() {
     let p = problem(&spec("good", &format!("boundary = \"wall\"\nformulation = \"tight\"\n{BASE}")));
-    let nm = network::build(&p);
+    let nm = formulations::build(&p);
     let r = pipeline::solve_built(&p, &nm, SolverKind::default_kind().unwrap(), &SolveOptions::default()).unwrap();
     assert!(r.validity.valid);
     assert!(design::validate(&p, r.network.as_ref().unwrap(), None).is_empty());
     assert!(objectives_agree(r.validity.objective_recomputed.unwrap(), r.solve.objective.unwrap(), 1e-9));
+}
+
+/// A strong-recipe model written to a file is complete: its lazily separated cutsets are
+/// written as the equivalent flow, and the file read back and solved without any separator has
+/// the lazy solve's optimum (with and without the distance term).
+#[test]
+fn strong_export_is_complete() {
+    for (name, weights) in [("len", "length = 1\nzigzag = 2"), ("dist", "length = 1\ndistance = 0.5")] {
+        let p = problem(&spec(name, &format!("boundary = \"wall\"\nformulation = \"strong\"\n{BASE}\n[weights]\n{weights}\n")));
+        let f = pipeline::build(&p);
+        assert!(!f.is_complete(), "{name}: strong has lazy cutsets");
+        let lazy = pipeline::solve_built(&p, &f, SolverKind::Highs, &SolveOptions::default()).unwrap();
+        assert_eq!(lazy.solve.termination, Termination::Optimal);
+        let compact = formulations::build_compact(&p);
+        // Without the distance term the cutsets become the connectivity flow; with it, the
+        // distance flow already ties every edge to a sink.
+        let flow = if name == "len" { "connectivity flow (§8)" } else { "distance flow (§8)" };
+        assert!(compact.is_complete() && compact.families.contains_key(flow), "{name}: {:?}", compact.families.keys());
+        let dir = tempfile::tempdir().unwrap();
+        for ext in ["lp", "mps"] {
+            let path = dir.path().join(format!("m.{ext}"));
+            netspec::io::write_model_file_with_comments(&compact.model, &path, &["cutsets written as a flow".into()]).unwrap();
+            let text = std::fs::read_to_string(&path).unwrap();
+            assert!(text.contains("cutsets written as a flow"), "{ext}: header comment");
+            let back = netspec::io::read_model_file(&path).unwrap().model;
+            let r = SolverKind::Highs.instance().unwrap().solve(&back, &SolveOptions::default()).unwrap();
+            assert_eq!(r.termination, Termination::Optimal);
+            assert!(objectives_agree(r.objective.unwrap(), lazy.solve.objective.unwrap(), 1e-6), "{name} {ext}: {:?} vs {:?}", r.objective, lazy.solve.objective);
+        }
+    }
+}
+
+/// A design becomes a MIP start for every recipe: the optimal design of one recipe, encoded for
+/// each recipe, passes the MILP checker with that recipe's objective; a corrupted design is
+/// refused with a reason.
+#[test]
+fn designs_encode_as_checked_starts() {
+    let p = problem(&spec("start", &format!("boundary = \"wall\"\n{BASE}\n[weights]\nlength = 1\ndistance = 0.25\nzigzag = 1\n")));
+    let r = pipeline::solve_built(&p, &pipeline::build(&p), SolverKind::Highs, &SolveOptions::default()).unwrap();
+    let net = r.network.clone().unwrap();
+    for recipe in RecipeName::ALL {
+        let f = formulations::build_with(&p, &formulations::Recipe::named(recipe));
+        let (x, report) = pipeline::prepare_start(&p, &f, &net, "test");
+        assert!(report.accepted, "{recipe}: {:?}", report.reason);
+        let x = x.unwrap();
+        assert!(objectives_agree(f.model.objective_value(&x), r.solve.objective.unwrap(), 1e-9), "{recipe}: start objective");
+        // Handed to a solver with a limit of zero nodes' work, the start comes back as the
+        // incumbent at worst.
+        let o = SolveOptions { mip_start: Some(x), ..Default::default() };
+        let again = pipeline::solve_built(&p, &f, SolverKind::Highs, &o).unwrap();
+        assert!(again.solve.objective.unwrap() <= r.solve.objective.unwrap() + 1e-9);
+    }
+    // Drop one edge of the optimum: a dead-end (or an uncovered vertex) appears, and the start
+    // is refused with a reason that names a row.
+    let mut broken = net.clone();
+    let e = broken.active_edges()[0];
+    broken.active[e.index()] = false;
+    let f = pipeline::build(&p);
+    let (x, report) = pipeline::prepare_start(&p, &f, &broken, "broken");
+    assert!(x.is_none() && !report.accepted);
+    assert!(report.reason.as_deref().is_some_and(|r| r.contains("violations") || r.contains("connectivity") || r.contains("reach")), "{:?}", report.reason);
+}
+
+/// The quick infeasibility case: one corner sink behind a wall on a 4×4 grid. The
+/// strong recipe's flows and coverage rows make the LP itself infeasible, so every backend
+/// proves it (the timing is in docs/benchmarks.md, not asserted here).
+#[test]
+fn corner_sink_behind_a_wall_is_infeasible() {
+    let p = problem(&spec("corner", "boundary = \"wall\"\nformulation = \"strong\"\n[mesh]\ngrid = { width = 4, height = 4 }\n[sinks]\nvertices = [0]\n"));
+    let f = pipeline::build(&p);
+    for k in backends(true) {
+        let r = pipeline::solve_built(&p, &f, k, &SolveOptions::default()).unwrap();
+        assert_eq!(r.solve.termination, Termination::Infeasible, "{k}");
+        assert!(r.network.is_none());
+    }
 }

@@ -159,7 +159,7 @@ fn infeasible_tiling_is_a_result() {
 fn validator_item_6_on_hand_built_violations() {
     let p = problem(FLOORPLAN_4X4);
     let nm = pipeline::build(&p);
-    let pls = &nm.rooms.as_ref().unwrap().report.placements;
+    let pls = &nm.placements.as_ref().unwrap().placements;
     let find = |faces: &[u32]| pls.iter().position(|pl| pl.faces.iter().map(|f| f.0).collect::<Vec<_>>() == faces).unwrap();
     // Faces are numbered row by row (4 per row).
     let (a, b, c, d) = (find(&[0, 1, 4, 5]), find(&[2, 3, 6, 7]), find(&[8, 9, 12, 13]), find(&[10, 11, 14, 15]));
@@ -233,8 +233,8 @@ fn paper_examples_resolve_and_build() {
         let edges = p.mesh.num_edges();
         assert!((lo..=hi).contains(&edges), "{name}: {edges} edges");
         let nm = pipeline::build(&p);
-        let rm = nm.rooms.as_ref().unwrap();
-        assert!(!rm.report.truncated && rm.report.per_template.iter().all(|&n| n > 0), "{name}: {:?}", rm.report.per_template);
+        let rm = nm.placements.as_ref().unwrap();
+        assert!(!rm.truncated && rm.per_template.iter().all(|&n| n > 0), "{name}: {:?}", rm.per_template);
         nm.model.validate().unwrap();
     }
 }
@@ -308,4 +308,63 @@ fn snapshot_linear_6x6() {
 #[test]
 fn snapshot_branching_6x6() {
     insta::assert_yaml_snapshot!("branching_6x6", six_by_six("branching6", "[3]", "forbid", "game", "level = \"branching\""));
+}
+
+/// Issue 15's strip, made small: a linear level between two boundary sinks with two block
+/// shapes and zig-zags penalised.
+const STRIP: &str = r#"
+name = "strip"
+boundary = "wall"
+[mesh]
+grid = { width = 8, height = 6, spacing = 1.0 }
+[sinks]
+points = [[0, 2], [8, 2]]
+[weights]
+length = 1
+zigzag = 5
+too_close = "forbid"
+[rooms]
+mode = "game"
+level = "linear"
+templates = [
+  { name = "room", shape = "rect 2x2" },
+  { name = "hall", shape = "rect 3x2" },
+]
+"#;
+
+/// Solves with every backend: each proves optimality, the design is valid (so the block graph
+/// has the level's shape), and all agree on the optimum.
+fn assert_level(p: &Problem, shape: GraphShape) {
+    let nm = pipeline::build(p);
+    let mut objs = Vec::new();
+    for k in backends() {
+        let r = pipeline::solve_built(p, &nm, k, &SolveOptions { time_limit: Some(60.0), ..Default::default() }).unwrap();
+        assert_eq!(r.solve.termination, Termination::Optimal, "{k} on {}", p.spec.name);
+        assert!(r.validity.valid, "{k} on {}: {:?}", p.spec.name, r.validity.design_violations);
+        let g = r.rooms.as_ref().unwrap().block_graph.as_ref().unwrap();
+        assert_eq!(g.shape, shape, "{k} on {}", p.spec.name);
+        objs.push(r.solve.objective.unwrap());
+    }
+    assert!(objs.windows(2).all(|w| objectives_agree(w[0], w[1], 1e-6)), "{}: {objs:?}", p.spec.name);
+}
+
+#[test]
+fn linear_level_with_dead_ends_allowed_is_refused() {
+    let spec = Spec::from_toml(&STRIP.replace("[rooms]", "[features]\ndead_ends = \"allow\"\n[rooms]")).unwrap();
+    let e = spec.resolve(Path::new(".")).unwrap_err().to_string();
+    assert!(e.contains("features.dead_ends") && e.contains("rooms.level") && e.contains("linear"), "{e}");
+}
+
+#[test]
+fn linear_level_is_one_path_through_every_block() {
+    assert_level(&problem(STRIP), GraphShape::Path);
+}
+
+#[test]
+fn circular_level_with_dead_ends_allowed_is_refused_and_otherwise_a_cycle() {
+    let circular = STRIP.replace("level = \"linear\"", "level = \"circular\"").replace("points = [[0, 2], [8, 2]]", "points = [[4, 3]]");
+    let spec = Spec::from_toml(&circular.replace("[rooms]", "[features]\ndead_ends = \"allow\"\n[rooms]")).unwrap();
+    let e = spec.resolve(Path::new(".")).unwrap_err().to_string();
+    assert!(e.contains("features.dead_ends") && e.contains("circular"), "{e}");
+    assert_level(&problem(&circular), GraphShape::Cycle);
 }

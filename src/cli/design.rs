@@ -6,7 +6,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use netspec::pipeline::{self, DesignResult};
 use netspec::render::{self, Caption};
 use netspec::solvers::SolverKind;
-use netspec::spec::Spec;
+use netspec::spec::{RecipeName, Spec};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Duration;
@@ -14,8 +14,11 @@ use std::time::Duration;
 /// Exit code when the design fails an independent check.
 const EXIT_INVALID: u8 = 3;
 
-pub fn solve_spec(path: &Path, args: &SolveArgs, out: Option<PathBuf>, export: Option<PathBuf>, no_solve: bool) -> Result<ExitCode> {
-    let spec = Spec::load(path)?;
+pub fn solve_spec(path: &Path, args: &SolveArgs, out: Option<PathBuf>, export: Option<PathBuf>, no_solve: bool, formulation: Option<RecipeName>) -> Result<ExitCode> {
+    let mut spec = Spec::load(path)?;
+    if let Some(r) = formulation {
+        spec.formulation = r.into();
+    }
     let base = path.parent().unwrap_or(Path::new("."));
     let problem = spec.resolve(base).map_err(|kind| netspec::spec::SpecError { path: path.to_path_buf(), kind })?;
     let t0 = std::time::Instant::now();
@@ -29,7 +32,8 @@ pub fn solve_spec(path: &Path, args: &SolveArgs, out: Option<PathBuf>, export: O
         problem.mesh.num_faces(),
         problem.is_sink.iter().filter(|&&s| s).count()
     );
-    println!("model      {} (built in {build_ms:.1} ms, big-M {:.1})", nm.model.stats(), nm.big_m);
+    let big_m = nm.big_m.map_or(String::new(), |m| format!(", big-M {m:.1}"));
+    println!("model      {} — formulation {} (built in {build_ms:.1} ms{big_m})", nm.model.stats(), nm.recipe.label);
     for (family, st) in &nm.families {
         println!("  {family:<24} {:>7} vars {:>7} rows {:>8} nonzeros", st.vars, st.rows, st.nonzeros);
     }
@@ -38,7 +42,19 @@ pub fn solve_spec(path: &Path, args: &SolveArgs, out: Option<PathBuf>, export: O
         println!("paths      {} pairs, {} paths enumerated in {:.3} s ({truncated} pairs truncated)", ps.pairs.len(), ps.total_paths, ps.seconds);
     }
     if let Some(file) = &export {
-        netspec::io::write_model_file(&nm.model, file)?;
+        if nm.is_complete() {
+            // No comment: the `paper` recipe's files stay byte for byte what they always were.
+            netspec::io::write_model_file(&nm.model, file)?;
+        } else {
+            // Lazily separated rows cannot be written out: write the same recipe with them in
+            // their compact form, and say so.
+            let compact = netspec::formulations::build_compact(&problem);
+            let note = format!(
+                "netspec formulation: {} — written complete: its lazily separated cutset rows are\nreplaced by the equivalent single-commodity flow ({}); same optimum.",
+                nm.recipe.label, compact.recipe.label
+            );
+            netspec::io::write_model_file_with_comments(&compact.model, file, &[note])?;
+        }
         println!("exported   {}", file.display());
     }
     if no_solve {
@@ -86,7 +102,7 @@ pub fn solve_spec(path: &Path, args: &SolveArgs, out: Option<PathBuf>, export: O
         verdict: verdict(&res),
     };
     if let Some(net) = &res.network {
-        let placements = nm.rooms.as_ref().map(|r| r.report.placements.as_slice());
+        let placements = nm.placements.as_ref().map(|r| r.placements.as_slice());
         let svg = render::svg(&problem, net, nm.path_sets.as_ref(), placements, &caption);
         let svg_path = dir.join("network.svg");
         std::fs::write(&svg_path, &svg).with_context(|| format!("writing {}", svg_path.display()))?;
@@ -137,6 +153,23 @@ fn print_summary(r: &DesignResult) {
             m.edges, m.length, m.dead_ends, m.junctions_3way, m.junctions_4way, m.t_junctions, m.too_close, m.zigzags
         );
         println!("travel     mean {:.3}, max {:.3} to the nearest sink; coverage slack {}", m.mean_travel, m.max_travel, m.coverage_slack);
+    }
+    if let Some(o) = &r.objective {
+        println!(
+            "design     objective {:.6} recomputed from the network: length {:.3}, distance term {:.3}, travel {:.3} (weights length {}, distance {}, travel {})",
+            o.total, o.length, o.distance, o.travel, r.spec.weights.length.describe(), r.spec.weights.distance.describe(), r.spec.weights.travel.describe()
+        );
+    }
+    if let Some(l) = &r.lazy {
+        println!(
+            "lazy rows  {} by {:?}: {} rounds, {} rows added, {:.2} s separating{}",
+            l.separator,
+            l.mode,
+            l.rounds,
+            l.rows_added,
+            l.separation_seconds,
+            l.root_bounds.map_or(String::new(), |(a, b)| format!("; root LP {a:.4} → {b:.4} in {} cut rounds", l.root_rounds))
+        );
     }
     println!("validity   {}", verdict(r));
     for v in r.validity.design_violations.iter().take(10) {

@@ -3,7 +3,7 @@
 //! classified as a tree, a cycle or a path to check against the requested level type.
 
 use super::Network;
-use crate::formulations::placements::Placement;
+use crate::rules::placements::Placement;
 use crate::mesh::VertexId;
 use crate::spec::Problem;
 use serde::{Deserialize, Serialize};

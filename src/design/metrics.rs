@@ -3,7 +3,7 @@
 
 use super::validate::degrees;
 use super::Network;
-use crate::formulations::network::{t_configs, too_close_configs, zigzag_configs};
+use crate::rules::{t_configs, too_close_configs, zigzag_configs};
 use crate::mesh::{Mesh, VertexId};
 use crate::spec::{CoverageModel, Problem};
 use crate::spec::OrdF64;

@@ -2,8 +2,8 @@
 //! and a set of active edges. It never reads the MILP.
 
 use super::Network;
-use crate::formulations::network::{designed, t_configs, too_close_configs, zigzag_configs};
-use crate::formulations::paths::PathSets;
+use crate::rules::paths::PathSets;
+use crate::rules::{designed, t_configs, too_close_configs, zigzag_configs};
 use crate::mesh::{EdgeId, Mesh, VertexId};
 use crate::spec::{Allow, CoverageModel, Problem, Weight};
 use serde::{Deserialize, Serialize};
@@ -313,7 +313,7 @@ pub fn validate(p: &Problem, net: &Network, paths: Option<&PathSets>) -> Vec<Vio
 
 /// FORMULATION §6 item 6: exact cover, the mode's inner/boundary edge rules, room counts.
 /// `chosen` are indices into `placements`.
-pub fn validate_rooms(p: &Problem, net: &Network, placements: &[crate::formulations::placements::Placement], chosen: &[usize]) -> Vec<Violation> {
+pub fn validate_rooms(p: &Problem, net: &Network, placements: &[crate::rules::placements::Placement], chosen: &[usize]) -> Vec<Violation> {
     let Some(rooms) = &p.rooms else { return Vec::new() };
     let mesh = &p.mesh;
     let mut out = Vec::new();

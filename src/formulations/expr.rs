@@ -91,17 +91,6 @@ impl Emitter {
         Emitter { model: Model::new(name), families: IndexMap::new() }
     }
 
-    /// Runs `f`, charging what it adds to `family`.
-    pub fn family<T>(&mut self, family: &str, f: impl FnOnce(&mut Self) -> T) -> T {
-        let (v0, r0, n0) = (self.model.num_vars(), self.model.num_rows(), self.model.num_nonzeros());
-        let out = f(self);
-        let s = self.families.entry(family.to_string()).or_default();
-        s.vars += self.model.num_vars() - v0;
-        s.rows += self.model.num_rows() - r0;
-        s.nonzeros += self.model.num_nonzeros() - n0;
-        out
-    }
-
     /// Adds `lo ≤ expr ≤ hi`, moving the constant to the sides.
     pub fn row(&mut self, name: String, lo: f64, e: &Expr, hi: f64) -> RowId {
         self.model.add_row(name, lo - e.constant, hi - e.constant, e.terms.iter().copied())

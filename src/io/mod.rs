@@ -122,12 +122,17 @@ pub fn read_model_file(path: &Path) -> Result<ReadOutcome, FileError> {
 
 /// Writes a model to a `.mps` or `.lp` file (chosen by extension) and returns the name map.
 pub fn write_model_file(model: &Model, path: &Path) -> Result<NameMap, FileError> {
+    write_model_file_with_comments(model, path, &[])
+}
+
+/// Writes a model file like [`write_model_file`], with comment lines at the top.
+pub fn write_model_file_with_comments(model: &Model, path: &Path, comments: &[String]) -> Result<NameMap, FileError> {
     let format = Format::from_path(path).ok_or_else(|| file_err(path, FileErrorKind::UnknownFormat))?;
     let file = std::fs::File::create(path).map_err(|e| file_err(path, e))?;
     let mut w = std::io::BufWriter::with_capacity(1 << 20, file);
     let map = match format {
-        Format::Mps => mps::write(model, &mut w, &mps::WriteOptions::default()),
-        Format::Lp => lp::write(model, &mut w, &lp::WriteOptions::default()),
+        Format::Mps => mps::write(model, &mut w, &mps::WriteOptions { comments: comments.to_vec(), ..Default::default() }),
+        Format::Lp => lp::write(model, &mut w, &lp::WriteOptions { comments: comments.to_vec(), ..Default::default() }),
     }
     .map_err(|e| file_err(path, e))?;
     std::io::Write::flush(&mut w).map_err(|e| file_err(path, e))?;

@@ -1,16 +1,16 @@
 //! Pictures of results: an SVG drawn by hand (deterministic text, snapshot-friendly) and a PNG
 //! rasterised from it with `resvg`.
 //!
-//! The mesh is light grey; active edges are coloured by distance to the nearest sink (the
-//! solver's labels when λD > 0, else true network distances) with a legend; sinks are red,
+//! The mesh is light grey; active edges are coloured by the true network distance to the
+//! nearest sink (computed from the design, never the solver's labels) with a legend; sinks are red,
 //! point-to-point samples yellow, obstacles black, forced edges and through routes green; the
 //! title line names the spec, solver, status, objective and gap.
 
 pub mod traffic;
 
 use crate::design::{travel_distances, Network};
-use crate::formulations::paths::PathSets;
-use crate::formulations::placements::Placement;
+use crate::rules::paths::PathSets;
+use crate::rules::placements::Placement;
 use crate::mesh::EdgeId;
 use crate::spec::Problem;
 use std::fmt::Write;
@@ -108,18 +108,10 @@ pub fn svg(p: &Problem, net: &Network, paths: Option<&PathSets>, placements: Opt
             }
         }
     }
-    // Distances for colouring.
-    let use_labels = p.w_distance > 0.0 && !net.labels.is_empty();
+    // Colour by the true network distance to the nearest sink (never the solver's labels,
+    // which only (2) defines and which are not distances off the optimum).
     let travel = travel_distances(mesh, net, &p.is_sink);
     let mut edge_d = vec![f64::NAN; mesh.num_edges()];
-    if use_labels {
-        for &(a, b, d) in &net.labels {
-            if let Some(hh) = mesh.half_edge_between(a, b) {
-                let e = mesh.he_edge(hh).index();
-                edge_d[e] = if edge_d[e].is_nan() { d } else { edge_d[e].max(d) };
-            }
-        }
-    }
     for e in net.active_edges() {
         if edge_d[e.index()].is_nan() {
             let (a, b) = mesh.edge_vertices(e);
@@ -176,7 +168,7 @@ pub fn svg(p: &Problem, net: &Network, paths: Option<&PathSets>, placements: Opt
     // Legend.
     let lx = w - legend_w + 10.0;
     let ly = margin + title_h;
-    let _ = writeln!(s, r#"<text x="{lx:.1}" y="{:.1}" font-size="12">{}</text>"#, ly, if use_labels { "distance label" } else { "distance to sink" });
+    let _ = writeln!(s, r#"<text x="{lx:.1}" y="{:.1}" font-size="12">{}</text>"#, ly, "distance to sink");
     for k in 0..=10 {
         let t = k as f64 / 10.0;
         let _ = writeln!(s, r#"<rect x="{lx:.1}" y="{:.1}" width="18" height="14" fill="{}"/>"#, ly + 8.0 + k as f64 * 14.0, ramp(t));

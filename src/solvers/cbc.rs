@@ -273,6 +273,7 @@ impl Solver for CbcSolver {
             reports_nodes: true,
             reports_solver_time: true,
             reports_progress: false,
+            lazy_constraints: false,
         }
     }
 

@@ -60,6 +60,7 @@ fn capabilities() -> Capabilities {
         reports_nodes: false,
         reports_solver_time: false,
         reports_progress: false,
+        lazy_constraints: false,
     }
 }
 

@@ -224,6 +224,7 @@ impl Solver for HighsSolver {
             reports_nodes: true,
             reports_solver_time: true,
             reports_progress: true,
+            lazy_constraints: false,
         }
     }
 

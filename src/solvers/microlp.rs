@@ -147,6 +147,7 @@ impl Solver for MicrolpSolver {
             reports_nodes: true,
             reports_solver_time: true,
             reports_progress: false,
+            lazy_constraints: false,
         }
     }
 

@@ -15,11 +15,15 @@ pub mod highs;
 pub mod microlp;
 #[cfg(feature = "scip")]
 pub mod scip;
+#[cfg(feature = "scip")]
+mod scip_lazy;
 
+pub mod lazy;
 mod options;
 mod result;
 
 pub use options::{Capabilities, LogTarget, Progress, ProgressSink, SolveOptions};
+pub use lazy::{LazyMode, LazyReport, LazyRow, LazySolve, Lock, Separator};
 pub use result::{gap, LimitKind, SolveResult, Termination};
 
 use crate::milp::Model;
@@ -36,6 +40,12 @@ pub trait Solver {
     /// Solves `model`. Returns `Err` only when the solve cannot be attempted: an option the
     /// backend cannot honour ([`SolverErrorKind::Unsupported`]) or a model it rejects.
     fn solve(&self, model: &Model, options: &SolveOptions) -> Result<SolveResult, SolverError>;
+    /// Solves `model` together with the rows `separator` produces on demand. Backends with
+    /// [`Capabilities::lazy_constraints`] run the separator inside their branch and cut; the
+    /// default is the solve–separate–resolve loop [`lazy::solve_loop`].
+    fn solve_lazy(&self, model: &Model, separator: &mut dyn Separator, options: &SolveOptions) -> Result<LazySolve, SolverError> {
+        lazy::solve_loop(self, model, separator, options)
+    }
 }
 
 /// The backends known to netspec (compiled in or not).

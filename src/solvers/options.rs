@@ -108,6 +108,10 @@ pub struct Capabilities {
     /// [`SolveOptions::progress`]: reports incumbent, bound and nodes while solving.
     #[serde(default)]
     pub reports_progress: bool,
+    /// Lazy rows are separated inside the solver's own branch and cut (a callback); without
+    /// it, [`crate::solvers::Solver::solve_lazy`] runs the solve–separate–resolve loop.
+    #[serde(default)]
+    pub lazy_constraints: bool,
 }
 
 fn unsupported(option: &'static str, reason: &str) -> SolverErrorKind {

@@ -20,7 +20,7 @@
 //! Values of magnitude 1e20 or more are infinite for SCIP; netspec passes infinite bounds and
 //! sides as SCIP's infinity.
 
-use super::{preflight, Capabilities, LimitKind, LogTarget, SolveOptions, SolveResult, Solver, SolverError, SolverErrorKind, SolverKind, Termination};
+use super::{preflight, Capabilities, LazyMode, LazyReport, LazySolve, LimitKind, LogTarget, Separator, SolveOptions, SolveResult, Solver, SolverError, SolverErrorKind, SolverKind, Termination};
 use crate::milp::{Model, Sense, VarKind};
 use russcip::{ffi, ObjSense, ProblemOrSolving, VarType, Variable, WithSolutions};
 use std::ffi::CString;
@@ -241,13 +241,54 @@ impl Solver for ScipSolver {
             reports_nodes: true,
             reports_solver_time: true,
             reports_progress: false,
+            lazy_constraints: true,
         }
     }
 
     fn solve(&self, model: &Model, o: &SolveOptions) -> Result<SolveResult, SolverError> {
+        self.run(model, o, None)
+    }
+
+    /// Lazy rows through a constraint handler in SCIP's sequential solver (see
+    /// [`super::scip_lazy`]). With more than one thread SCIP's concurrent solver would not copy
+    /// the handler, so the solve–cut–resolve loop runs instead, each round on the concurrent
+    /// solver (the report's `mode` says which).
+    fn solve_lazy(&self, model: &Model, sep: &mut dyn Separator, o: &SolveOptions) -> Result<LazySolve, SolverError> {
+        if o.threads.is_some_and(|t| t > 1) {
+            return super::lazy::solve_loop(self, model, sep, o);
+        }
+        let name = sep.name().to_string();
+        let mut handler = super::scip_lazy::Handler::new(sep, Vec::new());
+        let result = self.run(model, o, Some(&mut handler))?;
+        if let Some(e) = handler.error.take() {
+            return Err(rejected(format!("lazy-row handler: {e}")));
+        }
+        let report = LazyReport {
+            separator: name,
+            mode: LazyMode::Callback,
+            rounds: handler.calls,
+            rows_added: handler.rows.len(),
+            separation_seconds: handler.seconds,
+            repaired_starts: 0,
+            root_rounds: 0,
+            root_bounds: None,
+        };
+        Ok(LazySolve { result, rows: std::mem::take(&mut handler.rows), report })
+    }
+}
+
+impl ScipSolver {
+    /// One solve, with a lazy-row handler installed when given.
+    fn run(&self, model: &Model, o: &SolveOptions, handler: Option<&mut super::scip_lazy::Handler<'_>>) -> Result<SolveResult, SolverError> {
         let t0 = Instant::now();
         preflight(KIND, &self.capabilities(), model, o)?;
         let (p, vars) = load(model)?;
+        if let Some(h) = handler {
+            h.set_vars(vars.iter().map(|v| v.inner()).collect());
+            // SAFETY: the handler outlives this call, and with it the SCIP instance (dropped
+            // before `run` returns); `p` is a live instance in the problem stage.
+            unsafe { super::scip_lazy::install(p.scip_ptr(), h) }.map_err(rejected)?;
+        }
         let p = apply_options(p, &vars, o)?;
         let (p, log) = LogGuard::new(p, &o.log)?;
         let solved = match o.threads {

@@ -4,7 +4,10 @@
 //! into a [`Problem`]: the mesh, every edge's role, the sinks, and the switches in plain form,
 //! checking ids, ranges and contradictions with errors that name the field.
 
+mod formulation;
 mod resolve;
+
+pub use formulation::{BigMForm, ConnectivityForm, CoverageForm, DeadEndForm, DistanceForm, FormulationParts, FormulationSpec, PathForm, RecipeName};
 
 pub use resolve::{EdgeRole, PointToPoint, Problem, Rooms, Weight};
 pub(crate) use resolve::OrdF64;
@@ -47,10 +50,9 @@ pub struct Spec {
     /// Room tiling (floor plans §5.2, game levels §5.3), off when absent.
     #[serde(default)]
     pub rooms: Option<RoomsSpec>,
-    /// `paper` (exactly the paper's rows, big-M = Δall) or `tight` (FORMULATION.md's
-    /// strengthenings).
+    /// The formulation recipe (`paper`, `tight`, `strong`) or a table of its parts.
     #[serde(default)]
-    pub formulation: FormulationVariant,
+    pub formulation: FormulationSpec,
     /// Solver settings (the command line overrides them).
     #[serde(default)]
     pub solver: SolverSpec,
@@ -190,6 +192,16 @@ pub enum WeightValue {
     Word(String),
 }
 
+impl WeightValue {
+    /// The value as written: `1`, `0.0001`, `forbid`.
+    pub fn describe(&self) -> String {
+        match self {
+            WeightValue::Number(x) => format!("{x}"),
+            WeightValue::Word(s) => s.clone(),
+        }
+    }
+}
+
 impl Default for WeightValue {
     fn default() -> Self {
         WeightValue::Number(0.0)
@@ -203,9 +215,14 @@ pub struct WeightSpec {
     /// λL, on total length.
     #[serde(default = "wnum1")]
     pub length: WeightValue,
-    /// λD, on the sum of distance labels.
+    /// λD, on the paper's travel-distance term `Σ D(i→j)` (at an optimum: over active edges,
+    /// the smaller of the two ends' label distances; FORMULATION §8).
     #[serde(default)]
     pub distance: WeightValue,
+    /// On total travel: the sum over active non-sink vertices of the network distance to the
+    /// nearest sink (a per-vertex term, not the paper's; modelled by a flow in every recipe).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub travel: WeightValue,
     /// λZ0, on zig-zags.
     #[serde(default)]
     pub zigzag: WeightValue,
@@ -217,6 +234,10 @@ pub struct WeightSpec {
     pub t_junction: WeightValue,
 }
 
+fn is_zero(w: &WeightValue) -> bool {
+    *w == WeightValue::Number(0.0)
+}
+
 fn wnum1() -> WeightValue {
     WeightValue::Number(1.0)
 }
@@ -226,6 +247,7 @@ impl Default for WeightSpec {
         WeightSpec {
             length: wnum1(),
             distance: WeightValue::default(),
+            travel: WeightValue::default(),
             zigzag: WeightValue::default(),
             too_close: WeightValue::default(),
             t_junction: WeightValue::default(),
@@ -425,17 +447,6 @@ pub struct RoomsSpec {
 
 fn default_max_placements() -> usize {
     200_000
-}
-
-/// Which rows to emit.
-#[derive(Copy, Clone, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
-#[serde(rename_all = "lowercase")]
-pub enum FormulationVariant {
-    /// Exactly the paper's rows: big-M = Δall, (8) in the paper's form, dead-ends by ν.
-    #[default]
-    Paper,
-    /// FORMULATION.md's strengthenings: smaller big-M, `P ≤ E_n`, compact dead-end rows.
-    Tight,
 }
 
 /// Solver settings in a spec (the command line overrides each).

@@ -1,7 +1,7 @@
 //! From a [`Spec`] to a [`Problem`]: the mesh, edge roles, sinks and switches, checked.
 
 use super::*;
-use crate::formulations::placements::Template;
+use crate::rules::placements::Template;
 use crate::mesh::{self, EdgeId, FaceId, Mesh, VertexId};
 
 /// What an edge is in the model (FORMULATION §1).
@@ -172,6 +172,8 @@ pub struct Problem {
     pub w_length: f64,
     /// λD.
     pub w_distance: f64,
+    /// λ of the per-vertex travel term (`weights.travel`).
+    pub w_travel: f64,
     /// λZ0 (zig-zags).
     pub w_zigzag: Weight,
     /// λZ1 (too close).
@@ -184,8 +186,9 @@ pub struct Problem {
     pub branches: Allow,
     /// Point-to-point, if on.
     pub p2p: Option<PointToPoint>,
-    /// Formulation variant.
-    pub variant: FormulationVariant,
+    /// The formulation recipe asked for (resolved into families by
+    /// [`crate::formulations::Recipe::resolve`]).
+    pub formulation: FormulationSpec,
     /// Room tiling, if on.
     pub rooms: Option<Rooms>,
 }
@@ -381,6 +384,17 @@ impl Spec {
             match (r.mode, r.level) {
                 (RoomMode::Floorplan, Some(_)) => return Err(field("rooms.level", "level types are for mode = \"game\"")),
                 (RoomMode::Game, Some(LevelType::Branching)) => branches = Allow::Allow,
+                (RoomMode::Game, Some(level @ (LevelType::Circular | LevelType::Linear))) if self.features.dead_ends == Allow::Allow => {
+                    let what = if level == LevelType::Linear {
+                        "a linear level is one path from one boundary sink to the other through every block"
+                    } else {
+                        "a circular level is one cycle through the sink and every block"
+                    };
+                    return Err(field(
+                        "features.dead_ends",
+                        format!("\"allow\" contradicts rooms.level = \"{}\": {what}, so it has no dead-ends (leave features.dead_ends at its default, \"forbid\")", if level == LevelType::Linear { "linear" } else { "circular" }),
+                    ));
+                }
                 (RoomMode::Game, Some(LevelType::Circular)) => {
                     if sinks.len() != 1 {
                         return Err(field("sinks", format!("a circular level has exactly one sink, the spec gives {}", sinks.len())));
@@ -424,13 +438,14 @@ impl Spec {
             coverage_model: self.coverage.model,
             w_length: weight("length", &w.length, false)?.value(),
             w_distance: weight("distance", &w.distance, false)?.value(),
+            w_travel: weight("travel", &w.travel, false)?.value(),
             w_zigzag: weight("zigzag", &w.zigzag, true)?,
             w_too_close: weight("too_close", &w.too_close, true)?,
             w_t_junction: weight("t_junction", &w.t_junction, true)?,
             dead_ends: self.features.dead_ends,
             branches,
             p2p,
-            variant: self.formulation,
+            formulation: self.formulation.clone(),
             rooms: self.rooms.as_ref().map(RoomsSpec::resolve).transpose()?,
             mesh,
         })

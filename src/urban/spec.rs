@@ -8,7 +8,7 @@
 
 use crate::solvers::SolverKind;
 use crate::spec::{
-    BoundaryRole, CoverageSpec, FeatureSpec, FormulationVariant, MeshSpec, PointToPointSpec, SinkSpec, Spec, SolverSpec, UserSpec, WeightSpec,
+    BoundaryRole, CoverageSpec, FeatureSpec, FormulationSpec, MeshSpec, PointToPointSpec, SinkSpec, Spec, SolverSpec, UserSpec, WeightSpec,
 };
 use indexmap::IndexMap;
 use serde::{Deserialize, Serialize};
@@ -188,7 +188,7 @@ pub struct LevelSpec {
     pub user: UserSpec,
     /// Formulation variant.
     #[serde(default)]
-    pub formulation: FormulationVariant,
+    pub formulation: FormulationSpec,
 }
 
 fn road() -> BoundaryRole {
@@ -214,7 +214,7 @@ impl LevelSpec {
             point_to_point: self.point_to_point.clone(),
             user: self.user.clone(),
             rooms: None,
-            formulation: self.formulation,
+            formulation: self.formulation.clone(),
             solver: SolverSpec { time_limit: self.time_limit, ..SolverSpec::default() },
         }
     }

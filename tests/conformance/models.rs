@@ -256,3 +256,121 @@ pub fn multi_knapsack(n: usize, k: usize, seed: u64) -> Model {
     }
     m
 }
+
+/// Six cities in two far-apart triangles; `x_e` per pair with the distance as cost; degree 2 at
+/// every city. Returns the model, the edges (i, j, var) and the cities.
+pub fn two_cluster_tour() -> (Model, Vec<(usize, usize, VarId)>, Vec<[f64; 2]>) {
+    let cities = vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.5], [10.0, 0.0], [11.0, 0.5], [10.0, 2.0]];
+    let mut m = Model::new("two_cluster_tour");
+    let mut edges = Vec::new();
+    for i in 0..cities.len() {
+        for j in i + 1..cities.len() {
+            let d = dist(cities[i], cities[j]);
+            edges.push((i, j, m.add_binary(format!("x_{i}_{j}"), d)));
+        }
+    }
+    for v in 0..cities.len() {
+        let terms: Vec<_> = edges.iter().filter(|&&(i, j, _)| i == v || j == v).map(|&(_, _, x)| (x, 1.0)).collect();
+        m.add_eq(format!("deg_{v}"), terms, 2.0);
+    }
+    (m, edges, cities)
+}
+
+fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
+    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt()
+}
+
+/// The shortest tour through every city, by enumerating the tours that start at city 0.
+pub fn brute_force_tour(cities: &[[f64; 2]]) -> f64 {
+    fn go(cities: &[[f64; 2]], path: &mut Vec<usize>, used: &mut [bool], best: &mut f64) {
+        if path.len() == cities.len() {
+            let mut len = dist(cities[path[path.len() - 1]], cities[path[0]]);
+            for w in path.windows(2) {
+                len += dist(cities[w[0]], cities[w[1]]);
+            }
+            *best = best.min(len);
+            return;
+        }
+        for c in 0..cities.len() {
+            if !used[c] {
+                used[c] = true;
+                path.push(c);
+                go(cities, path, used, best);
+                path.pop();
+                used[c] = false;
+            }
+        }
+    }
+    let mut used = vec![false; cities.len()];
+    used[0] = true;
+    let mut best = f64::INFINITY;
+    go(cities, &mut vec![0], &mut used, &mut best);
+    best
+}
+
+/// Subtour elimination: for every connected component `S` of the chosen edges that is not the
+/// whole tour, `Σ_{e∈δ(S)} x_e ≥ 2`.
+pub struct SubtourSeparator {
+    /// Edges as (i, j, var).
+    pub edges: Vec<(usize, usize, VarId)>,
+    /// Cities.
+    pub n: usize,
+    /// Calls so far.
+    pub calls: usize,
+}
+
+impl SubtourSeparator {
+    fn labels(&self, x: &[f64]) -> Vec<usize> {
+        let mut comp: Vec<usize> = (0..self.n).collect();
+        fn find(c: &mut [usize], v: usize) -> usize {
+            if c[v] != v {
+                let r = find(c, c[v]);
+                c[v] = r;
+            }
+            c[v]
+        }
+        for &(i, j, v) in &self.edges {
+            if x[v.index()] > 0.5 {
+                let (a, b) = (find(&mut comp, i), find(&mut comp, j));
+                comp[a] = b;
+            }
+        }
+        (0..self.n).map(|v| find(&mut comp, v)).collect()
+    }
+
+    /// Number of connected components of the chosen edges.
+    pub fn components(&self, x: &[f64]) -> usize {
+        let mut l = self.labels(x);
+        l.sort();
+        l.dedup();
+        l.len()
+    }
+}
+
+impl netspec::solvers::Separator for SubtourSeparator {
+    fn name(&self) -> &str {
+        "subtour"
+    }
+
+    fn separate_integral(&mut self, x: &[f64]) -> Vec<netspec::solvers::LazyRow> {
+        let labels = self.labels(x);
+        let mut roots = labels.clone();
+        roots.sort();
+        roots.dedup();
+        if roots.len() < 2 {
+            return Vec::new();
+        }
+        roots
+            .iter()
+            .map(|&r| {
+                self.calls += 1;
+                let terms = self.edges.iter().filter(|&&(i, j, _)| (labels[i] == r) != (labels[j] == r)).map(|&(_, _, v)| (v, 1.0)).collect();
+                netspec::solvers::LazyRow { name: format!("subtour{}", self.calls), lhs: 2.0, rhs: f64::INFINITY, terms }
+            })
+            .collect()
+    }
+
+    fn locks(&self) -> Vec<(VarId, netspec::solvers::Lock)> {
+        self.edges.iter().map(|&(_, _, v)| (v, netspec::solvers::Lock::Down)).collect()
+    }
+}

@@ -152,11 +152,14 @@ pub struct WriteOptions {
     /// variable or row of a file that has one. Values are clamped to `8..=255` (255 is the CPLEX
     /// limit); with names of at most 200 characters no line exceeds 250 characters.
     pub max_name_len: usize,
+    /// Comment lines written after the header (`\ …`), e.g. what a formulation left out or
+    /// wrote in another form. Line breaks in a comment start new comment lines.
+    pub comments: Vec<String>,
 }
 
 impl Default for WriteOptions {
     fn default() -> Self {
-        WriteOptions { negate_max: true, max_line_len: 250, max_name_len: 100 }
+        WriteOptions { negate_max: true, max_line_len: 250, max_name_len: 100, comments: Vec::new() }
     }
 }
 

@@ -183,6 +183,9 @@ pub(super) fn write<W: Write>(model: &Model, w: &mut W, opts: &WriteOptions) -> 
         name.truncate(cut);
         o.line(&format!("\\Problem name: {}", name.trim()))?;
     }
+    for line in opts.comments.iter().flat_map(|c| c.lines()) {
+        o.line(&format!("\\ {line}"))?;
+    }
     let negate = model.sense == Sense::Maximize && opts.negate_max;
     if negate {
         o.line(NEGATED_MAX_COMMENT)?;

@@ -114,11 +114,14 @@ pub struct WriteOptions {
     /// Pad names to 8 characters so that short-named files line up like fixed MPS (readability
     /// only; the file is free MPS either way). Default `true`.
     pub align: bool,
+    /// Comment lines written at the top of the file (`* …`), e.g. what a formulation left out
+    /// or wrote in another form. Line breaks in a comment start new comment lines.
+    pub comments: Vec<String>,
 }
 
 impl Default for WriteOptions {
     fn default() -> Self {
-        WriteOptions { negate_max: true, align: true }
+        WriteOptions { negate_max: true, align: true, comments: Vec::new() }
     }
 }
 

@@ -766,7 +766,7 @@ proptest! {
 
     #[test]
     fn round_trip(m in arb_model(), negate in any::<bool>(), align in any::<bool>()) {
-        let opts = WriteOptions { negate_max: negate, align };
+        let opts = WriteOptions { negate_max: negate, align, ..Default::default() };
         let (text, map) = to_string(&m, &opts);
         let o = read_str(&text).map_err(|e| TestCaseError::fail(format!("{e}\n{text}")))?;
         let expected = rename(&m, &map);

@@ -167,6 +167,11 @@ pub(super) fn write<W: Write>(model: &Model, w: &mut W, opts: &WriteOptions) -> 
     let mut o = Out { buf: Vec::with_capacity(CHUNK + 4096), w, ryu: ryu::Buffer::new(), align: opts.align };
 
     // Header.
+    for line in opts.comments.iter().flat_map(|c| c.lines()) {
+        o.s("* ");
+        o.s(line);
+        o.nl()?;
+    }
     if negate {
         o.s(NEGATED_MAX_COMMENT);
         o.nl()?;

@@ -4,7 +4,6 @@
 //! and reports what it enumerated.
 
 use crate::mesh::{EdgeId, Mesh, VertexId};
-use crate::milp::VarId;
 use crate::spec::{EdgeRole, Problem};
 use serde::{Deserialize, Serialize};
 use std::collections::{BTreeSet, VecDeque};
@@ -20,8 +19,6 @@ pub struct Path {
     pub vertices: Vec<VertexId>,
     /// Its edges, in order.
     pub edges: Vec<EdgeId>,
-    /// `P` for this path (None when every edge is existing).
-    pub var: Option<VarId>,
 }
 
 /// The paths of one pair of adjacent parts.
@@ -182,7 +179,7 @@ fn enumerate_pair(mesh: &Mesh, roles: &[EdgeRole], parts: (u32, u32), a: VertexI
             vs.push(w);
             let mut es = edges.clone();
             es.push(e);
-            out.paths.push(Path { vertices: vs, edges: es, var: None });
+            out.paths.push(Path { vertices: vs, edges: es });
             continue;
         }
         on_path[w.index()] = true;

@@ -1,0 +1,102 @@
+//! Vertex activity (5), coverage (6), and the edge-coverage rows of FORMULATION §8.
+
+use super::{vname, Ctx};
+use crate::formulations::expr::{Expr, Value};
+use crate::rules::cover_set;
+use crate::spec::{Allow, CoverageForm, EdgeRole};
+
+/// `V_y` for every vertex whose incident edges are candidates or excluded (a vertex with an
+/// existing edge is active as a constant), tied to its edges by (5):
+/// `aggregated`: `1 − |E_y| ≤ Σ_{x∈E_y} E_x − |E_y|·V_y ≤ 0`;
+/// otherwise `V_y ≤ Σ_{x∈E_y} E_x` and `E_x ≤ V_y` for each incident `x`.
+/// Forced vertices get `V_y ≥ 1` on the variable's bound.
+pub fn vertices(c: &mut Ctx) {
+    let p = c.p;
+    let mesh = &p.mesh;
+    for v in mesh.vertices() {
+        if p.is_obstacle_vertex[v.index()] {
+            continue;
+        }
+        let mut cand = Vec::new();
+        let mut existing = false;
+        for e in mesh.incident_edges(v) {
+            match (p.roles[e.index()], c.vars.edge[e.index()]) {
+                (EdgeRole::Existing, _) => existing = true,
+                (_, Some(x)) => cand.push((e, x)),
+                _ => {}
+            }
+        }
+        if existing {
+            c.vars.vertex[v.index()] = Value::Const(1.0);
+            continue;
+        }
+        if cand.is_empty() {
+            continue;
+        }
+        let y = c.em.model.add_binary(format!("V_{}", vname(v)), 0.0);
+        if p.forced_vertices.contains(&v) {
+            c.em.model.var_mut(y).lb = 1.0;
+        }
+        let mut ex = Expr::new();
+        for &(_, x) in &cand {
+            ex.add(x, 1.0);
+        }
+        if c.recipe.coverage == CoverageForm::Aggregated {
+            let n = cand.len() as f64;
+            ex.add(y, -n);
+            c.em.row(format!("cov5_{}", vname(v)), 1.0 - n, &ex, 0.0);
+        } else {
+            ex.add(y, -1.0);
+            c.em.ge(format!("cov5a_{}", vname(v)), &ex, 0.0);
+            for &(e, x) in &cand {
+                c.em.model.add_le(format!("cov5b_{}_e{}", vname(v), e.0), [(x, 1.0), (y, -1.0)], 0.0);
+            }
+        }
+        c.vars.vertex[v.index()] = Value::Var(y);
+    }
+}
+
+/// (6) `Σ_{u ∈ cover(v)} V_u ≥ 1` for every non-obstacle vertex not already covered by a
+/// constant; with the `strong` coverage form also the edge-coverage rows of §8: with `T(v)` the
+/// candidate edges with an end in `cover(v)`, `Σ_{x∈T(v)} E_x ≥ 2` when `cover(v)` holds no
+/// sink and dead-ends are forbidden (an active non-sink vertex then has two active edges, both
+/// in `T(v)`), else `≥ 1`.
+pub fn coverage(c: &mut Ctx) {
+    let p = c.p;
+    let mesh = &p.mesh;
+    let strong = c.recipe.coverage == CoverageForm::Strong;
+    let mut in_ball = vec![false; mesh.num_vertices()];
+    for v in mesh.vertices() {
+        if p.is_obstacle_vertex[v.index()] {
+            continue;
+        }
+        let cover = cover_set(p, v);
+        if cover.iter().any(|u| c.vars.vertex[u.index()] == Value::Const(1.0)) {
+            continue;
+        }
+        let mut ex = Expr::new();
+        for &u in &cover {
+            ex.add_value(c.vars.vertex[u.index()], 1.0);
+        }
+        c.em.ge(format!("cov6_{}", vname(v)), &ex, 1.0);
+        if !strong {
+            continue;
+        }
+        for &u in &cover {
+            in_ball[u.index()] = true;
+        }
+        let mut edges = Expr::new();
+        for e in mesh.edges() {
+            let (a, b) = mesh.edge_vertices(e);
+            if (in_ball[a.index()] || in_ball[b.index()]) && c.is_candidate(e) {
+                edges.add_value(c.edge_value(e), 1.0);
+            }
+        }
+        for &u in &cover {
+            in_ball[u.index()] = false;
+        }
+        let sink_in_ball = cover.iter().any(|u| p.is_sink[u.index()]);
+        let need = if !sink_in_ball && p.dead_ends == Allow::Forbid { 2.0 } else { 1.0 };
+        c.em.ge(format!("covedge_{}", vname(v)), &edges, need);
+    }
+}

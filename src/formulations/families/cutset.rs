@@ -1,0 +1,400 @@
+//! Cutset connectivity (FORMULATION §8): contract every sink into a root `r`; for every vertex
+//! set `C` with `r ∉ C` and every `v ∈ C`, `Σ_{x∈δ(C)} E_x ≥ V_v`. The rows are exponentially
+//! many, so none is written into the model: [`CutsetSeparator`] finds violated ones — by
+//! connected components on integral points (exact), and by max-flow/min-cut from each vertex to
+//! the root on fractional ones.
+//!
+//! The max-flow is a small Dinic on the contracted mesh graph, kept here (rather than a general
+//! graph crate) because it runs hundreds of times per separation round on the same graph with
+//! new capacities and stops as soon as the flow reaches the vertex's activity.
+
+use crate::formulations::expr::Value;
+use crate::milp::VarId;
+use crate::solvers::{LazyRow, Lock, Separator};
+use crate::spec::Problem;
+use serde::{Deserialize, Serialize};
+use std::collections::VecDeque;
+
+/// The contracted graph the cutsets live on: node 0 is the root (every sink), the other nodes
+/// are the non-sink vertices with a candidate edge.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct CutsetGraph {
+    /// Number of nodes (root included).
+    pub nodes: usize,
+    /// Candidate edges as (node, node, `E_x`), both ends distinct.
+    pub edges: Vec<(u32, u32, VarId)>,
+    /// `V_v` of each node (`Const(1)` for the root).
+    pub activity: Vec<Value>,
+    /// The mesh vertex of each node (`u32::MAX` for the root).
+    pub vertex: Vec<u32>,
+}
+
+impl CutsetGraph {
+    /// The graph of a problem, from its edge variables and vertex activities.
+    pub fn new(p: &Problem, edge: &[Option<VarId>], vertex: &[Value]) -> CutsetGraph {
+        let mesh = &p.mesh;
+        let mut node = vec![u32::MAX; mesh.num_vertices()];
+        let mut g = CutsetGraph { nodes: 1, edges: Vec::new(), activity: vec![Value::Const(1.0)], vertex: vec![u32::MAX] };
+        for v in mesh.vertices() {
+            if p.is_sink[v.index()] {
+                node[v.index()] = 0;
+            } else if mesh.incident_edges(v).any(|e| edge[e.index()].is_some()) {
+                node[v.index()] = g.nodes as u32;
+                g.nodes += 1;
+                g.activity.push(vertex[v.index()]);
+                g.vertex.push(v.0);
+            }
+        }
+        for e in mesh.edges() {
+            let Some(x) = edge[e.index()] else { continue };
+            let (a, b) = mesh.edge_vertices(e);
+            let (na, nb) = (node[a.index()], node[b.index()]);
+            if na != nb {
+                g.edges.push((na, nb, x));
+            }
+        }
+        g
+    }
+}
+
+/// Residual graph for Dinic's algorithm on an undirected graph: each edge is a pair of arcs,
+/// each the other's reverse, both with the edge's capacity.
+struct FlowGraph {
+    head: Vec<u32>,
+    cap: Vec<f64>,
+    adj_start: Vec<usize>,
+    adj: Vec<u32>,
+    level: Vec<i32>,
+    iter: Vec<usize>,
+}
+
+impl FlowGraph {
+    fn new(g: &CutsetGraph) -> FlowGraph {
+        let n = g.nodes;
+        let mut deg = vec![0usize; n + 1];
+        for &(a, b, _) in &g.edges {
+            deg[a as usize] += 1;
+            deg[b as usize] += 1;
+        }
+        let mut adj_start = vec![0usize; n + 1];
+        for i in 0..n {
+            adj_start[i + 1] = adj_start[i] + deg[i];
+        }
+        let mut fill = adj_start.clone();
+        let mut head = Vec::with_capacity(2 * g.edges.len());
+        let mut adj = vec![0u32; 2 * g.edges.len()];
+        for &(a, b, _) in &g.edges {
+            let k = head.len() as u32;
+            head.push(b);
+            head.push(a);
+            adj[fill[a as usize]] = k;
+            fill[a as usize] += 1;
+            adj[fill[b as usize]] = k + 1;
+            fill[b as usize] += 1;
+        }
+        FlowGraph { cap: vec![0.0; head.len()], head, adj_start, adj, level: vec![0; n], iter: vec![0; n] }
+    }
+
+    fn set_capacities(&mut self, caps: &[f64]) {
+        for (k, &c) in caps.iter().enumerate() {
+            self.cap[2 * k] = c;
+            self.cap[2 * k + 1] = c;
+        }
+    }
+
+    fn bfs(&mut self, s: usize, t: usize) -> bool {
+        self.level.iter_mut().for_each(|l| *l = -1);
+        self.level[s] = 0;
+        let mut q = VecDeque::from([s]);
+        while let Some(v) = q.pop_front() {
+            for &a in &self.adj[self.adj_start[v]..self.adj_start[v + 1]] {
+                let w = self.head[a as usize] as usize;
+                if self.cap[a as usize] > EPS && self.level[w] < 0 {
+                    self.level[w] = self.level[v] + 1;
+                    q.push_back(w);
+                }
+            }
+        }
+        self.level[t] >= 0
+    }
+
+    fn dfs(&mut self, v: usize, t: usize, f: f64) -> f64 {
+        if v == t {
+            return f;
+        }
+        while self.iter[v] < self.adj_start[v + 1] - self.adj_start[v] {
+            let a = self.adj[self.adj_start[v] + self.iter[v]] as usize;
+            let w = self.head[a] as usize;
+            if self.cap[a] > EPS && self.level[w] == self.level[v] + 1 {
+                let d = self.dfs(w, t, f.min(self.cap[a]));
+                if d > EPS {
+                    self.cap[a] -= d;
+                    self.cap[a ^ 1] += d;
+                    return d;
+                }
+            }
+            self.iter[v] += 1;
+        }
+        0.0
+    }
+
+    /// Max-flow from `s` to `t`, stopping once it reaches `enough`.
+    fn max_flow(&mut self, s: usize, t: usize, enough: f64) -> f64 {
+        let mut flow = 0.0;
+        while enough - flow > EPS && self.bfs(s, t) {
+            self.iter.iter_mut().for_each(|i| *i = 0);
+            let before = flow;
+            while enough - flow > EPS {
+                let f = self.dfs(s, t, enough - flow);
+                if f <= EPS {
+                    break;
+                }
+                flow += f;
+            }
+            if flow - before <= EPS {
+                break; // only paths of negligible capacity are left
+            }
+        }
+        flow
+    }
+
+    /// The nodes reachable from `s` in the residual graph (the source side of a min cut).
+    fn source_side(&self, s: usize) -> Vec<bool> {
+        let mut seen = vec![false; self.level.len()];
+        seen[s] = true;
+        let mut q = VecDeque::from([s]);
+        while let Some(v) = q.pop_front() {
+            for &a in &self.adj[self.adj_start[v]..self.adj_start[v + 1]] {
+                let w = self.head[a as usize] as usize;
+                if self.cap[a as usize] > EPS && !seen[w] {
+                    seen[w] = true;
+                    q.push_back(w);
+                }
+            }
+        }
+        seen
+    }
+}
+
+const EPS: f64 = 1e-9;
+
+/// How much a fractional cut must be violated to be returned.
+const MIN_VIOLATION: f64 = 1e-3;
+
+/// Separates the cutset rows of a [`CutsetGraph`]. Rows are named `cut<n>_v<vertex>`.
+pub struct CutsetSeparator<'a> {
+    graph: CutsetGraph,
+    flow: FlowGraph,
+    /// Rows returned so far (for unique names).
+    count: usize,
+    /// Cap on the rows returned per fractional call.
+    pub max_fractional_rows: usize,
+    repair: Option<Box<dyn FnMut(&[f64]) -> Option<Vec<f64>> + 'a>>,
+}
+
+impl<'a> CutsetSeparator<'a> {
+    /// A separator over `graph`.
+    pub fn new(graph: CutsetGraph) -> CutsetSeparator<'a> {
+        let flow = FlowGraph::new(&graph);
+        CutsetSeparator { graph, flow, count: 0, max_fractional_rows: 50, repair: None }
+    }
+
+    /// Sets the function that turns a disconnected integral point into a feasible one (used by
+    /// the solve–cut–resolve loop for its next start).
+    pub fn with_repair(mut self, f: Box<dyn FnMut(&[f64]) -> Option<Vec<f64>> + 'a>) -> Self {
+        self.repair = Some(f);
+        self
+    }
+
+    /// The graph.
+    pub fn graph(&self) -> &CutsetGraph {
+        &self.graph
+    }
+
+    fn activity(&self, node: usize, x: &[f64]) -> f64 {
+        self.graph.activity[node].at(x)
+    }
+
+    /// The row `Σ_{x∈δ(C)} E_x − V_v ≥ 0` for the node set `inside` and node `v ∈ C`.
+    fn row(&mut self, inside: &[bool], v: usize) -> LazyRow {
+        let mut terms: Vec<(VarId, f64)> = self
+            .graph
+            .edges
+            .iter()
+            .filter(|&&(a, b, _)| inside[a as usize] != inside[b as usize])
+            .map(|&(_, _, x)| (x, 1.0))
+            .collect();
+        let mut lhs = 0.0;
+        match self.graph.activity[v] {
+            Value::Var(y) => terms.push((y, -1.0)),
+            Value::Const(c) => lhs = c,
+        }
+        self.count += 1;
+        LazyRow { name: format!("cut{}_v{}", self.count, self.graph.vertex[v]), lhs, rhs: f64::INFINITY, terms }
+    }
+
+    /// Components of the edges with value above ½ that do not reach the root, as node masks with
+    /// the node of largest activity in each.
+    fn islands(&self, x: &[f64]) -> Vec<(Vec<bool>, usize)> {
+        let n = self.graph.nodes;
+        let mut adj: Vec<Vec<u32>> = vec![Vec::new(); n];
+        for &(a, b, e) in &self.graph.edges {
+            if x[e.index()] > 0.5 {
+                adj[a as usize].push(b);
+                adj[b as usize].push(a);
+            }
+        }
+        let mut comp = vec![usize::MAX; n];
+        let mut next = 0;
+        for s in 0..n {
+            if comp[s] != usize::MAX {
+                continue;
+            }
+            let mut q = VecDeque::from([s]);
+            comp[s] = next;
+            while let Some(v) = q.pop_front() {
+                for &w in &adj[v] {
+                    if comp[w as usize] == usize::MAX {
+                        comp[w as usize] = next;
+                        q.push_back(w as usize);
+                    }
+                }
+            }
+            next += 1;
+        }
+        let mut out = Vec::new();
+        for c in 0..next {
+            if c == comp[0] {
+                continue;
+            }
+            let members: Vec<usize> = (0..n).filter(|&v| comp[v] == c).collect();
+            let Some(&best) = members.iter().max_by(|&&a, &&b| self.activity(a, x).total_cmp(&self.activity(b, x)).then(b.cmp(&a))) else { continue };
+            if self.activity(best, x) > 0.5 || members.iter().any(|&v| !adj[v].is_empty()) {
+                let mut inside = vec![false; n];
+                for &v in &members {
+                    inside[v] = true;
+                }
+                out.push((inside, best));
+            }
+        }
+        out
+    }
+}
+
+impl Separator for CutsetSeparator<'_> {
+    fn name(&self) -> &str {
+        "cutset"
+    }
+
+    fn separate_integral(&mut self, x: &[f64]) -> Vec<LazyRow> {
+        let islands = self.islands(x);
+        islands.into_iter().map(|(inside, v)| self.row(&inside, v)).collect()
+    }
+
+    fn separate_fractional(&mut self, x: &[f64]) -> Vec<LazyRow> {
+        let caps: Vec<f64> = self.graph.edges.iter().map(|&(_, _, e)| x[e.index()].max(0.0)).collect();
+        let mut order: Vec<usize> = (1..self.graph.nodes).filter(|&v| self.activity(v, x) > MIN_VIOLATION).collect();
+        order.sort_by(|&a, &b| self.activity(b, x).total_cmp(&self.activity(a, x)).then(a.cmp(&b)));
+        let mut rows = Vec::new();
+        let mut seen_cuts: Vec<Vec<bool>> = Vec::new();
+        for v in order {
+            if rows.len() >= self.max_fractional_rows {
+                break;
+            }
+            let y = self.activity(v, x);
+            self.flow.set_capacities(&caps);
+            let f = self.flow.max_flow(v, 0, y);
+            if f >= y - MIN_VIOLATION {
+                continue;
+            }
+            let inside = self.flow.source_side(v);
+            if seen_cuts.contains(&inside) {
+                continue;
+            }
+            // The most violated row of this cut is the one for its most active node.
+            let best = (0..self.graph.nodes).filter(|&u| inside[u]).max_by(|&a, &b| self.activity(a, x).total_cmp(&self.activity(b, x)).then(b.cmp(&a))).unwrap_or(v);
+            rows.push(self.row(&inside, best));
+            seen_cuts.push(inside);
+        }
+        rows
+    }
+
+    fn repair(&mut self, x: &[f64]) -> Option<Vec<f64>> {
+        self.repair.as_mut().and_then(|f| f(x))
+    }
+
+    fn locks(&self) -> Vec<(VarId, Lock)> {
+        let mut out: Vec<(VarId, Lock)> = self.graph.edges.iter().map(|&(_, _, e)| (e, Lock::Down)).collect();
+        out.extend(self.graph.activity.iter().filter_map(|a| match a {
+            Value::Var(y) => Some((*y, Lock::Up)),
+            Value::Const(_) => None,
+        }));
+        out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A path r – 1 – 2 – 3 (node 0 is the root), edges E0 = r–1, E1 = 1–2, E2 = 2–3, with
+    /// activities V1, V2, V3 as variables 3, 4, 5.
+    fn path() -> CutsetSeparator<'static> {
+        let g = CutsetGraph {
+            nodes: 4,
+            edges: vec![(0, 1, VarId(0)), (1, 2, VarId(1)), (2, 3, VarId(2))],
+            activity: vec![Value::Const(1.0), Value::Var(VarId(3)), Value::Var(VarId(4)), Value::Var(VarId(5))],
+            vertex: vec![u32::MAX, 10, 11, 12],
+        };
+        CutsetSeparator::new(g)
+    }
+
+    #[test]
+    fn integral_point_with_an_island() {
+        let mut s = path();
+        // r–1 inactive, 1–2 and 2–3 active: {1, 2, 3} is an island.
+        let x = [0.0, 1.0, 1.0, 1.0, 1.0, 1.0];
+        let rows = s.separate_integral(&x);
+        assert_eq!(rows.len(), 1);
+        let r = &rows[0];
+        assert_eq!(r.lhs, 0.0);
+        let mut terms = r.terms.clone();
+        terms.sort_by_key(|t| t.0);
+        // δ({1,2,3}) = {E0}; V of the most active node (ties: the first, node 1).
+        assert_eq!(terms, vec![(VarId(0), 1.0), (VarId(3), -1.0)]);
+        assert!(r.violation(&x) > 0.99);
+        // Connected: nothing.
+        assert!(s.separate_integral(&[1.0, 1.0, 1.0, 1.0, 1.0, 1.0]).is_empty());
+        // Nothing active beyond the root: nothing.
+        assert!(s.separate_integral(&[0.0, 0.0, 0.0, 0.0, 0.0, 0.0]).is_empty());
+    }
+
+    #[test]
+    fn fractional_min_cut_known_by_hand() {
+        let mut s = path();
+        // Capacities 0.3 (r–1), 0.9, 0.9; V3 = 0.8: max-flow 3 → r is 0.3, the min cut is
+        // {1, 2, 3} | {r} with value 0.3, violated by 0.5 for V3 (the most active node).
+        let x = [0.3, 0.9, 0.9, 0.2, 0.4, 0.8];
+        let rows = s.separate_fractional(&x);
+        assert_eq!(rows.len(), 1, "{rows:?}");
+        let mut terms = rows[0].terms.clone();
+        terms.sort_by_key(|t| t.0);
+        assert_eq!(terms, vec![(VarId(0), 1.0), (VarId(5), -1.0)]);
+        assert!((rows[0].violation(&x) - 0.5).abs() < 1e-9);
+        // A point where every cut holds gives nothing.
+        assert!(s.separate_fractional(&[0.9, 0.9, 0.9, 0.5, 0.5, 0.5]).is_empty());
+    }
+
+    #[test]
+    fn fractional_cut_in_the_middle() {
+        let mut s = path();
+        // r–1 full, 1–2 at 0.2, V3 = 0.7: the cut {2, 3} (value 0.2) is the min cut for node 3.
+        let x = [1.0, 0.2, 1.0, 0.7, 0.7, 0.7];
+        let rows = s.separate_fractional(&x);
+        assert!(!rows.is_empty());
+        let mut terms = rows[0].terms.clone();
+        terms.sort_by_key(|t| t.0);
+        assert_eq!(terms[0], (VarId(1), 1.0));
+        assert!((rows[0].violation(&x) - 0.5).abs() < 1e-9);
+    }
+}

@@ -1,0 +1,98 @@
+//! Recipes: which family writes each part of the network IP.
+
+use crate::spec::{BigMForm, ConnectivityForm, CoverageForm, DeadEndForm, DistanceForm, FormulationSpec, PathForm, Problem, RecipeName};
+use serde::{Deserialize, Serialize};
+
+/// A recipe resolved into one choice per part (docs/spec.md "Formulations").
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Recipe {
+    /// The recipe the parts come from.
+    pub name: RecipeName,
+    /// `strong`, or `strong(connectivity=flow)` when parts were overridden.
+    pub label: String,
+    /// No islands: labels (1)–(3), a flow, or lazily separated cutsets.
+    pub connectivity: ConnectivityForm,
+    /// The λD term: labels (1)–(3) or a flow with the same value.
+    pub distance: DistanceForm,
+    /// Coverage (5)–(6) and the edge-coverage rows.
+    pub coverage: CoverageForm,
+    /// Forbidden dead-ends.
+    pub dead_ends: DeadEndForm,
+    /// Point-to-point (8).
+    pub paths: PathForm,
+    /// The big-M of (2).
+    pub big_m: BigMForm,
+    /// Label bounds tied to the direction binaries.
+    pub label_bounds: bool,
+}
+
+impl Recipe {
+    /// The parts of a named recipe.
+    pub fn named(name: RecipeName) -> Recipe {
+        use ConnectivityForm as C;
+        let (connectivity, distance, coverage, dead_ends, paths, big_m, label_bounds) = match name {
+            RecipeName::Paper => (C::Labels, DistanceForm::Labels, CoverageForm::Aggregated, DeadEndForm::Nu, PathForm::Paper, BigMForm::Paper, false),
+            RecipeName::Tight => (C::Labels, DistanceForm::Labels, CoverageForm::Strong, DeadEndForm::Degree, PathForm::Tight, BigMForm::Tight, true),
+            RecipeName::Strong => (C::Cutset, DistanceForm::Flow, CoverageForm::Strong, DeadEndForm::Degree, PathForm::Tight, BigMForm::Tight, true),
+        };
+        Recipe { name, label: name.name().to_string(), connectivity, distance, coverage, dead_ends, paths, big_m, label_bounds }
+    }
+
+    /// The recipe a spec asks for, with its overrides.
+    pub fn from_spec(f: &FormulationSpec) -> Recipe {
+        let parts = f.parts();
+        let mut r = Recipe::named(parts.recipe);
+        r.label = f.label();
+        r.connectivity = parts.connectivity.unwrap_or(r.connectivity);
+        r.distance = parts.distance.unwrap_or(r.distance);
+        r.coverage = parts.coverage.unwrap_or(r.coverage);
+        r.dead_ends = parts.dead_ends.unwrap_or(r.dead_ends);
+        r.paths = parts.paths.unwrap_or(r.paths);
+        r.big_m = parts.big_m.unwrap_or(r.big_m);
+        r.label_bounds = parts.label_bounds.unwrap_or(r.label_bounds);
+        r
+    }
+
+    /// The recipe of a problem.
+    pub fn of(p: &Problem) -> Recipe {
+        Recipe::from_spec(&p.formulation)
+    }
+
+    /// The same recipe with every lazily separated family replaced by a compact equivalent
+    /// (cutsets by a single-commodity flow), for files that must hold the whole model.
+    pub fn compact(&self) -> Recipe {
+        let mut r = self.clone();
+        if r.connectivity == ConnectivityForm::Cutset {
+            r.connectivity = ConnectivityForm::Flow;
+            r.label = format!("{} (cutsets written as a flow)", self.label);
+        }
+        r
+    }
+
+    /// Which families a problem gets from this recipe.
+    pub fn plan(&self, p: &Problem) -> Plan {
+        let distance = (p.w_distance > 0.0).then_some(self.distance);
+        let labels = distance == Some(DistanceForm::Labels) || (distance.is_none() && self.connectivity == ConnectivityForm::Labels);
+        // A labels or distance-flow family already ties every active edge to a sink; a second
+        // connectivity family is added only when asked for explicitly (as a strengthening).
+        let connectivity = match (self.connectivity, labels, distance) {
+            (ConnectivityForm::Labels, _, _) => None,
+            (ConnectivityForm::Flow, _, Some(DistanceForm::Flow)) => None,
+            (c, _, _) => Some(c),
+        };
+        Plan { labels, distance_flow: distance == Some(DistanceForm::Flow), connectivity, travel_flow: p.w_travel > 0.0 }
+    }
+}
+
+/// The families a recipe emits for one problem.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Plan {
+    /// The paper's labels (1)–(3) (with or without the λD term on them).
+    pub labels: bool,
+    /// The distance flow (the λD term, and connectivity).
+    pub distance_flow: bool,
+    /// A separate connectivity family (flow or cutsets), when nothing above gives it.
+    pub connectivity: Option<ConnectivityForm>,
+    /// The travel flow (the per-vertex travel term).
+    pub travel_flow: bool,
+}

@@ -1,0 +1,309 @@
+//! Lazy constraints: rows too many to write down, produced on demand by a [`Separator`].
+//!
+//! A backend with the `lazy_constraints` capability runs the separator inside its own branch
+//! and cut (SCIP: a constraint handler that checks and enforces integral points and separates
+//! fractional LP points). Every other backend gets [`solve_loop`]: solve, separate the
+//! incumbent, add the violated rows, solve again from a repaired start, under one shared time
+//! limit — each round is a full solve of a relaxation, so its bound is valid for the whole
+//! problem, and the loop ends when an incumbent violates no lazy row.
+//!
+//! Either way the rows that were added come back with the result, so the MILP checker can check
+//! the returned point against the emitted rows **and** every separated row.
+
+use super::{LimitKind, SolveOptions, SolveResult, Solver, SolverError, Termination};
+use crate::milp::{check_point, Model, Sense, Tolerances, VarId};
+use serde::{Deserialize, Serialize};
+use std::time::Instant;
+
+/// A row produced by a separator: `lhs ≤ Σ a_j x_j ≤ rhs`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct LazyRow {
+    /// A name for files and reports.
+    pub name: String,
+    /// Lower side (may be −∞).
+    pub lhs: f64,
+    /// Upper side (may be +∞).
+    pub rhs: f64,
+    /// The terms.
+    pub terms: Vec<(VarId, f64)>,
+}
+
+impl LazyRow {
+    /// How far `x` is outside the row's sides (0 when it holds).
+    pub fn violation(&self, x: &[f64]) -> f64 {
+        let a: f64 = self.terms.iter().map(|&(v, c)| c * x[v.index()]).sum();
+        (self.lhs - a).max(a - self.rhs).max(0.0)
+    }
+
+    /// Adds the row to a model.
+    pub fn add_to(&self, m: &mut Model) {
+        m.add_row(self.name.clone(), self.lhs, self.rhs, self.terms.iter().copied());
+    }
+}
+
+/// Which way a lazy row can be hurt by moving a variable, so that a solver's presolve does not
+/// round it the wrong way ("variable locks").
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Lock {
+    /// Decreasing the variable can violate a lazy row.
+    Down,
+    /// Increasing the variable can violate a lazy row.
+    Up,
+    /// Both.
+    Both,
+}
+
+/// Produces violated rows of a family that is not written into the model.
+pub trait Separator {
+    /// A short name (`cutset`).
+    fn name(&self) -> &str;
+    /// The rows violated by `x`, a point whose integer variables are integral. Empty means
+    /// `x` satisfies every lazy row: this must be exact.
+    fn separate_integral(&mut self, x: &[f64]) -> Vec<LazyRow>;
+    /// Rows violated by a fractional point (an LP solution); may find only some, or none.
+    fn separate_fractional(&mut self, _x: &[f64]) -> Vec<LazyRow> {
+        Vec::new()
+    }
+    /// A point that satisfies every lazy row, made from an integral point that does not (for
+    /// the next round's start), if the separator knows how.
+    fn repair(&mut self, _x: &[f64]) -> Option<Vec<f64>> {
+        None
+    }
+    /// The variables the lazy rows involve, and which way each can be hurt.
+    fn locks(&self) -> Vec<(VarId, Lock)>;
+}
+
+/// How the lazy rows were handled.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum LazyMode {
+    /// Inside the solver's branch and cut (a callback).
+    Callback,
+    /// Solve, separate, add, solve again ([`solve_loop`]).
+    Loop,
+}
+
+/// What the lazy rows cost and did.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct LazyReport {
+    /// The separator's name.
+    pub separator: String,
+    /// Callback or loop.
+    pub mode: LazyMode,
+    /// Loop: solves run. Callback: separation calls.
+    pub rounds: u64,
+    /// Rows added in all.
+    pub rows_added: usize,
+    /// Seconds spent in the separator.
+    pub separation_seconds: f64,
+    /// Loop: whether a start was handed to a round after the first.
+    #[serde(default)]
+    pub repaired_starts: u64,
+    /// Loop: cutting-plane rounds on the LP relaxation before the first solve, and the rows
+    /// they added (part of `rows_added`).
+    #[serde(default)]
+    pub root_rounds: u64,
+    /// The LP relaxation's bound after the root rounds (before: the first round's value).
+    #[serde(default)]
+    pub root_bounds: Option<(f64, f64)>,
+}
+
+/// A solve with lazy rows: the result, the rows added, and the report.
+#[derive(Clone, Debug)]
+pub struct LazySolve {
+    /// The result, for the whole problem (emitted and lazy rows).
+    pub result: SolveResult,
+    /// Every row the separator produced and the solver used.
+    pub rows: Vec<LazyRow>,
+    /// What it cost.
+    pub report: LazyReport,
+}
+
+/// The generic lazy-constraint solve: solve, separate the incumbent, add the rows, solve again
+/// from a repaired start, until an incumbent violates no lazy row or the time limit is spent.
+///
+/// The dual bound of every round is valid for the whole problem (a round solves a relaxation).
+/// A round that stops with an incumbent that violates lazy rows does not give a solution of the
+/// whole problem: the result then carries the best repaired point found (if any), with
+/// termination `Limit(Time)` when the time is spent.
+pub fn solve_loop<S: Solver + ?Sized>(solver: &S, model: &Model, sep: &mut dyn Separator, o: &SolveOptions) -> Result<LazySolve, SolverError> {
+    let t0 = Instant::now();
+    let tol = Tolerances::default();
+    let mut work = model.clone();
+    let mut rows: Vec<LazyRow> = Vec::new();
+    let mut report = LazyReport {
+        separator: sep.name().to_string(),
+        mode: LazyMode::Loop,
+        rounds: 0,
+        rows_added: 0,
+        separation_seconds: 0.0,
+        repaired_starts: 0,
+        root_rounds: 0,
+        root_bounds: None,
+    };
+    root_rounds(solver, &mut work, &mut rows, sep, o, t0, &mut report)?;
+    // The best point known to satisfy every row (emitted and lazy), with its objective.
+    let mut best: Option<(Vec<f64>, f64)> = None;
+    let better = |a: f64, b: f64| match model.sense {
+        Sense::Minimize => a < b,
+        Sense::Maximize => a > b,
+    };
+    let mut start = o.mip_start.clone();
+    if let Some(x) = &start {
+        if sep.separate_integral(x).is_empty() && check_point(&work, x, &tol).is_feasible() {
+            best = Some((x.clone(), model.objective_value(x)));
+        }
+    }
+    let mut bound: Option<f64> = None;
+    let mut nodes = 0u64;
+    let mut solver_time = 0.0;
+    loop {
+        report.rounds += 1;
+        let mut oi = o.clone();
+        if let Some(limit) = o.time_limit {
+            oi.time_limit = Some((limit - t0.elapsed().as_secs_f64()).max(0.0));
+        }
+        // A start is handed over only if it satisfies the current rows.
+        oi.mip_start = start.take().filter(|x| check_point(&work, x, &tol).is_feasible());
+        if report.rounds > 1 && oi.mip_start.is_some() {
+            report.repaired_starts += 1;
+        }
+        let mut r = solver.solve(&work, &oi)?;
+        nodes += r.nodes.unwrap_or(0);
+        solver_time += r.solver_time.unwrap_or(0.0);
+        if let Some(b) = r.dual_bound {
+            // Later rounds solve tighter relaxations; keep the strongest bound seen.
+            bound = Some(match (bound, model.sense) {
+                (None, _) => b,
+                (Some(a), Sense::Minimize) => a.max(b),
+                (Some(a), Sense::Maximize) => a.min(b),
+            });
+        }
+        let finish = |mut r: SolveResult, best: Option<(Vec<f64>, f64)>, bound: Option<f64>| {
+            if let Some((x, obj)) = best {
+                r.primal = Some(x);
+                r.objective = Some(obj);
+            } else {
+                r.primal = None;
+                r.objective = None;
+            }
+            r.dual_bound = bound;
+            r.nodes = Some(nodes);
+            r.solver_time = Some(solver_time);
+            r.finish(model.sense, o.rel_gap.is_some() || o.abs_gap.is_some());
+            r.wall_time = t0.elapsed().as_secs_f64();
+            r
+        };
+        let Some(x) = r.primal.clone() else {
+            // No incumbent: infeasible relaxation means an infeasible problem; a limit leaves
+            // the best repaired point, if any.
+            if r.termination == Termination::Infeasible {
+                best = None;
+            }
+            return Ok(LazySolve { result: finish(r, best, bound), rows, report });
+        };
+        let ts = Instant::now();
+        let cuts = sep.separate_integral(&x);
+        report.separation_seconds += ts.elapsed().as_secs_f64();
+        if cuts.is_empty() {
+            // Feasible for the whole problem.
+            let obj = r.objective.unwrap_or_else(|| model.objective_value(&x));
+            if best.as_ref().is_none_or(|(_, b)| better(obj, *b) || (obj - *b).abs() <= 1e-9 * b.abs().max(1.0)) {
+                best = Some((x, obj));
+            }
+            return Ok(LazySolve { result: finish(r, best, bound), rows, report });
+        }
+        for c in &cuts {
+            c.add_to(&mut work);
+        }
+        report.rows_added += cuts.len();
+        rows.extend(cuts);
+        let ts = Instant::now();
+        let repaired = sep.repair(&x);
+        report.separation_seconds += ts.elapsed().as_secs_f64();
+        if let Some(y) = repaired {
+            if sep.separate_integral(&y).is_empty() && check_point(&work, &y, &tol).is_feasible() {
+                let obj = model.objective_value(&y);
+                if best.as_ref().is_none_or(|(_, b)| better(obj, *b)) {
+                    best = Some((y, obj));
+                }
+            }
+        }
+        start = best.as_ref().map(|(x, _)| x.clone());
+        let out_of_time = o.time_limit.is_some_and(|l| t0.elapsed().as_secs_f64() >= l);
+        let stopped = !matches!(r.termination, Termination::Optimal);
+        if out_of_time || stopped {
+            if r.termination == Termination::Optimal {
+                r.termination = Termination::Limit(LimitKind::Time);
+            }
+            return Ok(LazySolve { result: finish(r, best, bound), rows, report });
+        }
+    }
+}
+
+/// Cutting-plane rounds at the root: solve the LP relaxation, add the separator's rows for the
+/// fractional point, repeat while they move the bound (at most [`MAX_ROOT_ROUNDS`] rounds, and a
+/// fifth of the time limit). The rows are valid everywhere, so they simply join the model: a
+/// backend without callbacks then branches on the strengthened relaxation.
+fn root_rounds<S: Solver + ?Sized>(
+    solver: &S,
+    work: &mut Model,
+    rows: &mut Vec<LazyRow>,
+    sep: &mut dyn Separator,
+    o: &SolveOptions,
+    t0: Instant,
+    report: &mut LazyReport,
+) -> Result<(), SolverError> {
+    let budget = o.time_limit.map(|l| 0.2 * l);
+    let mut first = None;
+    let mut last = f64::NAN;
+    let mut stalled = 0;
+    for _ in 0..MAX_ROOT_ROUNDS {
+        if budget.is_some_and(|b| t0.elapsed().as_secs_f64() >= b) {
+            break;
+        }
+        let mut relaxed = work.clone();
+        for j in 0..relaxed.num_vars() {
+            relaxed.var_mut(VarId(j as u32)).kind = crate::milp::VarKind::Continuous;
+        }
+        let mut oi = SolveOptions { log: super::LogTarget::Quiet, threads: o.threads, ..SolveOptions::default() };
+        oi.time_limit = budget.map(|b| (b - t0.elapsed().as_secs_f64()).max(0.0));
+        let r = solver.solve(&relaxed, &oi)?;
+        let (Some(x), Some(obj)) = (r.primal, r.objective) else { break };
+        if r.termination != Termination::Optimal {
+            break;
+        }
+        first.get_or_insert(obj);
+        let ts = Instant::now();
+        let cuts = sep.separate_fractional(&x);
+        report.separation_seconds += ts.elapsed().as_secs_f64();
+        if cuts.is_empty() {
+            last = obj;
+            break;
+        }
+        if last.is_finite() && (obj - last).abs() <= 1e-4 * obj.abs().max(1.0) {
+            stalled += 1;
+            if stalled >= 3 {
+                last = obj;
+                break;
+            }
+        } else {
+            stalled = 0;
+        }
+        last = obj;
+        report.root_rounds += 1;
+        report.rows_added += cuts.len();
+        for c in &cuts {
+            c.add_to(work);
+        }
+        rows.extend(cuts);
+    }
+    if let Some(f) = first {
+        report.root_bounds = Some((f, last));
+    }
+    Ok(())
+}
+
+/// Cap on the cutting-plane rounds at the root.
+const MAX_ROOT_ROUNDS: usize = 200;
