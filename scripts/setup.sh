@@ -95,7 +95,9 @@ fi
 sumo_home=$("$SUMO_PREFIX/bin/python" -c 'import sumo; print(sumo.SUMO_HOME)')
 [[ -x $sumo_home/bin/sumo && -x $sumo_home/bin/netconvert && -x $sumo_home/bin/duarouter ]] \
   || die "$sumo_home/bin lacks sumo, netconvert or duarouter (delete $SUMO_PREFIX and rerun)"
-sumo_have=$("$sumo_home/bin/sumo" --version | head -n1)
+# (the whole output first: `| head -n1` could end sumo by SIGPIPE, which pipefail reports)
+sumo_have=$("$sumo_home/bin/sumo" --version)
+sumo_have=${sumo_have%%$'\n'*}
 [[ $sumo_have == *" $SUMO_VERSION"* ]] || die "SUMO at $sumo_home is '$sumo_have', expected $SUMO_VERSION (delete $SUMO_PREFIX and rerun)"
 if [[ "$(readlink "$DEPS/sumo-home" 2>/dev/null)" != "$sumo_home" ]]; then
   ln -sfn "$sumo_home" "$DEPS/sumo-home"
