@@ -7,7 +7,8 @@
 //! trait), [`mesh`] (2D half-edge meshes), [`spec`] (functional specifications),
 //! [`rules`] (what a spec's rules mean on a mesh, enumerated), [`formulations`] (recipes of
 //! constraint families: the paper's integer program and stronger ones), [`design`] (decoding, metrics and the
-//! independent validator), [`render`] (pictures), and [`pipeline`] (spec → checked design).
+//! independent validator), [`render`] (pictures), and [`pipeline`] (spec → checked design). [`urban`] lays out cities;
+//! [`traffic`] evaluates designed street networks in SUMO.
 #![deny(missing_docs)]
 
 pub mod compare;
@@ -22,6 +23,7 @@ pub mod report;
 pub mod rules;
 pub mod solvers;
 pub mod spec;
+pub mod traffic;
 pub mod urban;
 
 /// The README's code examples, compiled and run as doctests.

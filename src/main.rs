@@ -12,6 +12,7 @@ use std::process::ExitCode;
 mod cli {
     pub mod city;
     pub mod design;
+    pub mod traffic;
 }
 
 /// Exit code when the solver's answer fails netspec's independent check.
@@ -121,6 +122,44 @@ enum Command {
         /// Output directory (default: out/<city name>).
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
+    },
+    /// Evaluate designed street networks in SUMO (installed by scripts/setup.sh): export to
+    /// SUMO's plain XML with a road type per level, netconvert, seeded through and local
+    /// trips routed by duarouter, a headless simulation; writes traffic.json, volume.svg/png
+    /// and traveltime.svg/png per design, and with several designs (same demand) comparison.md,
+    /// comparison.json and comparison.svg/png.
+    Traffic {
+        /// Designs: `netspec city` output directories, `netspec solve` output directories or
+        /// result.json files (a city's regions/NN-name/L<n>/ too).
+        #[arg(required = true)]
+        designs: Vec<PathBuf>,
+        /// Names of the designs, comma-separated (default: their directory names).
+        #[arg(long, value_delimiter = ',')]
+        labels: Vec<String>,
+        /// Seconds during which trips depart.
+        #[arg(long, default_value_t = 3600.0, value_name = "SECONDS")]
+        duration: f64,
+        /// Through trips per hour (boundary to the far side of the boundary).
+        #[arg(long, default_value_t = 300.0, value_name = "PER_HOUR")]
+        through_rate: f64,
+        /// Local trips per hour (interior point to interior point).
+        #[arg(long, default_value_t = 600.0, value_name = "PER_HOUR")]
+        local_rate: f64,
+        /// Seed of the demand, duarouter and sumo.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Metres per model unit (default: the city spec's; 20 for solve results).
+        #[arg(long, value_name = "M")]
+        metres_per_unit: Option<f64>,
+        /// Level of a solve result's streets: 1 major, 2 collector, 3 local (default), 4 cul-de-sac.
+        #[arg(long, value_parser = clap::value_parser!(u8).range(1..=4))]
+        level: Option<u8>,
+        /// SUMO_HOME to use (default: $SUMO_HOME, then the copy scripts/setup.sh installs, then PATH).
+        #[arg(long, value_name = "DIR")]
+        sumo_home: Option<PathBuf>,
+        /// Output directory.
+        #[arg(long, value_name = "DIR", default_value = "out/traffic")]
+        out: PathBuf,
     },
     /// Convert a model between MPS and LP (formats chosen by extension).
     Convert {
@@ -280,6 +319,16 @@ fn run(cli: Cli) -> Result<ExitCode> {
         }
         Command::City { spec, solver, time_limit, threads, threads_per_solve, gap, fresh, out } => {
             cli::city::run_city(&spec, cli::city::CityArgs { solver, time_limit, threads, threads_per_solve, gap, fresh, out })
+        }
+        Command::Traffic { designs, labels, duration, through_rate, local_rate, seed, metres_per_unit, level, sumo_home, out } => {
+            cli::traffic::run_traffic(cli::traffic::TrafficArgs {
+                designs,
+                labels,
+                demand: netspec::traffic::DemandSettings { duration, through_per_hour: through_rate, local_per_hour: local_rate, seed },
+                load: netspec::traffic::network::LoadOptions { metres_per_unit, level },
+                sumo_home,
+                out,
+            })
         }
         Command::Convert { input, output } => {
             let read = read_model_file(&input)?;

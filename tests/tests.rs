@@ -16,3 +16,5 @@ mod rooms;
 mod compare;
 // Street layouts: cities, levels, resume, outputs (paper §5.1).
 mod urban;
+// Traffic evaluation in SUMO (issue 12): real netconvert, duarouter and sumo.
+mod traffic;

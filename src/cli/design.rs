@@ -125,6 +125,9 @@ pub fn solve_spec(
         let png_path = dir.join("network.png");
         std::fs::write(&png_path, render::png(&svg)?).with_context(|| format!("writing {}", png_path.display()))?;
         println!("picture    {} (and .svg)", png_path.display());
+        let geo = dir.join("network.geojson");
+        std::fs::write(&geo, netspec::traffic::export::design_geojson(&res, netspec::traffic::network::DEFAULT_SOLVE_LEVEL)).with_context(|| format!("writing {}", geo.display()))?;
+        println!("geojson    {} (model units)", geo.display());
     }
     if let Some(g) = res.rooms.as_ref().and_then(|r| r.block_graph.as_ref()) {
         let dot = dir.join("blocks.dot");

@@ -6,6 +6,8 @@
 //! point-to-point samples yellow, obstacles black, forced edges and through routes green; the
 //! title line names the spec, solver, status, objective and gap.
 
+pub mod traffic;
+
 use crate::design::{travel_distances, Network};
 use crate::rules::paths::PathSets;
 use crate::rules::placements::Placement;

@@ -28,6 +28,14 @@ pub enum CityError {
         /// The I/O error.
         source: std::io::Error,
     },
+    /// A level's saved state (`state.json`) is unreadable.
+    #[error("{}: {message}", path.display())]
+    State {
+        /// The file.
+        path: PathBuf,
+        /// What is wrong.
+        message: String,
+    },
     /// The thread pool could not be created.
     #[error("thread pool: {0}")]
     Threads(String),
@@ -177,6 +185,15 @@ pub struct RegionRoads {
     pub joins_major: Vec<bool>,
 }
 
+impl RegionRoads {
+    /// A sub-region's mesh before any level: its boundary edges are level 1, nothing else is a
+    /// road.
+    pub fn boundary_only(mesh: Mesh) -> RegionRoads {
+        let edge_level = mesh.edges().map(|e| u8::from(mesh.is_boundary_edge(e))).collect();
+        RegionRoads { mesh, edge_level, joins_major: Vec::new() }
+    }
+}
+
 /// Everything about one sub-region.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct RegionOutcome {
@@ -211,8 +228,26 @@ struct LevelState {
     roads: Option<RegionRoads>,
 }
 
+/// The roads a finished run left in a region ([`RegionOutcome::roads`], which `city.json`
+/// omits), read back from the output directory `out`: those of the `state.json` of its last
+/// level with a network, or the sub-region's boundary alone (meshed again, as the run did) when
+/// no level found one. `None` if the sub-region cannot be meshed.
+pub fn saved_roads(spec: &CitySpec, out: &Path, region: &RegionOutcome) -> Result<Option<RegionRoads>, CityError> {
+    if let Some(last) = region.levels.iter().rev().find(|l| l.has_network()) {
+        let path = region_dir(out, region.index, &region.name).join(format!("L{}", last.level)).join("state.json");
+        let text = std::fs::read_to_string(&path).map_err(io_err(&path))?;
+        let state: LevelState = serde_json::from_str(&text).map_err(|e| CityError::State { path: path.clone(), message: e.to_string() })?;
+        return match state.roads {
+            Some(r) => Ok(Some(r)),
+            None => Err(CityError::State { path, message: format!("level {} is recorded with a network but has no roads", last.level) }),
+        };
+    }
+    let origin = spec.domain_bounds().0;
+    Ok(mesh::clipped_grid_on_lattice(&region.outer, &region.holes, spec.mesh.spacing, origin).ok().map(RegionRoads::boundary_only))
+}
+
 /// FNV-1a, 64 bits: a stable digest of a level's inputs (not for security).
-fn fnv1a(parts: &[&[u8]]) -> String {
+pub(crate) fn fnv1a(parts: &[&[u8]]) -> String {
     let mut h: u64 = 0xcbf2_9ce4_8422_2325;
     for p in parts {
         for &b in *p {
@@ -301,8 +336,7 @@ fn run_region(
             return Ok(outcome);
         }
     };
-    let edge_level = mesh0.edges().map(|e| u8::from(mesh0.is_boundary_edge(e))).collect();
-    let mut roads = RegionRoads { mesh: mesh0, edge_level, joins_major: Vec::new() };
+    let mut roads = RegionRoads::boundary_only(mesh0);
     let mut blocked: Option<String> = None;
     for &n in &levels {
         if let Some(why) = &blocked {

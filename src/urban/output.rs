@@ -118,14 +118,7 @@ pub fn run_city_on(spec: &CitySpec, regs: Vec<(Region, Option<usize>)>, out: &Pa
     let regions = city::run_regions(spec, regs, out, opts)?;
     let (graph, planar, joins) = street_graph(&regions, spec.mesh.spacing);
     let metrics = street_metrics(&planar, spec.metres_per_unit, geom::signed_area(&spec.domain.outer).abs());
-    let smoothed = match spec.smoothing.method {
-        SmoothingMethod::Snake => smooth::smooth(&graph, &smooth::SnakeOptions::default()),
-        SmoothingMethod::Fair => smooth::fair(&graph, &smooth::FairOptions::default()),
-        SmoothingMethod::None => {
-            let snakes = smooth::decompose(&graph);
-            smooth::SmoothResult { snakes, energy_before: 0.0, energy_after: 0.0, iterations: 0, converged: true }
-        }
-    };
+    let smoothed = smooth::by_method(&graph, spec.smoothing.method);
     let major = major_road_segments(&regions);
     let snakes = smoothed.snakes.len();
     let streets = snap_to_major_roads(&graph, &joins, smoothed.snakes, &major, 1.5 * spec.mesh.spacing);

@@ -552,6 +552,17 @@ pub fn fair(g: &StreetGraph, opts: &FairOptions) -> SmoothResult {
     })
 }
 
+/// The smoothing a city spec asks for (`[smoothing] method`), with default settings: [`smooth`],
+/// [`fair`], or for `none` the unsmoothed snakes of [`decompose`].
+pub fn by_method(g: &StreetGraph, method: super::spec::SmoothingMethod) -> SmoothResult {
+    use super::spec::SmoothingMethod;
+    match method {
+        SmoothingMethod::Snake => smooth(g, &SnakeOptions::default()),
+        SmoothingMethod::Fair => fair(g, &FairOptions::default()),
+        SmoothingMethod::None => SmoothResult { snakes: decompose(g), energy_before: 0.0, energy_after: 0.0, iterations: 0, converged: true },
+    }
+}
+
 /// Decompose, subdivide, optimise each snake with `f` → (before, after, iterations, converged).
 fn run(
     g: &StreetGraph,

@@ -1,0 +1,323 @@
+//! The design graph to simulate, in metres: read from a `netspec solve` output (`result.json`:
+//! the mesh and the active edges) or a `netspec city` output (`city.json` and every region's
+//! saved roads, merged and smoothed exactly as the city run did).
+//!
+//! Node ids are the design's own vertex ids (mesh vertices of a solve; vertices of the merged
+//! street graph of a city) and edge ids the design's edge ids (mesh edges; street graph edges),
+//! so every SUMO element traces back to the design.
+
+use super::{read, TrafficError, TrafficErrorKind};
+use crate::mesh::geom;
+use crate::pipeline::DesignResult;
+use crate::urban::city::saved_roads;
+use crate::urban::output::street_graph;
+use crate::urban::smooth::{self, StreetGraph};
+use crate::urban::CityResult;
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+use std::path::Path;
+
+/// Metres per model unit for a `solve` design when none is given (a spec has no scale; the
+/// Fig. 7 city specs use 20).
+pub const DEFAULT_METRES_PER_UNIT: f64 = 20.0;
+
+/// The level given to every street of a `solve` design when none is given: a local street.
+pub const DEFAULT_SOLVE_LEVEL: u8 = 3;
+
+/// A street network in metres.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct RoadNetwork {
+    /// Name (the spec's or the city's).
+    pub name: String,
+    /// Which run produced it.
+    pub source: Provenance,
+    /// The scale used to convert model units to metres.
+    pub metres_per_unit: f64,
+    /// Junctions and street ends.
+    pub nodes: Vec<RoadNode>,
+    /// Streets (undirected; each becomes one SUMO edge per direction).
+    pub edges: Vec<RoadEdge>,
+    /// The area the design serves (where demand is placed).
+    pub region: Region,
+}
+
+/// A node: a design vertex with at least one street.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct RoadNode {
+    /// The design's vertex id.
+    pub id: u32,
+    /// Position, metres.
+    pub pos: [f64; 2],
+    /// Through traffic may start and end here: a node of a major road on the region's
+    /// boundary (a city), a sink (a `solve` design).
+    pub entrance: bool,
+}
+
+/// A street between two nodes.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct RoadEdge {
+    /// The design's edge id.
+    pub id: u32,
+    /// One end (index into [`RoadNetwork::nodes`]).
+    pub a: usize,
+    /// The other end.
+    pub b: usize,
+    /// Hierarchy level: 1 major road, 2 collector, 3 local street, 4 cul-de-sac.
+    pub level: u8,
+    /// Its geometry from `a` to `b`, metres (both ends included; the smoothed street where
+    /// there is one, else the straight segment).
+    pub shape: Vec<[f64; 2]>,
+    /// Local traffic may start and end here (streets of levels ≥ 2 in a city; every street of
+    /// a `solve` design).
+    pub local: bool,
+}
+
+impl RoadEdge {
+    /// Length of the shape, metres.
+    pub fn length(&self) -> f64 {
+        self.shape.windows(2).map(|w| geom::dist(w[0], w[1])).sum()
+    }
+}
+
+/// The area a design serves, metres: the same for every design of one region, so demand drawn
+/// from it is the same too.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Region {
+    /// The outer boundary (through traffic enters and leaves here).
+    pub boundary: Vec<[f64; 2]>,
+    /// Polygons whose union is the area (local traffic starts and ends here).
+    pub areas: Vec<Vec<[f64; 2]>>,
+}
+
+/// Which run produced a design.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Provenance {
+    /// `solve` or `city`.
+    pub kind: String,
+    /// The file read.
+    pub path: String,
+    /// The netspec version that wrote it.
+    pub netspec_version: String,
+    /// The spec's description.
+    pub description: String,
+    /// One line per solve: level, termination, objective, gap, time, validity, backend.
+    pub runs: Vec<String>,
+}
+
+/// How to read a design.
+#[derive(Clone, Debug, Default)]
+pub struct LoadOptions {
+    /// Metres per model unit (default: the city spec's, or [`DEFAULT_METRES_PER_UNIT`]).
+    pub metres_per_unit: Option<f64>,
+    /// The level of a `solve` design's streets (default [`DEFAULT_SOLVE_LEVEL`]).
+    pub level: Option<u8>,
+}
+
+/// Reads a design: a `result.json` file, a directory with one (a `netspec solve` output or a
+/// city level's directory), or a `netspec city` output directory (with `city.json`).
+pub fn load(path: &Path, opts: &LoadOptions) -> Result<RoadNetwork, TrafficError> {
+    let md = std::fs::metadata(path).map_err(|e| TrafficError::new(path, e.into()))?;
+    let file = if md.is_dir() {
+        if path.join("city.json").is_file() {
+            return from_city(path, opts);
+        }
+        let f = path.join("result.json");
+        if !f.is_file() {
+            return Err(TrafficError::new(path, TrafficErrorKind::NoResult));
+        }
+        f
+    } else {
+        path.to_path_buf()
+    };
+    let text = read(&file)?;
+    let res: DesignResult = serde_json::from_str(&text).map_err(|e| TrafficError::new(&file, TrafficErrorKind::Parse { what: "a netspec design result", message: e.to_string() }))?;
+    from_design(&res, &file, opts)
+}
+
+fn fmt_opt(v: Option<f64>, f: impl Fn(f64) -> String) -> String {
+    v.map_or("-".into(), f)
+}
+
+/// The network of a design result (`path` is named in errors and the provenance).
+pub fn from_design(res: &DesignResult, path: &Path, opts: &LoadOptions) -> Result<RoadNetwork, TrafficError> {
+    let err = |kind| TrafficError::new(path, kind);
+    let s = &res.solve;
+    let Some(net) = &res.network else {
+        return Err(err(TrafficErrorKind::NoNetwork(format!("solver {}: {}", s.solver, s.termination.label()))));
+    };
+    if !res.validity.valid {
+        let n = res.validity.design_violations.len() + res.validity.milp_check.as_ref().map_or(0, |c| c.violations.len());
+        return Err(err(TrafficErrorKind::Invalid(format!("{n} violations"))));
+    }
+    let m = opts.metres_per_unit.unwrap_or(DEFAULT_METRES_PER_UNIT);
+    let level = opts.level.unwrap_or(DEFAULT_SOLVE_LEVEL);
+    let mesh = &res.mesh;
+    let mut is_sink = vec![false; mesh.num_vertices()];
+    for &v in &res.sinks {
+        if let Some(x) = is_sink.get_mut(v as usize) {
+            *x = true;
+        }
+    }
+    let scaled = |p: [f64; 2]| [p[0] * m, p[1] * m];
+    let mut node_of = BTreeMap::new();
+    let mut nodes = Vec::new();
+    let mut edges = Vec::new();
+    for e in net.active_edges() {
+        let (va, vb) = mesh.edge_vertices(e);
+        let mut ends = [0usize; 2];
+        for (k, v) in [va, vb].into_iter().enumerate() {
+            ends[k] = *node_of.entry(v.0).or_insert_with(|| {
+                nodes.push(RoadNode { id: v.0, pos: scaled(mesh.position(v)), entrance: is_sink[v.index()] });
+                nodes.len() - 1
+            });
+        }
+        edges.push(RoadEdge {
+            id: e.0,
+            a: ends[0],
+            b: ends[1],
+            level,
+            shape: vec![nodes[ends[0]].pos, nodes[ends[1]].pos],
+            local: true,
+        });
+    }
+    if edges.is_empty() {
+        return Err(err(TrafficErrorKind::NoNetwork("no active edge".into())));
+    }
+    // The region: the mesh's outer boundary loop (largest area) and its faces.
+    let loops: Vec<Vec<[f64; 2]>> = mesh.boundary_loops().iter().map(|l| l.iter().map(|&h| scaled(mesh.position(mesh.he_tail(h)))).collect()).collect();
+    let boundary = loops.into_iter().max_by(|a, b| geom::signed_area(a).abs().total_cmp(&geom::signed_area(b).abs())).unwrap_or_default();
+    let areas = mesh.faces().map(|f| mesh.face_vertices(f).iter().map(|&v| scaled(mesh.position(v))).collect()).collect();
+    let run = format!(
+        "{} {}: {}, objective {}, gap {}, {:.1} s, valid",
+        s.solver,
+        s.solver_version,
+        s.termination.label(),
+        fmt_opt(s.objective, |v| format!("{v:.4}")),
+        fmt_opt(s.gap, |g| format!("{:.2}%", 100.0 * g)),
+        s.wall_time
+    );
+    Ok(RoadNetwork {
+        name: res.spec.name.clone(),
+        source: Provenance { kind: "solve".into(), path: path.display().to_string(), netspec_version: res.netspec_version.clone(), description: res.spec.description.clone(), runs: vec![run] },
+        metres_per_unit: m,
+        nodes,
+        edges,
+        region: Region { boundary, areas },
+    })
+}
+
+/// The network of a `netspec city` output directory: every region's roads after its last
+/// level with a network, merged into one street graph and smoothed as `city` does (the
+/// snakes' ends are the graph's vertices; the snapping of street ends onto the major roads,
+/// done for pictures only, is not applied).
+pub fn from_city(dir: &Path, opts: &LoadOptions) -> Result<RoadNetwork, TrafficError> {
+    let file = dir.join("city.json");
+    let text = read(&file)?;
+    let mut city: CityResult = serde_json::from_str(&text).map_err(|e| TrafficError::new(&file, TrafficErrorKind::Parse { what: "a netspec city result", message: e.to_string() }))?;
+    if !city.valid {
+        return Err(TrafficError::new(&file, TrafficErrorKind::Invalid("city.json says valid = false".into())));
+    }
+    let spec = city.spec.clone();
+    let m = opts.metres_per_unit.unwrap_or(spec.metres_per_unit);
+    let mut runs = Vec::new();
+    for r in &mut city.regions {
+        r.roads = saved_roads(&spec, dir, r).map_err(|e| TrafficError::new(dir, TrafficErrorKind::Parse { what: "the city's saved roads", message: e.to_string() }))?;
+        for l in &r.levels {
+            runs.push(format!(
+                "{:02} {} L{}: {} {}, objective {}, gap {}, {} s{}",
+                r.index,
+                r.name,
+                l.level,
+                l.state,
+                l.termination.as_deref().unwrap_or("-"),
+                fmt_opt(l.objective, |v| format!("{v:.4}")),
+                fmt_opt(l.gap, |g| format!("{:.2}%", 100.0 * g)),
+                fmt_opt(l.wall_time, |t| format!("{t:.1}")),
+                match l.valid {
+                    Some(true) => ", valid".to_string(),
+                    Some(false) => ", INVALID".to_string(),
+                    None => l.message.as_ref().map_or(String::new(), |m| format!(" ({m})")),
+                }
+            ));
+        }
+    }
+    runs.push(format!("backend {}, threads {:?}, time limit override {}", city.solver, city.threads, fmt_opt(city.time_limit_override, |t| format!("{t} s"))));
+    let (graph, _, _) = street_graph(&city.regions, spec.mesh.spacing);
+    let smoothed = smooth::by_method(&graph, spec.smoothing.method);
+    let (positions, shapes) = smoothed_geometry(&graph, &smoothed.snakes);
+    let scaled = |p: [f64; 2]| [p[0] * m, p[1] * m];
+    let outer: Vec<[f64; 2]> = spec.domain.outer.iter().map(|&p| scaled(p)).collect();
+    // The domain's boundary: mesh boundary edges of exactly one sub-region (a major road
+    // between two sub-regions bounds both).
+    let key = |p: [f64; 2]| ((p[0] / spec.mesh.spacing * 1e3).round() as i64, (p[1] / spec.mesh.spacing * 1e3).round() as i64);
+    let edge_key = |p: [f64; 2], q: [f64; 2]| if key(p) <= key(q) { (key(p), key(q)) } else { (key(q), key(p)) };
+    let mut bounding: BTreeMap<_, usize> = BTreeMap::new();
+    for roads in city.regions.iter().filter_map(|r| r.roads.as_ref()) {
+        for e in roads.mesh.boundary_edges() {
+            let (a, b) = roads.mesh.edge_vertices(e);
+            *bounding.entry(edge_key(roads.mesh.position(a), roads.mesh.position(b))).or_default() += 1;
+        }
+    }
+    let mut node_of = BTreeMap::new();
+    let mut nodes = Vec::new();
+    let mut edges = Vec::new();
+    for (k, e) in graph.edges.iter().enumerate() {
+        let mut ends = [0usize; 2];
+        for (j, v) in [e.a, e.b].into_iter().enumerate() {
+            ends[j] = *node_of.entry(v).or_insert_with(|| {
+                nodes.push(RoadNode { id: v, pos: scaled(positions[v as usize]), entrance: false });
+                nodes.len() - 1
+            });
+        }
+        let shape: Vec<[f64; 2]> = shapes[k].iter().map(|&p| scaled(p)).collect();
+        // A major road along the domain's boundary: through traffic enters and leaves there.
+        if e.level == 1 && bounding.get(&edge_key(graph.positions[e.a as usize], graph.positions[e.b as usize])) == Some(&1) {
+            nodes[ends[0]].entrance = true;
+            nodes[ends[1]].entrance = true;
+        }
+        edges.push(RoadEdge { id: k as u32, a: ends[0], b: ends[1], level: e.level, shape, local: e.level >= 2 });
+    }
+    if edges.is_empty() {
+        return Err(TrafficError::new(&file, TrafficErrorKind::NoNetwork("the city has no streets".into())));
+    }
+    Ok(RoadNetwork {
+        name: spec.name.clone(),
+        source: Provenance { kind: "city".into(), path: file.display().to_string(), netspec_version: city.netspec_version.clone(), description: spec.description.clone(), runs },
+        metres_per_unit: m,
+        nodes,
+        edges,
+        region: Region { boundary: outer.clone(), areas: vec![outer] },
+    })
+}
+
+/// The smoothed geometry of a street graph (model units): every vertex's position (snake ends
+/// stay where they are; vertices inside a snake move with it) and every edge's piece of its
+/// snake, oriented from its `a` to its `b` — the straight segment where the snakes do not cover
+/// an edge evenly.
+pub fn smoothed_geometry(graph: &StreetGraph, snakes: &[smooth::Snake]) -> (Vec<[f64; 2]>, Vec<Vec<[f64; 2]>>) {
+    let mut positions = graph.positions.clone();
+    let mut index = BTreeMap::new();
+    for (k, e) in graph.edges.iter().enumerate() {
+        index.entry((e.a.min(e.b), e.a.max(e.b))).or_insert(k);
+    }
+    let mut shapes: Vec<Vec<[f64; 2]>> = graph.edges.iter().map(|e| vec![graph.positions[e.a as usize], graph.positions[e.b as usize]]).collect();
+    for s in snakes {
+        let n = s.vertices.len();
+        if n < 2 || s.points.len() < n || (s.points.len() - 1) % (n - 1) != 0 {
+            continue;
+        }
+        let sub = (s.points.len() - 1) / (n - 1);
+        for i in 0..n - 1 {
+            let (u, v) = (s.vertices[i], s.vertices[i + 1]);
+            let Some(&k) = index.get(&(u.min(v), u.max(v))) else { continue };
+            let mut piece = s.points[i * sub..=(i + 1) * sub].to_vec();
+            positions[u as usize] = piece[0];
+            positions[v as usize] = piece[sub];
+            if graph.edges[k].a != u {
+                piece.reverse();
+            }
+            shapes[k] = piece;
+        }
+    }
+    (positions, shapes)
+}
