@@ -135,13 +135,23 @@ fn ball_cut(c: &mut Ctx, v: crate::mesh::VertexId, cover: &[crate::mesh::VertexI
     c.em.ge(format!("covball_{}", vname(v)), &ex, if forbid { 2.0 } else { 1.0 });
 }
 
-/// The shortest cycle a mesh can hold, as far as the ball cuts need: 4 when every face is a
-/// quadrilateral (a planar graph whose faces are all even is bipartite, and a simple graph has
-/// no 2-cycles), else 3.
+/// The shortest cycle a design can hold, as far as the ball cuts need.
+/// - 4 when every face is a quadrilateral: a planar graph whose faces are all even is
+///   bipartite, and a simple graph has no 2-cycles;
+/// - 8 when moreover every vertex off the mesh boundary has valence 4 (the mesh is a piece of
+///   the square grid: grids and clipped grids) and too-close pairs are forbidden: a cycle then
+///   bounds a polyomino, and a polyomino no cell of which has two opposite sides on its boundary
+///   has at least four cells at its corners — the 2×2 block, perimeter 8;
+/// - else 3.
 fn girth(p: &crate::spec::Problem) -> f64 {
-    if p.mesh.faces().all(|f| p.mesh.face_size(f) == 4) {
-        4.0
+    let mesh = &p.mesh;
+    if !mesh.faces().all(|f| mesh.face_size(f) == 4) {
+        return 3.0;
+    }
+    let grid = mesh.vertices().all(|v| mesh.is_boundary_vertex(v) || mesh.valence(v) == 4);
+    if grid && p.w_too_close == crate::spec::Weight::Forbid {
+        8.0
     } else {
-        3.0
+        4.0
     }
 }
