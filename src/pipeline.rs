@@ -65,6 +65,9 @@ pub struct DesignResult {
     pub active_edges: Vec<[u32; 2]>,
     /// The decoded network (active flags, directions, labels), if there is a solution.
     pub network: Option<Network>,
+    /// Whether a design exists (apart from why the solver stopped, `solve.termination`).
+    #[serde(default)]
+    pub design_found: bool,
     /// Metrics of the network.
     pub metrics: Option<Metrics>,
     /// The independent checks.
@@ -81,6 +84,9 @@ pub struct DesignResult {
     pub path_sets: Option<PathSets>,
     /// Room tiling, if on.
     pub rooms: Option<RoomsResult>,
+    /// The solver's point, one value per MILP variable (not in `result.json`; for `--sol`).
+    #[serde(skip)]
+    pub primal_point: Option<Vec<f64>>,
 }
 
 /// Builds the MILP of a problem (no solve).
@@ -119,7 +125,7 @@ pub fn solve_built(p: &Problem, nm: &NetworkModel, kind: SolverKind, options: &S
             })
             .collect()
     });
-    result.primal = None;
+    let primal_point = result.primal.take();
     let rooms = nm.rooms.as_ref().map(|rm| RoomsResult {
         enumerated_per_template: rm.report.per_template.clone(),
         truncated: rm.report.truncated,
@@ -138,6 +144,7 @@ pub fn solve_built(p: &Problem, nm: &NetworkModel, kind: SolverKind, options: &S
         mesh: p.mesh.clone(),
         sinks: p.mesh.vertices().filter(|v| p.is_sink[v.index()]).map(|v| v.0).collect(),
         active_edges,
+        design_found: net.is_some(),
         network: net,
         metrics,
         validity,
@@ -147,5 +154,6 @@ pub fn solve_built(p: &Problem, nm: &NetworkModel, kind: SolverKind, options: &S
         big_m: nm.big_m,
         path_sets: nm.path_sets.clone(),
         rooms,
+        primal_point,
     })
 }
