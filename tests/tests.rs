@@ -16,3 +16,6 @@ mod rooms;
 mod compare;
 // Street layouts: cities, levels, resume, outputs (paper §5.1).
 mod urban;
+// The everyday solve loop: infeasibility found by netspec, honest optimality, time limits,
+// interrupts, option errors, .gz files, solution files, raw parameters.
+mod solve_loop;
