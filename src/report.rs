@@ -145,6 +145,8 @@ impl SolverInfo {
             ("start", c.mip_start),
             ("bound", c.reports_dual_bound),
             ("nodecount", c.reports_nodes),
+            ("interrupt", c.interrupt),
+            ("params", c.raw_params),
         ];
         flags.iter().map(|(n, ok)| if *ok { n.to_string() } else { format!("-{n}") }).collect::<Vec<_>>().join(" ")
     }

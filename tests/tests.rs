@@ -19,3 +19,5 @@ mod urban;
 // The everyday solve loop: infeasibility found by netspec, honest optimality, time limits,
 // interrupts, option errors, .gz files, solution files, raw parameters.
 mod solve_loop;
+// Fuzz targets: the MPS, LP and solution readers and the spec parser never panic.
+mod fuzz;
