@@ -206,11 +206,26 @@ struct Interruptible(*mut ffi::SCIP);
 // watchdog ends before the instance is freed (`with_watchdog` joins it).
 unsafe impl Sync for Interruptible {}
 
+// SCIP's synchronisation store (`scip/syncstore.h`, exported by the library but not in
+// russcip's bindings): the flag every solver of a concurrent solve polls.
+extern "C" {
+    fn SCIPsyncstoreIsInitialized(syncstore: *mut ffi::SCIP_SYNCSTORE) -> std::os::raw::c_uint;
+    fn SCIPsyncstoreSetSolveIsStopped(syncstore: *mut ffi::SCIP_SYNCSTORE, stopped: std::os::raw::c_uint);
+}
+
 impl Interruptible {
     fn interrupt(&self) {
         // SAFETY: see the `Sync` impl; outside SCIP's solving stages the call is refused with a
-        // return code, which is ignored (the solve is ending anyway).
-        let _ = unsafe { ffi::SCIPinterruptSolve(self.0) };
+        // return code, which is ignored (the solve is ending anyway). A concurrent solve
+        // (threads > 1) runs copies of the problem that do not look at this instance's flag but
+        // at the shared store's, which is set under the store's own lock once it exists.
+        unsafe {
+            let _ = ffi::SCIPinterruptSolve(self.0);
+            let store = ffi::SCIPgetSyncstore(self.0);
+            if !store.is_null() && SCIPsyncstoreIsInitialized(store) != 0 {
+                SCIPsyncstoreSetSolveIsStopped(store, 1);
+            }
+        }
     }
 }
 
@@ -349,7 +364,12 @@ fn native(model: &Model, o: &SolveOptions, ctl: &StopControl) -> Result<SolveRes
     let ptr = solved.scip_ptr();
     // SAFETY: live SCIP instance after SCIPsolve.
     let status = unsafe { ffi::SCIPgetStatus(ptr) };
-    let mut r = SolveResult::empty(KIND, version, termination(status));
+    let mut termination = termination(status);
+    if status == ffi::SCIP_Status_SCIP_STATUS_UNKNOWN && ctl.reason().is_some() {
+        // A concurrent solve stopped through the shared store leaves the status unknown.
+        termination = Termination::Limit(LimitKind::Interrupt);
+    }
+    let mut r = SolveResult::empty(KIND, version, termination);
     if let Some(sol) = solved.best_sol() {
         r.primal = Some(vars.iter().map(|v| sol.val(v)).collect());
         r.objective = Some(sol.obj_val());

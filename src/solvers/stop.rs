@@ -79,9 +79,10 @@ impl StopControl {
     }
 }
 
-/// Runs `solve` while a watchdog thread calls `poke` once as soon as the solve should stop (see
-/// [`StopControl::should_stop`]). The watchdog ends with `solve`, so `poke` may use anything
-/// that outlives this call. Without an interrupt or a time limit no thread is started.
+/// Runs `solve` while a watchdog thread calls `poke` as soon as the solve should stop (see
+/// [`StopControl::should_stop`]), and again every 0.1 s until `solve` returns (a solver may
+/// not be ready to take it the first time). The watchdog ends with `solve`, so `poke` may use
+/// anything that outlives this call. Without an interrupt or a time limit no thread is started.
 pub(crate) fn with_watchdog<R>(ctl: &StopControl, poke: impl Fn() + Sync, solve: impl FnOnce() -> R) -> R {
     if !ctl.is_armed() {
         return solve();
@@ -89,10 +90,11 @@ pub(crate) fn with_watchdog<R>(ctl: &StopControl, poke: impl Fn() + Sync, solve:
     let done = AtomicBool::new(false);
     std::thread::scope(|s| {
         s.spawn(|| {
+            let mut last_poke: Option<std::time::Instant> = None;
             while !done.load(Ordering::Acquire) {
-                if ctl.should_stop() {
+                if ctl.should_stop() && last_poke.is_none_or(|t| t.elapsed() >= Duration::from_millis(100)) {
                     poke();
-                    return;
+                    last_poke = Some(std::time::Instant::now());
                 }
                 std::thread::sleep(Duration::from_millis(20));
             }
@@ -121,7 +123,7 @@ mod tests {
     }
 
     #[test]
-    fn watchdog_pokes_once_after_the_deadline() {
+    fn watchdog_pokes_after_the_deadline() {
         let o = SolveOptions { time_limit: Some(0.0), ..Default::default() };
         let ctl = StopControl::new(&o, Instant::now());
         let pokes = std::sync::atomic::AtomicUsize::new(0);
@@ -137,7 +139,8 @@ mod tests {
                 7
             },
         );
-        assert_eq!((out, pokes.load(Ordering::SeqCst)), (7, 1));
+        assert_eq!(out, 7);
+        assert!(pokes.load(Ordering::SeqCst) >= 1);
         assert_eq!(ctl.reason(), Some(LimitKind::Time));
     }
 
