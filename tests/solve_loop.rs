@@ -325,3 +325,32 @@ fn interrupted_compare_keeps_its_records() {
     assert_eq!(records[0]["status"], "interrupted");
     assert_eq!(records[0]["valid"], true);
 }
+
+/// `city`: Ctrl-C once region 0 has finished: the command ends with 130, writes city.json with
+/// region 0's levels kept, and any level it did not run is marked skipped for the interrupt.
+#[test]
+fn interrupted_city_keeps_finished_regions() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("run");
+    let spec = Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/city/two-regions.toml");
+    let child = netspec()
+        .args(["city", spec.to_str().unwrap(), "--threads", "1", "--out", out.to_str().unwrap()])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let first_done = out.join("regions/00-region-0/L3/state.json");
+    let t0 = std::time::Instant::now();
+    while !first_done.exists() {
+        assert!(t0.elapsed() < Duration::from_secs(120), "region 0 never finished");
+        std::thread::sleep(Duration::from_millis(10));
+    }
+    sigint(&child);
+    let o = wait(child, 60);
+    assert_eq!(o.status.code(), Some(130), "{}", String::from_utf8_lossy(&o.stderr));
+    let r: netspec::urban::CityResult = serde_json::from_str(&std::fs::read_to_string(out.join("city.json")).unwrap()).unwrap();
+    assert!(r.regions[0].levels.iter().all(|l| l.state == "solved"), "{:?}", r.regions[0].levels);
+    for l in r.regions.iter().flat_map(|r| &r.levels) {
+        assert!(l.state != "skipped" || l.message.as_deref() == Some("interrupted"), "{l:?}");
+    }
+}
