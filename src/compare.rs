@@ -209,7 +209,7 @@ fn run_one(exe: &Path, spec: &Path, solver: &str, seed: Option<u64>, s: &Compare
     let _ = std::fs::remove_file(dir.join("result.json"));
     let t0 = Instant::now();
     let mut child = cmd.spawn()?;
-    let deadline = Duration::from_secs_f64(limit + s.grace);
+    let deadline = Duration::try_from_secs_f64(limit + s.grace).unwrap_or(Duration::MAX); // inf: no limit
     let mut killed = false;
     let mut forwarded = false;
     let status = loop {

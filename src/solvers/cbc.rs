@@ -456,14 +456,14 @@ mod worker {
         // the two flags, which come before its last field.
         unsafe {
             let data = *(m as *const *mut u8).add(2);
-            if data.is_null() || (data as usize) % 8 != 0 {
+            if data.is_null() || !(data as usize).is_multiple_of(8) {
                 return None;
             }
             let total_time = *(data as *const f64);
             let v = data.add(8) as *const usize;
             let (begin, end, cap) = (*v, *v.add(1), *v.add(2));
             let (no_printing, use_signal) = (*data.add(USE_SIGNAL_HANDLER - 1), *data.add(USE_SIGNAL_HANDLER));
-            let sane = total_time == 0.0 && begin != 0 && begin % 8 == 0 && begin < end && end <= cap && no_printing <= 1 && use_signal == 0;
+            let sane = total_time == 0.0 && begin != 0 && begin.is_multiple_of(8) && begin < end && end <= cap && no_printing <= 1 && use_signal == 0;
             sane.then_some(data)
         }
     }
@@ -505,7 +505,7 @@ mod worker {
             unsafe { self.ptr.add(8) as *mut Outcome }
         }
 
-        fn best(&self, columns: usize) -> &mut [f64] {
+        fn best(&mut self, columns: usize) -> &mut [f64] {
             // SAFETY: the mapping holds `columns` f64 after the header, 8-aligned.
             unsafe { std::slice::from_raw_parts_mut(self.ptr.add(HEADER) as *mut f64, columns) }
         }
@@ -522,7 +522,7 @@ mod worker {
     /// the deadline or on the interrupt and killing it [`HARD_STOP`] later. Copies the best
     /// solution into `best` when CBC found one.
     pub(super) fn run(m: *mut sys::Cbc_Model, best: &mut [f64], ctl: &StopControl, graceful: bool) -> Result<Ended, SolverError> {
-        let shared = Shared::new(best.len())?;
+        let mut shared = Shared::new(best.len())?;
         let parent = std::process::id() as libc::pid_t;
         // SIGINT stays blocked across the fork until the child has set its disposition, so
         // that a signal sent at once cannot kill it.
@@ -534,7 +534,7 @@ mod worker {
         let pid = unsafe { libc::fork() };
         if pid == 0 {
             // SAFETY: in the child, see above.
-            unsafe { child(m, &shared, best.len(), parent, graceful, &old_mask) }
+            unsafe { child(m, &mut shared, best.len(), parent, graceful, &old_mask) }
         }
         // SAFETY: restoring this thread's signal mask.
         unsafe { libc::pthread_sigmask(libc::SIG_SETMASK, &old_mask, std::ptr::null_mut()) };
@@ -618,7 +618,7 @@ mod worker {
     ///
     /// # Safety
     /// Only in the child of `fork`, with `m` the parent's loaded model.
-    unsafe fn child(m: *mut sys::Cbc_Model, shared: &Shared, columns: usize, parent: libc::pid_t, graceful: bool, mask: &libc::sigset_t) -> ! {
+    unsafe fn child(m: *mut sys::Cbc_Model, shared: &mut Shared, columns: usize, parent: libc::pid_t, graceful: bool, mask: &libc::sigset_t) -> ! {
         // SAFETY: async-signal-safe calls on our own process; the model is ours (a copy).
         unsafe {
             // Its own process group: a Ctrl-C at the terminal reaches netspec only, which then
