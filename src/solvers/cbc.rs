@@ -39,14 +39,14 @@
 //! process** (`fork` once the model is loaded), in its own process group and killed if netspec
 //! dies (`PR_SET_PDEATHSIG`). The worker switches on CBC's own SIGINT handler (which ends the
 //! branch and bound at the next node and keeps the incumbent, as "user event"); netspec sends
-//! SIGINT at the deadline (or on the interrupt) and, if the worker has not ended 0.75 s later
+//! SIGINT at the deadline (or on the interrupt) and, if the worker has not ended 0.5 s later
 //! (CBC was in preprocessing or a long LP, which SIGINT cannot stop), kills it. CBC's own
 //! `seconds` is then only a backstop, set well past the deadline. The worker writes its
 //! outcome into memory shared with netspec. A killed worker leaves no solution of CBC's; the
 //! result then carries the MIP start, if one was given (it passed netspec's check), as the best
 //! point known. CBC's SIGINT handler is reached through the `Cbc_Model` structure of CBC 2.10's
 //! C interface (`Coin_C_defines.h`) and the layout of `CbcSolverUsefulData`, checked before use;
-//! where the check fails, the worker is only killed (at the deadline plus 0.75 s) and CBC keeps
+//! where the check fails, the worker is only killed (at the deadline plus 0.5 s) and CBC keeps
 //! its own limit.
 //!
 //! CBC does not report its run time through the C interface, so `solver_time` is netspec's own
@@ -426,7 +426,7 @@ mod worker {
     use std::time::{Duration, Instant};
 
     /// How long a worker that was sent SIGINT may take to end before it is killed.
-    const HARD_STOP: Duration = Duration::from_millis(750);
+    const HARD_STOP: Duration = Duration::from_millis(500);
 
     /// How a worker ended.
     pub(super) enum Ended {
