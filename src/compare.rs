@@ -137,6 +137,10 @@ pub struct CompareSettings {
     /// limit, capped at `time_limit`; rows without one get `time_limit`.
     #[serde(default)]
     pub paper_limits: bool,
+    /// A request to stop (Ctrl-C): the running child is sent SIGINT (it stops its solver and
+    /// writes its best design, recorded as `interrupted`), and no further run starts.
+    #[serde(skip)]
+    pub interrupt: Option<crate::solvers::Interrupt>,
 }
 
 impl CompareSettings {
@@ -158,15 +162,20 @@ fn instance_name(spec: &Path) -> String {
 pub fn run_all(exe: &Path, settings: &CompareSettings, out: &Path, mut progress: impl FnMut(&RunRecord, bool)) -> std::io::Result<Vec<RunRecord>> {
     let seeds: Vec<Option<u64>> = if settings.seeds.is_empty() { vec![None] } else { settings.seeds.iter().map(|&s| Some(s)).collect() };
     let mut records = Vec::new();
+    let interrupted = || settings.interrupt.as_ref().is_some_and(|i| i.is_triggered());
     for row in &settings.manifest.row {
         let Some(spec) = &row.spec else { continue };
         for solver in &settings.solvers {
             for &seed in &seeds {
+                if interrupted() {
+                    return Ok(records);
+                }
                 let name = row.name.clone();
                 let dir = out.join("runs").join(format!("{name}__{solver}__{}", seed.map_or("default".into(), |s| s.to_string())));
                 let record_path = dir.join("run.json");
                 if let Ok(text) = std::fs::read_to_string(&record_path) {
-                    if let Ok(r) = serde_json::from_str::<RunRecord>(&text) {
+                    // An interrupted run is not finished: it runs again.
+                    if let Some(r) = serde_json::from_str::<RunRecord>(&text).ok().filter(|r| r.status != "interrupted") {
                         progress(&r, true);
                         records.push(r);
                         continue;
@@ -194,14 +203,23 @@ fn run_one(exe: &Path, spec: &Path, solver: &str, seed: Option<u64>, s: &Compare
         cmd.args(["--threads", &t.to_string()]);
     }
     cmd.stdin(Stdio::null()).stdout(std::fs::File::create(dir.join("stdout.txt"))?).stderr(std::fs::File::create(dir.join("stderr.txt"))?);
+    // Its own process group: a Ctrl-C at the terminal reaches this process only, which passes
+    // it on once (a second SIGINT would make the child quit without its result).
+    std::os::unix::process::CommandExt::process_group(&mut cmd, 0);
     let _ = std::fs::remove_file(dir.join("result.json"));
     let t0 = Instant::now();
     let mut child = cmd.spawn()?;
-    let deadline = Duration::from_secs_f64(limit + s.grace);
+    let deadline = Duration::try_from_secs_f64(limit + s.grace).unwrap_or(Duration::MAX); // inf: no limit
     let mut killed = false;
+    let mut forwarded = false;
     let status = loop {
         if let Some(st) = child.try_wait()? {
             break Some(st);
+        }
+        if !forwarded && s.interrupt.as_ref().is_some_and(|i| i.is_triggered()) {
+            // SAFETY: signalling our own child, which has not been reaped yet.
+            unsafe { libc::kill(child.id() as libc::pid_t, libc::SIGINT) };
+            forwarded = true;
         }
         if t0.elapsed() > deadline {
             let _ = child.kill();

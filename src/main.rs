@@ -5,7 +5,7 @@ use clap::{Args, Parser, Subcommand};
 use netspec::io::{read_model_file, write_model_file};
 use netspec::milp::Tolerances;
 use netspec::report::{SolveReport, SCHEMA_VERSION};
-use netspec::solvers::{LogTarget, SolveOptions, SolverKind};
+use netspec::solvers::{InvalidOption, LogTarget, RawParam, SolveOptions, SolverKind, Termination};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -13,6 +13,7 @@ mod cli {
     pub mod city;
     pub mod design;
     pub mod traffic;
+    pub mod interrupt;
 }
 
 /// Exit code when the solver's answer fails netspec's independent check.
@@ -27,13 +28,17 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Solve an MPS or LP file and check the answer independently.
+    /// Solve an MPS or LP file (also `.mps.gz`, `.lp.gz`) and check the answer independently.
     #[command(name = "solve-file")]
     SolveFile {
-        /// The model file (`.mps` or `.lp`).
+        /// The model file (`.mps`, `.lp`, `.mps.gz` or `.lp.gz`).
         file: PathBuf,
         #[command(flatten)]
         solve: SolveArgs,
+        /// Start from the solution in this file (`name value` lines, e.g. an earlier `--sol`).
+        /// netspec checks it first; a start that fails the check is reported and not used.
+        #[arg(long, value_name = "FILE.sol")]
+        start: Option<PathBuf>,
         /// Also write the JSON result (schema in docs/result-schema.md) here; `-` for stdout.
         #[arg(long, value_name = "PATH")]
         json: Option<PathBuf>,
@@ -161,11 +166,11 @@ enum Command {
         #[arg(long, value_name = "DIR", default_value = "out/traffic")]
         out: PathBuf,
     },
-    /// Convert a model between MPS and LP (formats chosen by extension).
+    /// Convert a model between MPS and LP (formats chosen by extension; `.gz` compressed).
     Convert {
-        /// Input file (`.mps` or `.lp`).
+        /// Input file (`.mps`, `.lp`, `.mps.gz` or `.lp.gz`).
         input: PathBuf,
-        /// Output file (`.mps` or `.lp`).
+        /// Output file (`.mps`, `.lp`, `.mps.gz` or `.lp.gz`).
         output: PathBuf,
     },
     /// List the compiled backends with their versions and capabilities.
@@ -206,10 +211,42 @@ struct SolveArgs {
     /// Write the solver's own log to this file.
     #[arg(long, value_name = "PATH")]
     log_file: Option<PathBuf>,
+    /// A solver's own parameter, passed through: `highs.mip_heuristic_effort=0.3`,
+    /// `scip.limits/nodes=1000`, `cbc.cuts=off` (repeatable; each backend takes its own).
+    #[arg(long = "param", value_name = "BACKEND.NAME=VALUE")]
+    params: Vec<RawParam>,
+    /// Write the solution found (`name value` per variable) to this file.
+    #[arg(long, value_name = "FILE.sol")]
+    sol: Option<PathBuf>,
+}
+
+/// The command-line flag of a [`SolveOptions`] field, for error messages.
+fn flag_of(option: &str) -> &str {
+    match option {
+        "time_limit" => "--time-limit",
+        "rel_gap" => "--gap",
+        "abs_gap" => "--abs-gap",
+        "threads" => "--threads",
+        "seed" => "--seed",
+        "node_limit" => "--node-limit",
+        other => other,
+    }
+}
+
+/// An option error that names the command-line flag.
+fn flag_error(e: InvalidOption) -> anyhow::Error {
+    anyhow::anyhow!("{} {}", flag_of(e.option), e.reason)
 }
 
 impl SolveArgs {
-    fn options(&self) -> SolveOptions {
+    /// The options of the command line, validated (errors name the flag).
+    fn options(&self) -> Result<SolveOptions> {
+        let o = self.unchecked_options();
+        o.validate().map_err(flag_error)?;
+        Ok(o)
+    }
+
+    fn unchecked_options(&self) -> SolveOptions {
         SolveOptions {
             time_limit: self.time_limit,
             rel_gap: self.gap,
@@ -224,6 +261,8 @@ impl SolveArgs {
             },
             mip_start: None,
             progress: None,
+            params: self.params.clone(),
+            interrupt: None,
         }
     }
 
@@ -265,7 +304,7 @@ fn main() -> ExitCode {
 
 fn run(cli: Cli) -> Result<ExitCode> {
     match cli.command {
-        Command::SolveFile { file, solve, json } => solve_file(&file, &solve, json.as_deref()),
+        Command::SolveFile { file, solve, start, json } => solve_file(&file, &solve, start.as_deref(), json.as_deref()),
         Command::Solve { spec, solve, out, export, no_solve, formulation, relax } => {
             cli::design::solve_spec(&spec, &solve, out, export, no_solve || relax, formulation, relax)
         }
@@ -279,7 +318,16 @@ fn run(cli: Cli) -> Result<ExitCode> {
             } else {
                 solvers.iter().map(|k| k.name().to_string()).collect()
             };
-            let settings = netspec::compare::CompareSettings { manifest, solvers: solvers.clone(), time_limit, grace, seeds, threads, paper_limits };
+            for (flag, v) in [("--time-limit", time_limit), ("--grace", grace)] {
+                if v.is_nan() || v < 0.0 {
+                    bail!("{flag} must be a number of seconds ≥ 0, got {v}");
+                }
+            }
+            if threads == Some(0) {
+                bail!("--threads must be ≥ 1, got 0");
+            }
+            let interrupt = Some(cli::interrupt::install()?);
+            let settings = netspec::compare::CompareSettings { manifest, solvers: solvers.clone(), time_limit, grace, seeds, threads, paper_limits, interrupt };
             std::fs::create_dir_all(&out).with_context(|| format!("creating {}", out.display()))?;
             let exe = std::env::current_exe().context("locating the netspec binary")?;
             let records = netspec::compare::run_all(&exe, &settings, &out, |r, resumed| {
@@ -315,6 +363,10 @@ fn run(cli: Cli) -> Result<ExitCode> {
             let all = serde_json::json!({ "netspec_version": env!("CARGO_PKG_VERSION"), "command": command, "cpu": cpu, "settings": settings, "records": records, "summary": summary });
             std::fs::write(out.join("results.json"), serde_json::to_string_pretty(&all)? + "\n")?;
             print!("\n{md}");
+            if settings.interrupt.as_ref().is_some_and(|i| i.is_triggered()) {
+                println!("interrupted: the runs recorded above are kept; rerun to resume");
+                return Ok(ExitCode::from(cli::interrupt::EXIT_INTERRUPTED));
+            }
             Ok(ExitCode::SUCCESS)
         }
         Command::City { spec, solver, time_limit, threads, threads_per_solve, gap, fresh, out } => {
@@ -362,17 +414,32 @@ fn run(cli: Cli) -> Result<ExitCode> {
     }
 }
 
-fn solve_file(file: &std::path::Path, args: &SolveArgs, json: Option<&std::path::Path>) -> Result<ExitCode> {
+fn solve_file(file: &std::path::Path, args: &SolveArgs, start: Option<&std::path::Path>, json: Option<&std::path::Path>) -> Result<ExitCode> {
+    let mut options = args.options()?;
     let read = read_model_file(file)?;
     for w in &read.warnings {
         eprintln!("warning: {}: {w}", file.display());
     }
+    if let Some(path) = start {
+        let sol = netspec::io::sol::read(&read.model, path)?;
+        if !sol.missing.is_empty() {
+            eprintln!("warning: {}: {} variables not in the file start at 0 (first: {})", path.display(), sol.missing.len(), sol.missing[0]);
+        }
+        options.mip_start = Some(sol.values);
+    }
     let kind = args.solver()?;
     let solver = kind.instance()?;
-    let options = args.options();
+    options.interrupt = Some(cli::interrupt::install()?);
     let result = solver.solve(&read.model, &options).with_context(|| format!("solving {}", file.display()))?;
+    if let (Some(path), Some(x)) = (&args.sol, &result.primal) {
+        let header = format!("{} {}, {}", result.solver, result.solver_version, result.termination.label());
+        netspec::io::sol::write(&read.model, x, result.objective, &header, path)?;
+    }
     let report = SolveReport::new(file.display().to_string(), &read.model, options, result, &Tolerances::default());
     print!("{}", report.summary());
+    if let (Some(path), true) = (&args.sol, report.result.primal.is_some()) {
+        println!("solution   {}", path.display());
+    }
     if let Some(path) = json {
         let text = serde_json::to_string_pretty(&report)?;
         if path.as_os_str() == "-" {
@@ -385,8 +452,9 @@ fn solve_file(file: &std::path::Path, args: &SolveArgs, json: Option<&std::path:
     if report.check.as_ref().is_some_and(|c| !c.is_feasible()) {
         return Ok(ExitCode::from(EXIT_CHECK_FAILED));
     }
-    if let netspec::solvers::Termination::Error(e) = &report.result.termination {
-        bail!("the solver failed: {e}");
+    match &report.result.termination {
+        Termination::Error(e) => bail!("the solver failed: {e}"),
+        Termination::Limit(netspec::solvers::LimitKind::Interrupt) => Ok(ExitCode::from(cli::interrupt::EXIT_INTERRUPTED)),
+        _ => Ok(ExitCode::SUCCESS),
     }
-    Ok(ExitCode::SUCCESS)
 }

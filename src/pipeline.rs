@@ -67,6 +67,9 @@ pub struct DesignResult {
     pub active_edges: Vec<[u32; 2]>,
     /// The decoded network (active flags, directions, labels), if there is a solution.
     pub network: Option<Network>,
+    /// Whether a design exists (apart from why the solver stopped, `solve.termination`).
+    #[serde(default)]
+    pub design_found: bool,
     /// Metrics of the network.
     pub metrics: Option<Metrics>,
     /// The objective recomputed from the design alone, term by term (the paper's distance term,
@@ -94,6 +97,9 @@ pub struct DesignResult {
     pub path_sets: Option<PathSets>,
     /// Room tiling, if on.
     pub rooms: Option<RoomsResult>,
+    /// The solver's point, one value per MILP variable (not in `result.json`; for `--sol`).
+    #[serde(skip)]
+    pub primal_point: Option<Vec<f64>>,
 }
 
 /// A MIP start: where it came from, what it is worth, and whether the checker let it through.
@@ -221,7 +227,7 @@ pub fn solve_built(p: &Problem, f: &Formulation, kind: SolverKind, options: &Sol
             })
             .collect()
     });
-    result.primal = None;
+    let primal_point = result.primal.take();
     let rooms = f.placements.as_ref().map(|pl| RoomsResult {
         enumerated_per_template: pl.per_template.clone(),
         truncated: pl.truncated,
@@ -240,6 +246,7 @@ pub fn solve_built(p: &Problem, f: &Formulation, kind: SolverKind, options: &Sol
         mesh: p.mesh.clone(),
         sinks: p.mesh.vertices().filter(|v| p.is_sink[v.index()]).map(|v| v.0).collect(),
         active_edges,
+        design_found: net.is_some(),
         network: net,
         metrics,
         objective,
@@ -253,5 +260,6 @@ pub fn solve_built(p: &Problem, f: &Formulation, kind: SolverKind, options: &Sol
         start: None,
         path_sets: f.path_sets.clone(),
         rooms,
+        primal_point,
     })
 }

@@ -28,6 +28,9 @@ pub struct SolveReport {
     pub options: SolveOptions,
     /// The solver's result.
     pub result: SolveResult,
+    /// Whether a solution exists (apart from why the solver stopped, `result.termination`).
+    #[serde(default)]
+    pub solution_found: bool,
     /// The independent checker's report on the primal point, if there is one.
     pub check: Option<CheckReport>,
     /// Whether the objective recomputed by the checker agrees with the solver's (1e-6 relative).
@@ -53,6 +56,7 @@ impl SolveReport {
             model_name: model.name.clone(),
             model_stats: model.stats(),
             options,
+            solution_found: result.primal.is_some(),
             result,
             check,
             objective_agrees,
@@ -68,7 +72,19 @@ impl SolveReport {
         let num = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.10}"));
         let _ = writeln!(s, "model      {} ({})", self.source, self.model_stats);
         let _ = writeln!(s, "solver     {} {}", r.solver, r.solver_version);
-        let _ = writeln!(s, "status     {}", r.termination);
+        if let Some(st) = &r.mip_start {
+            if st.accepted {
+                let _ = writeln!(s, "start      passed netspec's check (objective {}) and was handed to the solver", st.objective);
+            } else {
+                let _ = writeln!(
+                    s,
+                    "start      REJECTED by netspec's check ({} violations; first: {}), not handed to the solver",
+                    st.violations,
+                    st.first_violation.as_deref().unwrap_or("-")
+                );
+            }
+        }
+        let _ = writeln!(s, "status     {}", r.status_line());
         let _ = writeln!(s, "objective  {}", num(r.objective));
         let _ = writeln!(s, "bound      {}", num(r.dual_bound));
         let _ = writeln!(s, "gap        {}", r.gap.map_or("-".into(), |g| format!("{:.4}%", 100.0 * g)));
@@ -129,6 +145,8 @@ impl SolverInfo {
             ("start", c.mip_start),
             ("bound", c.reports_dual_bound),
             ("nodecount", c.reports_nodes),
+            ("interrupt", c.interrupt),
+            ("params", c.raw_params),
         ];
         flags.iter().map(|(n, ok)| if *ok { n.to_string() } else { format!("-{n}") }).collect::<Vec<_>>().join(" ")
     }

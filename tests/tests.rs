@@ -18,3 +18,8 @@ mod compare;
 mod urban;
 // Traffic evaluation in SUMO (issue 12): real netconvert, duarouter and sumo.
 mod traffic;
+// The everyday solve loop: infeasibility found by netspec, honest optimality, time limits,
+// interrupts, option errors, .gz files, solution files, raw parameters.
+mod solve_loop;
+// Fuzz targets: the MPS, LP and solution readers and the spec parser never panic.
+mod fuzz;

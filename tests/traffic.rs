@@ -163,7 +163,7 @@ fn solve_export_is_exactly_the_design() {
 fn city_export_is_exactly_the_street_graph() {
     let spec = CitySpec::from_toml(&std::fs::read_to_string(fixture("city/two-regions.toml")).unwrap()).unwrap();
     let out = tempfile::tempdir().unwrap();
-    let opts = CityRunOptions { solver: SolverKind::default_kind().unwrap(), time_limit: Some(60.0), threads: 2, threads_per_solve: 1, gap: Some(0.0), seed: None, resume: true, observer: None };
+    let opts = CityRunOptions { solver: SolverKind::default_kind().unwrap(), time_limit: Some(60.0), threads: 2, threads_per_solve: 1, gap: Some(0.0), seed: None, resume: true, observer: None, interrupt: None };
     let city = run_city(&spec, out.path(), &opts).unwrap();
     assert!(city.complete && city.valid);
     // The design graph, from the run in memory.

@@ -16,7 +16,7 @@ fn fixture() -> PathBuf {
 }
 
 fn options(kind: SolverKind) -> CityRunOptions {
-    CityRunOptions { solver: kind, time_limit: Some(60.0), threads: 2, threads_per_solve: 1, gap: Some(0.0), seed: None, resume: true, observer: None }
+    CityRunOptions { solver: kind, time_limit: Some(60.0), threads: 2, threads_per_solve: 1, gap: Some(0.0), seed: None, resume: true, observer: None, interrupt: None }
 }
 
 fn run(text: &str, kind: SolverKind, out: &Path) -> CityResult {

@@ -37,6 +37,17 @@ pub fn run_city(path: &Path, args: CityArgs) -> Result<ExitCode> {
     opts.threads_per_solve = args.threads_per_solve.unwrap_or(opts.threads_per_solve).max(1);
     opts.gap = args.gap.or(opts.gap);
     opts.resume = !args.fresh;
+    let check = netspec::solvers::SolveOptions { time_limit: opts.time_limit, rel_gap: opts.gap, ..Default::default() };
+    check.validate().map_err(|e| {
+        let (flag, field) = match e.option {
+            "time_limit" => ("--time-limit", "time_limit"),
+            _ => ("--gap", "solver.gap"),
+        };
+        let from = if e.option == "rel_gap" && args.gap.is_none() { format!("{}: {field}", path.display()) } else { flag.to_string() };
+        anyhow::anyhow!("{from} {}", e.reason)
+    })?;
+    let interrupt = crate::cli::interrupt::install()?;
+    opts.interrupt = Some(interrupt.clone());
     let out = args.out.unwrap_or_else(|| PathBuf::from("out").join(&spec.name));
     let regions = urban::city::regions(&spec).with_context(|| format!("{}", path.display()))?;
     println!("city       {} — {}", spec.name, spec.description);
@@ -79,8 +90,7 @@ pub fn run_city(path: &Path, args: CityArgs) -> Result<ExitCode> {
             }
             CityEvent::LevelDone { region, outcome } => {
                 bars[*region].inc(1);
-                let what = outcome.termination.clone().or(outcome.message.clone()).unwrap_or_default();
-                let line = format!("L{} {} {}", outcome.level, outcome.state, what);
+                let line = format!("L{} {}", outcome.level, outcome.verdict());
                 bars[*region].set_message(line.clone());
                 bars[*region].println(format!("{:<22} {line}", bars[*region].prefix()));
             }
@@ -96,12 +106,11 @@ pub fn run_city(path: &Path, args: CityArgs) -> Result<ExitCode> {
     for r in &result.regions {
         for l in &r.levels {
             println!(
-                "{:02} {:<18} L{} {:<10} {:<14} obj {:>10} gap {:>8} {:>7} s {}",
+                "{:02} {:<18} L{} {:<44} obj {:>10} gap {:>8} {:>7} s {}",
                 r.index,
                 r.name,
                 l.level,
-                l.state,
-                l.termination.as_deref().unwrap_or("-"),
+                l.verdict(),
                 l.objective.map_or("-".into(), |v| format!("{v:.3}")),
                 l.gap.map_or("-".into(), |v| format!("{:.2}%", 100.0 * v)),
                 l.wall_time.map_or("-".into(), |v| format!("{v:.1}")),
@@ -113,6 +122,7 @@ pub fn run_city(path: &Path, args: CityArgs) -> Result<ExitCode> {
             );
         }
     }
+    println!("levels     {}", urban::city::levels_summary(&result.regions));
     let m = &result.metrics;
     println!(
         "metrics    per km² ({:.3} km², {} m/unit): streets {:.2} km, intersections {:.1} (3-way {:.1}, 4-way {:.1}), dead-ends {:.1}, blocks {:.1}",
@@ -122,6 +132,9 @@ pub fn run_city(path: &Path, args: CityArgs) -> Result<ExitCode> {
     println!("wrote      {}/city.json, streets.geojson, city.svg, city.png, regions/", out.display());
     Ok(if !result.valid {
         ExitCode::from(EXIT_INVALID)
+    } else if interrupt.is_triggered() {
+        println!("interrupted: finished levels are kept; rerun to resume");
+        ExitCode::from(crate::cli::interrupt::EXIT_INTERRUPTED)
     } else if !result.complete {
         ExitCode::from(EXIT_INCOMPLETE)
     } else {

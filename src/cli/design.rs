@@ -1,6 +1,7 @@
 //! `netspec solve SPEC`: the design command.
 
 use crate::SolveArgs;
+use netspec::solvers::{InvalidOption, LimitKind, SolveOptions, Termination};
 use anyhow::{Context, Result};
 use indicatif::{ProgressBar, ProgressStyle};
 use netspec::pipeline::{self, DesignResult};
@@ -69,7 +70,7 @@ pub fn solve_spec(
         let kind = args.solver()?;
         let solver = kind.instance()?;
         let mut sep = nm.separator();
-        let b = netspec::solvers::lazy::lp_bound(solver.as_ref(), &nm.model, sep.as_mut().map(|s| s as &mut dyn netspec::solvers::Separator), &args.options())?;
+        let b = netspec::solvers::lazy::lp_bound(solver.as_ref(), &nm.model, sep.as_mut().map(|s| s as &mut dyn netspec::solvers::Separator), &args.options()?)?;
         let f = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.6}"));
         println!("LP bound   {} as written, {} after {} cut rounds ({} rows), {:.2} s with {kind}", f(b.plain), f(b.with_cuts), b.rounds, b.rows, b.seconds);
     }
@@ -81,13 +82,15 @@ pub fn solve_spec(
         (Some(k), _) | (None, Some(k)) => k,
         (None, None) => SolverKind::default_kind().context("no backend compiled in")?,
     };
-    let mut options = args.options();
+    check_spec_options(path, &spec)?;
+    let mut options = args.options()?;
     options.time_limit = options.time_limit.or(spec.solver.time_limit);
     options.rel_gap = options.rel_gap.or(spec.solver.gap);
     options.abs_gap = options.abs_gap.or(spec.solver.abs_gap);
     options.node_limit = options.node_limit.or(spec.solver.node_limit);
     options.threads = options.threads.or(spec.solver.threads);
     options.seed = options.seed.or(spec.solver.seed);
+    options.interrupt = Some(crate::cli::interrupt::install()?);
 
     let bar = ProgressBar::new_spinner();
     bar.set_style(ProgressStyle::with_template("{spinner} solving with {prefix} {elapsed} {msg}").expect("static template"));
@@ -104,6 +107,11 @@ pub fn solve_spec(
     bar.finish_and_clear();
     let res = res?;
     print_summary(&res);
+    if let (Some(sol), Some(x)) = (&args.sol, &res.primal_point) {
+        let header = format!("{} {}, {}", res.solve.solver, res.solve.solver_version, res.solve.termination.label());
+        netspec::io::sol::write(&nm.model, x, res.solve.objective, &header, sol)?;
+        println!("solution   {}", sol.display());
+    }
 
     let dir = out.unwrap_or_else(|| PathBuf::from("out").join(&spec.name));
     std::fs::create_dir_all(&dir).with_context(|| format!("creating {}", dir.display()))?;
@@ -135,7 +143,46 @@ pub fn solve_spec(
         println!("blocks     {} blocks, {} links: {:?} ({})", g.nodes.len(), g.edges.len(), g.shape, dot.display());
     }
     println!("result     {}", json.display());
-    Ok(if res.network.is_some() && !res.validity.valid { ExitCode::from(EXIT_INVALID) } else { ExitCode::SUCCESS })
+    Ok(if res.network.is_some() && !res.validity.valid {
+        ExitCode::from(EXIT_INVALID)
+    } else if res.solve.termination == Termination::Limit(LimitKind::Interrupt) {
+        ExitCode::from(crate::cli::interrupt::EXIT_INTERRUPTED)
+    } else {
+        ExitCode::SUCCESS
+    })
+}
+
+/// Checks the spec's `[solver]` values, naming the field (`solver.gap`) and the file.
+fn check_spec_options(path: &Path, spec: &Spec) -> Result<()> {
+    let s = &spec.solver;
+    let o = SolveOptions { time_limit: s.time_limit, rel_gap: s.gap, abs_gap: s.abs_gap, threads: s.threads, ..Default::default() };
+    o.validate().map_err(|e: InvalidOption| {
+        let field = match e.option {
+            "rel_gap" => "gap",
+            other => other,
+        };
+        anyhow::anyhow!("{}: solver.{field} {}", path.display(), e.reason)
+    })
+}
+
+/// Why the solver stopped and whether a design exists: `optimal, design found (47 edges)`,
+/// `limit(time), design found (47 edges, gap 12 %)`, `limit(time), no design`.
+fn status_line(r: &DesignResult) -> String {
+    let s = &r.solve;
+    if let (Termination::Infeasible, Some(why)) = (&s.termination, &s.infeasibility) {
+        return format!("infeasible (found by netspec before solving): {why}");
+    }
+    let design = match &r.metrics {
+        Some(m) => {
+            let gap = match (&s.termination, s.gap) {
+                (Termination::Optimal, _) | (_, None) => String::new(),
+                (_, Some(g)) => format!(", gap {}", netspec::solvers::percent(g)),
+            };
+            format!("design found ({} edges{gap})", m.edges)
+        }
+        None => "no design".to_string(),
+    };
+    format!("{}, {design}", s.termination)
 }
 
 fn verdict(r: &DesignResult) -> String {
@@ -153,7 +200,7 @@ fn print_summary(r: &DesignResult) {
     let s = &r.solve;
     let num = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.6}"));
     println!("solver     {} {}", s.solver, s.solver_version);
-    println!("status     {}", s.termination);
+    println!("status     {}", status_line(r));
     println!("objective  {}", num(s.objective));
     println!("bound      {}", num(s.dual_bound));
     println!("gap        {}", s.gap.map_or("-".into(), |g| format!("{:.2}%", 100.0 * g)));

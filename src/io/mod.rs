@@ -5,6 +5,7 @@
 
 pub mod lp;
 pub mod mps;
+pub mod sol;
 
 use crate::milp::Model;
 use indexmap::IndexMap;
@@ -63,9 +64,11 @@ pub enum Format {
 }
 
 impl Format {
-    /// The format named by a path's extension (`.mps`, `.lp`, also under `.gz` is not supported).
+    /// The format named by a path's extension: `.mps` or `.lp`, also gzip-compressed
+    /// (`.mps.gz`, `.lp.gz`, as MIPLIB ships them; see [`is_gzip`]).
     pub fn from_path(path: &Path) -> Option<Format> {
-        match path.extension()?.to_str()?.to_ascii_lowercase().as_str() {
+        let inner = if is_gzip(path) { Path::new(path.file_stem()?) } else { path };
+        match inner.extension()?.to_str()?.to_ascii_lowercase().as_str() {
             "mps" => Some(Format::Mps),
             "lp" => Some(Format::Lp),
             _ => None,
@@ -73,11 +76,26 @@ impl Format {
     }
 }
 
+/// Whether a path names a gzip-compressed file (`.gz`).
+pub fn is_gzip(path: &Path) -> bool {
+    path.extension().is_some_and(|e| e.eq_ignore_ascii_case("gz"))
+}
+
+/// Reads a whole text file, decompressing it if its name ends in `.gz`.
+fn read_text(path: &Path) -> std::io::Result<String> {
+    if !is_gzip(path) {
+        return std::fs::read_to_string(path);
+    }
+    let mut text = String::new();
+    std::io::Read::read_to_string(&mut flate2::read::MultiGzDecoder::new(std::io::BufReader::new(std::fs::File::open(path)?)), &mut text)?;
+    Ok(text)
+}
+
 /// Why a file could not be read or written.
 #[derive(Debug, thiserror::Error)]
 pub enum FileErrorKind {
-    /// The extension is neither `.mps` nor `.lp`.
-    #[error("unknown file format (expected a .mps or .lp extension)")]
+    /// The extension is neither `.mps` nor `.lp` (nor either followed by `.gz`).
+    #[error("unknown file format (expected a .mps, .lp, .mps.gz or .lp.gz extension)")]
     UnknownFormat,
     /// The operating system refused.
     #[error(transparent)]
@@ -108,10 +126,11 @@ fn file_err(path: &Path, kind: impl Into<FileErrorKind>) -> FileError {
     FileError { path: path.to_path_buf(), kind: kind.into() }
 }
 
-/// Reads a `.mps` or `.lp` file (chosen by extension) and validates the model.
+/// Reads a `.mps` or `.lp` file, or either gzip-compressed (chosen by extension), and validates
+/// the model.
 pub fn read_model_file(path: &Path) -> Result<ReadOutcome, FileError> {
     let format = Format::from_path(path).ok_or_else(|| file_err(path, FileErrorKind::UnknownFormat))?;
-    let text = std::fs::read_to_string(path).map_err(|e| file_err(path, e))?;
+    let text = read_text(path).map_err(|e| file_err(path, e))?;
     let outcome = match format {
         Format::Mps => mps::read_str(&text).map_err(|e| file_err(path, e))?,
         Format::Lp => lp::read_str(&text).map_err(|e| file_err(path, e))?,
@@ -120,7 +139,8 @@ pub fn read_model_file(path: &Path) -> Result<ReadOutcome, FileError> {
     Ok(outcome)
 }
 
-/// Writes a model to a `.mps` or `.lp` file (chosen by extension) and returns the name map.
+/// Writes a model to a `.mps` or `.lp` file, or either gzip-compressed (chosen by extension),
+/// and returns the name map.
 pub fn write_model_file(model: &Model, path: &Path) -> Result<NameMap, FileError> {
     write_model_file_with_comments(model, path, &[])
 }
@@ -129,13 +149,23 @@ pub fn write_model_file(model: &Model, path: &Path) -> Result<NameMap, FileError
 pub fn write_model_file_with_comments(model: &Model, path: &Path, comments: &[String]) -> Result<NameMap, FileError> {
     let format = Format::from_path(path).ok_or_else(|| file_err(path, FileErrorKind::UnknownFormat))?;
     let file = std::fs::File::create(path).map_err(|e| file_err(path, e))?;
-    let mut w = std::io::BufWriter::with_capacity(1 << 20, file);
-    let map = match format {
+    let w = std::io::BufWriter::with_capacity(1 << 20, file);
+    let write = |mut w: &mut dyn std::io::Write| match format {
         Format::Mps => mps::write(model, &mut w, &mps::WriteOptions { comments: comments.to_vec(), ..Default::default() }),
         Format::Lp => lp::write(model, &mut w, &lp::WriteOptions { comments: comments.to_vec(), ..Default::default() }),
-    }
-    .map_err(|e| file_err(path, e))?;
-    std::io::Write::flush(&mut w).map_err(|e| file_err(path, e))?;
+    };
+    let map = if is_gzip(path) {
+        let mut gz = flate2::write::GzEncoder::new(w, flate2::Compression::default());
+        let map = write(&mut gz).map_err(|e| file_err(path, e))?;
+        let mut w = gz.finish().map_err(|e| file_err(path, e))?;
+        std::io::Write::flush(&mut w).map_err(|e| file_err(path, e))?;
+        map
+    } else {
+        let mut w = w;
+        let map = write(&mut w).map_err(|e| file_err(path, e))?;
+        std::io::Write::flush(&mut w).map_err(|e| file_err(path, e))?;
+        map
+    };
     Ok(map)
 }
 

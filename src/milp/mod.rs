@@ -2,8 +2,10 @@
 
 pub mod check;
 pub mod model;
+pub mod screen;
 pub mod validate;
 
 pub use check::{check_point, objectives_agree, CheckReport, Tolerances, Violation};
 pub use model::{row_kind, Model, RowId, RowKind, RowView, Sense, VarId, VarKind, Variable};
+pub use screen::{screen, Infeasibility, InfeasibilityKind};
 pub use validate::{Location, ModelError, ModelErrorKind, ModelStats};

@@ -41,8 +41,10 @@ pub enum ModelErrorKind {
     /// A lower bound or row side is `+inf`, or an upper one `-inf`.
     #[error("bound on the wrong side of infinity ({0})")]
     WrongInfinity(String),
-    /// Lower bound above upper bound (or lhs above rhs).
-    #[error("lower bound {lb} is greater than upper bound {ub}")]
+    /// A row's lower side above its upper side (no file format can hold it). Crossed
+    /// *variable* bounds are not an error: they make the model infeasible (see
+    /// [`crate::milp::screen`]).
+    #[error("lower side {lb} is greater than upper side {ub}")]
     CrossedBounds {
         /// The lower value.
         lb: f64,
@@ -108,9 +110,8 @@ impl Model {
                 if v.ub == f64::NEG_INFINITY {
                     push(loc(), ModelErrorKind::WrongInfinity("upper bound -inf".into()));
                 }
-                if v.lb > v.ub {
-                    push(loc(), ModelErrorKind::CrossedBounds { lb: v.lb, ub: v.ub });
-                }
+                // Crossed variable bounds are a well-formed infeasible model, not an error:
+                // `milp::screen` reports them as the reason for `infeasible`.
                 if v.kind == VarKind::Binary && (v.lb < 0.0 || v.ub > 1.0) {
                     push(loc(), ModelErrorKind::BinaryBounds { lb: v.lb, ub: v.ub });
                 }

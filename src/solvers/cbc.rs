@@ -26,6 +26,28 @@
 //! | `node_limit` | `maxNodes` (capped at `i32::MAX`) |
 //! | `log` | `logLevel`/`slogLevel` 0 (quiet) or 1 (stdout); a log **file** is unsupported |
 //! | `mip_start` | `Cbc_setInitialSolution` (checked by CBC; an infeasible start is dropped) |
+//! | `interrupt` | a solve in a worker process (below) stopped by SIGINT |
+//! | `params` | any CBC command-line parameter (`cuts=off` → `-cuts off`); names and values are first tried on a tiny model in a worker whose output is read, and one CBC answers with "No match", "is illegal" or a list of options is refused |
+//!
+//! # Time limits and interrupts: the worker process
+//!
+//! CBC does not keep its time limit: its preprocessing and root never look at the clock (on
+//! `models/fig9b1.toml` with a 10 s limit it ran 16 s at 0 nodes), and it subtracts the
+//! preprocessing time from the limit a second time for the search, so that elsewhere it stops
+//! seconds *before* the limit. Nor can it be stopped from outside through its C interface.
+//! So a CBC solve with a time limit or an [`Interrupt`](super::Interrupt) runs in a **worker
+//! process** (`fork` once the model is loaded), in its own process group and killed if netspec
+//! dies (`PR_SET_PDEATHSIG`). The worker switches on CBC's own SIGINT handler (which ends the
+//! branch and bound at the next node and keeps the incumbent, as "user event"); netspec sends
+//! SIGINT at the deadline (or on the interrupt) and, if the worker has not ended 0.5 s later
+//! (CBC was in preprocessing or a long LP, which SIGINT cannot stop), kills it. CBC's own
+//! `seconds` is then only a backstop, set well past the deadline. The worker writes its
+//! outcome into memory shared with netspec. A killed worker leaves no solution of CBC's; the
+//! result then carries the MIP start, if one was given (it passed netspec's check), as the best
+//! point known. CBC's SIGINT handler is reached through the `Cbc_Model` structure of CBC 2.10's
+//! C interface (`Coin_C_defines.h`) and the layout of `CbcSolverUsefulData`, checked before use;
+//! where the check fails, the worker is only killed (at the deadline plus 0.5 s) and CBC keeps
+//! its own limit.
 //!
 //! CBC does not report its run time through the C interface, so `solver_time` is netspec's own
 //! measurement of the native solve (`Cbc_solve`), taken after the process-wide lock below is
@@ -40,7 +62,8 @@
 //! therefore run one after the other; the time spent waiting is in `wall_time` but neither in
 //! CBC's time limit nor in `solver_time`.
 
-use super::{preflight, Capabilities, LimitKind, LogTarget, SolveOptions, SolveResult, Solver, SolverError, SolverErrorKind, SolverKind, Termination};
+use super::stop::StopControl;
+use super::{guarded_solve, Capabilities, LimitKind, LogTarget, SolveOptions, SolveResult, Solver, SolverError, SolverErrorKind, SolverKind, Termination};
 use crate::milp::{Model, Sense};
 use coin_cbc::raw::Model as CbcModel;
 use coin_cbc_sys as sys;
@@ -169,14 +192,26 @@ fn set_quiet(m: &mut CbcModel, quiet: bool) -> Result<(), SolverError> {
     set_param(m, "slogLevel", &level.to_string())
 }
 
-fn apply_options(m: &mut CbcModel, model: &Model, o: &SolveOptions) -> Result<(), SolverError> {
+/// How CBC's own time limit is set: to the time left, or, when netspec stops the worker at the
+/// deadline with SIGINT, only as a backstop well past it (see the module docs).
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum OwnLimit {
+    Remaining,
+    Backstop,
+}
+
+fn apply_options(m: &mut CbcModel, model: &Model, o: &SolveOptions, ctl: &StopControl, own_limit: OwnLimit) -> Result<(), SolverError> {
     match &o.log {
         LogTarget::Quiet => set_quiet(m, true)?,
         LogTarget::Stdout => set_quiet(m, false)?,
         // Refused by the capabilities (preflight) before we get here.
         LogTarget::File(_) => return Err(rejected("CBC cannot write a log file")),
     }
-    if let Some(t) = o.time_limit {
+    if let Some(t) = ctl.remaining() {
+        let t = match own_limit {
+            OwnLimit::Remaining => t,
+            OwnLimit::Backstop => 2.0 * t + 10.0,
+        };
         set_param(m, "timeMode", "elapsed")?;
         set_param(m, "seconds", &t.to_string())?;
     }
@@ -209,15 +244,58 @@ fn apply_options(m: &mut CbcModel, model: &Model, o: &SolveOptions) -> Result<()
         // CBC checks the start with Clp right away, at the model's current log level.
         m.set_initial_solution(&start);
     }
+    for p in o.params_for(KIND) {
+        set_param(m, &p.name, &p.value)?;
+    }
     Ok(())
 }
 
+/// What a finished CBC solve reports, read from the model (in netspec's process or in the
+/// worker, which writes it into shared memory).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default)]
+struct Outcome {
+    status: c_int,
+    secondary: c_int,
+    optimal: c_int,
+    infeasible: c_int,
+    nodes: c_int,
+    has_best: c_int,
+    objective: f64,
+    bound: f64,
+}
+
+impl Outcome {
+    /// Reads the outcome of a solved model; copies the best solution (all columns) into `best`
+    /// when there is one and `best` has room for it.
+    ///
+    /// # Safety
+    /// `m` must be a live model after `Cbc_solve`; `best` is empty or has one slot per column.
+    unsafe fn read(m: *mut sys::Cbc_Model, best: &mut [f64]) -> Outcome {
+        // SAFETY: as the caller promises.
+        unsafe {
+            let p = ffi::Cbc_bestSolution(m);
+            let has_best = !p.is_null() && !best.is_empty();
+            if has_best {
+                best.copy_from_slice(std::slice::from_raw_parts(p, best.len()));
+            }
+            Outcome {
+                status: sys::Cbc_status(m),
+                secondary: sys::Cbc_secondaryStatus(m),
+                optimal: sys::Cbc_isProvenOptimal(m),
+                infeasible: sys::Cbc_isProvenInfeasible(m),
+                nodes: sys::Cbc_getNodeCount(m),
+                has_best: has_best as c_int,
+                objective: sys::Cbc_getObjValue(m),
+                bound: sys::Cbc_getBestPossibleObjValue(m),
+            }
+        }
+    }
+}
+
 /// CBC's `status()`/`secondaryStatus()` (see `CbcModel.hpp`) to a [`Termination`].
-fn termination(m: *mut sys::Cbc_Model, is_mip: bool) -> Termination {
-    // SAFETY: `m` is a live, solved model.
-    let (status, secondary, optimal, infeasible) =
-        unsafe { (sys::Cbc_status(m), sys::Cbc_secondaryStatus(m), sys::Cbc_isProvenOptimal(m), sys::Cbc_isProvenInfeasible(m)) };
-    match (status, secondary) {
+fn termination(o: &Outcome, is_mip: bool) -> Termination {
+    match (o.status, o.secondary) {
         // "Linear relaxation not feasible (or worse than cutoff)": also how CBC ends a search
         // that completes without an integer solution.
         (_, 1) => Termination::Infeasible,
@@ -235,8 +313,8 @@ fn termination(m: *mut sys::Cbc_Model, is_mip: bool) -> Termination {
         (_, 8) => Termination::Limit(LimitKind::Other),
         (2, _) => Termination::NumericalError,
         (5, _) => Termination::Limit(LimitKind::Interrupt),
-        (0, _) if optimal != 0 => Termination::Optimal,
-        (0, _) if infeasible != 0 => Termination::Infeasible,
+        (0, _) if o.optimal != 0 => Termination::Optimal,
+        (0, _) if o.infeasible != 0 => Termination::Infeasible,
         (1, _) => Termination::Limit(LimitKind::Other),
         (s, s2) => Termination::Error(format!("CBC status {s}, secondary status {s2}")),
     }
@@ -274,44 +352,373 @@ impl Solver for CbcSolver {
             reports_solver_time: true,
             reports_progress: false,
             lazy_constraints: false,
+            interrupt: true,
+            raw_params: true,
         }
     }
 
     fn solve(&self, model: &Model, o: &SolveOptions) -> Result<SolveResult, SolverError> {
-        let t0 = Instant::now();
-        preflight(KIND, &self.capabilities(), model, o)?;
-        let _serial = CBC_SOLVES.lock().unwrap_or_else(|e| e.into_inner());
-        let mut m = load(model)?;
-        apply_options(&mut m, model, o)?;
-        let t_solve = Instant::now();
+        guarded_solve(self, model, o, |o, ctl| native(model, o, ctl))
+    }
+}
+
+/// The solve itself, after netspec's common checks (`guarded_solve`): in this process when
+/// nothing can stop it early, else in a worker process (see the module docs).
+fn native(model: &Model, o: &SolveOptions, ctl: &StopControl) -> Result<SolveResult, SolverError> {
+    let _serial = CBC_SOLVES.lock().unwrap_or_else(|e| e.into_inner());
+    params::check(o)?;
+    let mut m = load(model)?;
+    let in_worker = ctl.is_armed();
+    let graceful = in_worker && worker::signal_stop_available(raw_ptr(&m));
+    apply_options(&mut m, model, o, ctl, if graceful { OwnLimit::Backstop } else { OwnLimit::Remaining })?;
+    let n = model.num_vars();
+    let mut best = vec![0.0; n + 1];
+    let t_solve = Instant::now();
+    let ended = if in_worker {
+        worker::run(raw_ptr(&m), &mut best, ctl, graceful)?
+    } else {
         m.solve();
-        let solver_time = t_solve.elapsed().as_secs_f64();
-        let ptr = raw_ptr(&m);
-        let n = model.num_vars();
-        let mut r = SolveResult::empty(KIND, self.version(), termination(ptr, model.is_mip()));
-        // SAFETY: live, solved model; a non-null best solution has one value per column (n + 1).
-        let best = unsafe {
-            let p = ffi::Cbc_bestSolution(ptr);
-            (!p.is_null()).then(|| std::slice::from_raw_parts(p, n + 1)[..n].to_vec())
+        // SAFETY: live, solved model; `best` has one slot per column.
+        worker::Ended::Finished(unsafe { Outcome::read(raw_ptr(&m), &mut best) })
+    };
+    let solver_time = t_solve.elapsed().as_secs_f64();
+    drop(m);
+    let mut r = match ended {
+        worker::Ended::Finished(out) => {
+            let mut r = SolveResult::empty(KIND, cbc_version(), termination(&out, model.is_mip()));
+            if out.has_best != 0 {
+                best.truncate(n);
+                r.primal = Some(best);
+                r.objective = finite_cbc(out.objective);
+            }
+            let bound_meaningful = !matches!(
+                r.termination,
+                Termination::Infeasible | Termination::Unbounded | Termination::InfeasibleOrUnbounded | Termination::Error(_)
+            );
+            if bound_meaningful {
+                // In the model's own sense, with the constant column.
+                r.dual_bound = finite_cbc(out.bound);
+            }
+            r.nodes = Some(out.nodes.max(0) as u64);
+            r
+        }
+        worker::Ended::Killed => {
+            // CBC's own incumbent died with the worker; the MIP start (checked by netspec
+            // before the solve) is the best point known.
+            let mut r = SolveResult::empty(KIND, cbc_version(), Termination::Limit(LimitKind::Interrupt));
+            if let Some(x) = &o.mip_start {
+                r.objective = Some(model.objective_value(x));
+                r.primal = Some(x.clone());
+            }
+            r
+        }
+        worker::Ended::Died(why) => SolveResult::empty(KIND, cbc_version(), Termination::Error(why)),
+    };
+    r.solver_time = Some(solver_time);
+    r.finish(model.sense);
+    Ok(r)
+}
+
+/// CBC in a worker process (see the module docs).
+mod worker {
+    use super::{c_int, sys, Outcome, KIND as KIND_CBC};
+    use crate::solvers::stop::StopControl;
+    use crate::solvers::SolverError;
+    use std::time::{Duration, Instant};
+
+    /// How long a worker that was sent SIGINT may take to end before it is killed.
+    const HARD_STOP: Duration = Duration::from_millis(500);
+
+    /// How a worker ended.
+    pub(super) enum Ended {
+        /// CBC finished (on its own or after SIGINT) and wrote its outcome.
+        Finished(Outcome),
+        /// Killed by netspec (it did not stop in time).
+        Killed,
+        /// It ended without an outcome (CBC crashed or aborted).
+        Died(String),
+    }
+
+    /// Offset of `useSignalHandler_` in CBC 2.10's `CbcSolverUsefulData`
+    /// (`double totalTime_; std::vector<CbcOrClpParam> parameters_; bool noPrinting_;
+    /// bool useSignalHandler_; …`, libstdc++'s three-pointer vector).
+    const USE_SIGNAL_HANDLER: usize = 8 + 3 * 8 + 1;
+
+    /// The `CbcSolverUsefulData` of a model: the third field of CBC 2.10's `Cbc_Model`
+    /// (`OsiClpSolverInterface *solver_; CbcModel *model_; CbcSolverUsefulData *cbcData; …`,
+    /// `Coin_C_defines.h`), if the data there looks like a fresh one: `totalTime_` 0, a
+    /// non-empty parameter vector, both flags false (`Cbc_newModel` sets them so).
+    fn solver_data(m: *mut sys::Cbc_Model) -> Option<*mut u8> {
+        if !super::cbc_version().starts_with("2.10.") || m.is_null() {
+            return None;
+        }
+        // SAFETY: `m` is a live `Cbc_Model` of CBC 2.10, whose first three fields are pointers
+        // (public header); the reads below stay inside the `CbcSolverUsefulData` object up to
+        // the two flags, which come before its last field.
+        unsafe {
+            let data = *(m as *const *mut u8).add(2);
+            if data.is_null() || !(data as usize).is_multiple_of(8) {
+                return None;
+            }
+            let total_time = *(data as *const f64);
+            let v = data.add(8) as *const usize;
+            let (begin, end, cap) = (*v, *v.add(1), *v.add(2));
+            let (no_printing, use_signal) = (*data.add(USE_SIGNAL_HANDLER - 1), *data.add(USE_SIGNAL_HANDLER));
+            let sane = total_time == 0.0 && begin != 0 && begin.is_multiple_of(8) && begin < end && end <= cap && no_printing <= 1 && use_signal == 0;
+            sane.then_some(data)
+        }
+    }
+
+    /// Whether CBC's own SIGINT handler can be switched on for this model (the layout check
+    /// of [`solver_data`] passes).
+    pub(super) fn signal_stop_available(m: *mut sys::Cbc_Model) -> bool {
+        solver_data(m).is_some()
+    }
+
+    /// Shared memory for the worker's outcome: a flag, the [`Outcome`], the best solution.
+    struct Shared {
+        ptr: *mut u8,
+        len: usize,
+    }
+
+    const HEADER: usize = 64;
+    const _: () = assert!(std::mem::size_of::<Outcome>() + 8 <= HEADER);
+
+    impl Shared {
+        fn new(columns: usize) -> Result<Shared, SolverError> {
+            let len = HEADER + columns * 8;
+            // SAFETY: anonymous shared mapping, checked below.
+            let ptr = unsafe {
+                libc::mmap(std::ptr::null_mut(), len, libc::PROT_READ | libc::PROT_WRITE, libc::MAP_SHARED | libc::MAP_ANONYMOUS, -1, 0)
+            };
+            if ptr == libc::MAP_FAILED {
+                return Err(SolverError::new(KIND_CBC, std::io::Error::last_os_error()));
+            }
+            Ok(Shared { ptr: ptr as *mut u8, len })
+        }
+
+        fn done(&self) -> *mut u64 {
+            self.ptr as *mut u64
+        }
+
+        fn outcome(&self) -> *mut Outcome {
+            // SAFETY: inside the mapping (HEADER holds the flag and the outcome).
+            unsafe { self.ptr.add(8) as *mut Outcome }
+        }
+
+        fn best(&mut self, columns: usize) -> &mut [f64] {
+            // SAFETY: the mapping holds `columns` f64 after the header, 8-aligned.
+            unsafe { std::slice::from_raw_parts_mut(self.ptr.add(HEADER) as *mut f64, columns) }
+        }
+    }
+
+    impl Drop for Shared {
+        fn drop(&mut self) {
+            // SAFETY: our own mapping.
+            unsafe { libc::munmap(self.ptr as *mut libc::c_void, self.len) };
+        }
+    }
+
+    /// Forks a worker that solves `m` (loaded, options set) and waits for it, sending SIGINT at
+    /// the deadline or on the interrupt and killing it [`HARD_STOP`] later. Copies the best
+    /// solution into `best` when CBC found one.
+    pub(super) fn run(m: *mut sys::Cbc_Model, best: &mut [f64], ctl: &StopControl, graceful: bool) -> Result<Ended, SolverError> {
+        let mut shared = Shared::new(best.len())?;
+        let parent = std::process::id() as libc::pid_t;
+        // SIGINT stays blocked across the fork until the child has set its disposition, so
+        // that a signal sent at once cannot kill it.
+        let old_mask = block_sigint();
+        // SAFETY: fork in a multi-threaded process: the child runs only CBC's solve on memory it
+        // owns (the copied model), glibc's malloc and stdio (both made fork-safe by glibc), and
+        // async-signal-safe calls; it never returns into Rust code that could take a lock held
+        // by another thread, and ends with `_exit`.
+        let pid = unsafe { libc::fork() };
+        if pid == 0 {
+            // SAFETY: in the child, see above.
+            unsafe { child(m, &mut shared, best.len(), parent, graceful, &old_mask) }
+        }
+        // SAFETY: restoring this thread's signal mask.
+        unsafe { libc::pthread_sigmask(libc::SIG_SETMASK, &old_mask, std::ptr::null_mut()) };
+        if pid < 0 {
+            return Err(SolverError::new(KIND_CBC, std::io::Error::last_os_error()));
+        }
+        let mut interrupted_at: Option<Instant> = None;
+        let mut last_sigint = Instant::now();
+        let mut killed = false;
+        let status = loop {
+            let mut status: c_int = 0;
+            // SAFETY: our own child.
+            let r = unsafe { libc::waitpid(pid, &mut status, libc::WNOHANG) };
+            if r == pid {
+                break status;
+            }
+            if r < 0 {
+                return Err(SolverError::new(KIND_CBC, std::io::Error::last_os_error()));
+            }
+            let now = Instant::now();
+            let due = ctl.interrupted() || ctl.deadline().is_some_and(|d| now >= d);
+            match interrupted_at {
+                None if due => {
+                    // SAFETY: our own child.
+                    unsafe { libc::kill(pid, libc::SIGINT) };
+                    interrupted_at = Some(now);
+                    last_sigint = now;
+                }
+                None => {}
+                Some(t) if !killed && now >= t + HARD_STOP => {
+                    // SAFETY: our own child.
+                    unsafe { libc::kill(pid, libc::SIGKILL) };
+                    killed = true;
+                }
+                // Again every 0.1 s: a SIGINT that came before CBC's branch and bound (when
+                // its handler has nothing to stop yet) is lost.
+                Some(_) if !killed && now >= last_sigint + Duration::from_millis(100) => {
+                    // SAFETY: our own child.
+                    unsafe { libc::kill(pid, libc::SIGINT) };
+                    last_sigint = now;
+                }
+                Some(_) => {}
+            }
+            std::thread::sleep(Duration::from_millis(5));
         };
-        if let Some(x) = best {
-            r.primal = Some(x);
-            // SAFETY: live, solved model.
-            r.objective = finite_cbc(unsafe { sys::Cbc_getObjValue(ptr) });
+        // SAFETY: the child has ended; the flag and outcome were written before `_exit`.
+        let finished = unsafe { std::ptr::read_volatile(shared.done()) } == 1;
+        if finished {
+            // SAFETY: as above.
+            let out = unsafe { std::ptr::read_volatile(shared.outcome()) };
+            if out.has_best != 0 {
+                best.copy_from_slice(shared.best(best.len()));
+            }
+            return Ok(Ended::Finished(out));
         }
-        let bound_meaningful =
-            !matches!(r.termination, Termination::Infeasible | Termination::Unbounded | Termination::InfeasibleOrUnbounded | Termination::Error(_));
-        if bound_meaningful {
-            // SAFETY: live, solved model. In the model's own sense, with the constant column.
-            r.dual_bound = finite_cbc(unsafe { sys::Cbc_getBestPossibleObjValue(ptr) });
+        if killed {
+            return Ok(Ended::Killed);
         }
-        // SAFETY: live, solved model.
-        r.nodes = Some(unsafe { sys::Cbc_getNodeCount(ptr) }.max(0) as u64);
-        r.solver_time = Some(solver_time);
-        r.finish(model.sense, o.rel_gap.is_some() || o.abs_gap.is_some());
-        drop(m);
-        r.wall_time = t0.elapsed().as_secs_f64();
-        Ok(r)
+        let why = if libc::WIFSIGNALED(status) {
+            format!("CBC's worker process died of signal {}", libc::WTERMSIG(status))
+        } else {
+            format!("CBC's worker process ended with code {} and no result", libc::WEXITSTATUS(status))
+        };
+        Ok(Ended::Died(why))
+    }
+
+    /// Blocks SIGINT for this thread; returns the previous mask.
+    fn block_sigint() -> libc::sigset_t {
+        // SAFETY: plain signal-set manipulation on this thread's mask.
+        unsafe {
+            let mut set: libc::sigset_t = std::mem::zeroed();
+            let mut old: libc::sigset_t = std::mem::zeroed();
+            libc::sigemptyset(&mut set);
+            libc::sigaddset(&mut set, libc::SIGINT);
+            libc::pthread_sigmask(libc::SIG_BLOCK, &set, &mut old);
+            old
+        }
+    }
+
+    /// The worker: solve, write the outcome, `_exit`.
+    ///
+    /// # Safety
+    /// Only in the child of `fork`, with `m` the parent's loaded model.
+    unsafe fn child(m: *mut sys::Cbc_Model, shared: &mut Shared, columns: usize, parent: libc::pid_t, graceful: bool, mask: &libc::sigset_t) -> ! {
+        // SAFETY: async-signal-safe calls on our own process; the model is ours (a copy).
+        unsafe {
+            // Its own process group: a Ctrl-C at the terminal reaches netspec only, which then
+            // decides; and it dies with netspec.
+            libc::setpgid(0, 0);
+            libc::prctl(libc::PR_SET_PDEATHSIG, libc::SIGKILL);
+            if libc::getppid() != parent {
+                libc::_exit(2);
+            }
+            // Ignore SIGINT until CBC installs its own handler (when switched on below), then
+            // let it through (it was blocked across the fork).
+            libc::signal(libc::SIGINT, libc::SIG_IGN);
+            libc::pthread_sigmask(libc::SIG_SETMASK, mask, std::ptr::null_mut());
+            if graceful {
+                if let Some(data) = solver_data(m) {
+                    *data.add(USE_SIGNAL_HANDLER) = 1;
+                }
+            }
+            sys::Cbc_solve(m);
+            let out = Outcome::read(m, shared.best(columns));
+            std::ptr::write_volatile(shared.outcome(), out);
+            std::ptr::write_volatile(shared.done(), 1);
+            libc::fflush(std::ptr::null_mut());
+            libc::_exit(0)
+        }
+    }
+}
+
+/// Checking CBC parameters before a solve (see the module docs).
+mod params {
+    use super::{sys, SolveOptions, KIND as KIND_CBC};
+    use crate::solvers::{SolverError, SolverErrorKind};
+    use std::ffi::CString;
+    use std::io::Read;
+    use std::os::fd::FromRawFd;
+
+    /// What CBC prints for a parameter it does not take.
+    const REFUSALS: [&str; 5] = ["No match for", "Short match for", "Multiple matches for", " is illegal for", "Possible options for"];
+
+    /// Tries every CBC parameter of `o` on a tiny model in a worker process whose standard
+    /// output is read: an unknown name or a refused value is an error naming the parameter.
+    pub(super) fn check(o: &SolveOptions) -> Result<(), SolverError> {
+        for p in o.params_for(KIND_CBC) {
+            let output = probe(&p.name, &p.value)?;
+            if let Some(line) = output.lines().find(|l| REFUSALS.iter().any(|r| l.contains(r))) {
+                return Err(SolverError::new(
+                    KIND_CBC,
+                    SolverErrorKind::Param { name: format!("cbc.{}", p.name), reason: format!("CBC says: {}", line.trim()) },
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// Runs CBC with `-name value` on `min x, x ≥ 0 integer, x ≤ 1` in a child process and
+    /// returns what it printed.
+    fn probe(name: &str, value: &str) -> Result<String, SolverError> {
+        let io = |e| SolverError::new(KIND_CBC, e);
+        let bad = || SolverError::new(KIND_CBC, SolverErrorKind::Param { name: format!("cbc.{name}"), reason: "contains NUL".into() });
+        let (n, v) = (CString::new(name).map_err(|_| bad())?, CString::new(value).map_err(|_| bad())?);
+        let mut fds = [0 as libc::c_int; 2];
+        // SAFETY: valid out-array.
+        if unsafe { libc::pipe(fds.as_mut_ptr()) } != 0 {
+            return Err(io(std::io::Error::last_os_error()));
+        }
+        // SAFETY: as in `worker::run`: the child only calls CBC and async-signal-safe functions.
+        let pid = unsafe { libc::fork() };
+        if pid < 0 {
+            return Err(io(std::io::Error::last_os_error()));
+        }
+        if pid == 0 {
+            // SAFETY: in the child.
+            unsafe {
+                libc::prctl(libc::PR_SET_PDEATHSIG, libc::SIGKILL);
+                libc::dup2(fds[1], 1);
+                libc::close(fds[0]);
+                let m = sys::Cbc_newModel();
+                let (start, index, value, lb, ub, obj, rlb, rub) = ([0, 1], [0], [1.0], [0.0], [1.0], [1.0], [f64::NEG_INFINITY], [1.0]);
+                sys::Cbc_loadProblem(m, 1, 1, start.as_ptr(), index.as_ptr(), value.as_ptr(), lb.as_ptr(), ub.as_ptr(), obj.as_ptr(), rlb.as_ptr(), rub.as_ptr());
+                sys::Cbc_setInteger(m, 0);
+                sys::Cbc_setParameter(m, c"logLevel".as_ptr(), c"0".as_ptr());
+                sys::Cbc_setParameter(m, n.as_ptr(), v.as_ptr());
+                sys::Cbc_solve(m);
+                libc::fflush(std::ptr::null_mut());
+                libc::_exit(0);
+            }
+        }
+        // SAFETY: our write end, no longer needed; the read end becomes a File we own.
+        let mut reader = unsafe {
+            libc::close(fds[1]);
+            std::fs::File::from_raw_fd(fds[0])
+        };
+        let mut text = String::new();
+        let read = reader.read_to_string(&mut text);
+        let mut status = 0;
+        // SAFETY: our own child.
+        unsafe { libc::waitpid(pid, &mut status, 0) };
+        read.map_err(io)?;
+        Ok(text)
     }
 }
 
@@ -351,9 +758,10 @@ pub fn solve_file_with_native_reader(path: &std::path::Path) -> Result<(Terminat
         let ncols = sys::Cbc_getNumCols(ptr);
         (0..ncols - 1).any(|j| sys::Cbc_isInteger(ptr, j) != 0)
     };
-    let t = termination(ptr, is_mip);
-    // SAFETY: live, solved model.
-    let obj = (t == Termination::Optimal).then(|| unsafe { sys::Cbc_getObjValue(ptr) });
+    // SAFETY: live, solved model; no solution copied.
+    let out = unsafe { Outcome::read(ptr, &mut []) };
+    let t = termination(&out, is_mip);
+    let obj = (t == Termination::Optimal).then_some(out.objective);
     Ok((t, obj))
 }
 

@@ -61,6 +61,8 @@ fn capabilities() -> Capabilities {
         reports_solver_time: false,
         reports_progress: false,
         lazy_constraints: false,
+        interrupt: false,
+        raw_params: false,
     }
 }
 
@@ -80,6 +82,12 @@ where
 {
     let t0 = Instant::now();
     preflight(KIND, &capabilities(), model, o)?;
+    if let Some(why) = crate::milp::screen(model) {
+        let mut r = SolveResult::empty(KIND, version_of::<S>(), Termination::Infeasible);
+        r.infeasibility = Some(why);
+        r.wall_time = t0.elapsed().as_secs_f64();
+        return Ok(r);
+    }
     let mut pv = ProblemVariables::new();
     let vars: Vec<good_lp::Variable> = model
         .vars()
@@ -145,7 +153,7 @@ where
             };
         }
     }
-    r.finish(model.sense, false);
+    r.finish(model.sense);
     r.wall_time = t0.elapsed().as_secs_f64();
     Ok(r)
 }

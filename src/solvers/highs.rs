@@ -4,12 +4,12 @@
 //!
 //! HiGHS is compiled into the binary (vendored source), so it is the default backend.
 
-use super::{preflight, Capabilities, Progress, ProgressSink, LimitKind, LogTarget, SolveOptions, SolveResult, Solver, SolverError, SolverErrorKind, SolverKind, Termination};
+use super::stop::StopControl;
+use super::{guarded_solve, Capabilities, LimitKind, LogTarget, Progress, ProgressSink, SolveOptions, SolveResult, Solver, SolverError, SolverErrorKind, SolverKind, Termination};
 use crate::milp::{Model, Sense};
 use highs_sys as sys;
 use std::ffi::{CStr, CString};
 use std::sync::RwLock;
-use std::time::Instant;
 
 /// The HiGHS backend.
 #[derive(Clone, Copy, Debug, Default)]
@@ -56,7 +56,7 @@ fn load(model: &Model) -> Result<highs::Model, SolverError> {
     Ok(m)
 }
 
-fn apply_options(m: &mut highs::Model, model: &Model, o: &SolveOptions) -> Result<(), SolverError> {
+fn apply_options(m: &mut highs::Model, model: &Model, o: &SolveOptions, ctl: &StopControl) -> Result<(), SolverError> {
     match &o.log {
         LogTarget::Quiet => m.make_quiet(),
         LogTarget::Stdout => {
@@ -70,12 +70,13 @@ fn apply_options(m: &mut highs::Model, model: &Model, o: &SolveOptions) -> Resul
             m.try_set_option("log_file", p).map_err(|e| rejected(format!("log_file: {e:?}")))?;
         }
     }
-    if let Some(t) = o.time_limit {
+    // The time left of the limit, so that it bounds the whole solve call.
+    if let Some(t) = ctl.remaining() {
         set(m, "time_limit", t)?;
     }
-    if let Some(g) = o.rel_gap {
-        set(m, "mip_rel_gap", g)?;
-    }
+    // HiGHS's default relative gap (1e-4) would stop short of netspec's "optimal"
+    // (`OPTIMALITY_TOLERANCE`): without a gap from the user, HiGHS must close the gap.
+    set(m, "mip_rel_gap", o.rel_gap.unwrap_or(0.0))?;
     if let Some(g) = o.abs_gap {
         set(m, "mip_abs_gap", g)?;
     }
@@ -92,36 +93,85 @@ fn apply_options(m: &mut highs::Model, model: &Model, o: &SolveOptions) -> Resul
         debug_assert_eq!(x.len(), model.num_vars());
         m.try_set_solution(Some(x), None, None, None).map_err(|e| rejected(format!("MIP start: {e:?}")))?;
     }
+    for p in o.params_for(KIND) {
+        set_raw_param(m, &p.name, &p.value).map_err(|reason| SolverError::new(KIND, SolverErrorKind::Param { name: format!("{KIND}.{}", p.name), reason }))?;
+    }
     Ok(())
 }
 
-/// What the progress callback needs between calls.
-struct ProgressState {
-    sink: ProgressSink,
-    last: f64,
+/// Sets one of HiGHS's own options by name, parsing the value by the option's type.
+fn set_raw_param(m: &mut highs::Model, name: &str, value: &str) -> Result<(), String> {
+    let c_name = CString::new(name).map_err(|_| "the name contains NUL".to_string())?;
+    let mut ty: sys::HighsInt = -1;
+    // SAFETY: live instance, NUL-terminated name, valid out-pointer.
+    if unsafe { sys::Highs_getOptionType(m.as_mut_ptr(), c_name.as_ptr(), &mut ty) } != sys::STATUS_OK {
+        return Err("HiGHS has no such option (see HiGHS's documentation for the list)".into());
+    }
+    let bad = |what: &str| format!("HiGHS option of type {what}: cannot use `{value}`");
+    // SAFETY (each call): live instance, NUL-terminated name and value.
+    let status = match ty {
+        sys::kHighsOptionTypeBool => {
+            let v = match value.to_ascii_lowercase().as_str() {
+                "true" | "on" | "1" => 1,
+                "false" | "off" | "0" => 0,
+                _ => return Err(bad("bool")),
+            };
+            unsafe { sys::Highs_setBoolOptionValue(m.as_mut_ptr(), c_name.as_ptr(), v) }
+        }
+        sys::kHighsOptionTypeInt => {
+            let v: sys::HighsInt = value.parse().map_err(|_| bad("int"))?;
+            unsafe { sys::Highs_setIntOptionValue(m.as_mut_ptr(), c_name.as_ptr(), v) }
+        }
+        sys::kHighsOptionTypeDouble => {
+            let v: f64 = value.parse().map_err(|_| bad("double"))?;
+            unsafe { sys::Highs_setDoubleOptionValue(m.as_mut_ptr(), c_name.as_ptr(), v) }
+        }
+        _ => {
+            let v = CString::new(value).map_err(|_| "the value contains NUL".to_string())?;
+            unsafe { sys::Highs_setStringOptionValue(m.as_mut_ptr(), c_name.as_ptr(), v.as_ptr()) }
+        }
+    };
+    if status == sys::STATUS_ERROR {
+        return Err(format!("HiGHS refused the value `{value}` (out of range or not allowed)"));
+    }
+    Ok(())
 }
 
-/// HiGHS's MIP "interrupt" callback, called often during branch and bound: forwards a
-/// [`Progress`] report at most every 0.25 s, and never interrupts.
-unsafe extern "C" fn progress_callback(
-    _kind: std::os::raw::c_int,
+/// What the callback needs between calls: where progress goes, and when to stop.
+struct CallbackState<'a> {
+    sink: Option<ProgressSink>,
+    last: f64,
+    stop: &'a StopControl,
+}
+
+/// HiGHS's interrupt callbacks (MIP, simplex, IPM), called often while it solves: forwards a
+/// [`Progress`] report at most every 0.25 s (MIP), and interrupts HiGHS when the solve should
+/// stop (the user's interrupt, or the deadline passed by the watchdog's grace).
+unsafe extern "C" fn callback(
+    kind: std::os::raw::c_int,
     _message: *const std::os::raw::c_char,
     out: *const sys::HighsCallbackDataOut,
-    _in: *mut sys::HighsCallbackDataIn,
+    data_in: *mut sys::HighsCallbackDataIn,
     data: *mut std::ffi::c_void,
 ) {
     if out.is_null() || data.is_null() {
         return;
     }
-    // SAFETY: HiGHS passes a valid output block, and `data` is the `ProgressState` registered
-    // in `solve`, alive for the whole run and used from this one thread.
-    let (out, state) = unsafe { (&*out, &mut *(data as *mut ProgressState)) };
-    if out.running_time - state.last < 0.25 {
+    // SAFETY: HiGHS passes a valid output block, and `data` is the `CallbackState` registered
+    // in `native`, alive for the whole run and used from the solving threads one at a time
+    // (HiGHS calls back from its main search thread).
+    let (out, state) = unsafe { (&*out, &mut *(data as *mut CallbackState)) };
+    if state.stop.should_stop() && !data_in.is_null() {
+        // SAFETY: HiGHS passes a valid input block with interrupt callbacks.
+        unsafe { (*data_in).user_interrupt = 1 };
+    }
+    if kind != sys::kHighsCallbackMipInterrupt as std::os::raw::c_int || out.running_time - state.last < 0.25 {
         return;
     }
+    let Some(sink) = &state.sink else { return };
     state.last = out.running_time;
     let finite = |v: f64| (v.is_finite() && v.abs() < 1e30).then_some(v);
-    (state.sink.0)(Progress {
+    (sink.0)(Progress {
         elapsed: out.running_time,
         primal: finite(out.mip_primal_bound),
         dual: finite(out.mip_dual_bound),
@@ -154,9 +204,23 @@ fn run_with_threads(m: highs::Model, threads: Option<u32>) -> Result<highs::Solv
     }
 }
 
+/// HiGHS reports a model without columns as "empty" without looking at its rows: it is optimal
+/// (at the empty point) only when every row admits an activity of 0.
+fn empty_model_termination(model: &Model) -> Termination {
+    let excludes_zero = |l: f64, u: f64| l > 1e-9 || u < -1e-9;
+    let (lhs, rhs) = model.row_sides();
+    if lhs.iter().zip(rhs).any(|(&l, &u)| excludes_zero(l, u)) {
+        Termination::Infeasible
+    } else {
+        Termination::Optimal
+    }
+}
+
 fn termination(status: sys::HighsInt, o: &SolveOptions) -> Termination {
     match status {
-        sys::MODEL_STATUS_OPTIMAL | sys::MODEL_STATUS_MODEL_EMPTY => Termination::Optimal,
+        sys::MODEL_STATUS_OPTIMAL => Termination::Optimal,
+        // Callers with the model at hand use `empty_model_termination` instead.
+        sys::MODEL_STATUS_MODEL_EMPTY => Termination::Optimal,
         sys::MODEL_STATUS_INFEASIBLE => Termination::Infeasible,
         sys::MODEL_STATUS_UNBOUNDED => Termination::Unbounded,
         sys::MODEL_STATUS_UNBOUNDED_OR_INFEASIBLE => Termination::InfeasibleOrUnbounded,
@@ -225,59 +289,66 @@ impl Solver for HighsSolver {
             reports_solver_time: true,
             reports_progress: true,
             lazy_constraints: false,
+            interrupt: true,
+            raw_params: true,
         }
     }
 
     fn solve(&self, model: &Model, o: &SolveOptions) -> Result<SolveResult, SolverError> {
-        let t0 = Instant::now();
-        preflight(KIND, &self.capabilities(), model, o)?;
-        let mut m = load(model)?;
-        apply_options(&mut m, model, o)?;
-        // The state lives on this stack frame for the whole solve; HiGHS only calls back
-        // during `Highs_run`.
-        let mut progress = o.progress.clone().map(|sink| ProgressState { sink, last: f64::NEG_INFINITY });
-        if let Some(state) = progress.as_mut() {
-            // SAFETY: live instance; the data pointer outlives the solve (see above).
-            unsafe {
-                sys::Highs_setCallback(m.as_mut_ptr(), Some(progress_callback), state as *mut ProgressState as *mut std::ffi::c_void);
-                sys::Highs_startCallback(m.as_mut_ptr(), sys::kHighsCallbackMipInterrupt);
-            }
-        }
-        let solved = run_with_threads(m, o.threads).map_err(|e| rejected(format!("Highs_run: {e:?}")));
-        let solved = match solved {
-            Ok(s) => s,
-            Err(e) => {
-                let mut r = SolveResult::empty(KIND, self.version(), Termination::Error(e.to_string()));
-                r.wall_time = t0.elapsed().as_secs_f64();
-                return Ok(r);
-            }
-        };
-        let ptr = solved.as_ptr();
-        // SAFETY: live instance.
-        let status = unsafe { sys::Highs_getModelStatus(ptr) };
-        let mut r = SolveResult::empty(KIND, self.version(), termination(status, o));
-        let has_primal = info_int(ptr, c"primal_solution_status") == Some(sys::SOLUTION_STATUS_FEASIBLE as i64);
-        if has_primal && model.num_vars() > 0 {
-            r.primal = Some(solved.get_solution().columns().to_vec());
-            // SAFETY: live instance.
-            r.objective = Some(unsafe { sys::Highs_getObjectiveValue(ptr) });
-        } else if has_primal || (model.num_vars() == 0 && r.termination == Termination::Optimal) {
-            r.primal = Some(Vec::new());
-            r.objective = Some(model.obj_constant);
-        }
-        if model.is_mip() {
-            r.dual_bound = info_f64(ptr, c"mip_dual_bound").filter(|b| b.is_finite());
-            r.nodes = info_i64(ptr, c"mip_node_count").map(|n| n.max(0) as u64);
-        } else if r.termination == Termination::Optimal {
-            r.dual_bound = r.objective;
-            r.nodes = Some(0);
-        }
-        // SAFETY: live instance.
-        r.solver_time = Some(unsafe { sys::Highs_getRunTime(ptr) });
-        r.finish(model.sense, o.rel_gap.is_some() || o.abs_gap.is_some());
-        r.wall_time = t0.elapsed().as_secs_f64();
-        Ok(r)
+        guarded_solve(self, model, o, |o, ctl| native(model, o, ctl))
     }
+}
+
+/// The solve itself, after netspec's common checks (`guarded_solve`).
+fn native(model: &Model, o: &SolveOptions, ctl: &StopControl) -> Result<SolveResult, SolverError> {
+    let mut m = load(model)?;
+    apply_options(&mut m, model, o, ctl)?;
+    // The state lives on this stack frame for the whole solve; HiGHS only calls back during
+    // `Highs_run`.
+    let mut state = CallbackState { sink: o.progress.clone(), last: f64::NEG_INFINITY, stop: ctl };
+    if state.sink.is_some() || ctl.is_armed() {
+        // SAFETY: live instance; the data pointer outlives the solve (see above).
+        unsafe {
+            sys::Highs_setCallback(m.as_mut_ptr(), Some(callback), &mut state as *mut CallbackState as *mut std::ffi::c_void);
+            sys::Highs_startCallback(m.as_mut_ptr(), sys::kHighsCallbackMipInterrupt);
+            if ctl.is_armed() {
+                sys::Highs_startCallback(m.as_mut_ptr(), sys::kHighsCallbackSimplexInterrupt);
+                sys::Highs_startCallback(m.as_mut_ptr(), sys::kHighsCallbackIpmInterrupt);
+            }
+        }
+    }
+    let solved = run_with_threads(m, o.threads).map_err(|e| rejected(format!("Highs_run: {e:?}")));
+    let version = highs_version();
+    let solved = match solved {
+        Ok(s) => s,
+        Err(e) => return Ok(SolveResult::empty(KIND, version, Termination::Error(e.to_string()))),
+    };
+    let ptr = solved.as_ptr();
+    // SAFETY: live instance.
+    let status = unsafe { sys::Highs_getModelStatus(ptr) };
+    let termination =
+        if status == sys::MODEL_STATUS_MODEL_EMPTY { empty_model_termination(model) } else { termination(status, o) };
+    let mut r = SolveResult::empty(KIND, version, termination);
+    let has_primal = info_int(ptr, c"primal_solution_status") == Some(sys::SOLUTION_STATUS_FEASIBLE as i64);
+    if has_primal && model.num_vars() > 0 {
+        r.primal = Some(solved.get_solution().columns().to_vec());
+        // SAFETY: live instance.
+        r.objective = Some(unsafe { sys::Highs_getObjectiveValue(ptr) });
+    } else if has_primal || (model.num_vars() == 0 && r.termination == Termination::Optimal) {
+        r.primal = Some(Vec::new());
+        r.objective = Some(model.obj_constant);
+    }
+    if model.is_mip() {
+        r.dual_bound = info_f64(ptr, c"mip_dual_bound").filter(|b| b.is_finite());
+        r.nodes = info_i64(ptr, c"mip_node_count").map(|n| n.max(0) as u64);
+    } else if r.termination == Termination::Optimal {
+        r.dual_bound = r.objective;
+        r.nodes = Some(0);
+    }
+    // SAFETY: live instance.
+    r.solver_time = Some(unsafe { sys::Highs_getRunTime(ptr) });
+    r.finish(model.sense);
+    Ok(r)
 }
 
 /// Reads a model file with HiGHS's own reader and solves it (used to check that files netspec
@@ -324,5 +395,50 @@ impl LoadedModel {
             return Err(rejected(format!("HiGHS could not write {}", path.display())));
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::time::Instant;
+
+    /// HiGHS itself, without netspec's screen: a model without columns whose empty row excludes
+    /// 0 is infeasible, not "optimal" (HiGHS reports such a model as empty).
+    #[test]
+    fn empty_row_without_columns_is_infeasible() {
+        let mut m = Model::new("empty_row");
+        m.add_ge("c", [], 1.0);
+        let o = SolveOptions::default();
+        let r = native(&m, &o, &StopControl::new(&o, Instant::now())).unwrap();
+        assert_eq!(r.termination, Termination::Infeasible);
+        assert!(r.primal.is_none());
+        m.set_row_sides(crate::milp::RowId(0), -1.0, 1.0);
+        let r = native(&m, &o, &StopControl::new(&o, Instant::now())).unwrap();
+        assert_eq!(r.termination, Termination::Optimal);
+    }
+
+    /// The same with columns: HiGHS's presolve sees the empty row.
+    #[test]
+    fn empty_row_with_columns_is_infeasible() {
+        let mut m = Model::new("empty_row_cols");
+        let x = m.add_binary("x", 1.0);
+        m.add_ge("c", [], 1.0);
+        m.add_le("d", [(x, 1.0)], 1.0);
+        let o = SolveOptions::default();
+        let r = native(&m, &o, &StopControl::new(&o, Instant::now())).unwrap();
+        assert_eq!(r.termination, Termination::Infeasible);
+    }
+
+    #[test]
+    fn raw_params_are_typed_and_checked() {
+        let mut m = load(&Model::new("p")).unwrap();
+        set_raw_param(&mut m, "mip_heuristic_effort", "0.3").unwrap();
+        set_raw_param(&mut m, "presolve", "off").unwrap();
+        set_raw_param(&mut m, "mip_max_leaves", "10").unwrap();
+        set_raw_param(&mut m, "output_flag", "false").unwrap();
+        assert!(set_raw_param(&mut m, "no_such_option", "1").unwrap_err().contains("no such option"));
+        assert!(set_raw_param(&mut m, "mip_max_leaves", "ten").unwrap_err().contains("int"));
+        assert!(set_raw_param(&mut m, "mip_rel_gap", "-1").unwrap_err().contains("refused"));
     }
 }

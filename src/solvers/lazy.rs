@@ -191,7 +191,7 @@ pub fn solve_loop<S: Solver + ?Sized>(solver: &S, model: &Model, sep: &mut dyn S
             r.dual_bound = bound;
             r.nodes = Some(nodes);
             r.solver_time = Some(solver_time);
-            r.finish(model.sense, o.rel_gap.is_some() || o.abs_gap.is_some());
+            r.finish(model.sense);
             r.wall_time = t0.elapsed().as_secs_f64();
             r
         };
@@ -232,10 +232,11 @@ pub fn solve_loop<S: Solver + ?Sized>(solver: &S, model: &Model, sep: &mut dyn S
         }
         start = best.as_ref().map(|(x, _)| x.clone());
         let out_of_time = o.time_limit.is_some_and(|l| t0.elapsed().as_secs_f64() >= l);
+        let interrupted = o.interrupt.as_ref().is_some_and(|i| i.is_triggered());
         let stopped = !matches!(r.termination, Termination::Optimal);
-        if out_of_time || stopped {
+        if out_of_time || interrupted || stopped {
             if r.termination == Termination::Optimal {
-                r.termination = Termination::Limit(LimitKind::Time);
+                r.termination = Termination::Limit(if interrupted { LimitKind::Interrupt } else { LimitKind::Time });
             }
             return Ok(LazySolve { result: finish(r, best, bound), rows, report });
         }
@@ -260,14 +261,14 @@ fn root_rounds<S: Solver + ?Sized>(
     let mut last = f64::NAN;
     let mut stalled = 0;
     for _ in 0..MAX_ROOT_ROUNDS {
-        if budget.is_some_and(|b| t0.elapsed().as_secs_f64() >= b) {
+        if budget.is_some_and(|b| t0.elapsed().as_secs_f64() >= b) || o.interrupt.as_ref().is_some_and(|i| i.is_triggered()) {
             break;
         }
         let mut relaxed = work.clone();
         for j in 0..relaxed.num_vars() {
             relaxed.var_mut(VarId(j as u32)).kind = crate::milp::VarKind::Continuous;
         }
-        let mut oi = SolveOptions { log: super::LogTarget::Quiet, threads: o.threads, ..SolveOptions::default() };
+        let mut oi = SolveOptions { log: super::LogTarget::Quiet, threads: o.threads, interrupt: o.interrupt.clone(), ..SolveOptions::default() };
         oi.time_limit = budget.map(|b| (b - t0.elapsed().as_secs_f64()).max(0.0));
         let r = solver.solve(&relaxed, &oi)?;
         let (Some(x), Some(obj)) = (r.primal, r.objective) else { break };

@@ -21,14 +21,16 @@
 //! | `rel_gap` | `SolveOptions::mip_gap` (`(incumbent − bound) / |incumbent|`) |
 //! | `node_limit` | `SolveOptions::node_limit` (the root LP is not a node) |
 //! | `mip_start` | `SolveOptions::warm_start` (a hint for a MIP: an infeasible one is ignored; an LP has no use for it) |
-//! | `abs_gap`, `threads` > 1, `seed`, any log | unsupported: microlp has no such option and logs only through the `log` crate |
+//! | `interrupt` | the search runs in slices of at most 0.1 s, resumed (`SolveOutcome::resume_with`) until done, out of budget, or interrupted |
+//! | `abs_gap`, `threads` > 1, `seed`, any log, `params` | unsupported: microlp has no such option and logs only through the `log` crate |
 //!
 //! The result reports microlp's best bound, its node count and its own elapsed time.
 
-use super::{preflight, Capabilities, LimitKind, SolveOptions, SolveResult, Solver, SolverError, SolverErrorKind, SolverKind, Termination};
+use super::stop::StopControl;
+use super::{guarded_solve, Capabilities, LimitKind, SolveOptions, SolveResult, Solver, SolverError, SolverErrorKind, SolverKind, Termination};
 use crate::milp::{Model, RowKind, Sense, VarKind};
 use microlp::{ComparisonOp, OptimizationDirection, Problem, Variable};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 /// The microlp backend.
 #[derive(Clone, Copy, Debug, Default)]
@@ -103,10 +105,24 @@ fn load(model: &Model) -> Result<Loaded, SolverError> {
     Ok(Loaded { problem, vars, constant })
 }
 
-fn options(loaded: &Loaded, o: &SolveOptions) -> microlp::SolveOptions {
-    let mut opts = microlp::SolveOptions::default();
+/// The longest stretch microlp runs without netspec checking for an interrupt.
+const SLICE: Duration = Duration::from_millis(100);
+
+/// The time budget for the next call: what is left of the limit, cut to a [`SLICE`] when an
+/// interrupt may come.
+fn budget(ctl: &StopControl, sliced: bool) -> Option<Duration> {
     // Durations beyond what `Duration` holds count as no limit, as microlp reads `Duration::MAX`.
-    opts.time_limit = o.time_limit.map(|t| Duration::try_from_secs_f64(t).unwrap_or(Duration::MAX));
+    let left = ctl.remaining().map(|t| Duration::try_from_secs_f64(t).unwrap_or(Duration::MAX));
+    match (left, sliced) {
+        (Some(l), true) => Some(l.min(SLICE)),
+        (None, true) => Some(SLICE),
+        (l, false) => l,
+    }
+}
+
+fn options(loaded: &Loaded, o: &SolveOptions, ctl: &StopControl, sliced: bool) -> microlp::SolveOptions {
+    let mut opts = microlp::SolveOptions::default();
+    opts.time_limit = budget(ctl, sliced);
     opts.node_limit = o.node_limit;
     if let Some(g) = o.rel_gap {
         opts.mip_gap = g;
@@ -148,53 +164,93 @@ impl Solver for MicrolpSolver {
             reports_solver_time: true,
             reports_progress: false,
             lazy_constraints: false,
+            interrupt: true,
+            raw_params: false,
         }
     }
 
     fn solve(&self, model: &Model, o: &SolveOptions) -> Result<SolveResult, SolverError> {
-        let t0 = Instant::now();
-        preflight(KIND, &self.capabilities(), model, o)?;
-        let loaded = load(model)?;
-        let opts = options(&loaded, o);
-        let outcome = loaded.problem.solve_with(opts);
-        let mut r = SolveResult::empty(KIND, self.version(), Termination::Optimal);
-        match outcome {
-            Err(microlp::Error::Infeasible) => r.termination = Termination::Infeasible,
-            Err(microlp::Error::Unbounded) => r.termination = Termination::Unbounded,
-            Err(microlp::Error::InternalError(e)) => r.termination = Termination::Error(format!("microlp: {e}")),
-            Err(microlp::Error::InvalidOptions(e) | microlp::Error::InvalidOperation(e)) => {
-                return Err(SolverError::new(KIND, SolverErrorKind::Rejected(format!("microlp: {e}"))))
-            }
-            Err(e) => r.termination = Termination::Error(format!("microlp: {e}")),
-            Ok(outcome) => {
-                let stats = outcome.stats();
-                r.termination = match outcome.termination_reason() {
-                    microlp::TerminationReason::ProvenOptimal => Termination::Optimal,
-                    // microlp stopped on the user's gap: `finish` says Limit(Gap) unless the gap is
-                    // within the default tolerance anyway.
-                    microlp::TerminationReason::MipGap => Termination::Optimal,
-                    microlp::TerminationReason::TimeLimit => Termination::Limit(LimitKind::Time),
-                    microlp::TerminationReason::NodeLimit => Termination::Limit(LimitKind::Node),
-                    _ => Termination::Limit(LimitKind::Other),
-                };
-                if let Some(sol) = outcome.solution() {
-                    r.primal = Some(loaded.vars.iter().map(|&v| sol.var_value(v)).collect());
-                    r.objective = Some(sol.objective());
-                }
-                r.dual_bound = stats.best_bound.filter(|b| b.is_finite());
-                r.nodes = Some(stats.nodes_solved);
-                r.solver_time = Some(stats.elapsed.as_secs_f64());
-            }
-        }
-        if model.num_vars() == 0 && r.termination == Termination::Optimal && r.primal.is_none() {
-            r.primal = Some(Vec::new());
-            r.objective = Some(model.obj_constant);
-            r.dual_bound = Some(model.obj_constant);
-        }
-        r.finish(model.sense, o.rel_gap.is_some() || o.abs_gap.is_some());
-        r.wall_time = t0.elapsed().as_secs_f64();
-        Ok(r)
+        guarded_solve(self, model, o, |o, ctl| native(model, o, ctl))
     }
+}
+
+/// Runs microlp; with an interrupt, in slices of [`SLICE`], resuming until the search ends, a
+/// limit is reached or the interrupt comes. Returns the last outcome and whether the interrupt
+/// stopped it.
+fn run_sliced(loaded: &Loaded, o: &SolveOptions, ctl: &StopControl) -> (Result<microlp::SolveOutcome, microlp::Error>, bool) {
+    let sliced = o.interrupt.is_some();
+    let mut outcome = loaded.problem.solve_with(options(loaded, o, ctl, sliced));
+    if !sliced {
+        return (outcome, false);
+    }
+    loop {
+        let out = match outcome {
+            Ok(out) if out.termination_reason() == microlp::TerminationReason::TimeLimit => out,
+            other => return (other, false),
+        };
+        if ctl.interrupted() {
+            return (Ok(out), true);
+        }
+        if ctl.remaining() == Some(0.0) {
+            return (Ok(out), false); // the limit itself: TimeLimit is the answer
+        }
+        let mut resume = out.last_resume_options();
+        resume.time_limit = budget(ctl, true);
+        resume.node_limit = o.node_limit.map(|n| n.saturating_sub(out.stats().nodes_solved));
+        resume.mip_gap = o.rel_gap;
+        if resume.node_limit == Some(0) {
+            return (Ok(out), false); // reported as the node limit below
+        }
+        outcome = out.resume_with(resume);
+    }
+}
+
+/// The solve itself, after netspec's common checks (`guarded_solve`).
+fn native(model: &Model, o: &SolveOptions, ctl: &StopControl) -> Result<SolveResult, SolverError> {
+    let loaded = load(model)?;
+    let (outcome, interrupted) = run_sliced(&loaded, o, ctl);
+    let mut r = SolveResult::empty(KIND, MICROLP_VERSION.to_string(), Termination::Optimal);
+    match outcome {
+        Err(microlp::Error::Infeasible) => r.termination = Termination::Infeasible,
+        Err(microlp::Error::Unbounded) => r.termination = Termination::Unbounded,
+        Err(microlp::Error::InternalError(e)) => r.termination = Termination::Error(format!("microlp: {e}")),
+        Err(microlp::Error::InvalidOptions(e) | microlp::Error::InvalidOperation(e)) => {
+            return Err(SolverError::new(KIND, SolverErrorKind::Rejected(format!("microlp: {e}"))))
+        }
+        Err(e) => r.termination = Termination::Error(format!("microlp: {e}")),
+        Ok(outcome) => {
+            let stats = outcome.stats();
+            r.termination = match outcome.termination_reason() {
+                _ if interrupted => Termination::Limit(LimitKind::Interrupt),
+                microlp::TerminationReason::ProvenOptimal => Termination::Optimal,
+                // microlp stopped on the user's gap: `finish` says Limit(Gap) unless the gap is
+                // within the default tolerance anyway.
+                microlp::TerminationReason::MipGap => Termination::Optimal,
+                microlp::TerminationReason::TimeLimit
+                    if o.node_limit.is_some_and(|n| stats.nodes_solved >= n) && ctl.remaining() != Some(0.0) =>
+                {
+                    Termination::Limit(LimitKind::Node)
+                }
+                microlp::TerminationReason::TimeLimit => Termination::Limit(LimitKind::Time),
+                microlp::TerminationReason::NodeLimit => Termination::Limit(LimitKind::Node),
+                _ => Termination::Limit(LimitKind::Other),
+            };
+            if let Some(sol) = outcome.solution() {
+                r.primal = Some(loaded.vars.iter().map(|&v| sol.var_value(v)).collect());
+                r.objective = Some(sol.objective());
+            }
+            r.dual_bound = stats.best_bound.filter(|b| b.is_finite());
+            r.nodes = Some(stats.nodes_solved);
+            r.solver_time = Some(stats.elapsed.as_secs_f64());
+        }
+    }
+    if model.num_vars() == 0 && r.termination == Termination::Optimal && r.primal.is_none() {
+        r.primal = Some(Vec::new());
+        r.objective = Some(model.obj_constant);
+        r.dual_bound = Some(model.obj_constant);
+    }
+    r.finish(model.sense);
+    Ok(r)
 }
 
 #[cfg(test)]
@@ -205,7 +261,9 @@ mod tests {
     fn integer_bounds_without_an_integer_are_infeasible() {
         let mut m = Model::new("crossed");
         m.add_integer("z", 0.2, 0.8, 1.0);
-        let r = MicrolpSolver.solve(&m, &SolveOptions::default()).unwrap();
+        let o = SolveOptions::default();
+        // microlp itself (netspec's screen would answer before it).
+        let r = native(&m, &o, &StopControl::new(&o, std::time::Instant::now())).unwrap();
         assert_eq!(r.termination, Termination::Infeasible);
     }
 

@@ -21,13 +21,17 @@ mod scip_lazy;
 pub mod lazy;
 mod options;
 mod result;
+mod stop;
 
-pub use options::{Capabilities, LogTarget, Progress, ProgressSink, SolveOptions};
 pub use lazy::{LazyMode, LazyReport, LazyRow, LazySolve, Lock, Separator};
-pub use result::{gap, LimitKind, SolveResult, Termination};
+pub use options::{Capabilities, Interrupt, InvalidOption, LogTarget, Progress, ProgressSink, RawParam, SolveOptions};
+pub use result::{gap, percent, within_optimality_tolerance, LimitKind, SolveResult, StartCheck, Termination, OPTIMALITY_TOLERANCE};
 
-use crate::milp::Model;
+use crate::milp::{check_point, Model, Tolerances};
 use serde::{Deserialize, Serialize};
+use std::borrow::Cow;
+use std::time::Instant;
+use stop::StopControl;
 
 /// A MILP backend.
 pub trait Solver {
@@ -158,6 +162,18 @@ pub enum SolverErrorKind {
         /// Why, in a few words.
         reason: String,
     },
+    /// An option's value is unusable (checked by netspec before any backend sees it).
+    #[error("invalid option {0}")]
+    InvalidOption(#[from] InvalidOption),
+    /// A solver parameter passed through ([`RawParam`]) that the backend does not know, or
+    /// whose value it refuses.
+    #[error("parameter `{name}`: {reason}")]
+    Param {
+        /// The parameter as given (`highs.mip_rel_gap`).
+        name: String,
+        /// The backend's reason.
+        reason: String,
+    },
     /// The model is invalid (see [`Model::validate`]).
     #[error("invalid model: {0}")]
     InvalidModel(#[from] crate::milp::ModelError),
@@ -191,11 +207,10 @@ impl SolverError {
     }
 }
 
-/// Solves with a backend after validating the model and checking options against the backend's
-/// capabilities. Every backend's `solve` calls this first.
+/// Validates the model and checks the options against the backend's capabilities.
 pub(crate) fn preflight(kind: SolverKind, caps: &Capabilities, model: &Model, options: &SolveOptions) -> Result<(), SolverError> {
     model.validate().map_err(|e| SolverError::new(kind, e))?;
-    caps.check(options).map_err(|k| SolverError::new(kind, k))?;
+    caps.check(kind, options).map_err(|k| SolverError::new(kind, k))?;
     if model.is_mip() && !caps.integer_variables {
         return Err(SolverError::new(kind, SolverErrorKind::ModelUnsupported("integer variables".into())));
     }
@@ -214,4 +229,61 @@ pub(crate) fn preflight(kind: SolverKind, caps: &Capabilities, model: &Model, op
         }
     }
     Ok(())
+}
+
+/// Checks a MIP start with netspec's own checker: a start that fails is reported and dropped
+/// from the options, never handed to the solver.
+fn check_start<'a>(model: &Model, o: &'a SolveOptions) -> (Cow<'a, SolveOptions>, Option<StartCheck>) {
+    let Some(start) = &o.mip_start else { return (Cow::Borrowed(o), None) };
+    let report = check_point(model, start, &Tolerances::default());
+    let check = StartCheck {
+        accepted: report.is_feasible(),
+        objective: report.objective,
+        violations: report.violations.len(),
+        first_violation: report.violations.first().map(|v| v.to_string()),
+    };
+    if check.accepted {
+        (Cow::Borrowed(o), Some(check))
+    } else {
+        (Cow::Owned(SolveOptions { mip_start: None, ..o.clone() }), Some(check))
+    }
+}
+
+/// The part of a solve every backend shares, around its native solve `native`: validation
+/// ([`preflight`]), netspec's own proof of trivial infeasibility ([`crate::milp::screen`]),
+/// the check of a MIP start, an interrupt already made, and the time limit as a deadline over
+/// the whole call ([`StopControl`]). A solve that the control stopped from outside and that the
+/// solver reports as interrupted is reported as stopped by the time limit when that is why.
+pub(crate) fn guarded_solve(
+    solver: &dyn Solver,
+    model: &Model,
+    options: &SolveOptions,
+    native: impl FnOnce(&SolveOptions, &StopControl) -> Result<SolveResult, SolverError>,
+) -> Result<SolveResult, SolverError> {
+    let t0 = Instant::now();
+    let kind = solver.kind();
+    preflight(kind, &solver.capabilities(), model, options)?;
+    if let Some(why) = crate::milp::screen(model) {
+        let mut r = SolveResult::empty(kind, solver.version(), Termination::Infeasible);
+        r.infeasibility = Some(why);
+        r.nodes = Some(0);
+        r.solver_time = Some(0.0);
+        r.wall_time = t0.elapsed().as_secs_f64();
+        return Ok(r);
+    }
+    let (o, start) = check_start(model, options);
+    let ctl = StopControl::new(&o, t0);
+    let mut r = if ctl.interrupted() {
+        SolveResult::empty(kind, solver.version(), Termination::Limit(LimitKind::Interrupt))
+    } else {
+        native(&o, &ctl)?
+    };
+    if r.termination == Termination::Limit(LimitKind::Interrupt) {
+        if let Some(why) = ctl.reason() {
+            r.termination = Termination::Limit(why);
+        }
+    }
+    r.mip_start = start;
+    r.wall_time = t0.elapsed().as_secs_f64();
+    Ok(r)
 }

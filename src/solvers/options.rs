@@ -1,9 +1,87 @@
 //! Solve options and backend capabilities.
 
-use super::SolverErrorKind;
+use super::{SolverErrorKind, SolverKind};
 use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
+
+/// A request to stop a running solve early (Ctrl-C, a stop button), shared between the caller
+/// and the solve. Cloning gives another handle to the same request. A backend that honours it
+/// ([`Capabilities::interrupt`]) stops as soon as it can and returns its best point so far,
+/// with termination [`LimitKind::Interrupt`](super::LimitKind::Interrupt); one already triggered
+/// when a solve starts makes the solve return at once.
+#[derive(Clone, Debug, Default)]
+pub struct Interrupt(Arc<AtomicBool>);
+
+impl Interrupt {
+    /// A request not yet made.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Makes the request (from any thread, or a signal handler's thread).
+    pub fn trigger(&self) {
+        self.0.store(true, Ordering::SeqCst);
+    }
+
+    /// Whether the request was made.
+    pub fn is_triggered(&self) -> bool {
+        self.0.load(Ordering::SeqCst)
+    }
+}
+
+impl PartialEq for Interrupt {
+    fn eq(&self, other: &Self) -> bool {
+        Arc::ptr_eq(&self.0, &other.0)
+    }
+}
+
+/// A solver's own parameter, passed through unchanged: `highs.mip_heuristic_effort=0.3`,
+/// `scip.limits/nodes=100`, `cbc.cuts=off`. The part before the first `.` names the backend;
+/// a backend applies only its own parameters (so one list can serve several backends, as in
+/// `compare`) and refuses an unknown name or a bad value with
+/// [`SolverErrorKind::Param`].
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct RawParam {
+    /// The backend the parameter belongs to.
+    pub solver: SolverKind,
+    /// The solver's own name for it.
+    pub name: String,
+    /// Its value, as text (parsed by the backend by the parameter's type).
+    pub value: String,
+}
+
+impl std::fmt::Display for RawParam {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}.{}={}", self.solver, self.name, self.value)
+    }
+}
+
+impl std::str::FromStr for RawParam {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        let form = "expected BACKEND.NAME=VALUE, e.g. highs.mip_heuristic_effort=0.3";
+        let (key, value) = s.split_once('=').ok_or_else(|| format!("`{s}`: {form}"))?;
+        let (solver, name) = key.split_once('.').ok_or_else(|| format!("`{s}`: {form}"))?;
+        let solver: SolverKind = solver.trim().parse().map_err(|e| format!("`{s}`: {e}"))?;
+        let (name, value) = (name.trim(), value.trim());
+        if name.is_empty() || name.contains('\0') || value.contains('\0') {
+            return Err(format!("`{s}`: {form}"));
+        }
+        Ok(RawParam { solver, name: name.to_string(), value: value.to_string() })
+    }
+}
+
+/// An option value netspec refuses before any backend sees it: which option, and why.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("`{option}` {reason}")]
+pub struct InvalidOption {
+    /// The [`SolveOptions`] field.
+    pub option: &'static str,
+    /// What is wrong, e.g. `must be ≥ 0, got -1`.
+    pub reason: String,
+}
 
 /// A snapshot of a running solve, for progress displays.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -72,6 +150,46 @@ pub struct SolveOptions {
     /// Progress reports while the solve runs (not serialised).
     #[serde(skip)]
     pub progress: Option<ProgressSink>,
+    /// Solver parameters passed through as they are (see [`RawParam`]).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub params: Vec<RawParam>,
+    /// A request to stop early (not serialised).
+    #[serde(skip)]
+    pub interrupt: Option<Interrupt>,
+}
+
+impl SolveOptions {
+    /// Checks every value, naming the option: limits and gaps must be numbers ≥ 0 (an infinite
+    /// time limit means none), threads ≥ 1.
+    pub fn validate(&self) -> Result<(), InvalidOption> {
+        let bad = |option, reason: String| Err(InvalidOption { option, reason });
+        if let Some(t) = self.time_limit {
+            if t.is_nan() || t < 0.0 {
+                return bad("time_limit", format!("must be a number of seconds ≥ 0 (or inf for none), got {t}"));
+            }
+        }
+        for (option, g) in [("rel_gap", self.rel_gap), ("abs_gap", self.abs_gap)] {
+            if let Some(g) = g {
+                if !g.is_finite() || g < 0.0 {
+                    return bad(option, format!("must be a finite number ≥ 0, got {g}"));
+                }
+            }
+        }
+        if self.threads == Some(0) {
+            return bad("threads", "must be ≥ 1, got 0".into());
+        }
+        Ok(())
+    }
+
+    /// The time limit if it is finite (an infinite one means no limit).
+    pub fn finite_time_limit(&self) -> Option<f64> {
+        self.time_limit.filter(|t| t.is_finite())
+    }
+
+    /// The raw parameters meant for `kind`.
+    pub fn params_for(&self, kind: SolverKind) -> impl Iterator<Item = &RawParam> + '_ {
+        self.params.iter().filter(move |p| p.solver == kind)
+    }
 }
 
 /// Whether a backend supports an option, and how.
@@ -112,6 +230,12 @@ pub struct Capabilities {
     /// it, [`crate::solvers::Solver::solve_lazy`] runs the solve–separate–resolve loop.
     #[serde(default)]
     pub lazy_constraints: bool,
+    /// [`SolveOptions::interrupt`]: stops early on request, keeping the best point found.
+    #[serde(default)]
+    pub interrupt: bool,
+    /// [`SolveOptions::params`]: the solver's own parameters, passed through.
+    #[serde(default)]
+    pub raw_params: bool,
 }
 
 fn unsupported(option: &'static str, reason: &str) -> SolverErrorKind {
@@ -119,29 +243,19 @@ fn unsupported(option: &'static str, reason: &str) -> SolverErrorKind {
 }
 
 impl Capabilities {
-    /// Checks that every option set in `o` is supported; also rejects meaningless values
-    /// (negative or NaN limits, zero threads).
-    pub fn check(&self, o: &SolveOptions) -> Result<(), SolverErrorKind> {
-        if let Some(t) = o.time_limit {
-            if !self.time_limit {
-                return Err(unsupported("time_limit", "the backend has no time limit"));
-            }
-            if t.is_nan() || t < 0.0 {
-                return Err(SolverErrorKind::Rejected(format!("time_limit must be ≥ 0 seconds, got {t}")));
-            }
+    /// Checks that every option set in `o` is supported by the backend `kind` (values are
+    /// checked by [`SolveOptions::validate`] first).
+    pub fn check(&self, kind: SolverKind, o: &SolveOptions) -> Result<(), SolverErrorKind> {
+        o.validate()?;
+        if o.finite_time_limit().is_some() && !self.time_limit {
+            return Err(unsupported("time_limit", "the backend has no time limit"));
         }
         for (name, g, ok) in [("rel_gap", o.rel_gap, self.rel_gap), ("abs_gap", o.abs_gap, self.abs_gap)] {
-            if let Some(g) = g {
-                if !ok {
-                    return Err(unsupported(name, "the backend has no such gap limit"));
-                }
-                if g.is_nan() || g < 0.0 {
-                    return Err(SolverErrorKind::Rejected(format!("{name} must be ≥ 0, got {g}")));
-                }
+            if g.is_some() && !ok {
+                return Err(unsupported(name, "the backend has no such gap limit"));
             }
         }
         match o.threads {
-            Some(0) => return Err(SolverErrorKind::Rejected("threads must be ≥ 1".into())),
             Some(t) if t > 1 && !self.threads => return Err(unsupported("threads", "the backend is single-threaded")),
             _ => {}
         }
@@ -161,6 +275,12 @@ impl Capabilities {
         }
         if o.mip_start.is_some() && !self.mip_start {
             return Err(unsupported("mip_start", "the backend does not accept a starting solution"));
+        }
+        if o.interrupt.is_some() && !self.interrupt {
+            return Err(unsupported("interrupt", "the backend cannot be stopped while it runs"));
+        }
+        if o.params_for(kind).next().is_some() && !self.raw_params {
+            return Err(unsupported("params", "the backend has no parameters of its own to pass through"));
         }
         Ok(())
     }

@@ -1,7 +1,7 @@
 //! What a solve returns: why it stopped, and what it found.
 
 use super::SolverKind;
-use crate::milp::{check_point, CheckReport, Model, Sense, Tolerances};
+use crate::milp::{check_point, CheckReport, Infeasibility, Model, Sense, Tolerances};
 use serde::{Deserialize, Serialize};
 
 /// Which limit stopped the solve.
@@ -52,6 +52,7 @@ impl Termination {
             Termination::Infeasible => "infeasible".into(),
             Termination::Unbounded => "unbounded".into(),
             Termination::InfeasibleOrUnbounded => "infeasible_or_unbounded".into(),
+            Termination::Limit(LimitKind::Interrupt) => "interrupted".into(),
             Termination::Limit(k) => format!("limit({})", format!("{k:?}").to_lowercase()),
             Termination::NumericalError => "numerical_error".into(),
             Termination::Error(_) => "error".into(),
@@ -93,6 +94,45 @@ pub struct SolveResult {
     pub solver: SolverKind,
     /// The solver's version.
     pub solver_version: String,
+    /// When netspec proved the model infeasible without a solver (see
+    /// [`crate::milp::screen`]): the variable or row, and why.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub infeasibility: Option<Infeasibility>,
+    /// The MIP start's check by netspec's checker, when one was given.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mip_start: Option<StartCheck>,
+}
+
+/// What netspec's independent checker said of a MIP start before the solve: a start that fails
+/// is reported here and never handed to the solver.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct StartCheck {
+    /// Whether the start passed and was handed over.
+    pub accepted: bool,
+    /// The start's objective (recomputed by the checker).
+    pub objective: f64,
+    /// How many bounds, rows and integralities it violates.
+    pub violations: usize,
+    /// The first violation, as text.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub first_violation: Option<String>,
+}
+
+/// The largest difference between a solution's objective and the dual bound that netspec still
+/// calls optimal: `1e-6` absolute, or `1e-9` relative for objectives above 1000. Solvers whose
+/// own default gap is looser (HiGHS stops at 1e-4 relative) are given a zero relative gap when
+/// none is set, so that "optimal" holds for objectives with small weights such as the paper's
+/// `0*` (1e-4).
+pub const OPTIMALITY_TOLERANCE: (f64, f64) = (1e-6, 1e-9);
+
+/// Whether a primal value and a dual bound are close enough to call the primal optimal (see
+/// [`OPTIMALITY_TOLERANCE`]).
+pub fn within_optimality_tolerance(primal: f64, dual: f64, sense: Sense) -> bool {
+    let behind = match sense {
+        Sense::Minimize => primal - dual,
+        Sense::Maximize => dual - primal,
+    };
+    behind <= OPTIMALITY_TOLERANCE.0 || behind <= OPTIMALITY_TOLERANCE.1 * primal.abs().max(dual.abs())
 }
 
 impl SolveResult {
@@ -109,23 +149,44 @@ impl SolveResult {
             wall_time: 0.0,
             solver,
             solver_version: version,
+            infeasibility: None,
+            mip_start: None,
         }
     }
 
-    /// Fills in `gap` from the bounds, and turns a solver's "optimal" into
-    /// [`LimitKind::Gap`] when the user's gap limit stopped it short of the default tolerance
-    /// (1e-6 relative, as netspec's gap formula measures it).
-    pub fn finish(&mut self, sense: Sense, gap_limit_set: bool) {
+    /// Fills in `gap` from the bounds, and turns a solver's "optimal" into [`LimitKind::Gap`]
+    /// when its dual bound is not within [`OPTIMALITY_TOLERANCE`] of the objective (the solver
+    /// stopped on a gap limit, the user's or its own default).
+    pub fn finish(&mut self, sense: Sense) {
         self.gap = match (self.objective, self.dual_bound) {
             (Some(p), Some(d)) => Some(gap(p, d, sense)),
             _ => None,
         };
-        if self.termination == Termination::Optimal && gap_limit_set {
-            if let Some(g) = self.gap {
-                if g > 1e-6 {
+        if self.termination == Termination::Optimal {
+            if let (Some(p), Some(d)) = (self.objective, self.dual_bound) {
+                if !within_optimality_tolerance(p, d, sense) {
                     self.termination = Termination::Limit(LimitKind::Gap);
                 }
             }
+        }
+    }
+
+    /// One line that says apart why the solver stopped and whether it has a solution:
+    /// `limit(time), solution found (objective 12.5, gap 3.10 %)`, `limit(time), no solution`,
+    /// `infeasible: row `c`: …`.
+    pub fn status_line(&self) -> String {
+        let found = match (&self.primal, self.objective) {
+            (Some(_), Some(obj)) | (None, Some(obj)) => {
+                format!("solution found (objective {obj}{})", self.gap.map_or(String::new(), |g| format!(", gap {}", percent(g))))
+            }
+            (Some(_), None) => "solution found".to_string(),
+            (None, None) => "no solution".to_string(),
+        };
+        match (&self.termination, &self.infeasibility) {
+            (Termination::Infeasible, Some(why)) => format!("infeasible (found by netspec before solving): {why}"),
+            (Termination::Infeasible, None) => "infeasible".into(),
+            (Termination::Optimal, _) => format!("optimal, {found}"),
+            (t, _) => format!("{t}, {found}"),
         }
     }
 
@@ -159,4 +220,57 @@ pub fn gap(primal: f64, dual: f64, sense: Sense) -> f64 {
         return 1.0;
     }
     (behind / primal.abs().max(dual.abs())).min(1.0)
+}
+
+/// A gap as a percentage for status lines: `12.0 %`, `0.013 %`, `100 %`.
+pub fn percent(g: f64) -> String {
+    let p = 100.0 * g;
+    if p == 0.0 || p >= 10.0 {
+        format!("{p:.0} %")
+    } else if p >= 0.1 {
+        format!("{p:.1} %")
+    } else {
+        format!("{p:.2e} %")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn result(t: Termination, p: f64, d: f64) -> SolveResult {
+        let mut r = SolveResult::empty(SolverKind::Highs, "test".into(), t);
+        r.primal = Some(vec![]);
+        r.objective = Some(p);
+        r.dual_bound = Some(d);
+        r
+    }
+
+    /// The case: the paper's 0* weight (1e-4) hidden in a solver's default gap.
+    #[test]
+    fn optimal_only_within_the_tolerance() {
+        let mut r = result(Termination::Optimal, 8.0003, 8.0002);
+        r.finish(Sense::Minimize);
+        assert_eq!(r.termination, Termination::Limit(LimitKind::Gap));
+        let mut r = result(Termination::Optimal, 8.0002, 8.0002 - 5e-7);
+        r.finish(Sense::Minimize);
+        assert_eq!(r.termination, Termination::Optimal);
+        let mut r = result(Termination::Optimal, 1e7, 1e7 - 5e-3);
+        r.finish(Sense::Minimize);
+        assert_eq!(r.termination, Termination::Optimal);
+        let mut r = result(Termination::Optimal, 3.0, 3.5);
+        r.finish(Sense::Maximize);
+        assert_eq!(r.termination, Termination::Limit(LimitKind::Gap));
+    }
+
+    #[test]
+    fn status_line_says_why_and_whether() {
+        let mut r = result(Termination::Limit(LimitKind::Time), 47.0, 41.36);
+        r.finish(Sense::Minimize);
+        assert_eq!(r.status_line(), "limit(time), solution found (objective 47, gap 12 %)");
+        let r = SolveResult::empty(SolverKind::Highs, "test".into(), Termination::Limit(LimitKind::Time));
+        assert_eq!(r.status_line(), "limit(time), no solution");
+        let r = SolveResult::empty(SolverKind::Highs, "test".into(), Termination::Limit(LimitKind::Interrupt));
+        assert_eq!(r.status_line(), "interrupted, no solution");
+    }
 }

@@ -9,23 +9,25 @@
 //!
 //! | option | SCIP parameter |
 //! |---|---|
-//! | `time_limit` | `limits/time` (fractional seconds; wall clock, since netspec sets `timing/clocktype` = 2) |
+//! | `time_limit` | `limits/time` (fractional seconds, the time left of the limit once the model is loaded; wall clock, since netspec sets `timing/clocktype` = 2); a watchdog calls `SCIPinterruptSolve` if SCIP overruns it |
 //! | `rel_gap` / `abs_gap` | `limits/gap` / `limits/absgap` (SCIP's gap is relative to the smaller of the two bounds) |
 //! | `threads` | 1: the sequential solver; more: SCIP's *concurrent* solver (`SCIPsolveConcurrent` with `parallel/maxnthreads`), which races differently-seeded/-tuned solvers on the same problem rather than splitting one tree (the linked library is built with SCIP's thread interface, tinycthread) |
 //! | `seed` | `randomization/randomseedshift` and, for the concurrent solvers, `concurrent/initseed` (the seed modulo 2^31) |
 //! | `node_limit` | `limits/totalnodes` (nodes over all restarts, capped at `i64::MAX`) |
 //! | `log` | `display/verblevel` 0 plus a quiet message handler (quiet); verbosity 4 on stdout; or SCIP's own log file (`SCIPsetMessagehdlrLogfile`) with the console quiet |
 //! | `mip_start` | an original-space solution checked and added before the solve (an infeasible start is dropped) |
+//! | `interrupt` | `SCIPinterruptSolve` from netspec's watchdog thread; SCIP's own Ctrl-C handler is off (`misc/catchctrlc` = false), netspec handles the signal |
+//! | `params` | any SCIP parameter by its name (`limits/nodes`), set by its type |
 //!
 //! Values of magnitude 1e20 or more are infinite for SCIP; netspec passes infinite bounds and
 //! sides as SCIP's infinity.
 
-use super::{preflight, Capabilities, LazyMode, LazyReport, LazySolve, LimitKind, LogTarget, Separator, SolveOptions, SolveResult, Solver, SolverError, SolverErrorKind, SolverKind, Termination};
+use super::stop::{with_watchdog, StopControl};
+use super::{guarded_solve, Capabilities, LazyMode, LazyReport, LazySolve, LimitKind, LogTarget, Separator, SolveOptions, SolveResult, Solver, SolverError, SolverErrorKind, SolverKind, Termination};
 use crate::milp::{Model, Sense, VarKind};
 use russcip::{ffi, ObjSense, ProblemOrSolving, VarType, Variable, WithSolutions};
 use std::ffi::CString;
 use std::path::Path;
-use std::time::Instant;
 
 /// The SCIP backend.
 #[derive(Clone, Copy, Debug, Default)]
@@ -111,11 +113,13 @@ fn load(model: &Model) -> Result<(Problem, Vec<Variable>), SolverError> {
 }
 
 /// Sets SCIP parameters for the options (the log is handled by [`LogGuard`]).
-fn apply_options(mut p: Problem, vars: &[Variable], o: &SolveOptions) -> Result<Problem, SolverError> {
+fn apply_options(mut p: Problem, vars: &[Variable], o: &SolveOptions, ctl: &StopControl) -> Result<Problem, SolverError> {
     let real = |p: Problem, name: &str, v: f64| p.set_real_param(name, v).map_err(|e| retcode(name, e));
     // Wall clock for `limits/time` (SCIP's default, set explicitly so it cannot drift).
     p = p.set_int_param("timing/clocktype", 2).map_err(|e| retcode("timing/clocktype", e))?;
-    if let Some(t) = o.time_limit {
+    // netspec handles Ctrl-C itself (first press: interrupt; second: exit).
+    p = p.set_bool_param("misc/catchctrlc", false).map_err(|e| retcode("misc/catchctrlc", e))?;
+    if let Some(t) = ctl.remaining() {
         p = real(p, "limits/time", t)?;
     }
     if let Some(g) = o.rel_gap {
@@ -142,7 +146,87 @@ fn apply_options(mut p: Problem, vars: &[Variable], o: &SolveOptions) -> Result<
         // An infeasible start is refused by SCIP's check and freed; the solve goes on without.
         let _accepted = p.add_sol(sol).is_ok();
     }
+    for param in o.params_for(KIND) {
+        set_raw_param(p.scip_ptr(), &param.name, &param.value)
+            .map_err(|reason| SolverError::new(KIND, SolverErrorKind::Param { name: format!("{KIND}.{}", param.name), reason }))?;
+    }
     Ok(p)
+}
+
+/// Sets one of SCIP's parameters by name, parsing the value by the parameter's type.
+fn set_raw_param(scip: *mut ffi::SCIP, name: &str, value: &str) -> Result<(), String> {
+    let c_name = CString::new(name).map_err(|_| "the name contains NUL".to_string())?;
+    // SAFETY: live SCIP instance, NUL-terminated name.
+    let param = unsafe { ffi::SCIPgetParam(scip, c_name.as_ptr()) };
+    if param.is_null() {
+        return Err("SCIP has no such parameter (names look like `limits/nodes`; see SCIP's parameter list)".into());
+    }
+    let bad = |what: &str| format!("SCIP parameter of type {what}: cannot use `{value}`");
+    // SAFETY (each call): live SCIP instance and parameter; NUL-terminated strings.
+    let rc = unsafe {
+        match ffi::SCIPparamGetType(param) {
+            ffi::SCIP_ParamType_SCIP_PARAMTYPE_BOOL => {
+                let v = match value.to_ascii_lowercase().as_str() {
+                    "true" | "on" | "1" => 1,
+                    "false" | "off" | "0" => 0,
+                    _ => return Err(bad("bool")),
+                };
+                ffi::SCIPsetBoolParam(scip, c_name.as_ptr(), v)
+            }
+            ffi::SCIP_ParamType_SCIP_PARAMTYPE_INT => ffi::SCIPsetIntParam(scip, c_name.as_ptr(), value.parse().map_err(|_| bad("int"))?),
+            ffi::SCIP_ParamType_SCIP_PARAMTYPE_LONGINT => {
+                ffi::SCIPsetLongintParam(scip, c_name.as_ptr(), value.parse().map_err(|_| bad("longint"))?)
+            }
+            ffi::SCIP_ParamType_SCIP_PARAMTYPE_REAL => ffi::SCIPsetRealParam(scip, c_name.as_ptr(), value.parse().map_err(|_| bad("real"))?),
+            ffi::SCIP_ParamType_SCIP_PARAMTYPE_CHAR => {
+                let mut chars = value.chars();
+                match (chars.next(), chars.next()) {
+                    (Some(c), None) if c.is_ascii() => ffi::SCIPsetCharParam(scip, c_name.as_ptr(), c as std::os::raw::c_char),
+                    _ => return Err(bad("char")),
+                }
+            }
+            _ => {
+                let v = CString::new(value).map_err(|_| "the value contains NUL".to_string())?;
+                ffi::SCIPsetStringParam(scip, c_name.as_ptr(), v.as_ptr())
+            }
+        }
+    };
+    match rc {
+        ffi::SCIP_Retcode_SCIP_OKAY => Ok(()),
+        ffi::SCIP_Retcode_SCIP_PARAMETERWRONGVAL => Err(format!("SCIP refused the value `{value}` (out of range or not allowed)")),
+        rc => Err(format!("SCIP returned {rc}")),
+    }
+}
+
+/// A SCIP instance the watchdog may interrupt from its own thread.
+struct Interruptible(*mut ffi::SCIP);
+
+// SAFETY: the watchdog only calls `SCIPinterruptSolve`, which sets SCIP's user-interrupt flag (a
+// plain flag SCIP polls, as its own Ctrl-C handler sets one from a signal context), and the
+// watchdog ends before the instance is freed (`with_watchdog` joins it).
+unsafe impl Sync for Interruptible {}
+
+// SCIP's synchronisation store (`scip/syncstore.h`, exported by the library but not in
+// russcip's bindings): the flag every solver of a concurrent solve polls.
+extern "C" {
+    fn SCIPsyncstoreIsInitialized(syncstore: *mut ffi::SCIP_SYNCSTORE) -> std::os::raw::c_uint;
+    fn SCIPsyncstoreSetSolveIsStopped(syncstore: *mut ffi::SCIP_SYNCSTORE, stopped: std::os::raw::c_uint);
+}
+
+impl Interruptible {
+    fn interrupt(&self) {
+        // SAFETY: see the `Sync` impl; outside SCIP's solving stages the call is refused with a
+        // return code, which is ignored (the solve is ending anyway). A concurrent solve
+        // (threads > 1) runs copies of the problem that do not look at this instance's flag but
+        // at the shared store's, which is set under the store's own lock once it exists.
+        unsafe {
+            let _ = ffi::SCIPinterruptSolve(self.0);
+            let store = ffi::SCIPgetSyncstore(self.0);
+            if !store.is_null() && SCIPsyncstoreIsInitialized(store) != 0 {
+                SCIPsyncstoreSetSolveIsStopped(store, 1);
+            }
+        }
+    }
 }
 
 /// Routes SCIP's log for one solve; closes the log file when dropped.
@@ -242,11 +326,13 @@ impl Solver for ScipSolver {
             reports_solver_time: true,
             reports_progress: false,
             lazy_constraints: true,
+            interrupt: true,
+            raw_params: true,
         }
     }
 
     fn solve(&self, model: &Model, o: &SolveOptions) -> Result<SolveResult, SolverError> {
-        self.run(model, o, None)
+        guarded_solve(self, model, o, |o, ctl| native(model, o, ctl, None))
     }
 
     /// Lazy rows through a constraint handler in SCIP's sequential solver (see
@@ -259,7 +345,7 @@ impl Solver for ScipSolver {
         }
         let name = sep.name().to_string();
         let mut handler = super::scip_lazy::Handler::new(sep, Vec::new());
-        let result = self.run(model, o, Some(&mut handler))?;
+        let result = guarded_solve(self, model, o, |o, ctl| native(model, o, ctl, Some(&mut handler)))?;
         if let Some(e) = handler.error.take() {
             return Err(rejected(format!("lazy-row handler: {e}")));
         }
@@ -277,59 +363,64 @@ impl Solver for ScipSolver {
     }
 }
 
-impl ScipSolver {
-    /// One solve, with a lazy-row handler installed when given.
-    fn run(&self, model: &Model, o: &SolveOptions, handler: Option<&mut super::scip_lazy::Handler<'_>>) -> Result<SolveResult, SolverError> {
-        let t0 = Instant::now();
-        preflight(KIND, &self.capabilities(), model, o)?;
-        let (p, vars) = load(model)?;
-        if let Some(h) = handler {
-            h.set_vars(vars.iter().map(|v| v.inner()).collect());
-            // SAFETY: the handler outlives this call, and with it the SCIP instance (dropped
-            // before `run` returns); `p` is a live instance in the problem stage.
-            unsafe { super::scip_lazy::install(p.scip_ptr(), h) }.map_err(rejected)?;
-        }
-        let p = apply_options(p, &vars, o)?;
-        let (p, log) = LogGuard::new(p, &o.log)?;
-        let solved = match o.threads {
+/// The solve itself, after netspec's common checks (`guarded_solve`), with a lazy-row handler
+/// installed when given.
+fn native(model: &Model, o: &SolveOptions, ctl: &StopControl, handler: Option<&mut super::scip_lazy::Handler<'_>>) -> Result<SolveResult, SolverError> {
+    let (p, vars) = load(model)?;
+    if let Some(h) = handler {
+        h.set_vars(vars.iter().map(|v| v.inner()).collect());
+        // SAFETY: the handler outlives this call, and with it the SCIP instance (dropped before
+        // `native` returns); `p` is a live instance in the problem stage.
+        unsafe { super::scip_lazy::install(p.scip_ptr(), h) }.map_err(rejected)?;
+    }
+    let p = apply_options(p, &vars, o, ctl)?;
+    let (p, log) = LogGuard::new(p, &o.log)?;
+    let scip = Interruptible(p.scip_ptr());
+    let solved = with_watchdog(
+        ctl,
+        || scip.interrupt(),
+        || match o.threads {
             Some(t) if t > 1 => p
                 .set_int_param("parallel/maxnthreads", t.min(i32::MAX as u32) as i32)
-                .map_err(|e| retcode("parallel/maxnthreads", e))?
-                .try_solve_concurrent(),
-            _ => p.try_solve(),
-        };
-        let solved = match solved {
-            Ok(s) => s,
-            Err(e) => {
-                drop(log);
-                let mut r = SolveResult::empty(KIND, self.version(), Termination::Error(format!("SCIPsolve returned {e:?}")));
-                r.wall_time = t0.elapsed().as_secs_f64();
-                return Ok(r);
-            }
-        };
-        drop(log);
-        let ptr = solved.scip_ptr();
-        // SAFETY: live SCIP instance after SCIPsolve.
-        let status = unsafe { ffi::SCIPgetStatus(ptr) };
-        let mut r = SolveResult::empty(KIND, self.version(), termination(status));
-        if let Some(sol) = solved.best_sol() {
-            r.primal = Some(vars.iter().map(|v| sol.val(v)).collect());
-            r.objective = Some(sol.obj_val());
+                .map_err(|e| retcode("parallel/maxnthreads", e))
+                .map(|p| p.try_solve_concurrent()),
+            _ => Ok(p.try_solve()),
+        },
+    )?;
+    let version = scip_version();
+    let solved = match solved {
+        Ok(s) => s,
+        Err(e) => {
+            drop(log);
+            return Ok(SolveResult::empty(KIND, version, Termination::Error(format!("SCIPsolve returned {e:?}"))));
         }
-        if has_statistics(ptr) {
-            // SAFETY: live SCIP instance in a stage where these statistics exist.
-            let (bound, inf, nodes) = unsafe { (ffi::SCIPgetDualbound(ptr), ffi::SCIPinfinity(ptr), ffi::SCIPgetNTotalNodes(ptr)) };
-            let meaningful = !matches!(r.termination, Termination::Infeasible | Termination::Unbounded | Termination::InfeasibleOrUnbounded);
-            r.dual_bound = (meaningful && bound.abs() < inf).then_some(bound);
-            r.nodes = Some(nodes.max(0) as u64);
-        }
-        r.solver_time = Some(solved.solving_time());
-        r.finish(model.sense, o.rel_gap.is_some() || o.abs_gap.is_some());
-        drop(vars);
-        drop(solved);
-        r.wall_time = t0.elapsed().as_secs_f64();
-        Ok(r)
+    };
+    drop(log);
+    let ptr = solved.scip_ptr();
+    // SAFETY: live SCIP instance after SCIPsolve.
+    let status = unsafe { ffi::SCIPgetStatus(ptr) };
+    let mut termination = termination(status);
+    if status == ffi::SCIP_Status_SCIP_STATUS_UNKNOWN && ctl.reason().is_some() {
+        // A concurrent solve stopped through the shared store leaves the status unknown.
+        termination = Termination::Limit(LimitKind::Interrupt);
     }
+    let mut r = SolveResult::empty(KIND, version, termination);
+    if let Some(sol) = solved.best_sol() {
+        r.primal = Some(vars.iter().map(|v| sol.val(v)).collect());
+        r.objective = Some(sol.obj_val());
+    }
+    if has_statistics(ptr) {
+        // SAFETY: live SCIP instance in a stage where these statistics exist.
+        let (bound, inf, nodes) = unsafe { (ffi::SCIPgetDualbound(ptr), ffi::SCIPinfinity(ptr), ffi::SCIPgetNTotalNodes(ptr)) };
+        let meaningful = !matches!(r.termination, Termination::Infeasible | Termination::Unbounded | Termination::InfeasibleOrUnbounded);
+        r.dual_bound = (meaningful && bound.abs() < inf).then_some(bound);
+        r.nodes = Some(nodes.max(0) as u64);
+    }
+    r.solver_time = Some(solved.solving_time());
+    r.finish(model.sense);
+    drop(vars);
+    drop(solved);
+    Ok(r)
 }
 
 /// Reads a model file with SCIP's own readers (chosen by the file's extension: `.mps`, `.lp`,
@@ -353,6 +444,19 @@ pub fn solve_file_with_native_reader(path: &Path) -> Result<(Termination, Option
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn raw_params_are_typed_and_checked() {
+        let m = new_scip().unwrap();
+        let p = m.scip_ptr();
+        set_raw_param(p, "limits/nodes", "100").unwrap();
+        set_raw_param(p, "limits/gap", "0.01").unwrap();
+        set_raw_param(p, "misc/catchctrlc", "false").unwrap();
+        set_raw_param(p, "lp/initalgorithm", "d").unwrap();
+        assert!(set_raw_param(p, "limits/no_such", "1").unwrap_err().contains("no such parameter"));
+        assert!(set_raw_param(p, "limits/nodes", "many").unwrap_err().contains("longint"));
+        assert!(set_raw_param(p, "limits/gap", "-1").unwrap_err().contains("refused"));
+    }
 
     #[test]
     fn version_is_ten() {

@@ -412,8 +412,8 @@ impl Spec {
         }
 
         // Switches.
-        if !(self.coverage.range >= 1.0) {
-            return Err(field("coverage.range", format!("must be at least 1, got {}", self.coverage.range)));
+        if !(self.coverage.range >= 1.0 && self.coverage.range.is_finite()) {
+            return Err(field("coverage.range", format!("must be a finite number of at least 1, got {}", self.coverage.range)));
         }
         let w = &self.weights;
         let p2p = match &self.point_to_point {

@@ -6,7 +6,7 @@ use super::planar::{self, Region};
 use super::spec::{CitySpec, CitySpecErrorKind, LevelSpec};
 use crate::mesh::{self, Mesh};
 use crate::pipeline::{self, DesignResult};
-use crate::solvers::{ProgressSink, SolveOptions, SolverKind};
+use crate::solvers::{Interrupt, ProgressSink, SolveOptions, SolverKind};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -64,6 +64,9 @@ pub struct CityRunOptions {
     pub resume: bool,
     /// Receives events as the run goes (from worker threads).
     pub observer: Option<CityObserver>,
+    /// A request to stop (Ctrl-C): running levels stop and keep their best network, levels
+    /// not yet started are skipped; finished levels stay on disk for a rerun to reuse.
+    pub interrupt: Option<Interrupt>,
 }
 
 /// A receiver of [`CityEvent`]s, called from the worker threads.
@@ -81,6 +84,7 @@ impl CityRunOptions {
             seed: spec.solver.seed,
             resume: true,
             observer: None,
+            interrupt: None,
         })
     }
 }
@@ -170,6 +174,49 @@ impl LevelOutcome {
     pub fn has_network(&self) -> bool {
         self.state == "solved" || self.state == "reused"
     }
+
+    /// Whether the solver proved this level's network optimal.
+    pub fn proven_optimal(&self) -> bool {
+        self.has_network() && self.termination.as_deref() == Some("optimal")
+    }
+
+    /// The level in words that say apart why the solver stopped and whether there is a
+    /// network: `optimal`, `limit(time), network found (gap 100 %)`, `limit(time), no network`,
+    /// `reused: optimal`, `error: …`, `skipped: …`.
+    pub fn verdict(&self) -> String {
+        let stopped = self.termination.clone().unwrap_or_default();
+        let found = |s: &str| match self.gap {
+            _ if s == "optimal" => "optimal".to_string(),
+            Some(g) => format!("{s}, network found (gap {})", crate::solvers::percent(g)),
+            None => format!("{s}, network found"),
+        };
+        match self.state.as_str() {
+            "solved" => found(&stopped),
+            "reused" => format!("reused: {}", found(&stopped)),
+            "no_network" => format!("{stopped}, no network"),
+            other => format!("{other}: {}", self.message.clone().unwrap_or_default()),
+        }
+    }
+}
+
+/// One line over every level of every region: how many have a network, how many of those are
+/// proven optimal, and how far from it the others stopped: `3/3 levels with a network (1 proven
+/// optimal; 2 stopped early, gap up to 100 %)`.
+pub fn levels_summary(regions: &[RegionOutcome]) -> String {
+    let levels: Vec<&LevelOutcome> = regions.iter().flat_map(|r| &r.levels).collect();
+    let with = levels.iter().filter(|l| l.has_network()).count();
+    let optimal = levels.iter().filter(|l| l.proven_optimal()).count();
+    let early: Vec<&&LevelOutcome> = levels.iter().filter(|l| l.has_network() && !l.proven_optimal()).collect();
+    let mut s = format!("{with}/{} levels with a network ({optimal} proven optimal", levels.len());
+    if !early.is_empty() {
+        let worst = early.iter().filter_map(|l| l.gap).fold(None, |m: Option<f64>, g| Some(m.map_or(g, |m| m.max(g))));
+        s.push_str(&format!("; {} stopped early", early.len()));
+        if let Some(g) = worst {
+            s.push_str(&format!(", gap up to {}", crate::solvers::percent(g)));
+        }
+    }
+    s.push(')');
+    s
 }
 
 /// A region's roads after its last successful level: the mesh and each edge's level
@@ -339,6 +386,9 @@ fn run_region(
     let mut roads = RegionRoads::boundary_only(mesh0);
     let mut blocked: Option<String> = None;
     for &n in &levels {
+        if blocked.is_none() && opts.interrupt.as_ref().is_some_and(|i| i.is_triggered()) {
+            blocked = Some("interrupted".into());
+        }
         if let Some(why) = &blocked {
             let o = LevelOutcome::bare(n, "skipped", why.clone());
             emit(CityEvent::LevelDone { region: index, outcome: o.clone() });
@@ -352,6 +402,9 @@ fn run_region(
             roads = r;
         } else {
             blocked = Some(format!("level {n} ended without a network ({})", o.termination.clone().or(o.message.clone()).unwrap_or_default()));
+        }
+        if o.termination.as_deref() == Some("interrupted") {
+            blocked = Some("interrupted".into());
         }
         outcome.levels.push(o);
     }
@@ -436,6 +489,7 @@ fn run_level(
     };
     let nm = pipeline::build(&problem);
     let mut solve_opts = solve_opts;
+    solve_opts.interrupt = opts.interrupt.clone();
     if opts.observer.is_some() && opts.solver.instance().is_ok_and(|s| s.capabilities().reports_progress) {
         let observer = opts.observer.clone().expect("checked");
         solve_opts.progress = Some(ProgressSink(Arc::new(move |progress| observer(&CityEvent::LevelProgress { region, level: n, progress }))));
@@ -476,6 +530,10 @@ fn run_level(
     });
     let result_path = ldir.join("result.json");
     write_atomic(&result_path, &(serde_json::to_string_pretty(&res).expect("results serialise") + "\n"))?;
+    if res.solve.termination == crate::solvers::Termination::Limit(crate::solvers::LimitKind::Interrupt) {
+        // Not finished: no state, so a rerun solves it again; the levels after it are skipped.
+        return Ok((o, next));
+    }
     let state = LevelState { fingerprint, outcome: o.clone(), roads: next.clone() };
     write_atomic(&state_path, &serde_json::to_string(&state).expect("states serialise"))?;
     Ok((o, next))

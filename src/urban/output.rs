@@ -317,15 +317,14 @@ pub fn city_svg(spec: &CitySpec, result: &CityResult, major: &[[[f64; 2]; 2]], s
     let _ = writeln!(s, r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w:.0}" height="{h:.0}" viewBox="0 0 {w:.1} {h:.1}" font-family="DejaVu Sans, sans-serif">"#);
     let _ = writeln!(s, r#"<rect width="100%" height="100%" fill="white"/>"#);
     let m = &result.metrics;
-    let solved = result.regions.iter().flat_map(|r| &r.levels).filter(|l| l.has_network()).count();
-    let total = result.regions.iter().map(|r| r.levels.len()).sum::<usize>();
     let _ = writeln!(
         s,
-        r#"<text x="{margin}" y="22" font-size="15" font-weight="bold">{} — {} sub-regions, {solved}/{total} levels with a network ({}){}</text>"#,
+        r#"<text x="{margin}" y="22" font-size="15" font-weight="bold">{} — {} sub-regions, {}, {}{}</text>"#,
         xml(&spec.name),
         result.regions.len(),
+        xml(&super::city::levels_summary(&result.regions)),
         result.solver,
-        if result.valid { ", all valid" } else { ", NOT ALL VALID" }
+        if result.valid { "; every network valid" } else { "; NOT EVERY NETWORK VALID" }
     );
     let _ = writeln!(
         s,

@@ -138,6 +138,17 @@ fn assert_termination_in(kind: SolverKind, model: &Model, allowed: &[Termination
     }
 }
 
+/// An empty row whose side excludes 0 is infeasible on every backend, and the result names the
+/// row (netspec proves it before the backend is called).
+pub fn empty_row_is_infeasible(kind: SolverKind) {
+    for model in [models::empty_row_no_columns(), models::empty_row_with_columns()] {
+        assert_termination_in(kind, &model, &[Termination::Infeasible]);
+        let r = solve(kind, &model, &SolveOptions::default());
+        let why = r.infeasibility.unwrap_or_else(|| panic!("{kind} on {}: no reason given", model.name));
+        assert!(why.to_string().starts_with("row `"), "{kind}: {why}");
+    }
+}
+
 pub fn infeasible_lp(kind: SolverKind) {
     assert_termination_in(kind, &models::infeasible_lp(), &[Termination::Infeasible]);
 }
@@ -400,7 +411,7 @@ macro_rules! conformance_suite {
         mod $module {
             conformance_suite!(@cases $kind;
                 lp_max, lp_free_vars, lp_ranged_eq, lp_with_constant, ranged_and_free_rows, knapsack,
-                general_integer, max_with_constant, empty_model, infeasible_lp, infeasible_mip,
+                general_integer, max_with_constant, empty_model, empty_row_is_infeasible, infeasible_lp, infeasible_mip,
                 unbounded_lp, unbounded_mip, infeasible_or_unbounded, time_limit_stops_hard_model,
                 time_limit_zero, mip_start_is_used, mip_start_is_only_a_start, nan_mip_start_is_refused,
                 gap_limit_stops_early, node_limit, two_threads, invalid_model_is_an_error,

@@ -374,3 +374,18 @@ impl netspec::solvers::Separator for SubtourSeparator {
         self.edges.iter().map(|&(_, _, v)| (v, netspec::solvers::Lock::Down)).collect()
     }
 }
+
+/// A row without coefficients that must be ≥ 1 (issue 13: HiGHS called it optimal): no columns
+/// at all, as in `c: >= 1` in an LP file.
+pub fn empty_row_no_columns() -> Model {
+    let mut m = Model::new("empty_row_no_columns");
+    m.add_ge("c", [], 1.0);
+    m
+}
+
+/// The same empty row beside an ordinary MIP.
+pub fn empty_row_with_columns() -> Model {
+    let mut m = knapsack();
+    m.add_ge("empty", [], 1.0);
+    m
+}
