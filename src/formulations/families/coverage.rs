@@ -66,9 +66,6 @@ pub fn coverage(c: &mut Ctx) {
     let mesh = &p.mesh;
     let strong = c.recipe.coverage == CoverageForm::Strong;
     let girth = girth(p);
-    let depth = sink_depths(p);
-    // The deepest level set `{u : depth(u) ≥ k}` that still holds a whole sink-free ball.
-    let mut deepest_ball = 0usize;
     let mut in_ball = vec![false; mesh.num_vertices()];
     for v in mesh.vertices() {
         if p.is_obstacle_vertex[v.index()] {
@@ -104,16 +101,6 @@ pub fn coverage(c: &mut Ctx) {
         c.em.ge(format!("covedge_{}", vname(v)), &edges, need);
         if !sink_in_ball {
             ball_cut(c, &format!("covball_{}", vname(v)), &cover, girth);
-            deepest_ball = deepest_ball.max(cover.iter().map(|u| depth[u.index()]).min().unwrap_or(0));
-        }
-    }
-    // Level sets: every set holding a sink-free ball and no sink gets the same row; the sets of
-    // vertices at least `k` edges from every sink are a nested family that forces the network
-    // to cross each depth level twice (or close a cycle beyond it).
-    if strong {
-        for k in 1..=deepest_ball {
-            let level: Vec<crate::mesh::VertexId> = mesh.vertices().filter(|u| depth[u.index()] >= k).collect();
-            ball_cut(c, &format!("covlevel_{k}"), &level, girth);
         }
     }
 }
@@ -146,27 +133,6 @@ fn ball_cut(c: &mut Ctx, name: &str, cover: &[crate::mesh::VertexId], girth: f64
         }
     }
     c.em.ge(name.to_string(), &ex, if forbid { 2.0 } else { 1.0 });
-}
-
-/// Hops from every vertex to the nearest sink over the whole mesh graph (`usize::MAX` when no
-/// sink is reachable).
-fn sink_depths(p: &crate::spec::Problem) -> Vec<usize> {
-    let mesh = &p.mesh;
-    let mut d = vec![usize::MAX; mesh.num_vertices()];
-    let mut q = std::collections::VecDeque::new();
-    for v in mesh.vertices().filter(|v| p.is_sink[v.index()]) {
-        d[v.index()] = 0;
-        q.push_back(v);
-    }
-    while let Some(v) = q.pop_front() {
-        for w in mesh.neighbors(v) {
-            if d[w.index()] == usize::MAX {
-                d[w.index()] = d[v.index()] + 1;
-                q.push_back(w);
-            }
-        }
-    }
-    d
 }
 
 /// The shortest cycle a design can hold, as far as the ball cuts need.
