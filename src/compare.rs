@@ -4,6 +4,7 @@
 //! resumes where it stopped. Tables (Markdown, CSV) and a per-backend summary follow.
 
 use crate::pipeline::DesignResult;
+use crate::render::{self, chart::{Bar, BarChart, BarGroup, ProfileSeries}};
 use serde::{Deserialize, Serialize};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -398,72 +399,18 @@ pub fn csv(records: &[RunRecord]) -> String {
     s
 }
 
-/// A performance profile as SVG: for each backend, the fraction of runs solved (optimal and
-/// valid, or infeasible) within time t, for t from 0 to the limit (log scale from 0.01 s).
+/// A performance profile as SVG ([`render::chart::performance_profile_svg`]): for each backend,
+/// the fraction of runs solved (optimal and valid, or infeasible) within time t, for t from 0 to
+/// the limit (log scale from 0.01 s).
 pub fn performance_profile_svg(records: &[RunRecord], solvers: &[String], limit: f64) -> String {
-    let (w, h, left, bottom, top, right) = (640.0, 400.0, 60.0, 50.0, 30.0, 130.0);
-    let (pw, ph) = (w - left - right, h - top - bottom);
-    let t0 = 0.01f64;
-    let limit = limit.max(t0 * 10.0);
-    let x = |t: f64| left + pw * ((t.max(t0) / t0).ln() / (limit / t0).ln()).clamp(0.0, 1.0);
-    let y = |f: f64| top + ph * (1.0 - f);
-    let mut s = format!(r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" font-family="DejaVu Sans, sans-serif" font-size="11">"#);
-    s.push_str("\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n");
-    let _ = writeln!(s, r##"<text x="{left}" y="18" font-size="13" font-weight="bold">Performance profile: fraction solved within time</text>"##);
-    let _ = writeln!(s, r##"<rect x="{left}" y="{top}" width="{pw}" height="{ph}" fill="none" stroke="#888"/>"##);
-    let mut tick = t0;
-    while tick <= limit * 1.0001 {
-        let _ = writeln!(s, r##"<line x1="{0:.1}" y1="{top}" x2="{0:.1}" y2="{1:.1}" stroke="#eee"/><text x="{0:.1}" y="{2:.1}" text-anchor="middle">{3}</text>"##, x(tick), top + ph, top + ph + 16.0, tick);
-        tick *= 10.0;
-    }
-    for k in 0..=4 {
-        let f = k as f64 / 4.0;
-        let _ = writeln!(s, r##"<text x="{:.1}" y="{:.1}" text-anchor="end">{:.0}%</text>"##, left - 6.0, y(f) + 4.0, f * 100.0);
-    }
-    let _ = writeln!(s, r##"<text x="{:.1}" y="{:.1}" text-anchor="middle">time (s, log scale; limit {limit} s)</text>"##, left + pw / 2.0, h - 10.0);
-    for (i, b) in solvers.iter().enumerate() {
-        let mine: Vec<&RunRecord> = records.iter().filter(|r| &r.solver == b).collect();
-        if mine.is_empty() {
-            continue;
-        }
-        let mut times: Vec<f64> = mine.iter().filter(|r| solved(r)).map(|r| r.wall_time).collect();
-        times.sort_by(f64::total_cmp);
-        let n = mine.len() as f64;
-        let mut pts = vec![format!("{:.1},{:.1}", x(t0), y(0.0))];
-        for (k, t) in times.iter().enumerate() {
-            pts.push(format!("{:.1},{:.1}", x(*t), y(k as f64 / n)));
-            pts.push(format!("{:.1},{:.1}", x(*t), y((k + 1) as f64 / n)));
-        }
-        pts.push(format!("{:.1},{:.1}", x(limit), y(times.len() as f64 / n)));
-        let c = solver_color(i);
-        let _ = writeln!(s, r#"<polyline class="profile" data-solver="{b}" points="{}" fill="none" stroke="{c}" stroke-width="2"/>"#, pts.join(" "));
-        let ly = top + 14.0 + i as f64 * 18.0;
-        let _ = writeln!(s, r#"<line x1="{:.1}" y1="{ly:.1}" x2="{:.1}" y2="{ly:.1}" stroke="{c}" stroke-width="3"/><text x="{:.1}" y="{:.1}">{b}</text>"#, w - right + 10.0, w - right + 30.0, w - right + 36.0, ly + 4.0);
-    }
-    s.push_str("</svg>\n");
-    s
-}
-
-/// The colour of the `i`-th backend (in the order of the `solvers` list) in every figure.
-fn solver_color(i: usize) -> &'static str {
-    const COLORS: [&str; 6] = ["#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b"];
-    COLORS[i % COLORS.len()]
-}
-
-/// Escapes text for an SVG attribute or text node.
-fn xml_escape(s: &str) -> String {
-    let mut out = String::with_capacity(s.len());
-    for c in s.chars() {
-        match c {
-            '&' => out.push_str("&amp;"),
-            '<' => out.push_str("&lt;"),
-            '>' => out.push_str("&gt;"),
-            '"' => out.push_str("&quot;"),
-            '\'' => out.push_str("&apos;"),
-            c => out.push(c),
-        }
-    }
-    out
+    let series: Vec<ProfileSeries> = solvers
+        .iter()
+        .map(|b| {
+            let mine: Vec<&RunRecord> = records.iter().filter(|r| &r.solver == b).collect();
+            ProfileSeries { name: b.clone(), solved_times: mine.iter().filter(|r| solved(r)).map(|r| r.wall_time).collect(), runs: mine.len() }
+        })
+        .collect();
+    render::chart::performance_profile_svg(&series, limit)
 }
 
 /// The paper's time for a row, in seconds, when it is a single number (`"132"`); `None` for
@@ -493,15 +440,6 @@ fn run_label(r: &RunRecord) -> Option<String> {
     })
 }
 
-/// `10^k` as text without round-off (`0.001`, `1`, `1000`).
-fn pow10_label(k: i32) -> String {
-    if k >= 0 {
-        format!("1{}", "0".repeat(k as usize))
-    } else {
-        format!("0.{}1", "0".repeat((-k - 1) as usize))
-    }
-}
-
 /// A grouped bar chart as SVG: one group per manifest row that has a spec (`<g class="instance"
 /// data-instance=…>`), one bar per backend in each (`<rect class="bar" data-instance=…
 /// data-solver=… data-status=…>`), coloured as in [`performance_profile_svg`]. A bar's height is
@@ -512,198 +450,40 @@ fn pow10_label(k: i32) -> String {
 /// paper's Gurobi time, where the manifest gives one number, a diamond. Rows without a spec are
 /// listed under the chart. The output depends only on the arguments.
 pub fn bar_chart_svg(manifest: &Manifest, records: &[RunRecord], solvers: &[String], limit: f64) -> String {
-    let rows: Vec<&ManifestRow> = manifest.row.iter().filter(|r| r.spec.is_some()).collect();
-    let limit = if limit.is_finite() && limit > 0.0 { limit } else { 1.0 };
-    let runs_of = |instance: &str, solver: &str| -> Vec<&RunRecord> {
-        records.iter().filter(|r| r.instance == instance && r.solver == solver).collect()
-    };
-    // The axis: whole decades around every time shown (bars, limit, paper).
-    let shown = records
+    let groups = manifest
+        .row
         .iter()
-        .filter(|r| rows.iter().any(|row| row.name == r.instance) && solvers.contains(&r.solver))
-        .map(bar_time)
-        .chain(rows.iter().filter_map(|row| paper_seconds(&row.paper)))
-        .chain(std::iter::once(limit));
-    let (tmin, tmax) = shown.fold((f64::INFINITY, 0.0f64), |(lo, hi), t| (if t > 0.0 { lo.min(t) } else { lo }, hi.max(t)));
-    let lo_exp = tmin.max(1e-3).log10().floor() as i32;
-    let hi_exp = (tmax.log10().ceil() as i32).max(lo_exp + 1);
-    let (lo, hi) = (10f64.powi(lo_exp), 10f64.powi(hi_exp));
-
-    let ns = solvers.len().max(1) as f64;
-    let bar_w = 12.0;
-    let group_w = ns * bar_w + 14.0;
-    let (left, right, top, bottom, ph) = (60.0, 190.0, 40.0, 90.0, 300.0);
-    let pw = (rows.len() as f64 * group_w).max(200.0);
-    let (w, h) = (left + pw + right, top + ph + bottom);
-    let y = |t: f64| top + ph * (1.0 - (t.clamp(lo, hi).log10() - lo_exp as f64) / (hi_exp - lo_exp) as f64);
-    let base = top + ph;
-
-    let mut s = format!(r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w:.0}" height="{h:.0}" font-family="DejaVu Sans, sans-serif" font-size="11">"#);
-    s.push_str("\n<defs>\n");
-    for i in 0..solvers.len() {
-        let c = solver_color(i);
-        let _ = writeln!(
-            s,
-            r#"<pattern id="hatch-{i}" width="6" height="6" patternUnits="userSpaceOnUse" patternTransform="rotate(45)"><rect width="6" height="6" fill="{c}" fill-opacity="0.2"/><line x1="1.5" y1="0" x2="1.5" y2="6" stroke="{c}" stroke-width="2"/></pattern>"#
-        );
-    }
-    s.push_str("</defs>\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n");
-    let _ = writeln!(s, r##"<text x="{left}" y="20" font-size="13" font-weight="bold">Solver time per instance and backend</text>"##);
-    let _ = writeln!(s, r##"<rect x="{left}" y="{top}" width="{pw:.1}" height="{ph}" fill="none" stroke="#888"/>"##);
-    for k in lo_exp..=hi_exp {
-        let ty = y(10f64.powi(k));
-        let _ = writeln!(
-            s,
-            r##"<line x1="{left}" y1="{ty:.1}" x2="{:.1}" y2="{ty:.1}" stroke="#eee"/><text x="{:.1}" y="{:.1}" text-anchor="end">{}</text>"##,
-            left + pw,
-            left - 6.0,
-            ty + 4.0,
-            pow10_label(k)
-        );
-    }
-    let _ = writeln!(
-        s,
-        r##"<text transform="translate(16 {:.1}) rotate(-90)" text-anchor="middle">solver time (s, log scale)</text>"##,
-        top + ph / 2.0
-    );
-
-    for (g, row) in rows.iter().enumerate() {
-        let name = xml_escape(&row.name);
-        let gx = left + g as f64 * group_w + 7.0;
-        let _ = writeln!(s, r#"<g class="instance" data-instance="{name}">"#);
-        for (i, b) in solvers.iter().enumerate() {
-            let runs = runs_of(&row.name, b);
-            if runs.is_empty() {
-                continue;
-            }
-            let c = solver_color(i);
-            let x0 = gx + i as f64 * bar_w;
-            let mut times: Vec<f64> = runs.iter().map(|r| bar_time(r)).collect();
-            times.sort_by(f64::total_cmp);
-            let t = times[(times.len() - 1) / 2];
-            let all_solved = runs.iter().all(|r| solved(r));
-            // The run that explains the bar: the first not solved, else the first.
-            let shown = runs.iter().find(|r| !solved(r)).unwrap_or(&runs[0]);
-            let failed = shown.status == "failed" && !shown.killed;
-            let top_y = y(t).min(base - 1.0);
-            let fill = if all_solved {
-                format!(r#"fill="{c}""#)
-            } else if failed {
-                format!(r#"fill="none" stroke="{c}" stroke-dasharray="3 2""#)
-            } else {
-                format!(r#"fill="url(#hatch-{i})" stroke="{c}" stroke-width="0.8""#)
-            };
-            let status = if shown.killed { "killed" } else { shown.status.as_str() };
-            let _ = writeln!(
-                s,
-                r#"<rect class="bar" data-instance="{name}" data-solver="{b}" data-status="{status}" data-solved="{all_solved}" data-time="{t}" x="{:.1}" y="{top_y:.1}" width="{:.1}" height="{:.1}" {fill}><title>{name} / {b}: {} in {t:.3} s</title></rect>"#,
-                x0 + 1.0,
-                bar_w - 2.0,
-                base - top_y,
-                xml_escape(&shown.status),
-            );
-            if times.len() > 1 {
-                let cx = x0 + bar_w / 2.0;
-                let _ = writeln!(
-                    s,
-                    r##"<line class="whisker" x1="{cx:.1}" y1="{:.1}" x2="{cx:.1}" y2="{:.1}" stroke="#333"/>"##,
-                    y(times[0]),
-                    y(times[times.len() - 1])
-                );
-            }
-            if shown.killed {
-                let (cx, cy) = (x0 + bar_w / 2.0, top_y - 5.0);
-                let _ = writeln!(
-                    s,
-                    r##"<path class="killed" d="M{:.1} {:.1}L{:.1} {:.1}M{:.1} {:.1}L{:.1} {:.1}" stroke="#c00" stroke-width="2"/>"##,
-                    cx - 3.5,
-                    cy - 3.5,
-                    cx + 3.5,
-                    cy + 3.5,
-                    cx - 3.5,
-                    cy + 3.5,
-                    cx + 3.5,
-                    cy - 3.5
-                );
-            }
-            let unsolved = runs.iter().filter(|r| !solved(r)).count();
-            let label = run_label(shown).map(|l| if runs.len() > 1 && unsolved > 0 { format!("{unsolved}/{} {l}", runs.len()) } else { l });
-            if let Some(l) = label {
-                let _ = writeln!(
-                    s,
-                    r#"<text class="label" transform="translate({:.1} {:.1}) rotate(-90)" font-size="9" paint-order="stroke" stroke="white" stroke-width="2.5">{}</text>"#,
-                    x0 + bar_w / 2.0 + 3.0,
-                    base - 4.0,
-                    xml_escape(&l)
-                );
-            }
-        }
-        if let Some(p) = paper_seconds(&row.paper) {
-            let (cx, cy, hw) = (gx + ns * bar_w / 2.0, y(p), ns * bar_w / 2.0);
-            let _ = writeln!(
-                s,
-                r##"<g class="paper" data-instance="{name}" data-time="{p}"><line x1="{:.1}" y1="{cy:.1}" x2="{:.1}" y2="{cy:.1}" stroke="#000" stroke-width="1"/><path d="M{cx:.1} {:.1}L{:.1} {cy:.1}L{cx:.1} {:.1}L{:.1} {cy:.1}Z" fill="#000"/></g>"##,
-                cx - hw,
-                cx + hw,
-                cy - 4.5,
-                cx + 4.5,
-                cy + 4.5,
-                cx - 4.5
-            );
-        }
-        let _ = writeln!(
-            s,
-            r#"<text transform="translate({:.1} {:.1}) rotate(-40)" text-anchor="end">{name}</text>"#,
-            gx + ns * bar_w / 2.0 + 3.0,
-            base + 14.0
-        );
-        s.push_str("</g>\n");
-    }
-
-    let ly = y(limit);
-    let _ = writeln!(
-        s,
-        r##"<line class="limit" x1="{left}" y1="{ly:.1}" x2="{:.1}" y2="{ly:.1}" stroke="#000" stroke-dasharray="6 4"/><text x="{:.1}" y="{:.1}" text-anchor="end" paint-order="stroke" stroke="white" stroke-width="3">limit {limit} s</text>"##,
-        left + pw,
-        left + pw - 4.0,
-        ly - 4.0
-    );
-
-    // Legend.
-    let lx = left + pw + 14.0;
-    let mut row_y = top + 24.0;
-    for (i, b) in solvers.iter().enumerate() {
-        let _ = writeln!(
-            s,
-            r#"<rect x="{lx:.1}" y="{:.1}" width="12" height="10" fill="{}"/><text x="{:.1}" y="{row_y:.1}">{b}</text>"#,
-            row_y - 9.0,
-            solver_color(i),
-            lx + 18.0
-        );
-        row_y += 16.0;
-    }
-    row_y += 6.0;
-    let legend = [
-        (r##"<rect x="{X}" y="{Y}" width="12" height="10" fill="url(#hatch-0)" stroke="#1f77b4" stroke-width="0.8"/>"##, "not solved (status, gap)"),
-        (r##"<rect x="{X}" y="{Y}" width="12" height="10" fill="none" stroke="#1f77b4" stroke-dasharray="3 2"/>"##, "failed"),
-        (r##"<path d="M{X} {Y}l10 10m-10 0l10 -10" stroke="#c00" stroke-width="2"/>"##, "killed at limit + grace"),
-        (r##"<line x1="{X}" y1="{YM}" x2="{X12}" y2="{YM}" stroke="#000" stroke-dasharray="6 4"/>"##, "time limit"),
-        (r##"<path d="M{X6} {Y}l5 5l-5 5l-5 -5z" fill="#000"/>"##, "paper (Gurobi 2014)"),
-    ];
-    for (shape, text) in legend {
-        let shape = shape
-            .replace("{X12}", &format!("{:.1}", lx + 12.0))
-            .replace("{X6}", &format!("{:.1}", lx + 6.0))
-            .replace("{X}", &format!("{lx:.1}"))
-            .replace("{YM}", &format!("{:.1}", row_y - 4.0))
-            .replace("{Y}", &format!("{:.1}", row_y - 9.0));
-        let _ = writeln!(s, r#"{shape}<text x="{:.1}" y="{row_y:.1}">{text}</text>"#, lx + 18.0);
-        row_y += 16.0;
-    }
-    let missing: Vec<String> = manifest.row.iter().filter(|r| r.spec.is_none()).map(|r| xml_escape(&r.name)).collect();
-    if !missing.is_empty() {
-        let _ = writeln!(s, r#"<text x="{left}" y="{:.1}">Not shown (no spec yet): {}</text>"#, h - 8.0, missing.join(", "));
-    }
-    s.push_str("</svg>\n");
-    s
+        .filter(|r| r.spec.is_some())
+        .map(|row| BarGroup {
+            name: row.name.clone(),
+            bars: solvers
+                .iter()
+                .map(|b| {
+                    let runs: Vec<&RunRecord> = records.iter().filter(|r| r.instance == row.name && &r.solver == b).collect();
+                    if runs.is_empty() {
+                        return None;
+                    }
+                    // The run that explains the bar: the first not solved, else the first.
+                    let shown = runs.iter().find(|r| !solved(r)).unwrap_or(&runs[0]);
+                    let unsolved = runs.iter().filter(|r| !solved(r)).count();
+                    Some(Bar {
+                        times: runs.iter().map(|r| bar_time(r)).collect(),
+                        solved: unsolved == 0,
+                        status: if shown.killed { "killed".into() } else { shown.status.clone() },
+                        killed: shown.killed,
+                        failed: shown.status == "failed" && !shown.killed,
+                        label: run_label(shown).map(|l| if runs.len() > 1 && unsolved > 0 { format!("{unsolved}/{} {l}", runs.len()) } else { l }),
+                    })
+                })
+                .collect(),
+            reference: paper_seconds(&row.paper),
+        })
+        .collect();
+    render::chart::bar_chart_svg(&BarChart {
+        series: solvers.to_vec(),
+        groups,
+        limit,
+        reference_label: "paper (Gurobi 2014)".into(),
+        not_shown: manifest.row.iter().filter(|r| r.spec.is_none()).map(|r| r.name.clone()).collect(),
+    })
 }
