@@ -2,6 +2,12 @@
 //! solved in its own child process (`netspec solve`), killed at the time limit plus a grace
 //! period, and recorded in its own `run.json` as soon as it ends, so an interrupted comparison
 //! resumes where it stopped. Tables (Markdown, CSV) and a per-backend summary follow.
+//!
+//! Instances are named by their paths (the shortest trailing part that tells them apart:
+//! `fig1b/L2/spec` and `fig7e/L2/spec`), so no two share records. Every record carries the
+//! settings that produced it ([`RunSettings`]); a rerun reuses a record only when they match.
+//! On Linux a child dies with the comparison (`PR_SET_PDEATHSIG`), so killing the parent never
+//! leaves a solve running.
 
 use crate::pipeline::DesignResult;
 use crate::render::{self, chart::{Bar, BarChart, BarGroup, ProfileSeries}};
@@ -53,6 +59,81 @@ pub struct RunRecord {
     /// The time limit this run had, seconds (with `--paper-limits`, the row's own).
     #[serde(default)]
     pub time_limit: Option<f64>,
+    /// Everything that produced this record; a rerun with other settings solves again.
+    /// (`None` in records written before settings were recorded: they are always solved again.)
+    #[serde(default)]
+    pub settings: Option<RunSettings>,
+}
+
+/// The settings that produced a run: a record is reused only when all of them are the same.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct RunSettings {
+    /// The spec file, as given.
+    pub spec: PathBuf,
+    /// Digest of the spec file's bytes (and of its mesh file's, if it names one).
+    pub spec_digest: String,
+    /// The spec's `formulation` (its TOML/JSON value as text), if it sets one.
+    pub formulation: Option<String>,
+    /// Backend.
+    pub solver: String,
+    /// Seed (`None`: the solver's default).
+    pub seed: Option<u64>,
+    /// Threads (`None`: the solver's default).
+    pub threads: Option<u32>,
+    /// Time limit, seconds.
+    pub time_limit: f64,
+    /// The netspec version that ran it.
+    pub netspec_version: String,
+}
+
+impl RunSettings {
+    /// The settings of one run of `spec`. A spec that cannot be read gets an empty digest (its
+    /// run fails, and is tried again next time).
+    pub fn new(spec: &Path, solver: &str, seed: Option<u64>, threads: Option<u32>, time_limit: f64) -> RunSettings {
+        let bytes = std::fs::read(spec).unwrap_or_default();
+        let text = String::from_utf8_lossy(&bytes);
+        let value: Option<serde_json::Value> = if spec.extension().is_some_and(|e| e.eq_ignore_ascii_case("json")) {
+            serde_json::from_str(&text).ok()
+        } else {
+            toml::from_str::<toml::Value>(&text).ok().and_then(|v| serde_json::to_value(v).ok())
+        };
+        let field = |path: &[&str]| path.iter().try_fold(value.as_ref()?, |v, k| v.get(*k));
+        let formulation = field(&["formulation"]).map(|v| v.as_str().map_or_else(|| v.to_string(), str::to_string));
+        let mesh_bytes = field(&["mesh", "file"])
+            .and_then(|f| f.as_str())
+            .and_then(|f| std::fs::read(spec.parent().unwrap_or(Path::new(".")).join(f)).ok())
+            .unwrap_or_default();
+        RunSettings {
+            spec: spec.to_path_buf(),
+            spec_digest: if bytes.is_empty() { String::new() } else { crate::io::digest(&[&bytes, &mesh_bytes]) },
+            formulation,
+            solver: solver.to_string(),
+            seed,
+            threads,
+            time_limit,
+            netspec_version: env!("CARGO_PKG_VERSION").into(),
+        }
+    }
+
+    /// What differs from `other`, as `name old → new` phrases (empty when they match).
+    pub fn changes_from(&self, other: &RunSettings) -> Vec<String> {
+        let mut out = Vec::new();
+        let mut diff = |name: &str, a: String, b: String| {
+            if a != b {
+                out.push(format!("{name} {b} → {a}"));
+            }
+        };
+        let opt = |v: Option<String>| v.unwrap_or_else(|| "default".into());
+        diff("spec", self.spec.display().to_string(), other.spec.display().to_string());
+        diff("spec digest", self.spec_digest.clone(), other.spec_digest.clone());
+        diff("formulation", opt(self.formulation.clone()), opt(other.formulation.clone()));
+        diff("solver", self.solver.clone(), other.solver.clone());
+        diff("seed", opt(self.seed.map(|s| s.to_string())), opt(other.seed.map(|s| s.to_string())));
+        diff("threads", opt(self.threads.map(|s| s.to_string())), opt(other.threads.map(|s| s.to_string())));
+        diff("time limit", format!("{} s", self.time_limit), format!("{} s", other.time_limit));
+        diff("netspec", self.netspec_version.clone(), other.netspec_version.clone());
+        out
+    }
 }
 
 /// The paper's figures for one instance (Table 1).
@@ -101,6 +182,11 @@ impl Manifest {
         let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
         let mut m: Manifest = toml::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
         let base = path.parent().unwrap_or(Path::new("."));
+        for (i, r) in m.row.iter().enumerate() {
+            if let Some(j) = m.row[..i].iter().position(|o| o.name == r.name) {
+                return Err(format!("{}: row[{i}] has the same name as row[{j}] ({:?}); names must be unique", path.display(), r.name));
+            }
+        }
         for (i, r) in m.row.iter_mut().enumerate() {
             match (&r.spec, &r.missing) {
                 (Some(s), None) => r.spec = Some(base.join(s)),
@@ -111,12 +197,81 @@ impl Manifest {
         Ok(m)
     }
 
-    /// A manifest of plain spec files (named by file stem, no paper figures).
+    /// A manifest of plain spec files, no paper figures, each named by [`instance_ids`].
     pub fn from_specs(specs: &[PathBuf]) -> Manifest {
         Manifest {
-            row: specs.iter().map(|p| ManifestRow { name: instance_name(p), spec: Some(p.clone()), missing: None, paper: PaperRow::default() }).collect(),
+            row: specs
+                .iter()
+                .zip(instance_ids(specs))
+                .map(|(p, name)| ManifestRow { name, spec: Some(p.clone()), missing: None, paper: PaperRow::default() })
+                .collect(),
         }
     }
+
+    /// The directory name of each row's runs (under `runs/`): its name with characters other
+    /// than letters, digits, `.`, `_` and `-` replaced by `-` (`fig1b/L2/spec` →
+    /// `fig1b-L2-spec`), plus a digest of the name where that would make two rows share one.
+    pub fn run_keys(&self) -> Vec<String> {
+        let safe: Vec<String> =
+            self.row.iter().map(|r| r.name.chars().map(|c| if c.is_ascii_alphanumeric() || "._-".contains(c) { c } else { '-' }).collect()).collect();
+        safe.iter()
+            .zip(&self.row)
+            .map(|(k, r)| if safe.iter().filter(|o| *o == k).count() > 1 { format!("{k}-{}", &crate::io::digest(&[r.name.as_bytes()])[..8]) } else { k.clone() })
+            .collect()
+    }
+}
+
+/// Unique instance names from spec paths: each path without its extension, cut to the shortest
+/// trailing run of components that no other spec shares (`models/streets/fig1b/L2/spec.json` and
+/// `models/streets/fig7e/L2/spec.json` → `fig1b/L2/spec` and `fig7e/L2/spec`; `models/fig2b.toml`
+/// alone → `fig2b`). Specs that differ only by extension keep it; a path given twice gets `#2`.
+pub fn instance_ids(specs: &[PathBuf]) -> Vec<String> {
+    let parts: Vec<Vec<String>> = specs
+        .iter()
+        .map(|p| {
+            let mut c: Vec<String> = p
+                .components()
+                .filter(|c| !matches!(c, std::path::Component::CurDir | std::path::Component::RootDir | std::path::Component::Prefix(_)))
+                .map(|c| c.as_os_str().to_string_lossy().into_owned())
+                .collect();
+            if let (Some(last), Some(stem)) = (c.last_mut(), p.file_stem()) {
+                *last = stem.to_string_lossy().into_owned();
+            }
+            c
+        })
+        .collect();
+    let suffix = |i: usize, k: usize| parts[i][parts[i].len().saturating_sub(k)..].join("/");
+    let mut k = vec![1usize; specs.len()];
+    loop {
+        let ids: Vec<String> = (0..specs.len()).map(|i| suffix(i, k[i])).collect();
+        let mut grew = false;
+        for i in 0..specs.len() {
+            if k[i] < parts[i].len() && ids.iter().enumerate().any(|(j, id)| j != i && *id == ids[i]) {
+                k[i] += 1;
+                grew = true;
+            }
+        }
+        if !grew {
+            break;
+        }
+    }
+    let mut ids: Vec<String> = (0..specs.len()).map(|i| suffix(i, k[i])).collect();
+    // Still equal: the same path but for the extension, or the same path twice.
+    let clashing: Vec<bool> = (0..ids.len()).map(|i| (0..ids.len()).any(|j| ids[j] == ids[i] && specs[j] != specs[i])).collect();
+    for (i, clash) in clashing.into_iter().enumerate() {
+        if let (true, Some(ext)) = (clash, specs[i].extension()) {
+            ids[i] = format!("{}.{}", ids[i], ext.to_string_lossy());
+        }
+    }
+    for i in 0..ids.len() {
+        let mut n = 1;
+        let base = ids[i].clone();
+        while ids[..i].contains(&ids[i]) {
+            n += 1;
+            ids[i] = format!("{base}#{n}");
+        }
+    }
+    ids
 }
 
 /// Settings of a comparison.
@@ -150,34 +305,49 @@ impl CompareSettings {
     }
 }
 
-fn instance_name(spec: &Path) -> String {
-    spec.file_stem().map_or_else(|| "instance".into(), |s| s.to_string_lossy().into_owned())
+/// How a record came about.
+#[derive(Clone, Debug, PartialEq)]
+pub enum RunSource {
+    /// Solved now, no earlier record.
+    Solved,
+    /// Reused from an earlier run with the same settings.
+    Resumed,
+    /// Solved again: an earlier record had other settings (what changed).
+    Rerun(Vec<String>),
 }
 
-/// Runs every missing (instance, backend, seed) combination; returns all records, in a fixed
-/// order. `exe` is the `netspec` binary; `progress` is called after each run.
-pub fn run_all(exe: &Path, settings: &CompareSettings, out: &Path, mut progress: impl FnMut(&RunRecord, bool)) -> std::io::Result<Vec<RunRecord>> {
+/// Runs every (instance, backend, seed) combination that has no record with the same settings;
+/// returns all records, in a fixed order. `exe` is the `netspec` binary; `progress` is called
+/// after each run.
+pub fn run_all(exe: &Path, settings: &CompareSettings, out: &Path, mut progress: impl FnMut(&RunRecord, &RunSource)) -> std::io::Result<Vec<RunRecord>> {
     let seeds: Vec<Option<u64>> = if settings.seeds.is_empty() { vec![None] } else { settings.seeds.iter().map(|&s| Some(s)).collect() };
     let mut records = Vec::new();
-    for row in &settings.manifest.row {
+    for (row, key) in settings.manifest.row.iter().zip(settings.manifest.run_keys()) {
         let Some(spec) = &row.spec else { continue };
         for solver in &settings.solvers {
             for &seed in &seeds {
-                let name = row.name.clone();
-                let dir = out.join("runs").join(format!("{name}__{solver}__{}", seed.map_or("default".into(), |s| s.to_string())));
+                let dir = out.join("runs").join(format!("{key}__{solver}__{}", seed.map_or("default".into(), |s| s.to_string())));
                 let record_path = dir.join("run.json");
-                if let Ok(text) = std::fs::read_to_string(&record_path) {
-                    if let Ok(r) = serde_json::from_str::<RunRecord>(&text) {
-                        progress(&r, true);
+                let wanted = RunSettings::new(spec, solver, seed, settings.threads, settings.limit_for(row));
+                let old = std::fs::read_to_string(&record_path).ok().and_then(|t| serde_json::from_str::<RunRecord>(&t).ok());
+                let source = match old {
+                    Some(r) if r.settings.as_ref() == Some(&wanted) && r.instance == row.name => {
+                        progress(&r, &RunSource::Resumed);
                         records.push(r);
                         continue;
                     }
-                }
+                    Some(r) => Some(match &r.settings {
+                        Some(had) => wanted.changes_from(had),
+                        None => vec!["no settings recorded".into()],
+                    }),
+                    None => None,
+                };
                 std::fs::create_dir_all(&dir)?;
                 let mut r = run_one(exe, spec, solver, seed, settings, settings.limit_for(row), &dir)?;
-                r.instance = name;
+                r.instance = row.name.clone();
+                r.settings = Some(wanted);
                 crate::io::write_atomic(&record_path, &(serde_json::to_string_pretty(&r)? + "\n"))?;
-                progress(&r, false);
+                progress(&r, &source.map_or(RunSource::Solved, RunSource::Rerun));
                 records.push(r);
             }
         }
@@ -195,6 +365,7 @@ fn run_one(exe: &Path, spec: &Path, solver: &str, seed: Option<u64>, s: &Compare
         cmd.args(["--threads", &t.to_string()]);
     }
     cmd.stdin(Stdio::null()).stdout(std::fs::File::create(dir.join("stdout.txt"))?).stderr(std::fs::File::create(dir.join("stderr.txt"))?);
+    die_with_parent(&mut cmd);
     let _ = std::fs::remove_file(dir.join("result.json"));
     let t0 = Instant::now();
     let mut child = cmd.spawn()?;
@@ -216,7 +387,7 @@ fn run_one(exe: &Path, spec: &Path, solver: &str, seed: Option<u64>, s: &Compare
     let result: Option<DesignResult> =
         std::fs::read_to_string(dir.join("result.json")).ok().and_then(|t| serde_json::from_str(&t).ok());
     let mut r = RunRecord {
-        instance: instance_name(spec),
+        instance: String::new(),
         solver: solver.to_string(),
         seed,
         edges: None,
@@ -235,6 +406,7 @@ fn run_one(exe: &Path, spec: &Path, solver: &str, seed: Option<u64>, s: &Compare
         solver_version: None,
         exit_code: status.and_then(|s| s.code()),
         time_limit: Some(limit),
+        settings: None,
     };
     if let (Some(res), false) = (result, killed) {
         r.edges = Some(res.mesh.num_edges());
@@ -251,6 +423,33 @@ fn run_one(exe: &Path, spec: &Path, solver: &str, seed: Option<u64>, s: &Compare
         r.solver_version = Some(res.solve.solver_version);
     }
     Ok(r)
+}
+
+/// Makes the child die when this process dies (Linux: `PR_SET_PDEATHSIG` with `SIGKILL`, set in
+/// the child between fork and exec; if the parent is already gone by then, the child exits at
+/// once). The signal follows the death of the thread that spawned the child, so spawn from a
+/// thread that lives as long as the comparison (here: the caller of [`run_all`]).
+fn die_with_parent(cmd: &mut Command) {
+    #[cfg(target_os = "linux")]
+    {
+        use std::os::unix::process::CommandExt;
+        // SAFETY: the closure runs in the forked child before exec and calls only
+        // async-signal-safe functions (prctl, getppid, _exit).
+        let parent = unsafe { libc::getpid() };
+        unsafe {
+            cmd.pre_exec(move || {
+                if libc::prctl(libc::PR_SET_PDEATHSIG, libc::SIGKILL as libc::c_ulong, 0, 0, 0) != 0 {
+                    return Err(std::io::Error::last_os_error());
+                }
+                if libc::getppid() != parent {
+                    libc::_exit(1);
+                }
+                Ok(())
+            });
+        }
+    }
+    #[cfg(not(target_os = "linux"))]
+    let _ = cmd;
 }
 
 /// Shifted geometric mean `exp(mean(ln(t + shift))) − shift` (the MIPLIB convention).

@@ -234,7 +234,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
             let settings = netspec::compare::CompareSettings { manifest, solvers: solvers.clone(), time_limit, grace, seeds, threads, paper_limits };
             std::fs::create_dir_all(&out).with_context(|| format!("creating {}", out.display()))?;
             let exe = std::env::current_exe().context("locating the netspec binary")?;
-            let records = netspec::compare::run_all(&exe, &settings, &out, |r, resumed| {
+            let records = netspec::compare::run_all(&exe, &settings, &out, |r, source| {
                 println!(
                     "{:<24} {:<8} {:<16} {:>8.2} s {}{}",
                     r.instance,
@@ -242,7 +242,11 @@ fn run(cli: Cli) -> Result<ExitCode> {
                     r.status,
                     r.wall_time,
                     if r.valid { "valid" } else { "-" },
-                    if resumed { " (resumed)" } else { "" }
+                    match source {
+                        netspec::compare::RunSource::Solved => String::new(),
+                        netspec::compare::RunSource::Resumed => " (resumed)".into(),
+                        netspec::compare::RunSource::Rerun(why) => format!(" (solved again: {})", why.join(", ")),
+                    }
                 );
             })
             .with_context(|| format!("running the comparison into {}", out.display()))?;
