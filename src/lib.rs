@@ -11,6 +11,7 @@
 
 pub mod compare;
 pub mod design;
+pub mod explain;
 pub mod formulations;
 pub mod io;
 pub mod mesh;

@@ -53,6 +53,12 @@ enum Command {
         /// Build and export the model without solving it.
         #[arg(long)]
         no_solve: bool,
+        /// When the spec is infeasible, do not look for the requirements that conflict.
+        #[arg(long)]
+        no_explain: bool,
+        /// Time budget for explaining an infeasible spec, seconds.
+        #[arg(long, value_name = "SECONDS", default_value_t = 60.0)]
+        explain_time: f64,
     },
     /// Compare backends on spec files: each run in its own process, killed at the time limit
     /// plus a grace period, recorded as it ends (rerun to resume); writes results.md,
@@ -220,7 +226,9 @@ fn main() -> ExitCode {
 fn run(cli: Cli) -> Result<ExitCode> {
     match cli.command {
         Command::SolveFile { file, solve, json } => solve_file(&file, &solve, json.as_deref()),
-        Command::Solve { spec, solve, out, export, no_solve } => cli::design::solve_spec(&spec, &solve, out, export, no_solve),
+        Command::Solve { spec, solve, out, export, no_solve, no_explain, explain_time } => {
+            cli::design::solve_spec(&spec, &solve, out, export, no_solve, (!no_explain).then_some(explain_time))
+        }
         Command::Compare { specs, manifest, solvers, time_limit, grace, seeds, threads, paper_limits, out } => {
             let manifest = match manifest {
                 Some(m) => netspec::compare::Manifest::load(&m).map_err(anyhow::Error::msg)?,

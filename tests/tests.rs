@@ -16,3 +16,5 @@ mod rooms;
 mod compare;
 // Street layouts: cities, levels, resume, outputs (paper §5.1).
 mod urban;
+// Infeasibility explained: minimal conflicting sets of a spec's requirements.
+mod explain;

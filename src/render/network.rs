@@ -300,3 +300,132 @@ pub fn svg(p: &Problem, net: &Network, paths: Option<&PathSets>, placements: Opt
     }
     s.finish()
 }
+
+/// Colours of conflicts 1, 2, … in [`conflict_svg`].
+const CONFLICT_COLORS: [&str; 6] = ["#d61f69", "#f97316", "#2563eb", "#0d9488", "#7c3aed", "#a16207"];
+
+/// Splits `text` into lines of at most about `width` characters, at spaces.
+fn wrap(text: &str, width: usize) -> Vec<String> {
+    let mut lines: Vec<String> = Vec::new();
+    for word in text.split(' ') {
+        match lines.last_mut() {
+            Some(l) if l.chars().count() + 1 + word.chars().count() <= width => {
+                l.push(' ');
+                l.push_str(word);
+            }
+            _ => lines.push(word.to_string()),
+        }
+    }
+    lines
+}
+
+/// A spec without a solution, with the elements of each conflicting set of requirements
+/// highlighted in the conflict's colour (`class="conflict" data-conflict="k"`: faces tinted,
+/// edges thick, vertices ringed) and every requirement of each set listed in the legend
+/// (requirements without a place, such as coverage, only there). Obstacles, sinks, forced
+/// elements and through routes are drawn as in [`svg`].
+pub fn conflict_svg(p: &Problem, explanation: &crate::explain::Explanation, caption: &Caption) -> String {
+    let mesh = &p.mesh;
+    let fr = Frame::new(mesh, 270.0);
+    let stroke = fr.stroke;
+    let legend_h: f64 = explanation.conflicts.iter().map(|c| 24.0 + 13.0 * c.requirements.iter().map(|r| wrap(&r.field_text(), 40).len()).sum::<usize>() as f64).sum::<f64>()
+        + 22.0
+        + 18.0 * point_legend(p, false).len() as f64;
+    let mut s = Svg::new(fr.w, fr.h.max(fr.legend_origin().1 + legend_h + 10.0), None);
+    let n = explanation.conflicts.len();
+    fr.title(&mut s, &caption.name, &format!("{} · {} · {n} conflicting set{} of requirements", caption.solver, caption.status, if n == 1 { "" } else { "s" }));
+    let pos = |v: u32| fr.tx(mesh.position(crate::mesh::VertexId(v)));
+    // Tinted faces first, under the mesh.
+    for (k, c) in explanation.conflicts.iter().enumerate() {
+        let col = CONFLICT_COLORS[k % CONFLICT_COLORS.len()];
+        for r in &c.requirements {
+            for &f in &r.faces {
+                let _ = writeln!(
+                    s,
+                    r#"<polygon class="conflict" data-conflict="{}" points="{}" fill="{col}" fill-opacity="0.3"/>"#,
+                    k + 1,
+                    fr.face_points(mesh, crate::mesh::FaceId(f))
+                );
+            }
+        }
+    }
+    fr.mesh_and_obstacles(&mut s, p);
+    // Forced edges and through routes, sinks, forced and obstacle vertices, as in `svg`.
+    let mut forced: Vec<EdgeId> = p.forced_edges.clone();
+    for r in &p.through_routes {
+        forced.extend(r.windows(2).filter_map(|w| mesh.half_edge_between(w[0], w[1])).map(|h| mesh.he_edge(h)));
+    }
+    if !forced.is_empty() {
+        let _ = writeln!(s, r##"<g stroke="#17a34a" stroke-width="{:.2}" stroke-dasharray="4 3" fill="none">"##, stroke * 0.5);
+        for e in forced {
+            let _ = writeln!(s, "{}", fr.edge_line(mesh, e, ""));
+        }
+        let _ = writeln!(s, "</g>");
+    }
+    // The conflicts' edges and vertices.
+    let r = (stroke * 1.2).max(3.0);
+    for (k, c) in explanation.conflicts.iter().enumerate() {
+        let col = CONFLICT_COLORS[k % CONFLICT_COLORS.len()];
+        // Later conflicts drawn thinner, so shared elements show every colour.
+        let width = stroke * (1.6 - 0.25 * k.min(4) as f64);
+        for req in &c.requirements {
+            for &[a, b] in &req.edges {
+                let ((x1, y1), (x2, y2)) = (pos(a), pos(b));
+                let _ = writeln!(
+                    s,
+                    r#"<line class="conflict" data-conflict="{}" x1="{x1:.2}" y1="{y1:.2}" x2="{x2:.2}" y2="{y2:.2}" stroke="{col}" stroke-width="{width:.2}" stroke-linecap="round" stroke-opacity="0.85"/>"#,
+                    k + 1
+                );
+            }
+        }
+    }
+    for v in mesh.vertices().filter(|v| p.is_obstacle_vertex[v.index()]) {
+        fr.dot(&mut s, mesh, v, "#000", r * 0.6);
+    }
+    for v in mesh.vertices().filter(|v| p.is_sink[v.index()]) {
+        fr.dot(&mut s, mesh, v, "#e02424", r);
+    }
+    for &v in &p.forced_vertices {
+        fr.dot(&mut s, mesh, v, "#17a34a", r);
+    }
+    for (k, c) in explanation.conflicts.iter().enumerate() {
+        let col = CONFLICT_COLORS[k % CONFLICT_COLORS.len()];
+        for req in &c.requirements {
+            for &v in &req.vertices {
+                let (x, y) = pos(v);
+                let _ = writeln!(
+                    s,
+                    r#"<circle class="conflict" data-conflict="{}" cx="{x:.2}" cy="{y:.2}" r="{:.2}" fill="none" stroke="{col}" stroke-width="2.5"/>"#,
+                    k + 1,
+                    r * (1.7 + 0.5 * k.min(4) as f64)
+                );
+            }
+        }
+    }
+    // Legend: each conflict and its requirements, then the point items drawn.
+    let (lx, mut ly) = fr.legend_origin();
+    for (k, c) in explanation.conflicts.iter().enumerate() {
+        let col = CONFLICT_COLORS[k % CONFLICT_COLORS.len()];
+        let _ = writeln!(s, r#"<rect x="{lx:.1}" y="{:.1}" width="14" height="12" fill="{col}"/>"#, ly - 10.0);
+        s.text(lx + 20.0, ly, r#"font-size="12" font-weight="bold""#, &format!("conflict {}{}", k + 1, if c.minimal { "" } else { " (not proven minimal)" }));
+        ly += 16.0;
+        for req in &c.requirements {
+            for (i, line) in wrap(&req.field_text(), 40).iter().enumerate() {
+                s.text(lx + if i == 0 { 8.0 } else { 16.0 }, ly, r#"font-size="10""#, &if i == 0 { format!("• {line}") } else { line.clone() });
+                ly += 13.0;
+            }
+        }
+        ly += 8.0;
+    }
+    if !explanation.complete {
+        s.text(lx, ly, r#"font-size="10" font-style="italic""#, "search stopped at its limits");
+        ly += 16.0;
+    }
+    ly += 6.0;
+    for (c, label) in point_legend(p, false) {
+        let _ = writeln!(s, r##"<circle cx="{:.1}" cy="{:.1}" r="5" fill="{c}" stroke="#222" stroke-width="0.6"/>"##, lx + 6.0, ly - 4.0);
+        s.text(lx + 18.0, ly, r#"font-size="11""#, label);
+        ly += 18.0;
+    }
+    s.finish()
+}
