@@ -8,16 +8,21 @@
 //! *relaxed*: the spec is edited (the relaxed entries dropped, switches set to allow), resolved
 //! on the same mesh, built with [`pipeline::build`], the objective set aside (every cost 0),
 //! and solved with [`pipeline::solve_built`] on any backend under a short time limit:
-//! infeasible, feasible (a solution), or unknown (the limit came first — reported as such, never
-//! guessed).
+//! infeasible, feasible (a solution that netspec's own checker accepts), or unknown (the limit
+//! came first — reported as such, never guessed). Before building, what no design can use is
+//! closed (edges in a component without a sink: every active edge leads to a sink), and rows
+//! left without variables but violated are infeasible as built — so a sink or forced element cut
+//! off by walls or obstacles needs no search. Coverage (6) is relaxed on the built model (its
+//! rows, named `cov6_…`, made free): the spec has no switch for it.
 //!
 //! A **deletion filter** finds one minimal conflicting set: family by family (all walls, all
 //! obstacles, … at once), then element by element inside the families that remain, halving
 //! chunks first. **Every conflict** is then found by Reiter's hitting-set tree: each node relaxes
-//! one more requirement of a known conflict; a node that is still infeasible yields a new
-//! conflict, a feasible one a *repair* (a minimal set of requirements whose relaxation makes the
-//! spec feasible). The search stops at its budget (time, conflicts, depth) and says whether it
-//! finished.
+//! one more requirement of a known conflict (the walls, or the obstacle entries, of a conflict
+//! together: a fence is one contradiction, and its pieces would only give it again); a node that
+//! is still infeasible yields a new conflict, a feasible one a *repair* (requirements whose
+//! relaxation together makes the spec feasible). The search stops at its budget (time,
+//! conflicts, depth) and says whether it finished.
 //!
 //! Checks are cached, and a set is known feasible when a superset was, infeasible when a subset
 //! was (relaxing requirements only removes constraints). That holds here except for specs where
@@ -761,8 +766,10 @@ pub fn explain(p: &Problem, kind: SolverKind, opts: &ExplainOptions) -> Explanat
         Verdict::Unknown => return finish(&search, ExplainStatus::Unknown, Vec::new(), Vec::new(), false),
         Verdict::Infeasible => {}
     }
-    if search.check(&Set::new()) != Verdict::Feasible {
-        return finish(&search, ExplainStatus::Unexplained, Vec::new(), Vec::new(), !search.out_of_time);
+    match search.check(&Set::new()) {
+        Verdict::Feasible => {}
+        Verdict::Infeasible => return finish(&search, ExplainStatus::Unexplained, Vec::new(), Vec::new(), true),
+        Verdict::Unknown => return finish(&search, ExplainStatus::Unknown, Vec::new(), Vec::new(), false),
     }
     // Reiter's hitting-set tree: nodes are sets of relaxed requirements, breadth first.
     let mut conflicts: Vec<(Set, bool)> = Vec::new();

@@ -210,3 +210,16 @@ templates = [{ name = "room", shape = "rect 2x2", max = 4 }]
     assert_eq!(e.status, ExplainStatus::Feasible, "{e:#?}");
     assert!(e.conflicts.is_empty() && e.checks == 1);
 }
+
+/// The measured instances of docs/benchmarks.md resolve and list their requirements (solving
+/// them is for the benchmark, not the tests).
+#[test]
+fn benchmark_instances_resolve() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/specs");
+    for (file, requirements) in [("infeasible_16x16.toml", 11), ("infeasible_16x16_hard.toml", 76)] {
+        let spec = netspec::spec::Spec::load(&dir.join(file)).unwrap();
+        let p = spec.resolve(&dir).unwrap();
+        assert_eq!(p.mesh.num_edges(), 544);
+        assert_eq!(netspec::explain::requirements(&p).len(), requirements, "{file}");
+    }
+}
