@@ -247,8 +247,8 @@ pub struct ExplainOptions {
     pub time_budget: f64,
     /// Stop after this many conflicts.
     pub max_conflicts: usize,
-    /// Depth of the hitting-set tree (how many requirements relaxed at once to look for more
-    /// conflicts).
+    /// Depth of the hitting-set tree (how many requirements — or groups of walls or obstacle
+    /// entries — are relaxed at once to look for more conflicts).
     pub max_depth: usize,
     /// Threads per check.
     pub threads: Option<u32>,
@@ -776,8 +776,9 @@ pub fn explain(p: &Problem, kind: SolverKind, opts: &ExplainOptions) -> Explanat
     let mut repairs: Vec<Set> = Vec::new();
     let mut complete = true;
     let mut seen: BTreeSet<Set> = BTreeSet::new();
-    let mut queue: VecDeque<Set> = VecDeque::from([Set::new()]);
-    while let Some(h) = queue.pop_front() {
+    // (relaxed requirements, depth: how many groups were relaxed to get there)
+    let mut queue: VecDeque<(Set, usize)> = VecDeque::from([(Set::new(), 0)]);
+    while let Some((h, depth)) = queue.pop_front() {
         if search.out_of_time || search.remaining() <= 0.0 {
             complete = false;
             break;
@@ -810,7 +811,7 @@ pub fn explain(p: &Problem, kind: SolverKind, opts: &ExplainOptions) -> Explanat
                 }
             }
         };
-        if h.len() >= opts.max_depth {
+        if depth >= opts.max_depth {
             complete = false;
             continue;
         }
@@ -818,7 +819,7 @@ pub fn explain(p: &Problem, kind: SolverKind, opts: &ExplainOptions) -> Explanat
             let mut child = h.clone();
             child.extend(group);
             if seen.insert(child.clone()) {
-                queue.push_back(child);
+                queue.push_back((child, depth + 1));
             }
         }
     }

@@ -70,6 +70,9 @@ fn compare_runs_tables_and_resumes() {
     assert_eq!(bars.matches(r#"class="bar""#).count(), 2 * backends.len());
     assert_eq!(bars.matches(r#"class="limit""#).count(), 1);
     assert!(!bars.contains(r#"class="label""#) && !bars.contains(r#"class="paper""#), "{bars}");
+    // The legend lists only what the chart uses: everything solved, no paper times.
+    assert!(bars.contains(">time limit</text>") && !bars.contains("not solved") && !bars.contains(">failed</text>"), "{bars}");
+    assert!(!bars.contains("killed at limit") && !bars.contains("paper (Gurobi"), "{bars}");
     assert!(md.contains("`bars.svg`"), "{md}");
     let csv = std::fs::read_to_string(out.join("results.csv")).unwrap();
     assert_eq!(csv.lines().count(), 1 + records.len());
@@ -155,6 +158,9 @@ fn bar_chart_marks_unsolved_killed_failed_and_paper_times() {
     assert!(svg.contains(r#"<g class="paper" data-instance="2a" data-time="132">"#), "{svg}");
     assert!(svg.contains(">1000</text>") && svg.contains(">0.01</text>") && svg.contains("log scale"), "{svg}");
     assert!(svg.contains(r#"class="limit""#) && svg.contains("limit 60 s"));
+    for entry in [">not solved (status, gap)</text>", ">failed</text>", ">killed at limit + grace</text>", ">time limit</text>", ">paper (Gurobi 2014)</text>"] {
+        assert!(svg.contains(entry), "legend entry {entry} missing: {svg}");
+    }
 }
 
 #[test]
