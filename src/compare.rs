@@ -337,7 +337,8 @@ pub fn run_all(exe: &Path, settings: &CompareSettings, out: &Path, mut progress:
                         continue;
                     }
                     Some(r) => Some(match &r.settings {
-                        Some(had) => wanted.changes_from(had),
+                        Some(had) if *had != wanted => wanted.changes_from(had),
+                        Some(_) => vec![format!("instance {} → {}", r.instance, row.name)],
                         None => vec!["no settings recorded".into()],
                     }),
                     None => None,

@@ -432,6 +432,7 @@ pub fn describe(p: &Problem, r: Requirement) -> RequirementInfo {
             info.field = "rooms".into();
             let names: Vec<&str> = s.rooms.iter().flat_map(|r| r.templates.iter().map(|t| t.name.as_str())).collect();
             info.text = format!("rooms tile the footprint exactly ({})", names.join(", "));
+            info.faces = mesh.faces().filter(|f| !p.is_obstacle_face[f.index()]).map(|f| f.0).collect();
         }
         Requirement::RoomCount { template } => {
             info.field = format!("rooms.templates[{template}]");
