@@ -2,8 +2,15 @@
 //! solved in its own child process (`netspec solve`), killed at the time limit plus a grace
 //! period, and recorded in its own `run.json` as soon as it ends, so an interrupted comparison
 //! resumes where it stopped. Tables (Markdown, CSV) and a per-backend summary follow.
+//!
+//! Instances are named by their paths (the shortest trailing part that tells them apart:
+//! `fig1b/L2/spec` and `fig7e/L2/spec`), so no two share records. Every record carries the
+//! settings that produced it ([`RunSettings`]); a rerun reuses a record only when they match.
+//! On Linux a child dies with the comparison (`PR_SET_PDEATHSIG`), so killing the parent never
+//! leaves a solve running.
 
 use crate::pipeline::DesignResult;
+use crate::render::{self, chart::{Bar, BarChart, BarGroup, ProfileSeries}};
 use serde::{Deserialize, Serialize};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -52,6 +59,81 @@ pub struct RunRecord {
     /// The time limit this run had, seconds (with `--paper-limits`, the row's own).
     #[serde(default)]
     pub time_limit: Option<f64>,
+    /// Everything that produced this record; a rerun with other settings solves again.
+    /// (`None` in records written before settings were recorded: they are always solved again.)
+    #[serde(default)]
+    pub settings: Option<RunSettings>,
+}
+
+/// The settings that produced a run: a record is reused only when all of them are the same.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct RunSettings {
+    /// The spec file, as given.
+    pub spec: PathBuf,
+    /// Digest of the spec file's bytes (and of its mesh file's, if it names one).
+    pub spec_digest: String,
+    /// The spec's `formulation` (its TOML/JSON value as text), if it sets one.
+    pub formulation: Option<String>,
+    /// Backend.
+    pub solver: String,
+    /// Seed (`None`: the solver's default).
+    pub seed: Option<u64>,
+    /// Threads (`None`: the solver's default).
+    pub threads: Option<u32>,
+    /// Time limit, seconds.
+    pub time_limit: f64,
+    /// The netspec version that ran it.
+    pub netspec_version: String,
+}
+
+impl RunSettings {
+    /// The settings of one run of `spec`. A spec that cannot be read gets an empty digest (its
+    /// run fails, and is tried again next time).
+    pub fn new(spec: &Path, solver: &str, seed: Option<u64>, threads: Option<u32>, time_limit: f64) -> RunSettings {
+        let bytes = std::fs::read(spec).unwrap_or_default();
+        let text = String::from_utf8_lossy(&bytes);
+        let value: Option<serde_json::Value> = if spec.extension().is_some_and(|e| e.eq_ignore_ascii_case("json")) {
+            serde_json::from_str(&text).ok()
+        } else {
+            toml::from_str::<toml::Value>(&text).ok().and_then(|v| serde_json::to_value(v).ok())
+        };
+        let field = |path: &[&str]| path.iter().try_fold(value.as_ref()?, |v, k| v.get(*k));
+        let formulation = field(&["formulation"]).map(|v| v.as_str().map_or_else(|| v.to_string(), str::to_string));
+        let mesh_bytes = field(&["mesh", "file"])
+            .and_then(|f| f.as_str())
+            .and_then(|f| std::fs::read(spec.parent().unwrap_or(Path::new(".")).join(f)).ok())
+            .unwrap_or_default();
+        RunSettings {
+            spec: spec.to_path_buf(),
+            spec_digest: if bytes.is_empty() { String::new() } else { crate::io::digest(&[&bytes, &mesh_bytes]) },
+            formulation,
+            solver: solver.to_string(),
+            seed,
+            threads,
+            time_limit,
+            netspec_version: env!("CARGO_PKG_VERSION").into(),
+        }
+    }
+
+    /// What differs from `other`, as `name old → new` phrases (empty when they match).
+    pub fn changes_from(&self, other: &RunSettings) -> Vec<String> {
+        let mut out = Vec::new();
+        let mut diff = |name: &str, a: String, b: String| {
+            if a != b {
+                out.push(format!("{name} {b} → {a}"));
+            }
+        };
+        let opt = |v: Option<String>| v.unwrap_or_else(|| "default".into());
+        diff("spec", self.spec.display().to_string(), other.spec.display().to_string());
+        diff("spec digest", self.spec_digest.clone(), other.spec_digest.clone());
+        diff("formulation", opt(self.formulation.clone()), opt(other.formulation.clone()));
+        diff("solver", self.solver.clone(), other.solver.clone());
+        diff("seed", opt(self.seed.map(|s| s.to_string())), opt(other.seed.map(|s| s.to_string())));
+        diff("threads", opt(self.threads.map(|s| s.to_string())), opt(other.threads.map(|s| s.to_string())));
+        diff("time limit", format!("{} s", self.time_limit), format!("{} s", other.time_limit));
+        diff("netspec", self.netspec_version.clone(), other.netspec_version.clone());
+        out
+    }
 }
 
 /// The paper's figures for one instance (Table 1).
@@ -100,6 +182,11 @@ impl Manifest {
         let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
         let mut m: Manifest = toml::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
         let base = path.parent().unwrap_or(Path::new("."));
+        for (i, r) in m.row.iter().enumerate() {
+            if let Some(j) = m.row[..i].iter().position(|o| o.name == r.name) {
+                return Err(format!("{}: row[{i}] has the same name as row[{j}] ({:?}); names must be unique", path.display(), r.name));
+            }
+        }
         for (i, r) in m.row.iter_mut().enumerate() {
             match (&r.spec, &r.missing) {
                 (Some(s), None) => r.spec = Some(base.join(s)),
@@ -110,12 +197,81 @@ impl Manifest {
         Ok(m)
     }
 
-    /// A manifest of plain spec files (named by file stem, no paper figures).
+    /// A manifest of plain spec files, no paper figures, each named by [`instance_ids`].
     pub fn from_specs(specs: &[PathBuf]) -> Manifest {
         Manifest {
-            row: specs.iter().map(|p| ManifestRow { name: instance_name(p), spec: Some(p.clone()), missing: None, paper: PaperRow::default() }).collect(),
+            row: specs
+                .iter()
+                .zip(instance_ids(specs))
+                .map(|(p, name)| ManifestRow { name, spec: Some(p.clone()), missing: None, paper: PaperRow::default() })
+                .collect(),
         }
     }
+
+    /// The directory name of each row's runs (under `runs/`): its name with characters other
+    /// than letters, digits, `.`, `_` and `-` replaced by `-` (`fig1b/L2/spec` →
+    /// `fig1b-L2-spec`), plus a digest of the name where that would make two rows share one.
+    pub fn run_keys(&self) -> Vec<String> {
+        let safe: Vec<String> =
+            self.row.iter().map(|r| r.name.chars().map(|c| if c.is_ascii_alphanumeric() || "._-".contains(c) { c } else { '-' }).collect()).collect();
+        safe.iter()
+            .zip(&self.row)
+            .map(|(k, r)| if safe.iter().filter(|o| *o == k).count() > 1 { format!("{k}-{}", &crate::io::digest(&[r.name.as_bytes()])[..8]) } else { k.clone() })
+            .collect()
+    }
+}
+
+/// Unique instance names from spec paths: each path without its extension, cut to the shortest
+/// trailing run of components that no other spec shares (`models/streets/fig1b/L2/spec.json` and
+/// `models/streets/fig7e/L2/spec.json` → `fig1b/L2/spec` and `fig7e/L2/spec`; `models/fig2b.toml`
+/// alone → `fig2b`). Specs that differ only by extension keep it; a path given twice gets `#2`.
+pub fn instance_ids(specs: &[PathBuf]) -> Vec<String> {
+    let parts: Vec<Vec<String>> = specs
+        .iter()
+        .map(|p| {
+            let mut c: Vec<String> = p
+                .components()
+                .filter(|c| !matches!(c, std::path::Component::CurDir | std::path::Component::RootDir | std::path::Component::Prefix(_)))
+                .map(|c| c.as_os_str().to_string_lossy().into_owned())
+                .collect();
+            if let (Some(last), Some(stem)) = (c.last_mut(), p.file_stem()) {
+                *last = stem.to_string_lossy().into_owned();
+            }
+            c
+        })
+        .collect();
+    let suffix = |i: usize, k: usize| parts[i][parts[i].len().saturating_sub(k)..].join("/");
+    let mut k = vec![1usize; specs.len()];
+    loop {
+        let ids: Vec<String> = (0..specs.len()).map(|i| suffix(i, k[i])).collect();
+        let mut grew = false;
+        for i in 0..specs.len() {
+            if k[i] < parts[i].len() && ids.iter().enumerate().any(|(j, id)| j != i && *id == ids[i]) {
+                k[i] += 1;
+                grew = true;
+            }
+        }
+        if !grew {
+            break;
+        }
+    }
+    let mut ids: Vec<String> = (0..specs.len()).map(|i| suffix(i, k[i])).collect();
+    // Still equal: the same path but for the extension, or the same path twice.
+    let clashing: Vec<bool> = (0..ids.len()).map(|i| (0..ids.len()).any(|j| ids[j] == ids[i] && specs[j] != specs[i])).collect();
+    for (i, clash) in clashing.into_iter().enumerate() {
+        if let (true, Some(ext)) = (clash, specs[i].extension()) {
+            ids[i] = format!("{}.{}", ids[i], ext.to_string_lossy());
+        }
+    }
+    for i in 0..ids.len() {
+        let mut n = 1;
+        let base = ids[i].clone();
+        while ids[..i].contains(&ids[i]) {
+            n += 1;
+            ids[i] = format!("{base}#{n}");
+        }
+    }
+    ids
 }
 
 /// Settings of a comparison.
@@ -125,6 +281,10 @@ pub struct CompareSettings {
     pub manifest: Manifest,
     /// Backend names.
     pub solvers: Vec<String>,
+    /// Formulation recipes to run every backend with (`paper`, `tight`, `strong`); empty: the
+    /// spec's own. With recipes, each (backend, recipe) pair is one column, `highs/strong`.
+    #[serde(default)]
+    pub formulations: Vec<String>,
     /// Time limit per run, seconds.
     pub time_limit: f64,
     /// Extra seconds before the child is killed.
@@ -144,6 +304,21 @@ pub struct CompareSettings {
 }
 
 impl CompareSettings {
+    /// The (label, backend, recipe) of every column: `highs`, or `highs/strong` with recipes.
+    pub fn methods(&self) -> Vec<(String, String, Option<String>)> {
+        let mut out = Vec::new();
+        for s in &self.solvers {
+            if self.formulations.is_empty() {
+                out.push((s.clone(), s.clone(), None));
+            } else {
+                for f in &self.formulations {
+                    out.push((format!("{s}/{f}"), s.clone(), Some(f.clone())));
+                }
+            }
+        }
+        out
+    }
+
     /// The time limit of one row.
     pub fn limit_for(&self, row: &ManifestRow) -> f64 {
         match (self.paper_limits, paper_seconds(&row.paper)) {
@@ -153,39 +328,60 @@ impl CompareSettings {
     }
 }
 
-fn instance_name(spec: &Path) -> String {
-    spec.file_stem().map_or_else(|| "instance".into(), |s| s.to_string_lossy().into_owned())
+/// How a record came about.
+#[derive(Clone, Debug, PartialEq)]
+pub enum RunSource {
+    /// Solved now, no earlier record.
+    Solved,
+    /// Reused from an earlier run with the same settings.
+    Resumed,
+    /// Solved again: an earlier record had other settings (what changed).
+    Rerun(Vec<String>),
 }
 
-/// Runs every missing (instance, backend, seed) combination; returns all records, in a fixed
-/// order. `exe` is the `netspec` binary; `progress` is called after each run.
-pub fn run_all(exe: &Path, settings: &CompareSettings, out: &Path, mut progress: impl FnMut(&RunRecord, bool)) -> std::io::Result<Vec<RunRecord>> {
+/// Runs every (instance, backend, seed) combination that has no record with the same settings;
+/// returns all records, in a fixed order. `exe` is the `netspec` binary; `progress` is called
+/// after each run.
+pub fn run_all(exe: &Path, settings: &CompareSettings, out: &Path, mut progress: impl FnMut(&RunRecord, &RunSource)) -> std::io::Result<Vec<RunRecord>> {
     let seeds: Vec<Option<u64>> = if settings.seeds.is_empty() { vec![None] } else { settings.seeds.iter().map(|&s| Some(s)).collect() };
     let mut records = Vec::new();
     let interrupted = || settings.interrupt.as_ref().is_some_and(|i| i.is_triggered());
-    for row in &settings.manifest.row {
+    for (row, key) in settings.manifest.row.iter().zip(settings.manifest.run_keys()) {
         let Some(spec) = &row.spec else { continue };
-        for solver in &settings.solvers {
+        for (label, solver, formulation) in settings.methods() {
             for &seed in &seeds {
                 if interrupted() {
                     return Ok(records);
                 }
-                let name = row.name.clone();
-                let dir = out.join("runs").join(format!("{name}__{solver}__{}", seed.map_or("default".into(), |s| s.to_string())));
+                let dir = out.join("runs").join(format!("{key}__{}__{}", label.replace('/', "+"), seed.map_or("default".into(), |s| s.to_string())));
                 let record_path = dir.join("run.json");
-                if let Ok(text) = std::fs::read_to_string(&record_path) {
+                let mut wanted = RunSettings::new(spec, &label, seed, settings.threads, settings.limit_for(row));
+                if formulation.is_some() {
+                    wanted.formulation = formulation.clone();
+                }
+                let old = std::fs::read_to_string(&record_path).ok().and_then(|t| serde_json::from_str::<RunRecord>(&t).ok());
+                let source = match old {
                     // An interrupted run is not finished: it runs again.
-                    if let Some(r) = serde_json::from_str::<RunRecord>(&text).ok().filter(|r| r.status != "interrupted") {
-                        progress(&r, true);
+                    Some(r) if r.status == "interrupted" => Some(vec!["interrupted".to_string()]),
+                    Some(r) if r.settings.as_ref() == Some(&wanted) && r.instance == row.name => {
+                        progress(&r, &RunSource::Resumed);
                         records.push(r);
                         continue;
                     }
-                }
+                    Some(r) => Some(match &r.settings {
+                        Some(had) if *had != wanted => wanted.changes_from(had),
+                        Some(_) => vec![format!("instance {} → {}", r.instance, row.name)],
+                        None => vec!["no settings recorded".into()],
+                    }),
+                    None => None,
+                };
                 std::fs::create_dir_all(&dir)?;
-                let mut r = run_one(exe, spec, solver, seed, settings, settings.limit_for(row), &dir)?;
-                r.instance = name;
+                let mut r = run_one(exe, spec, &solver, formulation.as_deref(), seed, settings, settings.limit_for(row), &dir)?;
+                r.solver = label.clone();
+                r.instance = row.name.clone();
+                r.settings = Some(wanted);
                 crate::io::write_atomic(&record_path, &(serde_json::to_string_pretty(&r)? + "\n"))?;
-                progress(&r, false);
+                progress(&r, &source.map_or(RunSource::Solved, RunSource::Rerun));
                 records.push(r);
             }
         }
@@ -193,9 +389,14 @@ pub fn run_all(exe: &Path, settings: &CompareSettings, out: &Path, mut progress:
     Ok(records)
 }
 
-fn run_one(exe: &Path, spec: &Path, solver: &str, seed: Option<u64>, s: &CompareSettings, limit: f64, dir: &Path) -> std::io::Result<RunRecord> {
+#[allow(clippy::too_many_arguments)]
+fn run_one(exe: &Path, spec: &Path, solver: &str, formulation: Option<&str>, seed: Option<u64>, s: &CompareSettings, limit: f64, dir: &Path) -> std::io::Result<RunRecord> {
     let mut cmd = Command::new(exe);
-    cmd.arg("solve").arg(spec).args(["--solver", solver, "--time-limit", &limit.to_string(), "--out"]).arg(dir);
+    // The run's wall time is the solve's: an infeasible spec is not explained here.
+    cmd.arg("solve").arg(spec).args(["--no-explain", "--solver", solver, "--time-limit", &limit.to_string(), "--out"]).arg(dir);
+    if let Some(f) = formulation {
+        cmd.args(["--formulation", f]);
+    }
     if let Some(seed) = seed {
         cmd.args(["--seed", &seed.to_string()]);
     }
@@ -206,6 +407,7 @@ fn run_one(exe: &Path, spec: &Path, solver: &str, seed: Option<u64>, s: &Compare
     // Its own process group: a Ctrl-C at the terminal reaches this process only, which passes
     // it on once (a second SIGINT would make the child quit without its result).
     std::os::unix::process::CommandExt::process_group(&mut cmd, 0);
+    die_with_parent(&mut cmd);
     let _ = std::fs::remove_file(dir.join("result.json"));
     let t0 = Instant::now();
     let mut child = cmd.spawn()?;
@@ -233,7 +435,7 @@ fn run_one(exe: &Path, spec: &Path, solver: &str, seed: Option<u64>, s: &Compare
     let result: Option<DesignResult> =
         std::fs::read_to_string(dir.join("result.json")).ok().and_then(|t| serde_json::from_str(&t).ok());
     let mut r = RunRecord {
-        instance: instance_name(spec),
+        instance: String::new(),
         solver: solver.to_string(),
         seed,
         edges: None,
@@ -252,6 +454,7 @@ fn run_one(exe: &Path, spec: &Path, solver: &str, seed: Option<u64>, s: &Compare
         solver_version: None,
         exit_code: status.and_then(|s| s.code()),
         time_limit: Some(limit),
+        settings: None,
     };
     if let (Some(res), false) = (result, killed) {
         r.edges = Some(res.mesh.num_edges());
@@ -268,6 +471,33 @@ fn run_one(exe: &Path, spec: &Path, solver: &str, seed: Option<u64>, s: &Compare
         r.solver_version = Some(res.solve.solver_version);
     }
     Ok(r)
+}
+
+/// Makes the child die when this process dies (Linux: `PR_SET_PDEATHSIG` with `SIGKILL`, set in
+/// the child between fork and exec; if the parent is already gone by then, the child exits at
+/// once). The signal follows the death of the thread that spawned the child, so spawn from a
+/// thread that lives as long as the comparison (here: the caller of [`run_all`]).
+fn die_with_parent(cmd: &mut Command) {
+    #[cfg(target_os = "linux")]
+    {
+        use std::os::unix::process::CommandExt;
+        // SAFETY: the closure runs in the forked child before exec and calls only
+        // async-signal-safe functions (prctl, getppid, _exit).
+        let parent = unsafe { libc::getpid() };
+        unsafe {
+            cmd.pre_exec(move || {
+                if libc::prctl(libc::PR_SET_PDEATHSIG, libc::SIGKILL as libc::c_ulong, 0, 0, 0) != 0 {
+                    return Err(std::io::Error::last_os_error());
+                }
+                if libc::getppid() != parent {
+                    libc::_exit(1);
+                }
+                Ok(())
+            });
+        }
+    }
+    #[cfg(not(target_os = "linux"))]
+    let _ = cmd;
 }
 
 /// Shifted geometric mean `exp(mean(ln(t + shift))) − shift` (the MIPLIB convention).
@@ -416,72 +646,18 @@ pub fn csv(records: &[RunRecord]) -> String {
     s
 }
 
-/// A performance profile as SVG: for each backend, the fraction of runs solved (optimal and
-/// valid, or infeasible) within time t, for t from 0 to the limit (log scale from 0.01 s).
+/// A performance profile as SVG ([`render::chart::performance_profile_svg`]): for each backend,
+/// the fraction of runs solved (optimal and valid, or infeasible) within time t, for t from 0 to
+/// the limit (log scale from 0.01 s).
 pub fn performance_profile_svg(records: &[RunRecord], solvers: &[String], limit: f64) -> String {
-    let (w, h, left, bottom, top, right) = (640.0, 400.0, 60.0, 50.0, 30.0, 130.0);
-    let (pw, ph) = (w - left - right, h - top - bottom);
-    let t0 = 0.01f64;
-    let limit = limit.max(t0 * 10.0);
-    let x = |t: f64| left + pw * ((t.max(t0) / t0).ln() / (limit / t0).ln()).clamp(0.0, 1.0);
-    let y = |f: f64| top + ph * (1.0 - f);
-    let mut s = format!(r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" font-family="DejaVu Sans, sans-serif" font-size="11">"#);
-    s.push_str("\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n");
-    let _ = writeln!(s, r##"<text x="{left}" y="18" font-size="13" font-weight="bold">Performance profile: fraction solved within time</text>"##);
-    let _ = writeln!(s, r##"<rect x="{left}" y="{top}" width="{pw}" height="{ph}" fill="none" stroke="#888"/>"##);
-    let mut tick = t0;
-    while tick <= limit * 1.0001 {
-        let _ = writeln!(s, r##"<line x1="{0:.1}" y1="{top}" x2="{0:.1}" y2="{1:.1}" stroke="#eee"/><text x="{0:.1}" y="{2:.1}" text-anchor="middle">{3}</text>"##, x(tick), top + ph, top + ph + 16.0, tick);
-        tick *= 10.0;
-    }
-    for k in 0..=4 {
-        let f = k as f64 / 4.0;
-        let _ = writeln!(s, r##"<text x="{:.1}" y="{:.1}" text-anchor="end">{:.0}%</text>"##, left - 6.0, y(f) + 4.0, f * 100.0);
-    }
-    let _ = writeln!(s, r##"<text x="{:.1}" y="{:.1}" text-anchor="middle">time (s, log scale; limit {limit} s)</text>"##, left + pw / 2.0, h - 10.0);
-    for (i, b) in solvers.iter().enumerate() {
-        let mine: Vec<&RunRecord> = records.iter().filter(|r| &r.solver == b).collect();
-        if mine.is_empty() {
-            continue;
-        }
-        let mut times: Vec<f64> = mine.iter().filter(|r| solved(r)).map(|r| r.wall_time).collect();
-        times.sort_by(f64::total_cmp);
-        let n = mine.len() as f64;
-        let mut pts = vec![format!("{:.1},{:.1}", x(t0), y(0.0))];
-        for (k, t) in times.iter().enumerate() {
-            pts.push(format!("{:.1},{:.1}", x(*t), y(k as f64 / n)));
-            pts.push(format!("{:.1},{:.1}", x(*t), y((k + 1) as f64 / n)));
-        }
-        pts.push(format!("{:.1},{:.1}", x(limit), y(times.len() as f64 / n)));
-        let c = solver_color(i);
-        let _ = writeln!(s, r#"<polyline class="profile" data-solver="{b}" points="{}" fill="none" stroke="{c}" stroke-width="2"/>"#, pts.join(" "));
-        let ly = top + 14.0 + i as f64 * 18.0;
-        let _ = writeln!(s, r#"<line x1="{:.1}" y1="{ly:.1}" x2="{:.1}" y2="{ly:.1}" stroke="{c}" stroke-width="3"/><text x="{:.1}" y="{:.1}">{b}</text>"#, w - right + 10.0, w - right + 30.0, w - right + 36.0, ly + 4.0);
-    }
-    s.push_str("</svg>\n");
-    s
-}
-
-/// The colour of the `i`-th backend (in the order of the `solvers` list) in every figure.
-fn solver_color(i: usize) -> &'static str {
-    const COLORS: [&str; 6] = ["#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b"];
-    COLORS[i % COLORS.len()]
-}
-
-/// Escapes text for an SVG attribute or text node.
-fn xml_escape(s: &str) -> String {
-    let mut out = String::with_capacity(s.len());
-    for c in s.chars() {
-        match c {
-            '&' => out.push_str("&amp;"),
-            '<' => out.push_str("&lt;"),
-            '>' => out.push_str("&gt;"),
-            '"' => out.push_str("&quot;"),
-            '\'' => out.push_str("&apos;"),
-            c => out.push(c),
-        }
-    }
-    out
+    let series: Vec<ProfileSeries> = solvers
+        .iter()
+        .map(|b| {
+            let mine: Vec<&RunRecord> = records.iter().filter(|r| &r.solver == b).collect();
+            ProfileSeries { name: b.clone(), solved_times: mine.iter().filter(|r| solved(r)).map(|r| r.wall_time).collect(), runs: mine.len() }
+        })
+        .collect();
+    render::chart::performance_profile_svg(&series, limit)
 }
 
 /// The paper's time for a row, in seconds, when it is a single number (`"132"`); `None` for
@@ -511,15 +687,6 @@ fn run_label(r: &RunRecord) -> Option<String> {
     })
 }
 
-/// `10^k` as text without round-off (`0.001`, `1`, `1000`).
-fn pow10_label(k: i32) -> String {
-    if k >= 0 {
-        format!("1{}", "0".repeat(k as usize))
-    } else {
-        format!("0.{}1", "0".repeat((-k - 1) as usize))
-    }
-}
-
 /// A grouped bar chart as SVG: one group per manifest row that has a spec (`<g class="instance"
 /// data-instance=…>`), one bar per backend in each (`<rect class="bar" data-instance=…
 /// data-solver=… data-status=…>`), coloured as in [`performance_profile_svg`]. A bar's height is
@@ -530,198 +697,40 @@ fn pow10_label(k: i32) -> String {
 /// paper's Gurobi time, where the manifest gives one number, a diamond. Rows without a spec are
 /// listed under the chart. The output depends only on the arguments.
 pub fn bar_chart_svg(manifest: &Manifest, records: &[RunRecord], solvers: &[String], limit: f64) -> String {
-    let rows: Vec<&ManifestRow> = manifest.row.iter().filter(|r| r.spec.is_some()).collect();
-    let limit = if limit.is_finite() && limit > 0.0 { limit } else { 1.0 };
-    let runs_of = |instance: &str, solver: &str| -> Vec<&RunRecord> {
-        records.iter().filter(|r| r.instance == instance && r.solver == solver).collect()
-    };
-    // The axis: whole decades around every time shown (bars, limit, paper).
-    let shown = records
+    let groups = manifest
+        .row
         .iter()
-        .filter(|r| rows.iter().any(|row| row.name == r.instance) && solvers.contains(&r.solver))
-        .map(bar_time)
-        .chain(rows.iter().filter_map(|row| paper_seconds(&row.paper)))
-        .chain(std::iter::once(limit));
-    let (tmin, tmax) = shown.fold((f64::INFINITY, 0.0f64), |(lo, hi), t| (if t > 0.0 { lo.min(t) } else { lo }, hi.max(t)));
-    let lo_exp = tmin.max(1e-3).log10().floor() as i32;
-    let hi_exp = (tmax.log10().ceil() as i32).max(lo_exp + 1);
-    let (lo, hi) = (10f64.powi(lo_exp), 10f64.powi(hi_exp));
-
-    let ns = solvers.len().max(1) as f64;
-    let bar_w = 12.0;
-    let group_w = ns * bar_w + 14.0;
-    let (left, right, top, bottom, ph) = (60.0, 190.0, 40.0, 90.0, 300.0);
-    let pw = (rows.len() as f64 * group_w).max(200.0);
-    let (w, h) = (left + pw + right, top + ph + bottom);
-    let y = |t: f64| top + ph * (1.0 - (t.clamp(lo, hi).log10() - lo_exp as f64) / (hi_exp - lo_exp) as f64);
-    let base = top + ph;
-
-    let mut s = format!(r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w:.0}" height="{h:.0}" font-family="DejaVu Sans, sans-serif" font-size="11">"#);
-    s.push_str("\n<defs>\n");
-    for i in 0..solvers.len() {
-        let c = solver_color(i);
-        let _ = writeln!(
-            s,
-            r#"<pattern id="hatch-{i}" width="6" height="6" patternUnits="userSpaceOnUse" patternTransform="rotate(45)"><rect width="6" height="6" fill="{c}" fill-opacity="0.2"/><line x1="1.5" y1="0" x2="1.5" y2="6" stroke="{c}" stroke-width="2"/></pattern>"#
-        );
-    }
-    s.push_str("</defs>\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n");
-    let _ = writeln!(s, r##"<text x="{left}" y="20" font-size="13" font-weight="bold">Solver time per instance and backend</text>"##);
-    let _ = writeln!(s, r##"<rect x="{left}" y="{top}" width="{pw:.1}" height="{ph}" fill="none" stroke="#888"/>"##);
-    for k in lo_exp..=hi_exp {
-        let ty = y(10f64.powi(k));
-        let _ = writeln!(
-            s,
-            r##"<line x1="{left}" y1="{ty:.1}" x2="{:.1}" y2="{ty:.1}" stroke="#eee"/><text x="{:.1}" y="{:.1}" text-anchor="end">{}</text>"##,
-            left + pw,
-            left - 6.0,
-            ty + 4.0,
-            pow10_label(k)
-        );
-    }
-    let _ = writeln!(
-        s,
-        r##"<text transform="translate(16 {:.1}) rotate(-90)" text-anchor="middle">solver time (s, log scale)</text>"##,
-        top + ph / 2.0
-    );
-
-    for (g, row) in rows.iter().enumerate() {
-        let name = xml_escape(&row.name);
-        let gx = left + g as f64 * group_w + 7.0;
-        let _ = writeln!(s, r#"<g class="instance" data-instance="{name}">"#);
-        for (i, b) in solvers.iter().enumerate() {
-            let runs = runs_of(&row.name, b);
-            if runs.is_empty() {
-                continue;
-            }
-            let c = solver_color(i);
-            let x0 = gx + i as f64 * bar_w;
-            let mut times: Vec<f64> = runs.iter().map(|r| bar_time(r)).collect();
-            times.sort_by(f64::total_cmp);
-            let t = times[(times.len() - 1) / 2];
-            let all_solved = runs.iter().all(|r| solved(r));
-            // The run that explains the bar: the first not solved, else the first.
-            let shown = runs.iter().find(|r| !solved(r)).unwrap_or(&runs[0]);
-            let failed = shown.status == "failed" && !shown.killed;
-            let top_y = y(t).min(base - 1.0);
-            let fill = if all_solved {
-                format!(r#"fill="{c}""#)
-            } else if failed {
-                format!(r#"fill="none" stroke="{c}" stroke-dasharray="3 2""#)
-            } else {
-                format!(r#"fill="url(#hatch-{i})" stroke="{c}" stroke-width="0.8""#)
-            };
-            let status = if shown.killed { "killed" } else { shown.status.as_str() };
-            let _ = writeln!(
-                s,
-                r#"<rect class="bar" data-instance="{name}" data-solver="{b}" data-status="{status}" data-solved="{all_solved}" data-time="{t}" x="{:.1}" y="{top_y:.1}" width="{:.1}" height="{:.1}" {fill}><title>{name} / {b}: {} in {t:.3} s</title></rect>"#,
-                x0 + 1.0,
-                bar_w - 2.0,
-                base - top_y,
-                xml_escape(&shown.status),
-            );
-            if times.len() > 1 {
-                let cx = x0 + bar_w / 2.0;
-                let _ = writeln!(
-                    s,
-                    r##"<line class="whisker" x1="{cx:.1}" y1="{:.1}" x2="{cx:.1}" y2="{:.1}" stroke="#333"/>"##,
-                    y(times[0]),
-                    y(times[times.len() - 1])
-                );
-            }
-            if shown.killed {
-                let (cx, cy) = (x0 + bar_w / 2.0, top_y - 5.0);
-                let _ = writeln!(
-                    s,
-                    r##"<path class="killed" d="M{:.1} {:.1}L{:.1} {:.1}M{:.1} {:.1}L{:.1} {:.1}" stroke="#c00" stroke-width="2"/>"##,
-                    cx - 3.5,
-                    cy - 3.5,
-                    cx + 3.5,
-                    cy + 3.5,
-                    cx - 3.5,
-                    cy + 3.5,
-                    cx + 3.5,
-                    cy - 3.5
-                );
-            }
-            let unsolved = runs.iter().filter(|r| !solved(r)).count();
-            let label = run_label(shown).map(|l| if runs.len() > 1 && unsolved > 0 { format!("{unsolved}/{} {l}", runs.len()) } else { l });
-            if let Some(l) = label {
-                let _ = writeln!(
-                    s,
-                    r#"<text class="label" transform="translate({:.1} {:.1}) rotate(-90)" font-size="9" paint-order="stroke" stroke="white" stroke-width="2.5">{}</text>"#,
-                    x0 + bar_w / 2.0 + 3.0,
-                    base - 4.0,
-                    xml_escape(&l)
-                );
-            }
-        }
-        if let Some(p) = paper_seconds(&row.paper) {
-            let (cx, cy, hw) = (gx + ns * bar_w / 2.0, y(p), ns * bar_w / 2.0);
-            let _ = writeln!(
-                s,
-                r##"<g class="paper" data-instance="{name}" data-time="{p}"><line x1="{:.1}" y1="{cy:.1}" x2="{:.1}" y2="{cy:.1}" stroke="#000" stroke-width="1"/><path d="M{cx:.1} {:.1}L{:.1} {cy:.1}L{cx:.1} {:.1}L{:.1} {cy:.1}Z" fill="#000"/></g>"##,
-                cx - hw,
-                cx + hw,
-                cy - 4.5,
-                cx + 4.5,
-                cy + 4.5,
-                cx - 4.5
-            );
-        }
-        let _ = writeln!(
-            s,
-            r#"<text transform="translate({:.1} {:.1}) rotate(-40)" text-anchor="end">{name}</text>"#,
-            gx + ns * bar_w / 2.0 + 3.0,
-            base + 14.0
-        );
-        s.push_str("</g>\n");
-    }
-
-    let ly = y(limit);
-    let _ = writeln!(
-        s,
-        r##"<line class="limit" x1="{left}" y1="{ly:.1}" x2="{:.1}" y2="{ly:.1}" stroke="#000" stroke-dasharray="6 4"/><text x="{:.1}" y="{:.1}" text-anchor="end" paint-order="stroke" stroke="white" stroke-width="3">limit {limit} s</text>"##,
-        left + pw,
-        left + pw - 4.0,
-        ly - 4.0
-    );
-
-    // Legend.
-    let lx = left + pw + 14.0;
-    let mut row_y = top + 24.0;
-    for (i, b) in solvers.iter().enumerate() {
-        let _ = writeln!(
-            s,
-            r#"<rect x="{lx:.1}" y="{:.1}" width="12" height="10" fill="{}"/><text x="{:.1}" y="{row_y:.1}">{b}</text>"#,
-            row_y - 9.0,
-            solver_color(i),
-            lx + 18.0
-        );
-        row_y += 16.0;
-    }
-    row_y += 6.0;
-    let legend = [
-        (r##"<rect x="{X}" y="{Y}" width="12" height="10" fill="url(#hatch-0)" stroke="#1f77b4" stroke-width="0.8"/>"##, "not solved (status, gap)"),
-        (r##"<rect x="{X}" y="{Y}" width="12" height="10" fill="none" stroke="#1f77b4" stroke-dasharray="3 2"/>"##, "failed"),
-        (r##"<path d="M{X} {Y}l10 10m-10 0l10 -10" stroke="#c00" stroke-width="2"/>"##, "killed at limit + grace"),
-        (r##"<line x1="{X}" y1="{YM}" x2="{X12}" y2="{YM}" stroke="#000" stroke-dasharray="6 4"/>"##, "time limit"),
-        (r##"<path d="M{X6} {Y}l5 5l-5 5l-5 -5z" fill="#000"/>"##, "paper (Gurobi 2014)"),
-    ];
-    for (shape, text) in legend {
-        let shape = shape
-            .replace("{X12}", &format!("{:.1}", lx + 12.0))
-            .replace("{X6}", &format!("{:.1}", lx + 6.0))
-            .replace("{X}", &format!("{lx:.1}"))
-            .replace("{YM}", &format!("{:.1}", row_y - 4.0))
-            .replace("{Y}", &format!("{:.1}", row_y - 9.0));
-        let _ = writeln!(s, r#"{shape}<text x="{:.1}" y="{row_y:.1}">{text}</text>"#, lx + 18.0);
-        row_y += 16.0;
-    }
-    let missing: Vec<String> = manifest.row.iter().filter(|r| r.spec.is_none()).map(|r| xml_escape(&r.name)).collect();
-    if !missing.is_empty() {
-        let _ = writeln!(s, r#"<text x="{left}" y="{:.1}">Not shown (no spec yet): {}</text>"#, h - 8.0, missing.join(", "));
-    }
-    s.push_str("</svg>\n");
-    s
+        .filter(|r| r.spec.is_some())
+        .map(|row| BarGroup {
+            name: row.name.clone(),
+            bars: solvers
+                .iter()
+                .map(|b| {
+                    let runs: Vec<&RunRecord> = records.iter().filter(|r| r.instance == row.name && &r.solver == b).collect();
+                    if runs.is_empty() {
+                        return None;
+                    }
+                    // The run that explains the bar: the first not solved, else the first.
+                    let shown = runs.iter().find(|r| !solved(r)).unwrap_or(&runs[0]);
+                    let unsolved = runs.iter().filter(|r| !solved(r)).count();
+                    Some(Bar {
+                        times: runs.iter().map(|r| bar_time(r)).collect(),
+                        solved: unsolved == 0,
+                        status: if shown.killed { "killed".into() } else { shown.status.clone() },
+                        killed: shown.killed,
+                        failed: shown.status == "failed" && !shown.killed,
+                        label: run_label(shown).map(|l| if runs.len() > 1 && unsolved > 0 { format!("{unsolved}/{} {l}", runs.len()) } else { l }),
+                    })
+                })
+                .collect(),
+            reference: paper_seconds(&row.paper),
+        })
+        .collect();
+    render::chart::bar_chart_svg(&BarChart {
+        series: solvers.to_vec(),
+        groups,
+        limit,
+        reference_label: "paper (Gurobi 2014)".into(),
+        not_shown: manifest.row.iter().filter(|r| r.spec.is_none()).map(|r| r.name.clone()).collect(),
+    })
 }

@@ -13,6 +13,7 @@
 
 pub mod compare;
 pub mod design;
+pub mod explain;
 pub mod formulations;
 pub mod io;
 pub mod mesh;

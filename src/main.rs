@@ -66,6 +66,12 @@ enum Command {
         /// bound.
         #[arg(long, conflicts_with = "no_solve")]
         relax: bool,
+        /// When the spec is infeasible, do not look for the requirements that conflict.
+        #[arg(long)]
+        no_explain: bool,
+        /// Time budget for explaining an infeasible spec, seconds.
+        #[arg(long, value_name = "SECONDS", default_value_t = 60.0)]
+        explain_time: f64,
     },
     /// Compare backends on spec files: each run in its own process, killed at the time limit
     /// plus a grace period, recorded as it ends (rerun to resume); writes results.md,
@@ -96,6 +102,10 @@ enum Command {
         /// Give each row the paper's own time for it as its limit (capped at --time-limit).
         #[arg(long)]
         paper_limits: bool,
+        /// Formulation recipes, comma-separated (paper, tight, strong): every backend runs with
+        /// each, as its own column (`highs/strong`). Default: the spec's own.
+        #[arg(long, value_delimiter = ',')]
+        formulations: Vec<netspec::spec::RecipeName>,
         /// Output directory.
         #[arg(long, default_value = "out/compare")]
         out: PathBuf,
@@ -305,10 +315,10 @@ fn main() -> ExitCode {
 fn run(cli: Cli) -> Result<ExitCode> {
     match cli.command {
         Command::SolveFile { file, solve, start, json } => solve_file(&file, &solve, start.as_deref(), json.as_deref()),
-        Command::Solve { spec, solve, out, export, no_solve, formulation, relax } => {
-            cli::design::solve_spec(&spec, &solve, out, export, no_solve || relax, formulation, relax)
+        Command::Solve { spec, solve, out, export, no_solve, formulation, relax, no_explain, explain_time } => {
+            cli::design::solve_spec(&spec, &solve, out, export, no_solve || relax, formulation, relax, (!no_explain).then_some(explain_time))
         }
-        Command::Compare { specs, manifest, solvers, time_limit, grace, seeds, threads, paper_limits, out } => {
+        Command::Compare { specs, manifest, solvers, time_limit, grace, seeds, threads, paper_limits, formulations, out } => {
             let manifest = match manifest {
                 Some(m) => netspec::compare::Manifest::load(&m).map_err(anyhow::Error::msg)?,
                 None => netspec::compare::Manifest::from_specs(&specs),
@@ -327,18 +337,25 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 bail!("--threads must be ≥ 1, got 0");
             }
             let interrupt = Some(cli::interrupt::install()?);
-            let settings = netspec::compare::CompareSettings { manifest, solvers: solvers.clone(), time_limit, grace, seeds, threads, paper_limits, interrupt };
+            let formulations: Vec<String> = formulations.iter().map(|f| f.name().to_string()).collect();
+            let settings = netspec::compare::CompareSettings { manifest, solvers: solvers.clone(), formulations, time_limit, grace, seeds, threads, paper_limits, interrupt };
+            // The columns of every table and chart: a backend, or a (backend, recipe) pair.
+            let solvers: Vec<String> = settings.methods().into_iter().map(|(label, _, _)| label).collect();
             std::fs::create_dir_all(&out).with_context(|| format!("creating {}", out.display()))?;
             let exe = std::env::current_exe().context("locating the netspec binary")?;
-            let records = netspec::compare::run_all(&exe, &settings, &out, |r, resumed| {
+            let records = netspec::compare::run_all(&exe, &settings, &out, |r, source| {
                 println!(
-                    "{:<24} {:<8} {:<16} {:>8.2} s {}{}",
+                    "{:<24} {:<14} {:<16} {:>8.2} s {}{}",
                     r.instance,
                     r.solver,
                     r.status,
                     r.wall_time,
                     if r.valid { "valid" } else { "-" },
-                    if resumed { " (resumed)" } else { "" }
+                    match source {
+                        netspec::compare::RunSource::Solved => String::new(),
+                        netspec::compare::RunSource::Resumed => " (resumed)".into(),
+                        netspec::compare::RunSource::Rerun(why) => format!(" (solved again: {})", why.join(", ")),
+                    }
                 );
             })
             .with_context(|| format!("running the comparison into {}", out.display()))?;

@@ -1,6 +1,7 @@
 //! `netspec compare` on a tiny manifest: two small instances × every compiled backend.
 
-use netspec::compare::{bar_chart_svg, paper_seconds, shifted_geometric_mean, summarize, Manifest, ManifestRow, PaperRow, RunRecord};
+use netspec::compare::{bar_chart_svg, instance_ids, paper_seconds, shifted_geometric_mean, summarize, Manifest, ManifestRow, PaperRow, RunRecord};
+use std::path::{Path, PathBuf};
 use std::process::Command;
 
 /// The compare tests' two tiny instances (fixtures/specs).
@@ -69,6 +70,9 @@ fn compare_runs_tables_and_resumes() {
     assert_eq!(bars.matches(r#"class="bar""#).count(), 2 * backends.len());
     assert_eq!(bars.matches(r#"class="limit""#).count(), 1);
     assert!(!bars.contains(r#"class="label""#) && !bars.contains(r#"class="paper""#), "{bars}");
+    // The legend lists only what the chart uses: everything solved, no paper times.
+    assert!(bars.contains(">time limit</text>") && !bars.contains("not solved") && !bars.contains(">failed</text>"), "{bars}");
+    assert!(!bars.contains("killed at limit") && !bars.contains("paper (Gurobi"), "{bars}");
     assert!(md.contains("`bars.svg`"), "{md}");
     let csv = std::fs::read_to_string(out.join("results.csv")).unwrap();
     assert_eq!(csv.lines().count(), 1 + records.len());
@@ -109,6 +113,7 @@ fn record(instance: &str, solver: &str, status: &str, t: f64) -> RunRecord {
         solver_version: None,
         exit_code: Some(0),
         time_limit: None,
+        settings: None,
     }
 }
 
@@ -153,6 +158,9 @@ fn bar_chart_marks_unsolved_killed_failed_and_paper_times() {
     assert!(svg.contains(r#"<g class="paper" data-instance="2a" data-time="132">"#), "{svg}");
     assert!(svg.contains(">1000</text>") && svg.contains(">0.01</text>") && svg.contains("log scale"), "{svg}");
     assert!(svg.contains(r#"class="limit""#) && svg.contains("limit 60 s"));
+    for entry in [">not solved (status, gap)</text>", ">failed</text>", ">killed at limit + grace</text>", ">time limit</text>", ">paper (Gurobi 2014)</text>"] {
+        assert!(svg.contains(entry), "legend entry {entry} missing: {svg}");
+    }
 }
 
 #[test]
@@ -218,7 +226,7 @@ paper = { edges = 657, time = "379/366/49" }
 fn paper_limits_per_row() {
     use netspec::compare::CompareSettings;
     let row = |time: &str| ManifestRow { name: "r".into(), spec: None, missing: Some("-".into()), paper: PaperRow { edges: None, variables: None, time: Some(time.into()) } };
-    let mut s = CompareSettings { manifest: Manifest { row: vec![] }, solvers: vec![], time_limit: 100.0, grace: 1.0, seeds: vec![], threads: None, paper_limits: true, interrupt: None };
+    let mut s = CompareSettings { manifest: Manifest { row: vec![] }, solvers: vec![], formulations: vec![], time_limit: 100.0, grace: 1.0, seeds: vec![], threads: None, paper_limits: true, interrupt: None };
     assert_eq!(s.limit_for(&row("35")), 35.0);
     assert_eq!(s.limit_for(&row("1018")), 100.0);
     assert_eq!(s.limit_for(&row("379/366/49")), 100.0);
@@ -228,4 +236,177 @@ fn paper_limits_per_row() {
     a.time_limit = Some(35.0);
     let summary = summarize(&[a], &["x".into()], 100.0);
     assert!((summary[0].sgm_time - 35.0).abs() < 1e-9, "{summary:?}");
+}
+
+/// Instance names come from paths: the shortest trailing part that tells specs apart.
+#[test]
+fn instance_ids_are_path_derived_and_unique() {
+    let ids = |paths: &[&str]| instance_ids(&paths.iter().map(PathBuf::from).collect::<Vec<_>>());
+    assert_eq!(
+        ids(&["models/streets/fig1b/L2/spec.json", "models/streets/fig7e/L2/spec.json", "models/fig2b.toml"]),
+        ["fig1b/L2/spec", "fig7e/L2/spec", "fig2b"]
+    );
+    assert_eq!(ids(&["./a.toml"]), ["a"]);
+    assert_eq!(ids(&["x/a.toml", "a.toml"]), ["x/a", "a"]);
+    assert_eq!(ids(&["d/a.toml", "d/a.json"]), ["d/a.toml", "d/a.json"]);
+    assert_eq!(ids(&["a.toml", "a.toml"]), ["a", "a#2"]);
+    // Run directories: one per instance, never shared.
+    let m = Manifest::from_specs(&["p/x/spec.toml", "q/x/spec.toml"].map(PathBuf::from));
+    assert_eq!(m.run_keys(), ["p-x-spec", "q-x-spec"]);
+    let clash = Manifest {
+        row: ["a/b", "a-b"]
+            .iter()
+            .map(|n| ManifestRow { name: n.to_string(), spec: Some("s.toml".into()), missing: None, paper: PaperRow::default() })
+            .collect(),
+    };
+    let keys = clash.run_keys();
+    assert!(keys[0] != keys[1] && keys[0].starts_with("a-b-") && keys[1].starts_with("a-b-"), "{keys:?}");
+}
+
+/// Runs `netspec compare` with HiGHS; returns stdout and the records.
+fn compare(specs: &[&Path], extra: &[&str], out: &Path) -> (String, Vec<RunRecord>) {
+    let o = Command::new(env!("CARGO_BIN_EXE_netspec"))
+        .arg("compare")
+        .args(specs)
+        .args(["--solvers", "highs", "--grace", "5", "--out"])
+        .arg(out)
+        .args(extra)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(out.join("results.json")).unwrap()).unwrap();
+    (String::from_utf8(o.stdout).unwrap(), serde_json::from_value(json["records"].clone()).unwrap())
+}
+
+/// Two specs both called `spec.toml` (in different directories) are two instances, each
+/// solved, each with its own record.
+#[test]
+fn same_file_names_are_different_instances() {
+    let dir = tempfile::tempdir().unwrap();
+    let (a, b) = (dir.path().join("x/L2/spec.toml"), dir.path().join("y/L2/spec.toml"));
+    for (p, f) in [(&a, "tiny_floorplan.toml"), (&b, "tiny_network.toml")] {
+        std::fs::create_dir_all(p.parent().unwrap()).unwrap();
+        std::fs::write(p, fixture(f)).unwrap();
+    }
+    let out = dir.path().join("out");
+    let (stdout, records) = compare(&[&a, &b], &["--time-limit", "20"], &out);
+    assert!(!stdout.contains("(resumed)"), "{stdout}");
+    let names: Vec<&str> = records.iter().map(|r| r.instance.as_str()).collect();
+    assert_eq!(names, ["x/L2/spec", "y/L2/spec"]);
+    assert!(records.iter().all(|r| r.status == "optimal" && r.valid), "{records:?}");
+    // Different instances, different answers: the floor plan's corridor is 3 long.
+    assert_eq!(records[0].objective, Some(3.0));
+    assert_ne!(records[0].objective, records[1].objective);
+    assert!(out.join("runs/x-L2-spec__highs__default/run.json").exists() && out.join("runs/y-L2-spec__highs__default/run.json").exists());
+}
+
+/// A record is reused only with the same settings: another time limit, thread count or an
+/// edited spec solves again; the same settings resume. Records say what produced them.
+#[test]
+fn rerun_with_other_settings_solves_again() {
+    let dir = tempfile::tempdir().unwrap();
+    let spec = dir.path().join("n.toml");
+    std::fs::write(&spec, fixture("tiny_network.toml")).unwrap();
+    let out = dir.path().join("out");
+    let (first, records) = compare(&[&spec], &["--time-limit", "20"], &out);
+    assert!(!first.contains("(resumed)") && !first.contains("solved again"), "{first}");
+    let s = records[0].settings.clone().expect("settings recorded");
+    assert_eq!((s.solver.as_str(), s.seed, s.threads, s.time_limit), ("highs", None, None, 20.0));
+    assert_eq!(s.formulation.as_deref(), Some("tight"));
+    assert_eq!(s.netspec_version, env!("CARGO_PKG_VERSION"));
+    assert_eq!(s.spec, spec);
+
+    let (second, records) = compare(&[&spec], &["--time-limit", "19"], &out);
+    assert!(second.contains("(solved again: time limit 20 s → 19 s)"), "{second}");
+    assert_eq!(records[0].settings.as_ref().unwrap().time_limit, 19.0);
+    assert_eq!(records[0].time_limit, Some(19.0));
+    let (third, _) = compare(&[&spec], &["--time-limit", "19"], &out);
+    assert!(third.contains("(resumed)"), "{third}");
+    let (fourth, records) = compare(&[&spec], &["--time-limit", "19", "--threads", "1"], &out);
+    assert!(fourth.contains("(solved again: threads default → 1)"), "{fourth}");
+    assert_eq!(records[0].settings.as_ref().unwrap().threads, Some(1));
+    std::fs::write(&spec, fixture("tiny_network.toml") + "\n# edited\n").unwrap();
+    let (fifth, _) = compare(&[&spec], &["--time-limit", "19", "--threads", "1"], &out);
+    assert!(fifth.contains("solved again: spec digest"), "{fifth}");
+    // A record without settings (an older netspec) is solved again.
+    let path = out.join("runs/n__highs__default/run.json");
+    let mut old: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+    old.as_object_mut().unwrap().remove("settings");
+    std::fs::write(&path, old.to_string()).unwrap();
+    let (sixth, _) = compare(&[&spec], &["--time-limit", "19", "--threads", "1"], &out);
+    assert!(sixth.contains("(solved again: no settings recorded)"), "{sixth}");
+}
+
+/// `kill -9` of `netspec compare` takes its running child with it (no orphan keeps solving).
+#[cfg(target_os = "linux")]
+#[test]
+fn killing_compare_kills_its_child() {
+    use std::time::{Duration, Instant};
+    let dir = tempfile::tempdir().unwrap();
+    // Fig. 2b: HiGHS does not finish it in a minute.
+    let spec = Path::new(env!("CARGO_MANIFEST_DIR")).join("models/fig2b.toml");
+    let mut parent = Command::new(env!("CARGO_BIN_EXE_netspec"))
+        .arg("compare")
+        .arg(&spec)
+        .args(["--solvers", "highs", "--time-limit", "120", "--threads", "1", "--out"])
+        .arg(dir.path())
+        .stdout(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    let ppid = parent.id();
+    let stat = |pid: u32| std::fs::read_to_string(format!("/proc/{pid}/stat")).ok();
+    // (pid, parent pid, state) of every process.
+    let children = || -> Vec<u32> {
+        std::fs::read_dir("/proc")
+            .unwrap()
+            .filter_map(|e| e.ok()?.file_name().to_str()?.parse::<u32>().ok())
+            .filter(|&pid| stat(pid).is_some_and(|s| s.rsplit(')').next().unwrap().split_whitespace().nth(1) == Some(&ppid.to_string())))
+            .collect()
+    };
+    let t0 = Instant::now();
+    let child = loop {
+        if let Some(&c) = children().first() {
+            break c;
+        }
+        assert!(t0.elapsed() < Duration::from_secs(30), "no child appeared");
+        std::thread::sleep(Duration::from_millis(20));
+    };
+    // Let the child get into its solve, then kill the parent outright.
+    std::thread::sleep(Duration::from_millis(500));
+    let alive = |pid: u32| stat(pid).is_some_and(|s| !matches!(s.rsplit(')').next().unwrap().split_whitespace().next(), Some("Z" | "X")));
+    assert!(alive(child), "the child ended early");
+    parent.kill().unwrap();
+    parent.wait().unwrap();
+    let t1 = Instant::now();
+    while alive(child) {
+        if t1.elapsed() > Duration::from_secs(10) {
+            let _ = Command::new("kill").args(["-9", &child.to_string()]).status();
+            panic!("the child {child} outlived its parent");
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+}
+
+/// `--formulations paper,strong`: every backend runs each recipe as its own column
+/// (`highs/paper`, `highs/strong`), the child is given the recipe, both prove the same optimum,
+/// and the tables and records carry the pair.
+#[test]
+fn formulation_axis() {
+    let dir = tempfile::tempdir().unwrap();
+    let spec = dir.path().join("net.toml");
+    std::fs::write(&spec, fixture("tiny_network.toml")).unwrap();
+    let out = dir.path().join("out");
+    let (stdout, records) = compare(&[&spec], &["--time-limit", "20", "--formulations", "paper,strong"], &out);
+    let solvers: Vec<&str> = records.iter().map(|r| r.solver.as_str()).collect();
+    assert_eq!(solvers, ["highs/paper", "highs/strong"], "{stdout}");
+    assert!(records.iter().all(|r| r.status == "optimal" && r.valid), "{records:?}");
+    let (a, b) = (records[0].objective.unwrap(), records[1].objective.unwrap());
+    assert!(netspec::milp::objectives_agree(a, b, 1e-9), "{a} vs {b}");
+    assert_eq!(records[1].settings.as_ref().unwrap().formulation.as_deref(), Some("strong"));
+    let md = std::fs::read_to_string(out.join("results.md")).unwrap();
+    assert!(md.contains("highs/paper") && md.contains("highs/strong"), "{md}");
+    for (label, recipe) in [("highs+paper", "paper"), ("highs+strong", "strong")] {
+        let res: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(out.join(format!("runs/net__{label}__default/result.json"))).unwrap()).unwrap();
+        assert_eq!(res["formulation"], recipe);
+    }
 }

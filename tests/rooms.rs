@@ -368,3 +368,26 @@ fn circular_level_with_dead_ends_allowed_is_refused_and_otherwise_a_cycle() {
     assert!(e.contains("features.dead_ends") && e.contains("circular"), "{e}");
     assert_level(&problem(&circular), GraphShape::Cycle);
 }
+
+/// The picture tells room types apart (each room marked with its type's letter, A, B, …) and its
+/// legend lists only what is drawn: the types used, the sink, no p2p sample, obstacle or route.
+#[test]
+fn picture_marks_room_types_and_lists_what_is_drawn() {
+    let p = problem(&FLOORPLAN_4X4.replace(
+        r#"templates = [{ name = "office", shape = "rect 2x2" }]"#,
+        r#"templates = [{ name = "office", shape = "rect 2x2" }, { name = "lab", shape = "rect 2x1", exact = 2 }, { name = "hall", shape = "rect 3x3", max = 0 }]"#,
+    ));
+    let nm = pipeline::build(&p);
+    let r = pipeline::solve_built(&p, &nm, SolverKind::default_kind().unwrap(), &SolveOptions { time_limit: Some(60.0), ..Default::default() }).unwrap();
+    let net = r.network.unwrap();
+    let placements = &nm.placements.as_ref().unwrap().placements;
+    let svg = netspec::render::svg(&p, &net, None, Some(placements), &netspec::render::Caption { name: "a \"quoted\" <plan>".into(), ..Default::default() });
+    assert_eq!(svg.matches(r#"class="room-type""#).count(), 5, "{svg}");
+    let letter = |l: &str| svg.matches(&format!(">{l}</text>")).count();
+    // Three offices (A) and two labs (B), each letter once more in the legend; no hall (C).
+    assert_eq!((letter("A"), letter("B"), letter("C")), (4, 3, 0), "{svg}");
+    assert!(svg.contains(">office</text>") && svg.contains(">lab</text>") && !svg.contains(">hall</text>"), "{svg}");
+    assert!(svg.contains(">sink</text>") && !svg.contains("p2p sample") && !svg.contains(">obstacle<") && !svg.contains("forced / route"), "{svg}");
+    assert!(svg.contains("a &quot;quoted&quot; &lt;plan&gt;"), "{svg}");
+    netspec::render::png(&svg).unwrap();
+}

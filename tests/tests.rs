@@ -23,3 +23,5 @@ mod traffic;
 mod solve_loop;
 // Fuzz targets: the MPS, LP and solution readers and the spec parser never panic.
 mod fuzz;
+// Infeasibility explained: minimal conflicting sets of a spec's requirements.
+mod explain;

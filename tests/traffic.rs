@@ -324,11 +324,19 @@ fn cli_compares_designs_and_solve_writes_geojson() {
         let out = netspec().arg("solve").arg(&spec).arg("--out").arg(dir.path().join(name)).output().unwrap();
         assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     }
-    // GeoJSON: the chains' segments are exactly the active edges.
+    // GeoJSON: the chains' segments are exactly the active edges (in WGS 84, one model unit a
+    // metre from the default origin, as the city writer projects them).
     let res: DesignResult = serde_json::from_str(&std::fs::read_to_string(dir.path().join("short/result.json")).unwrap()).unwrap();
     let geo: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(dir.path().join("short/network.geojson")).unwrap()).unwrap();
-    let pos = res.mesh.positions();
-    let vid = |p: &serde_json::Value| pos.iter().position(|q| q[0] == p[0].as_f64().unwrap() && q[1] == p[1].as_f64().unwrap()).unwrap() as u32;
+    let city: netspec::urban::CitySpec = serde_json::from_value(serde_json::json!({
+        "name": "x", "metres_per_unit": 1.0, "domain": { "outer": [] }, "mesh": { "spacing": 1.0 }, "levels": {},
+    }))
+    .unwrap();
+    let pos: Vec<[f64; 2]> = res.mesh.positions().iter().map(|&q| city.to_wgs84(q)).collect();
+    let vid = |p: &serde_json::Value| {
+        let (x, y) = (p[0].as_f64().unwrap(), p[1].as_f64().unwrap());
+        pos.iter().position(|q| (q[0] - x).abs() < 1e-12 && (q[1] - y).abs() < 1e-12).unwrap() as u32
+    };
     let mut segs = BTreeSet::new();
     for f in geo["features"].as_array().unwrap().iter().filter(|f| f["geometry"]["type"] == "LineString") {
         let pts = f["geometry"]["coordinates"].as_array().unwrap();

@@ -127,14 +127,30 @@ fn infeasible_region_is_an_outcome() {
     assert!(dir.path().join("city.svg").exists() && dir.path().join("streets.geojson").exists());
 }
 
-/// The outputs: GeoJSON with one line per snake at every level, metrics, smoothing energy down.
+/// The outputs: GeoJSON (WGS 84) with one line per snake at every level, metrics, smoothing
+/// energy down; the picture draws the levels present, the obstacle and the given sinks, and says
+/// which metrics are totals and which per km².
 #[test]
 fn outputs_and_metrics() {
-    let text = std::fs::read_to_string(fixture()).unwrap();
+    // An obstacle and an explicit sink at level 2 (as Fig. 8 has).
+    let text = std::fs::read_to_string(fixture()).unwrap().replace(
+        "[levels.2]\n",
+        "[levels.2]\nuser = { obstacle_polygons = [[[0, 0], [1, 0], [1, 1], [0, 1]]] }\nsinks = { all_boundary = true, points = [[6, 2]] }\n",
+    );
     let dir = tempfile::tempdir().unwrap();
     let r = run(&text, SolverKind::default_kind().unwrap(), dir.path());
+    assert!(r.complete && r.valid, "{:#?}", r.regions);
     let geo: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(dir.path().join("streets.geojson")).unwrap()).unwrap();
     assert_eq!(geo["type"], "FeatureCollection");
+    // WGS 84 around the default origin (0°, 0°): the 8 × 4 units at 100 m span 800 m east and
+    // 400 m north, about 0.0072° and 0.0036°.
+    assert_eq!(geo["properties"]["geo_origin"], serde_json::json!([0.0, 0.0]));
+    assert_eq!(geo["properties"]["geo_origin_is_default"], serde_json::json!(true));
+    let mut points = Vec::new();
+    collect_points(&geo["features"], &mut points);
+    let (lo, hi) = points.iter().fold(([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]), |(lo, hi), p| ([lo[0].min(p[0]), lo[1].min(p[1])], [hi[0].max(p[0]), hi[1].max(p[1])]));
+    assert!(lo[0].abs() < 1e-12 && lo[1].abs() < 1e-12, "{lo:?}");
+    assert!((hi[0] - 800.0 / 111_320.0).abs() < 1e-9 && (hi[1] - 400.0 / 110_540.0).abs() < 1e-9, "{hi:?}");
     let features = geo["features"].as_array().unwrap();
     let streets: Vec<_> = features.iter().filter(|f| f["properties"]["kind"] == "street").collect();
     // Level 1 (as given) is one multi-line; every other street is one smoothed snake.
@@ -153,6 +169,41 @@ fn outputs_and_metrics() {
     for level in 1..=3 {
         assert!(svg.contains(&format!("data-level=\"{level}\"")), "no level {level} in the picture");
     }
+    // The legend lists what is drawn: levels 1–3, the obstacle and the given sink; no level 4.
+    assert!(svg.contains(">level 3: local roads<") && !svg.contains("level 4"), "{svg}");
+    assert_eq!(svg.matches(r#"class="obstacle""#).count(), 1, "{svg}");
+    assert_eq!(svg.matches(r#"class="sink""#).count(), 1, "{svg}");
+    assert!(svg.contains(">obstacle<") && svg.contains(">sink (given)<"), "{svg}");
+    let totals = format!("totals over 0.320 km²: streets {:.2} km", r.metrics.street_length_km);
+    assert!(svg.contains(&totals) && svg.contains(&format!("per km²: streets {:.1} km", r.metrics.sl)), "{svg}");
+}
+
+fn collect_points(v: &serde_json::Value, out: &mut Vec<[f64; 2]>) {
+    match v {
+        serde_json::Value::Array(a) if a.len() == 2 && a.iter().all(|x| x.is_f64()) => out.push([a[0].as_f64().unwrap(), a[1].as_f64().unwrap()]),
+        serde_json::Value::Array(a) => a.iter().for_each(|x| collect_points(x, out)),
+        serde_json::Value::Object(o) => {
+            if let Some(g) = o.get("geometry") {
+                collect_points(&g["coordinates"], out);
+            } else {
+                o.values().for_each(|x| collect_points(x, out));
+            }
+        }
+        _ => {}
+    }
+}
+
+/// With `geo_origin`, points are degrees around it; the scale follows the latitude.
+#[test]
+fn wgs84_around_a_given_origin() {
+    let text = std::fs::read_to_string(fixture()).unwrap().replace("metres_per_unit = 100", "metres_per_unit = 100\ngeo_origin = [4.35, 50.85]");
+    let spec = CitySpec::from_toml(&text).unwrap();
+    assert_eq!(spec.to_wgs84([0.0, 0.0]), [4.35, 50.85]);
+    let [lon, lat] = spec.to_wgs84([8.0, 4.0]);
+    assert!((lon - 4.35 - 800.0 / (111_320.0 * 50.85f64.to_radians().cos())).abs() < 1e-12, "{lon}");
+    assert!((lat - 50.85 - 400.0 / 110_540.0).abs() < 1e-12, "{lat}");
+    let plain = CitySpec::from_toml(&std::fs::read_to_string(fixture()).unwrap()).unwrap();
+    assert_eq!(plain.origin_wgs84(), netspec::urban::DEFAULT_GEO_ORIGIN);
 }
 
 /// Kill the run after one sub-region has finished; the rerun reuses it (its files are not

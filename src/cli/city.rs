@@ -124,10 +124,7 @@ pub fn run_city(path: &Path, args: CityArgs) -> Result<ExitCode> {
     }
     println!("levels     {}", urban::city::levels_summary(&result.regions));
     let m = &result.metrics;
-    println!(
-        "metrics    per km² ({:.3} km², {} m/unit): streets {:.2} km, intersections {:.1} (3-way {:.1}, 4-way {:.1}), dead-ends {:.1}, blocks {:.1}",
-        m.area_km2, spec.metres_per_unit, m.sl, m.si, m.si3, m.si4, m.sd, m.bn
-    );
+    println!("metrics    {} ({} m per unit)", m.summary(), spec.metres_per_unit);
     println!("smoothing  {:?}: {} snakes, energy {:.4} → {:.4}", result.smoothing.method, result.smoothing.snakes, result.smoothing.energy_before, result.smoothing.energy_after);
     println!("wrote      {}/city.json, streets.geojson, city.svg, city.png, regions/", out.display());
     Ok(if !result.valid {

@@ -6,6 +6,7 @@ use anyhow::{Context, Result};
 use indicatif::{ProgressBar, ProgressStyle};
 use netspec::pipeline::{self, DesignResult};
 use netspec::render::{self, Caption};
+use netspec::explain::{ExplainOptions, Explanation};
 use netspec::solvers::SolverKind;
 use netspec::spec::{RecipeName, Spec};
 use std::path::{Path, PathBuf};
@@ -15,6 +16,8 @@ use std::time::Duration;
 /// Exit code when the design fails an independent check.
 const EXIT_INVALID: u8 = 3;
 
+/// `explain`: the time budget for explaining an infeasible spec (`None`: do not explain).
+#[allow(clippy::too_many_arguments)]
 pub fn solve_spec(
     path: &Path,
     args: &SolveArgs,
@@ -23,6 +26,7 @@ pub fn solve_spec(
     no_solve: bool,
     formulation: Option<RecipeName>,
     relax: bool,
+    explain: Option<f64>,
 ) -> Result<ExitCode> {
     let mut spec = Spec::load(path)?;
     if let Some(r) = formulation {
@@ -112,11 +116,35 @@ pub fn solve_spec(
         netspec::io::sol::write(&nm.model, x, res.solve.objective, &header, sol)?;
         println!("solution   {}", sol.display());
     }
+    let explanation = match explain {
+        Some(budget) if res.solve.termination == Termination::Infeasible => {
+            let bar = ProgressBar::new_spinner();
+            bar.set_style(ProgressStyle::with_template("{spinner} explaining: which requirements conflict? {elapsed}").expect("static template"));
+            bar.enable_steady_tick(Duration::from_millis(200));
+            let opts = ExplainOptions { time_budget: budget, check_time_limit: budget.min(5.0), threads: options.threads, known_infeasible: true, ..ExplainOptions::default() };
+            let e = netspec::explain::explain(&problem, kind, &opts);
+            bar.finish_and_clear();
+            for (i, line) in e.lines().iter().enumerate() {
+                println!("{}{line}", if i == 0 { "explain    " } else { "           " });
+            }
+            Some(e)
+        }
+        _ => None,
+    };
 
     let dir = out.unwrap_or_else(|| PathBuf::from("out").join(&spec.name));
     std::fs::create_dir_all(&dir).with_context(|| format!("creating {}", dir.display()))?;
     let json = dir.join("result.json");
-    std::fs::write(&json, serde_json::to_string_pretty(&res)? + "\n").with_context(|| format!("writing {}", json.display()))?;
+    // result.json: the design result, plus `infeasibility` when the spec was explained.
+    #[derive(serde::Serialize)]
+    struct Written<'a> {
+        #[serde(flatten)]
+        result: &'a DesignResult,
+        #[serde(skip_serializing_if = "Option::is_none")]
+        infeasibility: Option<&'a Explanation>,
+    }
+    let written = Written { result: &res, infeasibility: explanation.as_ref() };
+    std::fs::write(&json, serde_json::to_string_pretty(&written)? + "\n").with_context(|| format!("writing {}", json.display()))?;
     let caption = Caption {
         name: if spec.description.is_empty() { spec.name.clone() } else { format!("{} — {}", spec.name, spec.description) },
         solver: format!("{} {}", res.solve.solver, res.solve.solver_version),
@@ -135,7 +163,14 @@ pub fn solve_spec(
         println!("picture    {} (and .svg)", png_path.display());
         let geo = dir.join("network.geojson");
         std::fs::write(&geo, netspec::traffic::export::design_geojson(&res, netspec::traffic::network::DEFAULT_SOLVE_LEVEL)).with_context(|| format!("writing {}", geo.display()))?;
-        println!("geojson    {} (model units)", geo.display());
+        println!("geojson    {} (WGS 84, one model unit a metre from the default origin)", geo.display());
+    } else if let Some(e) = explanation.as_ref().filter(|e| !e.conflicts.is_empty()) {
+        let svg = render::network::conflict_svg(&problem, e, &caption);
+        let svg_path = dir.join("network.svg");
+        std::fs::write(&svg_path, &svg).with_context(|| format!("writing {}", svg_path.display()))?;
+        let png_path = dir.join("network.png");
+        std::fs::write(&png_path, render::png(&svg)?).with_context(|| format!("writing {}", png_path.display()))?;
+        println!("picture    {} (and .svg): the conflicting requirements", png_path.display());
     }
     if let Some(g) = res.rooms.as_ref().and_then(|r| r.block_graph.as_ref()) {
         let dot = dir.join("blocks.dot");

@@ -1,6 +1,7 @@
 //! The solver-neutral MILP model, its validation and the independent feasibility checker.
 
 pub mod check;
+pub mod ext_f64;
 pub mod model;
 pub mod screen;
 pub mod validate;

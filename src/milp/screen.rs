@@ -32,20 +32,26 @@ pub enum InfeasibilityKind {
     /// A row without coefficients whose sides exclude 0.
     EmptyRow {
         /// The lower side.
+        #[serde(with = "super::ext_f64")]
         lhs: f64,
         /// The upper side.
+        #[serde(with = "super::ext_f64")]
         rhs: f64,
     },
     /// The row's activity cannot reach a side: its range `[min, max]` over the variables'
     /// bounds lies entirely outside `[lhs, rhs]`.
     ActivityOutOfReach {
         /// The smallest activity the bounds allow.
+        #[serde(with = "super::ext_f64")]
         min: f64,
         /// The largest activity the bounds allow.
+        #[serde(with = "super::ext_f64")]
         max: f64,
         /// The lower side.
+        #[serde(with = "super::ext_f64")]
         lhs: f64,
         /// The upper side.
+        #[serde(with = "super::ext_f64")]
         rhs: f64,
     },
 }

@@ -25,9 +25,7 @@ fn heat(t: f64) -> String {
     format!("#{:02x}{:02x}{:02x}", c[0], c[1], c[2])
 }
 
-fn xml(t: &str) -> String {
-    t.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;")
-}
+use super::writer::escape as xml;
 
 /// A round number ≥ `v` (1, 2 or 5 × 10ⁿ) for axis ends.
 fn nice_ceil(v: f64) -> f64 {

@@ -213,7 +213,7 @@ pub fn class_stats(trips: &[&parse::TripInfo]) -> ClassStats {
 
 /// A digest of drawn trips.
 pub fn demand_digest(trips: &[Trip]) -> String {
-    crate::urban::city::fnv1a(&[serde_json::to_string(trips).expect("trips serialise").as_bytes()])
+    crate::io::digest(&[serde_json::to_string(trips).expect("trips serialise").as_bytes()])
 }
 
 /// Reads SUMO's outputs and assembles the report (timings are the caller's).

@@ -293,20 +293,6 @@ pub fn saved_roads(spec: &CitySpec, out: &Path, region: &RegionOutcome) -> Resul
     Ok(mesh::clipped_grid_on_lattice(&region.outer, &region.holes, spec.mesh.spacing, origin).ok().map(RegionRoads::boundary_only))
 }
 
-/// FNV-1a, 64 bits: a stable digest of a level's inputs (not for security).
-pub(crate) fn fnv1a(parts: &[&[u8]]) -> String {
-    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
-    for p in parts {
-        for &b in *p {
-            h ^= b as u64;
-            h = h.wrapping_mul(0x0000_0100_0000_01b3);
-        }
-        h ^= 0xff;
-        h = h.wrapping_mul(0x0000_0100_0000_01b3);
-    }
-    format!("{h:016x}")
-}
-
 /// The sub-regions of a city, each matched to its `[[region]]` entry.
 pub fn regions(spec: &CitySpec) -> Result<Vec<(Region, Option<usize>)>, CityError> {
     let roads: Vec<Vec<[f64; 2]>> = spec.roads.iter().map(|r| r.points.clone()).collect();
@@ -463,7 +449,7 @@ fn run_level(
     let spec_json = serde_json::to_string(&input.spec).expect("specs serialise");
     let mesh_json = serde_json::to_string(&input.roads.mesh).expect("meshes serialise");
     let opts_json = serde_json::to_string(&(opts.solver, &solve_opts)).expect("options serialise");
-    let fingerprint = fnv1a(&[spec_json.as_bytes(), mesh_json.as_bytes(), opts_json.as_bytes()]);
+    let fingerprint = crate::io::digest(&[spec_json.as_bytes(), mesh_json.as_bytes(), opts_json.as_bytes()]);
     let ldir = dir.join(format!("L{n}"));
     let state_path = ldir.join("state.json");
     if opts.resume {

@@ -105,6 +105,37 @@ pub fn street_metrics(g: &PlanarGraph, metres_per_unit: f64, area_units: f64) ->
     }
 }
 
+impl StreetMetrics {
+    /// The totals: `totals over 0.320 km²: streets 3.20 km, 12 intersections (3-way 8, 4-way 4),
+    /// 0 dead-ends, 6 blocks`.
+    pub fn totals_line(&self) -> String {
+        format!(
+            "totals over {:.3} km²: streets {:.2} km, {} intersections (3-way {}, 4-way {}), {} dead-ends, {} blocks",
+            self.area_km2,
+            self.street_length_km,
+            self.intersections_3 + self.intersections_4 + self.intersections_5plus,
+            self.intersections_3,
+            self.intersections_4,
+            self.dead_ends,
+            self.blocks,
+        )
+    }
+
+    /// The densities: `per km²: streets 10.0 km, 37.5 intersections (3-way 25.0, 4-way 12.5),
+    /// 0.0 dead-ends, 18.8 blocks`.
+    pub fn density_line(&self) -> String {
+        format!(
+            "per km²: streets {:.1} km, {:.1} intersections (3-way {:.1}, 4-way {:.1}), {:.1} dead-ends, {:.1} blocks",
+            self.sl, self.si, self.si3, self.si4, self.sd, self.bn
+        )
+    }
+
+    /// Both, in one line: which numbers are totals and which are per km².
+    pub fn summary(&self) -> String {
+        format!("{}; {}", self.totals_line(), self.density_line())
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -141,6 +172,11 @@ mod tests {
             bmax: Some(4000.0),
         };
         assert_eq!(m, want);
+        assert_eq!(
+            m.summary(),
+            "totals over 4.000 km²: streets 12.00 km, 5 intersections (3-way 4, 4-way 1), 0 dead-ends, 4 blocks; \
+             per km²: streets 3.0 km, 1.2 intersections (3-way 1.0, 4-way 0.2), 0.0 dead-ends, 1.0 blocks"
+        );
         // Serde round trip.
         let back: StreetMetrics = serde_json::from_str(&serde_json::to_string(&m).unwrap()).unwrap();
         assert_eq!(back, m);

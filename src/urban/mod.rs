@@ -12,4 +12,4 @@ pub mod spec;
 
 pub use city::{run_regions, CityError, CityEvent, CityRunOptions, LevelOutcome, RegionOutcome, RegionRoads};
 pub use output::{run_city, run_city_on, CityResult};
-pub use spec::{CitySpec, CitySpecError, CitySpecErrorKind, LevelSpec};
+pub use spec::{CitySpec, CitySpecError, CitySpecErrorKind, LevelSpec, DEFAULT_GEO_ORIGIN};

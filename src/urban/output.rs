@@ -9,7 +9,7 @@ use super::smooth::{self, Snake, StreetEdge, StreetGraph};
 use super::spec::{CitySpec, SmoothingMethod};
 use indexmap::IndexMap;
 use serde::{Deserialize, Serialize};
-use std::fmt::Write as _;
+use crate::render::city::{CityPicture, RegionShape};
 use std::path::Path;
 
 /// Version of the city result schema (`city.json`).
@@ -236,25 +236,12 @@ pub fn snap_to_major_roads(g: &StreetGraph, joins: &[bool], snakes: Vec<Snake>, 
     out
 }
 
-/// Level colours and stroke widths (pixels) for pictures.
-const LEVEL_STYLE: [(&str, f64); 5] = [("#999999", 1.0), ("#252525", 5.0), ("#d94801", 3.4), ("#2171b5", 2.2), ("#41ab5d", 1.5)];
-
-fn style(level: u8) -> (&'static str, f64) {
-    LEVEL_STYLE[(level as usize).min(4)]
-}
-
-/// The smoothed streets (and sub-regions) as GeoJSON. With `geo_origin`, coordinates are WGS 84
-/// degrees (RFC 7946), by an equirectangular projection around the origin (accurate to well
-/// under a metre over a few kilometres); without it, metres in the model's own frame.
+/// The smoothed streets (and sub-regions) as GeoJSON (RFC 7946): always WGS 84 longitude and
+/// latitude ([`CitySpec::to_wgs84`]), around `geo_origin` or, without one, around
+/// [`super::spec::DEFAULT_GEO_ORIGIN`]; the collection's `properties` say which origin and scale
+/// were used.
 pub fn geojson(spec: &CitySpec, regions: &[RegionOutcome], major: &[[[f64; 2]; 2]], snakes: &[Snake]) -> String {
-    let m = spec.metres_per_unit;
-    let proj = |p: [f64; 2]| -> [f64; 2] {
-        let (x, y) = (p[0] * m, p[1] * m);
-        match spec.geo_origin {
-            Some([lon0, lat0]) => [lon0 + x / (111_320.0 * lat0.to_radians().cos()), lat0 + y / 110_540.0],
-            None => [x, y],
-        }
-    };
+    let proj = |p: [f64; 2]| spec.to_wgs84(p);
     let coords = |pts: &[[f64; 2]]| -> serde_json::Value { pts.iter().map(|&p| serde_json::json!(proj(p))).collect() };
     let mut features = Vec::new();
     for r in regions {
@@ -285,97 +272,72 @@ pub fn geojson(spec: &CitySpec, regions: &[RegionOutcome], major: &[[[f64; 2]; 2
             "properties": { "kind": "street", "level": s.level, "closed": s.closed },
         }));
     }
-    let mut doc = serde_json::json!({ "type": "FeatureCollection", "name": spec.name, "features": features });
-    if spec.geo_origin.is_none() {
-        doc["properties"] = serde_json::json!({ "units": "metres, local frame (set geo_origin for WGS 84)", "metres_per_unit": m });
-    }
+    let doc = serde_json::json!({
+        "type": "FeatureCollection",
+        "name": spec.name,
+        "properties": {
+            "crs": "WGS 84 longitude, latitude (RFC 7946)",
+            "geo_origin": spec.origin_wgs84(),
+            "geo_origin_is_default": spec.geo_origin.is_none(),
+            "metres_per_unit": spec.metres_per_unit,
+        },
+        "features": features,
+    });
     serde_json::to_string(&doc).expect("GeoJSON serialises") + "\n"
 }
 
-/// The whole city: sub-regions tinted, streets by level (width and colour), a legend and the
-/// metrics.
-pub fn city_svg(spec: &CitySpec, result: &CityResult, major: &[[[f64; 2]; 2]], snakes: &[Snake]) -> String {
-    let (lo, hi) = spec.domain_bounds();
-    let span = (hi[0] - lo[0]).max(hi[1] - lo[1]).max(1e-9);
-    let scale = 900.0 / span;
-    let (margin, title_h, legend_w) = (24.0, 58.0, 170.0);
-    let w = (hi[0] - lo[0]) * scale + 2.0 * margin + legend_w;
-    let h = ((hi[1] - lo[1]) * scale + 2.0 * margin + title_h).max(title_h + 200.0);
-    let tx = |q: [f64; 2]| ((q[0] - lo[0]) * scale + margin, (hi[1] - q[1]) * scale + margin + title_h);
-    let path = |pts: &[[f64; 2]], close: bool| -> String {
-        let mut d = String::new();
-        for (i, &p) in pts.iter().enumerate() {
-            let (x, y) = tx(p);
-            let _ = write!(d, "{}{x:.2},{y:.2}", if i == 0 { "M" } else { " L" });
-        }
-        if close {
-            d.push_str(" Z");
-        }
-        d
-    };
-    let mut s = String::new();
-    let _ = writeln!(s, r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w:.0}" height="{h:.0}" viewBox="0 0 {w:.1} {h:.1}" font-family="DejaVu Sans, sans-serif">"#);
-    let _ = writeln!(s, r#"<rect width="100%" height="100%" fill="white"/>"#);
-    let m = &result.metrics;
-    let _ = writeln!(
-        s,
-        r#"<text x="{margin}" y="22" font-size="15" font-weight="bold">{} — {} sub-regions, {}, {}{}</text>"#,
-        xml(&spec.name),
-        result.regions.len(),
-        xml(&super::city::levels_summary(&result.regions)),
-        result.solver,
-        if result.valid { "; every network valid" } else { "; NOT EVERY NETWORK VALID" }
-    );
-    let _ = writeln!(
-        s,
-        r#"<text x="{margin}" y="42" font-size="12">per km²: streets {:.1} km, intersections {:.0} (3-way {:.0}, 4-way {:.0}), dead-ends {:.0}, blocks {:.0}; {:.0} m per unit</text>"#,
-        m.sl, m.si, m.si3, m.si4, m.sd, m.bn, spec.metres_per_unit
-    );
-    const TINTS: [&str; 6] = ["#f7f4ea", "#eef3f8", "#f3eef6", "#eef6ee", "#f8efea", "#f0f0f0"];
+/// What the city picture shows ([`crate::render::city`]): sub-regions tinted, streets by level
+/// (width and colour), the level-1 roads as given, the obstacle polygons and explicit sink points
+/// of every level spec (e.g. Fig. 8's historic site and existing intersections), a legend of what
+/// is drawn, and the metrics (totals and per km²).
+pub fn city_picture(spec: &CitySpec, result: &CityResult, major: &[[[f64; 2]; 2]], snakes: &[Snake]) -> CityPicture {
+    let (mut obstacles, mut sinks): (Vec<Vec<[f64; 2]>>, Vec<[f64; 2]>) = (Vec::new(), Vec::new());
     for r in &result.regions {
-        let mut d = path(&r.outer, true);
-        for hole in &r.holes {
-            d.push(' ');
-            d.push_str(&path(hole, true));
+        for n in spec.region_levels(r.spec_entry) {
+            let Ok(level) = spec.level(r.spec_entry, n) else { continue };
+            for poly in level.user.obstacle_polygons {
+                if !obstacles.contains(&poly) {
+                    obstacles.push(poly);
+                }
+            }
+            for p in level.sinks.points {
+                if !sinks.contains(&p) {
+                    sinks.push(p);
+                }
+            }
         }
-        let _ = writeln!(s, r#"<path d="{d}" fill="{}" fill-rule="evenodd" stroke="none" data-region="{}"/>"#, TINTS[r.index % TINTS.len()], r.index);
     }
-    let (colour, width) = style(1);
-    let mut d = String::new();
-    for seg in major {
-        d.push_str(&path(seg, false));
-        d.push(' ');
+    CityPicture {
+        title: format!(
+            "{} — {} sub-regions, {}, {}{}",
+            spec.name,
+            result.regions.len(),
+            super::city::levels_summary(&result.regions),
+            result.solver,
+            if result.valid { "; every network valid" } else { "; NOT EVERY NETWORK VALID" }
+        ),
+        subtitle: vec![format!("{}; {} m per unit", result.metrics.totals_line(), spec.metres_per_unit), result.metrics.density_line()],
+        bounds: spec.domain_bounds(),
+        regions: result
+            .regions
+            .iter()
+            .map(|r| RegionShape {
+                index: r.index,
+                name: r.name.clone(),
+                outer: r.outer.clone(),
+                holes: r.holes.clone(),
+                label_point: r.label_point,
+                incomplete: r.levels.iter().any(|l| !l.has_network()),
+            })
+            .collect(),
+        major: major.to_vec(),
+        streets: snakes.iter().map(|sn| (sn.level, sn.points.clone())).collect(),
+        obstacles,
+        sinks,
     }
-    let _ = writeln!(s, r#"<path d="{}" fill="none" stroke="{colour}" stroke-width="{width}" stroke-linecap="round" data-level="1"/>"#, d.trim_end());
-    let mut order: Vec<&Snake> = snakes.iter().collect();
-    order.sort_by_key(|sn| std::cmp::Reverse(sn.level));
-    for sn in order {
-        let (colour, width) = style(sn.level);
-        let _ = writeln!(s, r#"<path d="{}" fill="none" stroke="{colour}" stroke-width="{width}" stroke-linecap="round" stroke-linejoin="round" data-level="{}"/>"#, path(&sn.points, false), sn.level);
-    }
-    for r in &result.regions {
-        let (x, y) = tx(r.label_point);
-        let failed = r.levels.iter().any(|l| !l.has_network());
-        let _ = writeln!(
-            s,
-            r#"<text x="{x:.1}" y="{y:.1}" font-size="11" text-anchor="middle" fill="{}" stroke="white" stroke-width="3" paint-order="stroke">{}{}</text>"#,
-            if failed { "#b30000" } else { "#333333" },
-            xml(&r.name),
-            if failed { " (incomplete)" } else { "" }
-        );
-    }
-    let lx = w - legend_w + 10.0;
-    let mut ly = title_h + margin + 10.0;
-    for (level, label) in [(1u8, "level 1: major roads"), (2, "level 2: collectors"), (3, "level 3: local roads"), (4, "level 4: cul-de-sacs")] {
-        let (colour, width) = style(level);
-        let _ = writeln!(s, r#"<line x1="{lx}" y1="{ly}" x2="{}" y2="{ly}" stroke="{colour}" stroke-width="{width}"/>"#, lx + 30.0);
-        let _ = writeln!(s, r#"<text x="{}" y="{}" font-size="11">{label}</text>"#, lx + 36.0, ly + 4.0);
-        ly += 22.0;
-    }
-    s.push_str("</svg>\n");
-    s
 }
 
-fn xml(t: &str) -> String {
-    t.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;")
+/// The city picture as SVG text ([`city_picture`] drawn by [`crate::render::city::city_svg`]).
+pub fn city_svg(spec: &CitySpec, result: &CityResult, major: &[[[f64; 2]; 2]], snakes: &[Snake]) -> String {
+    crate::render::city::city_svg(&city_picture(spec, result, major, snakes))
 }

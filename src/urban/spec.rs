@@ -26,8 +26,8 @@ pub struct CitySpec {
     /// Metres per model unit (for the street metrics and GeoJSON).
     #[serde(default = "default_scale")]
     pub metres_per_unit: f64,
-    /// Optional geographic anchor `[longitude, latitude]` of the model origin: GeoJSON is then
-    /// written in WGS 84 degrees (RFC 7946); without it, in local metres.
+    /// Geographic anchor `[longitude, latitude]` (WGS 84 degrees) of the model origin. GeoJSON
+    /// is always WGS 84 (RFC 7946); without an anchor the origin is [`DEFAULT_GEO_ORIGIN`].
     #[serde(default)]
     pub geo_origin: Option<[f64; 2]>,
     /// The domain polygon.
@@ -52,6 +52,31 @@ pub struct CitySpec {
 
 fn default_scale() -> f64 {
     1.0
+}
+
+/// Where the model origin goes on the globe when a city spec gives no `geo_origin`: longitude 0,
+/// latitude 0 (GeoJSON stays valid WGS 84; GIS tools show the city at the right size, off the
+/// coast of Africa).
+pub const DEFAULT_GEO_ORIGIN: [f64; 2] = [0.0, 0.0];
+
+/// Metres per degree of longitude at the equator and per degree of latitude (the
+/// equirectangular projection of [`CitySpec::to_wgs84`]).
+const METRES_PER_DEGREE: [f64; 2] = [111_320.0, 110_540.0];
+
+impl CitySpec {
+    /// The model origin's `[longitude, latitude]`: `geo_origin`, else [`DEFAULT_GEO_ORIGIN`].
+    pub fn origin_wgs84(&self) -> [f64; 2] {
+        self.geo_origin.unwrap_or(DEFAULT_GEO_ORIGIN)
+    }
+
+    /// A model point as WGS 84 `[longitude, latitude]` degrees: scaled by `metres_per_unit` and
+    /// projected equirectangularly around [`CitySpec::origin_wgs84`] (accurate to well under a
+    /// metre over a few kilometres).
+    pub fn to_wgs84(&self, p: [f64; 2]) -> [f64; 2] {
+        let [lon0, lat0] = self.origin_wgs84();
+        let (x, y) = (p[0] * self.metres_per_unit, p[1] * self.metres_per_unit);
+        [lon0 + x / (METRES_PER_DEGREE[0] * lat0.to_radians().cos()), lat0 + y / METRES_PER_DEGREE[1]]
+    }
 }
 
 /// The domain.
