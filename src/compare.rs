@@ -3,7 +3,7 @@
 //! period, and recorded in its own `run.json` as soon as it ends, so an interrupted comparison
 //! resumes where it stopped. Tables (Markdown, CSV) and a per-backend summary follow.
 
-use crate::pipeline::DesignResult;
+use crate::solvers::Termination;
 use serde::{Deserialize, Serialize};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -212,7 +212,7 @@ fn run_one(exe: &Path, spec: &Path, solver: &str, seed: Option<u64>, s: &Compare
         std::thread::sleep(Duration::from_millis(20));
     };
     let wall_time = t0.elapsed().as_secs_f64();
-    let result: Option<DesignResult> =
+    let result: Option<ResultView> =
         std::fs::read_to_string(dir.join("result.json")).ok().and_then(|t| serde_json::from_str(&t).ok());
     let mut r = RunRecord {
         instance: instance_name(spec),
@@ -250,6 +250,33 @@ fn run_one(exe: &Path, spec: &Path, solver: &str, seed: Option<u64>, s: &Compare
         r.solver_version = Some(res.solve.solver_version);
     }
     Ok(r)
+}
+
+/// What a run record needs from a `result.json`: the fields a MILP solve's
+/// [`crate::pipeline::DesignResult`] and a search's [`crate::heuristics::run::SearchResult`]
+/// share.
+#[derive(Deserialize)]
+struct ResultView {
+    mesh: crate::mesh::Mesh,
+    model_stats: crate::milp::ModelStats,
+    solve: SolveView,
+    validity: ValidityView,
+}
+
+#[derive(Deserialize)]
+struct SolveView {
+    termination: Termination,
+    objective: Option<f64>,
+    dual_bound: Option<f64>,
+    gap: Option<f64>,
+    nodes: Option<u64>,
+    solver_time: Option<f64>,
+    solver_version: String,
+}
+
+#[derive(Deserialize)]
+struct ValidityView {
+    valid: bool,
 }
 
 /// Shifted geometric mean `exp(mean(ln(t + shift))) − shift` (the MIPLIB convention).

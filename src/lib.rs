@@ -13,6 +13,7 @@
 pub mod compare;
 pub mod design;
 pub mod formulations;
+pub mod heuristics;
 pub mod io;
 pub mod mesh;
 pub mod milp;
