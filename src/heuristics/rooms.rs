@@ -124,7 +124,7 @@ pub(crate) fn tiling_problem<'a>(p: &Problem, placements: &'a [Placement]) -> Ti
 /// One attempt: a seeded tiling and its network. `None` when this seed found no tiling or no
 /// valid network on it. Floor plans alternate two orders: corridors first (even attempts: a
 /// coverage network under the spec's rules, hop range 2 or 3, then a tiling whose rooms keep
-/// those corridors on their walls and touch one), and rooms first (odd attempts: a tiling, then
+/// those corridors on their walls and, every other time, touch one), and rooms first (odd attempts: a tiling, then
 /// [`retile`] until no room is doomed, then the corridors).
 pub(crate) fn construct<'a>(
     p: &'a Problem,
@@ -149,9 +149,11 @@ pub(crate) fn construct<'a>(
     let mut corridors: Option<Vec<bool>> = None;
     if rooms_spec.mode == RoomMode::Floorplan && attempt % 2 == 0 {
         let range = [2.0, 3.0][(attempt / 2 % 2) as usize];
+        // Every other time rooms need not touch a corridor yet (the rule steps add one).
+        let touch = attempt % 8 < 4;
         let active = corridors_first(p, paths, range, rng, noise, deadline)?;
         for (k, pl) in placements.iter().enumerate() {
-            tp.usable[k] = tp.usable[k] && !pl.inner_edges.iter().any(|e| active[e.index()]) && pl.boundary_edges.iter().any(|e| active[e.index()]);
+            tp.usable[k] = tp.usable[k] && !pl.inner_edges.iter().any(|e| active[e.index()]) && (!touch || pl.boundary_edges.iter().any(|e| active[e.index()]));
         }
         corridors = Some(active);
     }
