@@ -9,8 +9,8 @@
 //! On Linux a child dies with the comparison (`PR_SET_PDEATHSIG`), so killing the parent never
 //! leaves a solve running.
 
-use crate::pipeline::DesignResult;
 use crate::render::{self, chart::{Bar, BarChart, BarGroup, ProfileSeries}};
+use crate::solvers::Termination;
 use serde::{Deserialize, Serialize};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -432,7 +432,7 @@ fn run_one(exe: &Path, spec: &Path, solver: &str, formulation: Option<&str>, see
         std::thread::sleep(Duration::from_millis(20));
     };
     let wall_time = t0.elapsed().as_secs_f64();
-    let result: Option<DesignResult> =
+    let result: Option<ResultView> =
         std::fs::read_to_string(dir.join("result.json")).ok().and_then(|t| serde_json::from_str(&t).ok());
     let mut r = RunRecord {
         instance: String::new(),
@@ -498,6 +498,33 @@ fn die_with_parent(cmd: &mut Command) {
     }
     #[cfg(not(target_os = "linux"))]
     let _ = cmd;
+}
+
+/// What a run record needs from a `result.json`: the fields a MILP solve's
+/// [`crate::pipeline::DesignResult`] and a search's [`crate::heuristics::run::SearchResult`]
+/// share.
+#[derive(Deserialize)]
+struct ResultView {
+    mesh: crate::mesh::Mesh,
+    model_stats: crate::milp::ModelStats,
+    solve: SolveView,
+    validity: ValidityView,
+}
+
+#[derive(Deserialize)]
+struct SolveView {
+    termination: Termination,
+    objective: Option<f64>,
+    dual_bound: Option<f64>,
+    gap: Option<f64>,
+    nodes: Option<u64>,
+    solver_time: Option<f64>,
+    solver_version: String,
+}
+
+#[derive(Deserialize)]
+struct ValidityView {
+    valid: bool,
 }
 
 /// Shifted geometric mean `exp(mean(ln(t + shift))) − shift` (the MIPLIB convention).

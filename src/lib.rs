@@ -15,6 +15,7 @@ pub mod compare;
 pub mod design;
 pub mod explain;
 pub mod formulations;
+pub mod heuristics;
 pub mod io;
 pub mod mesh;
 pub mod milp;

@@ -4,6 +4,7 @@ use anyhow::{bail, Context, Result};
 use clap::{Args, Parser, Subcommand};
 use netspec::io::{read_model_file, write_model_file};
 use netspec::milp::Tolerances;
+use netspec::heuristics::run::Method;
 use netspec::report::{SolveReport, SCHEMA_VERSION};
 use netspec::solvers::{InvalidOption, LogTarget, RawParam, SolveOptions, SolverKind, Termination};
 use std::path::PathBuf;
@@ -14,6 +15,7 @@ mod cli {
     pub mod design;
     pub mod traffic;
     pub mod interrupt;
+    pub mod search;
 }
 
 /// Exit code when the solver's answer fails netspec's independent check.
@@ -84,9 +86,10 @@ enum Command {
         /// A manifest of instances with the paper's figures (e.g. models/table1.toml).
         #[arg(long, conflicts_with = "specs")]
         manifest: Option<PathBuf>,
-        /// Backends, comma-separated (default: every compiled one but good_lp).
+        /// Backends, comma-separated (default: every compiled one but good_lp); the searches
+        /// `heuristic` and `anneal` may be listed too.
         #[arg(long, value_delimiter = ',')]
-        solvers: Vec<SolverKind>,
+        solvers: Vec<Method>,
         /// Time limit per run, seconds.
         #[arg(long, default_value_t = 60.0)]
         time_limit: f64,
@@ -194,9 +197,11 @@ enum Command {
 /// Options shared by every command that solves.
 #[derive(Args, Clone, Default)]
 struct SolveArgs {
-    /// Backend: highs, cbc, scip, microlp or good_lp (default: the embedded HiGHS).
+    /// Backend: highs, cbc, scip, microlp or good_lp (default: the embedded HiGHS); for `solve`,
+    /// also a search without a solver: heuristic (construction and local search) or anneal (the
+    /// paper's stochastic search).
     #[arg(long, value_name = "NAME")]
-    solver: Option<SolverKind>,
+    solver: Option<Method>,
     /// Wall-clock time limit in seconds.
     #[arg(long, value_name = "SECONDS")]
     time_limit: Option<f64>,
@@ -278,7 +283,8 @@ impl SolveArgs {
 
     fn solver(&self) -> Result<SolverKind> {
         match self.solver {
-            Some(k) => Ok(k),
+            Some(Method::Milp(k)) => Ok(k),
+            Some(m) => bail!("`{m}` is a design search, not a MILP backend: it needs a spec (`netspec solve`)"),
             None => SolverKind::default_kind().context("no backend compiled in"),
         }
     }

@@ -14,6 +14,8 @@ mod network;
 mod rooms;
 // `netspec compare`: tables, summary arithmetic, resume.
 mod compare;
+// Designs without a solver: construction, local search, repair, stochastic search, MIP starts.
+mod heuristics;
 // Street layouts: cities, levels, resume, outputs (paper §5.1).
 mod urban;
 // Traffic evaluation in SUMO (issue 12): real netconvert, duarouter and sumo.

@@ -4,6 +4,7 @@ use crate::SolveArgs;
 use netspec::solvers::{InvalidOption, LimitKind, SolveOptions, Termination};
 use anyhow::{Context, Result};
 use indicatif::{ProgressBar, ProgressStyle};
+use netspec::heuristics::run::Method;
 use netspec::pipeline::{self, DesignResult};
 use netspec::render::{self, Caption};
 use netspec::explain::{ExplainOptions, Explanation};
@@ -83,7 +84,8 @@ pub fn solve_spec(
     }
     // Command line over spec over default.
     let kind = match (args.solver, spec.solver.name) {
-        (Some(k), _) | (None, Some(k)) => k,
+        (Some(Method::Search(m)), _) => return crate::cli::search::solve_search(&problem, &nm, m, args, spec.solver.time_limit, out),
+        (Some(Method::Milp(k)), _) | (None, Some(k)) => k,
         (None, None) => SolverKind::default_kind().context("no backend compiled in")?,
     };
     check_spec_options(path, &spec)?;

@@ -1,0 +1,428 @@
+//! Designs without a solver: construction heuristics, local search, a repair function for
+//! broken designs (a solver's disconnected incumbent), and the paper's stochastic search as a
+//! baseline (§6, Fig. 13).
+//!
+//! Plain Rust over [`crate::spec`], [`crate::rules`] and [`crate::design`]; nothing here reads a
+//! formulation. Every design a function of this module returns has passed
+//! [`crate::design::validate`] (and [`crate::design::validate_rooms`]); when a search finds none
+//! it says so (`network: None`), it never returns an invalid one.
+//!
+//! - [`heuristic`]: construction, then iterated local search, restarted with new seeds (and, for
+//!   room problems, new tilings) until the time limit; the best design wins. Networks are built
+//!   by the rule steps of `build` (coverage by through-streets from the network to the farthest
+//!   uncovered vertex, dead-ends extended or pruned, forbidden configurations broken), every
+//!   path rule-aware (`paths`). Floor plans and game levels tile the footprint by exact cover
+//!   (`tiling`, dancing links), then build the corridors or the traversal (`rooms`).
+//! - [`anneal`]: the paper's stochastic search, exactly its move set and selection rule
+//!   (see the module `anneal` for what the text leaves open and how it is fixed).
+//! - [`repair`]: a design that breaks connectivity or local rules, made valid when possible.
+//! - [`start`]: the heuristic's design within a budget, for a MIP start.
+//! - [`run`]: either method as a solver choice, with a result record like a MILP solve's.
+
+mod anneal;
+mod build;
+mod local;
+mod paths;
+mod rng;
+mod rooms;
+pub mod run;
+mod state;
+mod tiling;
+
+pub use anneal::{AnnealOptions, Operation};
+
+use crate::design::{self, Network};
+use crate::rules::paths::{enumerate_path_sets, PathSets};
+use crate::rules::placements::{enumerate_placements, Placement, PlacementReport};
+use crate::spec::Problem;
+use build::Builder;
+use local::LocalSearch;
+use rng::Rng;
+use serde::{Deserialize, Serialize};
+use state::{Rules, State, Tiling};
+use std::time::{Duration, Instant};
+
+/// What a search needs besides the problem: the point-to-point path sets and the room
+/// placements *the formulation uses* (a design's room indices point into that list, and the
+/// validator checks paths against it). Pass the formulation's (`f.path_sets`,
+/// `f.placements`), or [`OwnedInputs::enumerate`] them the same way.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Inputs<'a> {
+    /// Path sets, when point-to-point is on.
+    pub paths: Option<&'a PathSets>,
+    /// Placements, when the problem tiles rooms.
+    pub placements: Option<&'a [Placement]>,
+}
+
+/// [`Inputs`] owned: enumerated as the formulation enumerates them.
+#[derive(Clone, Debug, Default)]
+pub struct OwnedInputs {
+    /// Path sets, when point-to-point is on.
+    pub paths: Option<PathSets>,
+    /// Placements, when the problem tiles rooms.
+    pub placements: Option<PlacementReport>,
+}
+
+/// The formulation's cap on placement enumeration (the same, so both see the same list).
+const PLACEMENT_TIME_CAP: Duration = Duration::from_secs(20);
+
+impl OwnedInputs {
+    /// Enumerates the path sets and placements of `p` exactly as [`crate::formulations::build`]
+    /// does (deterministic unless an enumeration hits its time cap).
+    pub fn enumerate(p: &Problem) -> OwnedInputs {
+        OwnedInputs {
+            paths: p.p2p.is_some().then(|| enumerate_path_sets(p)),
+            placements: p.rooms.as_ref().map(|r| enumerate_placements(&p.mesh, &r.templates, &p.is_obstacle_face, r.max_placements, PLACEMENT_TIME_CAP)),
+        }
+    }
+
+    /// Borrowed.
+    pub fn inputs(&self) -> Inputs<'_> {
+        Inputs { paths: self.paths.as_ref(), placements: self.placements.as_ref().map(|r| r.placements.as_slice()) }
+    }
+}
+
+/// Settings of [`heuristic`].
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Options {
+    /// Time limit, seconds.
+    pub time_limit: f64,
+    /// Seed (the first construction is noise-free; restarts draw from the seed).
+    pub seed: u64,
+    /// Stop after this many constructions (default: until the time limit).
+    pub max_constructions: Option<usize>,
+    /// Stop after this many valid constructions (each improved by the local search if on).
+    pub max_designs: Option<usize>,
+    /// Run the local search on each construction (default true).
+    pub local_search: bool,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Options { time_limit: 10.0, seed: 0, max_constructions: None, max_designs: None, local_search: true }
+    }
+}
+
+/// The best objective so far, at a time.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct TracePoint {
+    /// Seconds since the search started.
+    pub seconds: f64,
+    /// The best design's objective then.
+    pub objective: f64,
+}
+
+/// Why a search stopped.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Stop {
+    /// The time limit.
+    TimeLimit,
+    /// Nothing left to do: the construction count was reached, or (stochastic search) every
+    /// pass ended with no feasible operation.
+    Exhausted,
+    /// No design exists, for a reason plain enough to prove without search (see
+    /// [`obvious_infeasibility`]).
+    Infeasible,
+}
+
+/// Counters of a search.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct SearchStats {
+    /// Constructions attempted (tilings included).
+    pub constructions: u64,
+    /// Constructions that gave a valid design.
+    pub constructed: u64,
+    /// Local-search moves tried.
+    pub moves_tried: u64,
+    /// Local-search moves kept.
+    pub moves_accepted: u64,
+    /// Iterated-local-search kicks.
+    pub kicks: u64,
+    /// Stochastic search: passes run.
+    pub passes: u64,
+    /// Stochastic search: operations performed, over all passes.
+    pub steps: u64,
+    /// Designs the final validation rejected (a bug if ever non-zero; they are dropped).
+    pub rejected: u64,
+}
+
+/// What a search found.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Outcome {
+    /// The best valid design (validated), if any.
+    pub network: Option<Network>,
+    /// Its objective, as [`crate::design::Objective::of`] computes it.
+    pub objective: Option<f64>,
+    /// The best objective each time it improved.
+    pub trace: Vec<TracePoint>,
+    /// Why the search stopped.
+    pub stop: Stop,
+    /// With [`Stop::Infeasible`]: why no design exists.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub infeasible: Option<String>,
+    /// Counters.
+    pub stats: SearchStats,
+    /// Seconds spent.
+    pub seconds: f64,
+}
+
+/// A proof that no design exists, when one is plain: the design cannot be empty (coverage needs
+/// an active vertex, rooms a corridor or a traversal, forced elements their edges) and no sink
+/// has an edge that is not excluded, so no active edge could reach a sink.
+pub fn obvious_infeasibility(p: &Problem) -> Option<String> {
+    let mesh = &p.mesh;
+    let nonempty = (p.rooms.is_none() && mesh.vertices().any(|v| !p.is_obstacle_vertex[v.index()]))
+        || (p.rooms.is_some() && mesh.faces().any(|f| !p.is_obstacle_face[f.index()]))
+        || !p.forced_edges.is_empty()
+        || !p.forced_vertices.is_empty()
+        || !p.through_routes.is_empty();
+    let sink_usable = mesh.vertices().any(|v| p.is_sink[v.index()] && mesh.incident_edges(v).any(|e| p.roles[e.index()] != crate::spec::EdgeRole::Excluded));
+    (nonempty && !sink_usable).then(|| {
+        let sinks: Vec<String> = mesh.vertices().filter(|v| p.is_sink[v.index()]).map(|v| format!("v{}", v.0)).collect();
+        format!("no sink ({}) has an edge that is not a wall or an obstacle, yet the design cannot be empty: nothing could reach a sink", sinks.join(", "))
+    })
+}
+
+impl Outcome {
+    fn infeasible(why: String, t0: Instant) -> Outcome {
+        Outcome {
+            network: None,
+            objective: None,
+            trace: Vec::new(),
+            stop: Stop::Infeasible,
+            infeasible: Some(why),
+            stats: SearchStats::default(),
+            seconds: t0.elapsed().as_secs_f64(),
+        }
+    }
+
+    fn none(stop: Stop, stats: SearchStats, t0: Instant) -> Outcome {
+        Outcome { network: None, objective: None, trace: Vec::new(), stop, infeasible: None, stats, seconds: t0.elapsed().as_secs_f64() }
+    }
+}
+
+/// Whether a design passes the independent validator (items 1–6).
+pub fn is_valid(p: &Problem, inputs: &Inputs, net: &Network) -> bool {
+    if !design::validate(p, net, inputs.paths).is_empty() {
+        return false;
+    }
+    match (&p.rooms, inputs.placements) {
+        (Some(_), Some(pl)) => design::validate_rooms(p, net, pl, &net.rooms).is_empty(),
+        (Some(_), None) => false,
+        _ => true,
+    }
+}
+
+/// Keeps the best validated design and the trace.
+struct Best<'i, 'p> {
+    p: &'p Problem,
+    inputs: &'i Inputs<'i>,
+    t0: Instant,
+    network: Option<Network>,
+    objective: f64,
+    trace: Vec<TracePoint>,
+    rejected: u64,
+}
+
+impl Best<'_, '_> {
+    fn offer(&mut self, net: Network) {
+        let obj = design::Objective::of(self.p, &net).total;
+        if obj >= self.objective - 1e-9 {
+            return;
+        }
+        if !is_valid(self.p, self.inputs, &net) {
+            self.rejected += 1;
+            return;
+        }
+        self.objective = obj;
+        self.network = Some(net);
+        self.trace.push(TracePoint { seconds: self.t0.elapsed().as_secs_f64(), objective: obj });
+    }
+}
+
+/// Construction and local search, restarted until the time limit (or the construction count):
+/// the best valid design found.
+pub fn heuristic(p: &Problem, inputs: &Inputs, opts: &Options) -> Outcome {
+    let t0 = Instant::now();
+    if let Some(why) = obvious_infeasibility(p) {
+        return Outcome::infeasible(why, t0);
+    }
+    let deadline = t0 + Duration::from_secs_f64(opts.time_limit.max(0.0));
+    let mut rng = Rng::new(opts.seed);
+    let mut best = Best { p, inputs, t0, network: None, objective: f64::INFINITY, trace: Vec::new(), rejected: 0 };
+    let mut stats = SearchStats::default();
+    let network_rules = p.rooms.is_none().then(|| Rules::new(p, inputs.paths, None, None));
+    let mut stop = Stop::TimeLimit;
+    loop {
+        if Instant::now() >= deadline {
+            break;
+        }
+        if opts.max_constructions.is_some_and(|m| stats.constructions as usize >= m) || opts.max_designs.is_some_and(|m| stats.constructed as usize >= m) {
+            stop = Stop::Exhausted;
+            break;
+        }
+        stats.constructions += 1;
+        let noise = if stats.constructions == 1 { 0.0 } else { 0.4 };
+        let mut sub = rng.fork();
+        // Half the time left goes to improving this construction.
+        let left = deadline.saturating_duration_since(Instant::now());
+        let slice = Instant::now() + left / 2;
+        let polish = |rules: &Rules, s: State, sub: &mut Rng, best: &mut Best, stats: &mut SearchStats| {
+            stats.constructed += 1;
+            best.offer(s.network(rules));
+            if !opts.local_search {
+                return;
+            }
+            let b = Builder::new(rules, s, sub.fork(), 0.3, Some(slice));
+            let ls = LocalSearch::new(b);
+            let (s, _, ls_stats) = ls.run(slice, |_| {});
+            stats.moves_tried += ls_stats.tried;
+            stats.moves_accepted += ls_stats.accepted;
+            stats.kicks += ls_stats.kicks;
+            best.offer(s.network(rules));
+        };
+        match (&network_rules, inputs.placements) {
+            (Some(rules), _) => {
+                let mut b = Builder::new(rules, State::new(rules), sub.fork(), noise, Some(deadline));
+                if b.repair_all() && b.s.feasible(rules) {
+                    polish(rules, b.s, &mut sub, &mut best, &mut stats);
+                }
+            }
+            (None, Some(placements)) => {
+                if let Some((rules, s)) = rooms::construct(p, placements, inputs.paths, &mut sub, noise, deadline, stats.constructions - 1) {
+                    polish(&rules, s, &mut sub, &mut best, &mut stats);
+                }
+            }
+            (None, None) => {
+                stop = Stop::Exhausted;
+                break;
+            }
+        }
+    }
+    stats.rejected = best.rejected;
+    Outcome {
+        objective: best.network.as_ref().map(|_| best.objective),
+        network: best.network,
+        trace: best.trace,
+        stop,
+        infeasible: None,
+        stats,
+        seconds: t0.elapsed().as_secs_f64(),
+    }
+}
+
+/// The paper's stochastic search (module `anneal`): several seeded passes from the all-active
+/// start, the best valid design over all passes.
+pub fn anneal(p: &Problem, inputs: &Inputs, opts: &AnnealOptions) -> Outcome {
+    let t0 = Instant::now();
+    if let Some(why) = obvious_infeasibility(p) {
+        return Outcome::infeasible(why, t0);
+    }
+    let deadline = t0 + Duration::from_secs_f64(opts.time_limit.max(0.0));
+    let mut best = Best { p, inputs, t0, network: None, objective: f64::INFINITY, trace: Vec::new(), rejected: 0 };
+    let mut stats = SearchStats::default();
+    // Room problems: one tiling for every pass, one the construction can build a design on.
+    let rules = if p.rooms.is_some() {
+        let Some(placements) = inputs.placements else {
+            return Outcome::none(Stop::Exhausted, stats, t0);
+        };
+        let mut rng = Rng::new(opts.seed);
+        let tiling_deadline = t0 + Duration::from_secs_f64(opts.time_limit * 0.2);
+        let mut found = None;
+        while found.is_none() && Instant::now() < tiling_deadline {
+            found =
+                rooms::construct(p, placements, inputs.paths, &mut rng, 0.0, tiling_deadline, stats.constructions).map(|(r, _)| r.tiling.expect("tiled").rooms);
+            stats.constructions += 1;
+        }
+        let Some(rooms) = found else {
+            return Outcome::none(Stop::TimeLimit, stats, t0);
+        };
+        Rules::new(p, inputs.paths, Some(placements), Some(Tiling { rooms }))
+    } else {
+        Rules::new(p, inputs.paths, None, None)
+    };
+    let passes = opts.passes.max(1);
+    let mut global = f64::INFINITY;
+    let mut trace = Vec::new();
+    let mut all_exhausted = true;
+    for k in 0..passes {
+        let now = Instant::now();
+        if now >= deadline {
+            all_exhausted = false;
+            break;
+        }
+        let share = deadline.saturating_duration_since(now) / (passes - k) as u32;
+        let pass_deadline = now + share;
+        let res = anneal::pass(&rules, opts, opts.seed.wrapping_add(k as u64), pass_deadline, t0, &mut trace, &mut global);
+        stats.passes += 1;
+        stats.steps += res.steps;
+        all_exhausted &= res.exhausted;
+        if let Some((s, _)) = res.best {
+            best.offer(s.network(&rules));
+        }
+    }
+    stats.rejected = best.rejected;
+    // The trace of the passes (every improvement of a zero-count state), restricted to what the
+    // validator accepted: the final point is the returned design.
+    let mut trace: Vec<TracePoint> = trace.into_iter().filter(|t| t.objective >= best.objective - 1e-9).collect();
+    if trace.is_empty() {
+        trace = best.trace.clone();
+    }
+    Outcome {
+        objective: best.network.as_ref().map(|_| best.objective),
+        network: best.network,
+        trace,
+        stop: if all_exhausted { Stop::Exhausted } else { Stop::TimeLimit },
+        infeasible: None,
+        stats,
+        seconds: t0.elapsed().as_secs_f64(),
+    }
+}
+
+/// Turns a design that breaks connectivity (islands) or local rules into a valid one when it
+/// can: islands are joined to the network or dropped, then coverage, rooms, dead-ends and
+/// forbidden configurations are mended by the construction's rule steps (module `build`),
+/// within `budget` seconds. A room problem keeps the design's tiling (its `rooms`, indices into
+/// `inputs.placements`) and needs it to be an exact tiling with valid counts; otherwise `None`.
+/// Returns only validated designs.
+pub fn repair_within(p: &Problem, inputs: &Inputs, net: &Network, budget: f64) -> Option<Network> {
+    let deadline = Instant::now() + Duration::from_secs_f64(budget.max(0.0));
+    if net.active.len() != p.mesh.num_edges() {
+        return None;
+    }
+    let tiling = match (&p.rooms, inputs.placements) {
+        (None, _) => None,
+        (Some(_), None) => return None,
+        (Some(_), Some(pl)) => {
+            if net.rooms.iter().any(|&k| k >= pl.len()) {
+                return None;
+            }
+            let tiling_only = design::validate_rooms(p, &Network { active: vec![false; p.mesh.num_edges()], ..net.clone() }, pl, &net.rooms);
+            if tiling_only.iter().any(|v| matches!(v, design::Violation::Cover { .. } | design::Violation::RoomCount { .. })) {
+                return None;
+            }
+            Some(Tiling { rooms: net.rooms.clone() })
+        }
+    };
+    let rules = Rules::new(p, inputs.paths, inputs.placements, tiling);
+    let start: Vec<bool> = net.active.iter().zip(&rules.allowed).map(|(&a, &ok)| a && ok).collect();
+    let s = State::from_active(&rules, &start);
+    let mut b = Builder::new(&rules, s, Rng::new(0), 0.0, Some(deadline));
+    if !b.repair_all() || !b.s.feasible(&rules) || !rules.shape_ok(&b.s) {
+        return None;
+    }
+    let out = b.s.network(&rules);
+    is_valid(p, inputs, &out).then_some(out)
+}
+
+/// [`repair_within`] with a one-second budget.
+pub fn repair(p: &Problem, inputs: &Inputs, net: &Network) -> Option<Network> {
+    repair_within(p, inputs, net, 1.0)
+}
+
+/// The heuristic's best design within `budget` seconds (construction and local search), for a
+/// MIP start: hand it to [`crate::pipeline::prepare_start`].
+pub fn start(p: &Problem, inputs: &Inputs, budget: f64, seed: u64) -> Option<Network> {
+    heuristic(p, inputs, &Options { time_limit: budget, seed, ..Options::default() }).network
+}

@@ -1,0 +1,262 @@
+//! The design methods as solver choices: a MILP backend, the heuristic, or the paper's
+//! stochastic search ([`Method`]), and for the two searches a result record with the same
+//! shape and the same independent checks as a MILP solve's [`crate::pipeline::DesignResult`]:
+//! the validator, the objective recomputed from the design, and the MILP checker on the design
+//! encoded as a point of the formulation (as a MIP start would be, [`crate::pipeline::prepare_start`]).
+//! `netspec solve --solver heuristic|anneal` writes it as `result.json`, and `netspec compare`
+//! reads it like any other run.
+
+use super::{AnnealOptions, Inputs, Options, Outcome, SearchStats, Stop, TracePoint};
+use crate::design::{self, Metrics, Network, Objective};
+use crate::formulations::expr::FamilyStats;
+use crate::formulations::Formulation;
+use crate::mesh::Mesh;
+use crate::milp::{check_point, ModelStats, Tolerances};
+use crate::pipeline::{prepare_start, RoomsResult, Validity, DESIGN_SCHEMA_VERSION};
+use crate::rules::paths::PathSets;
+use crate::solvers::{LimitKind, SolverKind, Termination};
+use crate::spec::{Problem, Spec};
+use indexmap::IndexMap;
+use serde::{Deserialize, Serialize};
+use std::time::Instant;
+
+/// How a design is found: a MILP backend, or one of the searches of [`crate::heuristics`].
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum Method {
+    /// The network IP on a MILP backend.
+    Milp(SolverKind),
+    /// A search without a solver.
+    Search(SearchMethod),
+}
+
+/// The searches that are not MILP backends.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum SearchMethod {
+    /// Construction and local search ([`super::heuristic`]).
+    Heuristic,
+    /// The paper's stochastic search ([`super::anneal`]).
+    Anneal,
+}
+
+impl SearchMethod {
+    /// The name used on the command line and in results.
+    pub fn name(self) -> &'static str {
+        match self {
+            SearchMethod::Heuristic => "heuristic",
+            SearchMethod::Anneal => "anneal",
+        }
+    }
+}
+
+impl Method {
+    /// The name used on the command line and in results.
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Milp(k) => k.name(),
+            Method::Search(s) => s.name(),
+        }
+    }
+
+    /// The backend, when this is a MILP method.
+    pub fn milp(self) -> Option<SolverKind> {
+        match self {
+            Method::Milp(k) => Some(k),
+            Method::Search(_) => None,
+        }
+    }
+}
+
+impl std::fmt::Display for Method {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl std::str::FromStr for Method {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s.to_ascii_lowercase().as_str() {
+            "heuristic" => Ok(Method::Search(SearchMethod::Heuristic)),
+            "anneal" => Ok(Method::Search(SearchMethod::Anneal)),
+            _ => s.parse::<SolverKind>().map(Method::Milp).map_err(|e| format!("{e}, or a search: heuristic, anneal")),
+        }
+    }
+}
+
+/// The run part of a search's record: what a MILP result's `solve` says, for a search.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct SearchRun {
+    /// The method's name (`heuristic`, `anneal`), where a MILP result names its backend.
+    pub solver: String,
+    /// The netspec version (the searches are netspec's own code).
+    pub solver_version: String,
+    /// `limit(time)` when the time limit stopped it, `limit(other)` when it ran out of things
+    /// to try, `infeasible` when no design exists for a plain reason (`infeasible_because`);
+    /// never `optimal` (a search proves no bound).
+    pub termination: Termination,
+    /// Why no design exists, with `infeasible`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub infeasible_because: Option<String>,
+    /// The design's objective, if there is a design.
+    pub objective: Option<f64>,
+    /// Always `None`: a search has no bound.
+    pub dual_bound: Option<f64>,
+    /// Always `None`.
+    pub gap: Option<f64>,
+    /// Always `None`.
+    pub nodes: Option<u64>,
+    /// Seconds the search ran.
+    pub solver_time: Option<f64>,
+    /// Seconds of the whole run (search and checks).
+    pub wall_time: f64,
+    /// The seed.
+    pub seed: u64,
+    /// Seconds until the first valid design, if any.
+    pub first_design_seconds: Option<f64>,
+    /// The best objective over time.
+    pub trace: Vec<TracePoint>,
+    /// Counters.
+    pub stats: SearchStats,
+}
+
+/// Everything about one search run (`result.json`): the fields of
+/// [`crate::pipeline::DesignResult`], with `solve` describing the search.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct SearchResult {
+    /// Always `netspec.design`.
+    pub schema: String,
+    /// [`DESIGN_SCHEMA_VERSION`].
+    pub schema_version: u32,
+    /// The netspec version.
+    pub netspec_version: String,
+    /// The spec, echoed.
+    pub spec: Spec,
+    /// The mesh.
+    pub mesh: Mesh,
+    /// Sink vertex ids.
+    pub sinks: Vec<u32>,
+    /// Active edges as vertex pairs (existing edges included), in edge-id order.
+    pub active_edges: Vec<[u32; 2]>,
+    /// The design, if the search found one.
+    pub network: Option<Network>,
+    /// Its metrics.
+    pub metrics: Option<Metrics>,
+    /// Its objective, term by term.
+    pub objective: Option<Objective>,
+    /// The independent checks (`milp_check`: the design encoded as a point of the formulation,
+    /// every row and bound checked; `objective_agrees`: the search's own objective equals the
+    /// one recomputed from the design).
+    pub validity: Validity,
+    /// The search.
+    pub solve: SearchRun,
+    /// Size of the MILP the design was checked against.
+    pub model_stats: ModelStats,
+    /// Its families.
+    pub families: IndexMap<String, FamilyStats>,
+    /// Its recipe.
+    pub formulation: String,
+    /// Its big-M, if any.
+    pub big_m: Option<f64>,
+    /// Point-to-point path sets, if on.
+    pub path_sets: Option<PathSets>,
+    /// Room tiling, if on.
+    pub rooms: Option<RoomsResult>,
+}
+
+/// Runs a search on a built formulation (its path sets and placements are the ones the design
+/// uses) and checks its design like a solver's.
+pub fn run_search(p: &Problem, f: &Formulation, method: SearchMethod, time_limit: f64, seed: u64) -> SearchResult {
+    let t0 = Instant::now();
+    let inputs = Inputs { paths: f.path_sets.as_ref(), placements: f.placements.as_ref().map(|r| r.placements.as_slice()) };
+    let outcome = match method {
+        SearchMethod::Heuristic => super::heuristic(p, &inputs, &Options { time_limit, seed, ..Options::default() }),
+        SearchMethod::Anneal => super::anneal(p, &inputs, &AnnealOptions { time_limit, seed, ..AnnealOptions::default() }),
+    };
+    record(p, f, method, seed, outcome, t0)
+}
+
+/// The record of a search's outcome, with the independent checks.
+pub fn record(p: &Problem, f: &Formulation, method: SearchMethod, seed: u64, outcome: Outcome, t0: Instant) -> SearchResult {
+    let mut validity = Validity { valid: false, design_violations: Vec::new(), milp_check: None, objective_recomputed: None, objective_agrees: None };
+    let (mut metrics, mut objective) = (None, None);
+    if let Some(net) = &outcome.network {
+        validity.design_violations = design::validate(p, net, f.path_sets.as_ref());
+        if let Some(pl) = &f.placements {
+            validity.design_violations.extend(design::validate_rooms(p, net, &pl.placements, &net.rooms));
+        }
+        let obj = Objective::of(p, net);
+        validity.objective_recomputed = Some(obj.total);
+        validity.objective_agrees = outcome.objective.map(|o| crate::milp::objectives_agree(o, obj.total, 1e-6));
+        // The design as a point of the formulation, checked row by row (and against the lazy
+        // rows), exactly as a MIP start is.
+        let (point, start) = prepare_start(p, f, net, method.name());
+        validity.milp_check = match f.encode(p, net) {
+            Ok(x) => Some(check_point(&f.model, &x, &Tolerances::default())),
+            Err(_) => None,
+        };
+        validity.valid = validity.design_violations.is_empty() && point.is_some() && start.accepted && validity.objective_agrees == Some(true);
+        metrics = Some(Metrics::of(p, net));
+        objective = Some(obj);
+    }
+    let active_edges = outcome.network.as_ref().map_or(Vec::new(), |n| {
+        n.active_edges()
+            .into_iter()
+            .map(|e| {
+                let (a, b) = p.mesh.edge_vertices(e);
+                [a.0, b.0]
+            })
+            .collect()
+    });
+    let rooms = f.placements.as_ref().map(|pl| RoomsResult {
+        enumerated_per_template: pl.per_template.clone(),
+        truncated: pl.truncated,
+        seconds: pl.seconds,
+        block_graph: match (&p.rooms, &outcome.network) {
+            (Some(r), Some(n)) if r.mode == crate::spec::RoomMode::Game => Some(design::block_graph(p, n, &pl.placements)),
+            _ => None,
+        },
+        chosen: outcome.network.as_ref().map_or(Vec::new(), |n| n.rooms.iter().map(|&k| pl.placements[k].clone()).collect()),
+    });
+    let termination = match outcome.stop {
+        Stop::TimeLimit => Termination::Limit(LimitKind::Time),
+        Stop::Exhausted => Termination::Limit(LimitKind::Other),
+        Stop::Infeasible => Termination::Infeasible,
+    };
+    SearchResult {
+        schema: "netspec.design".into(),
+        schema_version: DESIGN_SCHEMA_VERSION,
+        netspec_version: env!("CARGO_PKG_VERSION").into(),
+        spec: p.spec.clone(),
+        mesh: p.mesh.clone(),
+        sinks: p.mesh.vertices().filter(|v| p.is_sink[v.index()]).map(|v| v.0).collect(),
+        active_edges,
+        metrics,
+        objective,
+        validity,
+        solve: SearchRun {
+            solver: method.name().into(),
+            solver_version: env!("CARGO_PKG_VERSION").into(),
+            termination,
+            infeasible_because: outcome.infeasible.clone(),
+            objective: outcome.objective,
+            dual_bound: None,
+            gap: None,
+            nodes: None,
+            solver_time: Some(outcome.seconds),
+            wall_time: t0.elapsed().as_secs_f64(),
+            seed,
+            first_design_seconds: outcome.trace.first().map(|t| t.seconds),
+            trace: outcome.trace,
+            stats: outcome.stats,
+        },
+        network: outcome.network,
+        model_stats: f.model.stats(),
+        families: f.families.clone(),
+        formulation: f.recipe.label.clone(),
+        big_m: f.big_m,
+        path_sets: f.path_sets.clone(),
+        rooms,
+    }
+}
