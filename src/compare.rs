@@ -84,6 +84,10 @@ pub struct RunSettings {
     pub time_limit: f64,
     /// The netspec version that ran it.
     pub netspec_version: String,
+    /// A MILP backend's MIP start: `heuristic` (the default) or `none` (`--no-start`); `None`
+    /// for the searches, and in records made before starts existed (they run again).
+    #[serde(default)]
+    pub start: Option<String>,
 }
 
 impl RunSettings {
@@ -112,6 +116,7 @@ impl RunSettings {
             threads,
             time_limit,
             netspec_version: env!("CARGO_PKG_VERSION").into(),
+            start: None,
         }
     }
 
@@ -132,6 +137,7 @@ impl RunSettings {
         diff("threads", opt(self.threads.map(|s| s.to_string())), opt(other.threads.map(|s| s.to_string())));
         diff("time limit", format!("{} s", self.time_limit), format!("{} s", other.time_limit));
         diff("netspec", self.netspec_version.clone(), other.netspec_version.clone());
+        diff("start", opt(self.start.clone()), opt(other.start.clone()));
         out
     }
 }
@@ -274,6 +280,9 @@ pub fn instance_ids(specs: &[PathBuf]) -> Vec<String> {
     ids
 }
 
+/// The solver names that are searches, not MILP backends (they take no MIP start).
+const SEARCHES: [&str; 2] = ["heuristic", "anneal"];
+
 /// Settings of a comparison.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct CompareSettings {
@@ -297,6 +306,9 @@ pub struct CompareSettings {
     /// limit, capped at `time_limit`; rows without one get `time_limit`.
     #[serde(default)]
     pub paper_limits: bool,
+    /// Solve without the heuristic's MIP start (`solve --no-start`).
+    #[serde(default)]
+    pub no_start: bool,
     /// A request to stop (Ctrl-C): the running child is sent SIGINT (it stops its solver and
     /// writes its best design, recorded as `interrupted`), and no further run starts.
     #[serde(skip)]
@@ -359,6 +371,9 @@ pub fn run_all(exe: &Path, settings: &CompareSettings, out: &Path, mut progress:
                 if formulation.is_some() {
                     wanted.formulation = formulation.clone();
                 }
+                if !SEARCHES.contains(&solver.as_str()) {
+                    wanted.start = Some(if settings.no_start { "none" } else { "heuristic" }.to_string());
+                }
                 let old = std::fs::read_to_string(&record_path).ok().and_then(|t| serde_json::from_str::<RunRecord>(&t).ok());
                 let source = match old {
                     // An interrupted run is not finished: it runs again.
@@ -402,6 +417,9 @@ fn run_one(exe: &Path, spec: &Path, solver: &str, formulation: Option<&str>, see
     }
     if let Some(t) = s.threads {
         cmd.args(["--threads", &t.to_string()]);
+    }
+    if s.no_start && !SEARCHES.contains(&solver) {
+        cmd.arg("--no-start");
     }
     cmd.stdin(Stdio::null()).stdout(std::fs::File::create(dir.join("stdout.txt"))?).stderr(std::fs::File::create(dir.join("stderr.txt"))?);
     // Its own process group: a Ctrl-C at the terminal reaches this process only, which passes

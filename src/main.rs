@@ -74,6 +74,14 @@ enum Command {
         /// Time budget for explaining an infeasible spec, seconds.
         #[arg(long, value_name = "SECONDS", default_value_t = 60.0)]
         explain_time: f64,
+        /// Start from this design: an earlier `result.json` of the same spec, or a `.sol` file
+        /// of this model (`--sol`). It is checked first; a start that fails is reported, not used.
+        /// Default: the construction heuristic's design (a twentieth of the time limit, ≤ 2 s).
+        #[arg(long, value_name = "FILE", conflicts_with = "no_start")]
+        start: Option<PathBuf>,
+        /// Solve without a MIP start.
+        #[arg(long)]
+        no_start: bool,
     },
     /// Compare backends on spec files: each run in its own process, killed at the time limit
     /// plus a grace period, recorded as it ends (rerun to resume); writes results.md,
@@ -109,6 +117,9 @@ enum Command {
         /// each, as its own column (`highs/strong`). Default: the spec's own.
         #[arg(long, value_delimiter = ',')]
         formulations: Vec<netspec::spec::RecipeName>,
+        /// Solve without the heuristic's MIP start (each child gets `solve --no-start`).
+        #[arg(long)]
+        no_start: bool,
         /// Output directory.
         #[arg(long, default_value = "out/compare")]
         out: PathBuf,
@@ -321,10 +332,15 @@ fn main() -> ExitCode {
 fn run(cli: Cli) -> Result<ExitCode> {
     match cli.command {
         Command::SolveFile { file, solve, start, json } => solve_file(&file, &solve, start.as_deref(), json.as_deref()),
-        Command::Solve { spec, solve, out, export, no_solve, formulation, relax, no_explain, explain_time } => {
-            cli::design::solve_spec(&spec, &solve, out, export, no_solve || relax, formulation, relax, (!no_explain).then_some(explain_time))
+        Command::Solve { spec, solve, out, export, no_solve, formulation, relax, no_explain, explain_time, start, no_start } => {
+            let start = match (start, no_start) {
+                (_, true) => cli::design::StartArg::Nothing,
+                (Some(file), false) => cli::design::StartArg::File(file),
+                (None, false) => cli::design::StartArg::Heuristic,
+            };
+            cli::design::solve_spec(&spec, &solve, out, export, no_solve || relax, formulation, relax, (!no_explain).then_some(explain_time), start)
         }
-        Command::Compare { specs, manifest, solvers, time_limit, grace, seeds, threads, paper_limits, formulations, out } => {
+        Command::Compare { specs, manifest, solvers, time_limit, grace, seeds, threads, paper_limits, formulations, no_start, out } => {
             let manifest = match manifest {
                 Some(m) => netspec::compare::Manifest::load(&m).map_err(anyhow::Error::msg)?,
                 None => netspec::compare::Manifest::from_specs(&specs),
@@ -344,7 +360,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
             }
             let interrupt = Some(cli::interrupt::install()?);
             let formulations: Vec<String> = formulations.iter().map(|f| f.name().to_string()).collect();
-            let settings = netspec::compare::CompareSettings { manifest, solvers: solvers.clone(), formulations, time_limit, grace, seeds, threads, paper_limits, interrupt };
+            let settings = netspec::compare::CompareSettings { manifest, solvers: solvers.clone(), formulations, time_limit, grace, seeds, threads, paper_limits, no_start, interrupt };
             // The columns of every table and chart: a backend, or a (backend, recipe) pair.
             let solvers: Vec<String> = settings.methods().into_iter().map(|(label, _, _)| label).collect();
             std::fs::create_dir_all(&out).with_context(|| format!("creating {}", out.display()))?;

@@ -4,6 +4,7 @@
 use crate::design::{self, Metrics, Network, Objective, Violation};
 use crate::formulations::expr::FamilyStats;
 use crate::formulations::{self, Formulation};
+use crate::heuristics::{self, Inputs};
 use crate::mesh::Mesh;
 use crate::milp::{check_point, objectives_agree, CheckReport, Model, ModelStats, Tolerances};
 use crate::rules::paths::PathSets;
@@ -114,6 +115,46 @@ pub struct StartReport {
     pub accepted: bool,
     /// Why it was refused.
     pub reason: Option<String>,
+    /// Seconds spent finding and checking it (counted against the solve's time limit).
+    #[serde(default)]
+    pub seconds: Option<f64>,
+    /// Whether the returned design is the start itself: the solver found nothing better (or
+    /// nothing at all) before it stopped.
+    #[serde(default)]
+    pub returned: bool,
+}
+
+/// Where a solve's MIP start comes from.
+#[derive(Clone, Debug)]
+pub enum StartFrom {
+    /// No start.
+    Nothing,
+    /// The construction heuristic with local search ([`crate::heuristics::start`]), given this
+    /// many seconds at most (its time is taken off the solve's time limit).
+    Heuristic {
+        /// Budget in seconds.
+        budget: f64,
+    },
+    /// A design (e.g. read from an earlier `result.json`).
+    Design {
+        /// The design.
+        network: Network,
+        /// Where it came from, for the report.
+        source: String,
+    },
+    /// A start already prepared by [`start_for`] (e.g. to show it before the solve begins).
+    Prepared {
+        /// The checked point, if the checker accepted it.
+        point: Option<Vec<f64>>,
+        /// Its report (its `seconds` are taken off the time limit).
+        report: StartReport,
+    },
+}
+
+/// The heuristic's budget for a solve with this time limit: a twentieth of it, at most 2 s
+/// (2 s without a limit).
+pub fn default_start_budget(time_limit: Option<f64>) -> f64 {
+    time_limit.filter(|t| t.is_finite()).map_or(2.0, |t| (0.05 * t).min(2.0))
 }
 
 /// Builds the MILP of a problem under the recipe its spec asks for (no solve).
@@ -126,7 +167,7 @@ pub fn build(p: &Problem) -> Formulation {
 /// reported and not returned, never passed to a solver.
 pub fn prepare_start(p: &Problem, f: &Formulation, net: &Network, source: &str) -> (Option<Vec<f64>>, StartReport) {
     let objective = Some(Objective::of(p, net).total);
-    let mut report = StartReport { source: source.to_string(), objective, accepted: false, reason: None };
+    let mut report = StartReport { source: source.to_string(), objective, accepted: false, reason: None, seconds: None, returned: false };
     let x = match f.encode(p, net) {
         Ok(x) => x,
         Err(e) => {
@@ -163,12 +204,93 @@ fn repair_point(p: &Problem, f: &Formulation, x: &[f64]) -> Option<Vec<f64>> {
             }
         }
     }
-    net.rooms.clear();
-    if !design::validate(p, &net, f.path_sets.as_ref()).is_empty() || f.placements.is_some() {
-        return None;
+    if f.placements.is_none() && design::validate(p, &net, f.path_sets.as_ref()).is_empty() {
+        return f.encode(p, &net).ok();
     }
-    f.encode(p, &net).ok()
+    // Dropping the islands broke a rule (coverage, rooms, …): the heuristic's rule steps mend it.
+    let inputs = Inputs { paths: f.path_sets.as_ref(), placements: f.placements.as_ref().map(|r| r.placements.as_slice()) };
+    let fixed = heuristics::repair_within(p, &inputs, &net, REPAIR_BUDGET)?;
+    f.encode(p, &fixed).ok()
 }
+
+/// Seconds the solve–cut–resolve loop gives [`heuristics::repair_within`] per broken point.
+const REPAIR_BUDGET: f64 = 0.2;
+
+/// Prepares the start `from` for `f`: runs the heuristic (or takes the given design), encodes
+/// and checks it ([`prepare_start`]). `None` for [`StartFrom::Nothing`].
+pub fn start_for(p: &Problem, f: &Formulation, from: &StartFrom, seed: u64) -> Option<(Option<Vec<f64>>, StartReport)> {
+    let t0 = std::time::Instant::now();
+    let (net, source) = match from {
+        StartFrom::Nothing => return None,
+        StartFrom::Heuristic { budget } => {
+            let inputs = Inputs { paths: f.path_sets.as_ref(), placements: f.placements.as_ref().map(|r| r.placements.as_slice()) };
+            (heuristics::start(p, &inputs, *budget, seed), "heuristic".to_string())
+        }
+        StartFrom::Design { network, source } => (Some(network.clone()), source.clone()),
+        StartFrom::Prepared { point, report } => return Some((point.clone(), report.clone())),
+    };
+    let (x, mut report) = match net {
+        Some(net) => prepare_start(p, f, &net, &source),
+        None => (
+            None,
+            StartReport { source, objective: None, accepted: false, reason: Some("the heuristic found no design".into()), seconds: None, returned: false },
+        ),
+    };
+    report.seconds = Some(t0.elapsed().as_secs_f64());
+    Some((x, report))
+}
+
+/// [`solve_built`] from a MIP start: the start is prepared ([`start_for`]) within the time
+/// limit, handed to the backend when the checker accepts it and the backend takes starts, and
+/// returned as the design when the solver ends with nothing better (so a solve never ends worse
+/// than its start). The report is in [`DesignResult::start`].
+pub fn solve_from(p: &Problem, f: &Formulation, kind: SolverKind, options: &SolveOptions, from: &StartFrom) -> Result<DesignResult, SolverError> {
+    let takes_starts = kind.instance()?.capabilities().mip_start;
+    let prepared = if takes_starts { start_for(p, f, from, options.seed.unwrap_or(0)) } else { None };
+    let Some((x, mut report)) = prepared else {
+        let mut res = solve_built(p, f, kind, options)?;
+        if !takes_starts && !matches!(from, StartFrom::Nothing) {
+            res.start = Some(StartReport {
+                source: "none".into(),
+                objective: None,
+                accepted: false,
+                reason: Some(format!("{kind} does not accept a starting solution")),
+                seconds: None,
+                returned: false,
+            });
+        }
+        return Ok(res);
+    };
+    let mut o = options.clone();
+    if let (Some(limit), Some(spent)) = (o.finite_time_limit(), report.seconds) {
+        o.time_limit = Some((limit - spent).max(0.0));
+    }
+    o.mip_start = x.clone();
+    let mut res = solve_built(p, f, kind, &o)?;
+    if let (Some(x), Some(start_obj)) = (x, report.objective) {
+        let infeasible = res.solve.termination == crate::solvers::Termination::Infeasible;
+        let worse = match res.objective.as_ref().filter(|_| res.validity.valid) {
+            None => true,
+            Some(o) => match f.model.sense {
+                crate::milp::Sense::Minimize => o.total > start_obj + 1e-9 * start_obj.abs().max(1.0),
+                crate::milp::Sense::Maximize => o.total < start_obj - 1e-9 * start_obj.abs().max(1.0),
+            },
+        };
+        if worse && !infeasible {
+            let mut solve = res.solve.clone();
+            solve.objective = Some(f.model.objective_value(&x));
+            solve.primal = Some(x);
+            solve.finish(f.model.sense);
+            let mut again = checked_result(p, f, solve, res.lazy.clone(), &[])?;
+            again.solve.wall_time = res.solve.wall_time;
+            report.returned = true;
+            res = again;
+        }
+    }
+    res.start = Some(report);
+    Ok(res)
+}
+
 
 /// Solves a built formulation and checks the answer: lazily separated rows go through the
 /// backend's `solve_lazy` (its callback, or the solve–cut–resolve loop), every row and bound of
@@ -176,7 +298,7 @@ fn repair_point(p: &Problem, f: &Formulation, x: &[f64]) -> Option<Vec<f64>> {
 /// validated and measured, and its objective recomputed from the design alone.
 pub fn solve_built(p: &Problem, f: &Formulation, kind: SolverKind, options: &SolveOptions) -> Result<DesignResult, SolverError> {
     let solver = kind.instance()?;
-    let (mut result, lazy_rows, lazy): (SolveResult, Vec<LazyRow>, Option<LazyReport>) = match f.separator() {
+    let (result, lazy_rows, lazy): (SolveResult, Vec<LazyRow>, Option<LazyReport>) = match f.separator() {
         Some(sep) => {
             let mut sep = sep.with_repair(Box::new(|x: &[f64]| repair_point(p, f, x)));
             let ls = solver.solve_lazy(&f.model, &mut sep, options)?;
@@ -184,6 +306,13 @@ pub fn solve_built(p: &Problem, f: &Formulation, kind: SolverKind, options: &Sol
         }
         None => (solver.solve(&f.model, options)?, Vec::new(), None),
     };
+    checked_result(p, f, result, lazy, &lazy_rows)
+}
+
+/// Checks a solver's result and builds the design result: every row and bound of the model
+/// and every separated row at the point, the decoded network validated and measured, its
+/// objective recomputed from the design alone.
+fn checked_result(p: &Problem, f: &Formulation, mut result: SolveResult, lazy: Option<LazyReport>, lazy_rows: &[LazyRow]) -> Result<DesignResult, SolverError> {
     let mut validity = Validity { valid: false, design_violations: Vec::new(), milp_check: None, objective_recomputed: None, objective_agrees: None };
     let mut net = None;
     let mut metrics = None;
@@ -193,7 +322,7 @@ pub fn solve_built(p: &Problem, f: &Formulation, kind: SolverKind, options: &Sol
             check_point(&f.model, x, &Tolerances::default())
         } else {
             let mut full: Model = f.model.clone();
-            for r in &lazy_rows {
+            for r in lazy_rows {
                 r.add_to(&mut full);
             }
             check_point(&full, x, &Tolerances::default())

@@ -226,7 +226,7 @@ paper = { edges = 657, time = "379/366/49" }
 fn paper_limits_per_row() {
     use netspec::compare::CompareSettings;
     let row = |time: &str| ManifestRow { name: "r".into(), spec: None, missing: Some("-".into()), paper: PaperRow { edges: None, variables: None, time: Some(time.into()) } };
-    let mut s = CompareSettings { manifest: Manifest { row: vec![] }, solvers: vec![], formulations: vec![], time_limit: 100.0, grace: 1.0, seeds: vec![], threads: None, paper_limits: true, interrupt: None };
+    let mut s = CompareSettings { manifest: Manifest { row: vec![] }, solvers: vec![], formulations: vec![], time_limit: 100.0, grace: 1.0, seeds: vec![], threads: None, paper_limits: true, no_start: false, interrupt: None };
     assert_eq!(s.limit_for(&row("35")), 35.0);
     assert_eq!(s.limit_for(&row("1018")), 100.0);
     assert_eq!(s.limit_for(&row("379/366/49")), 100.0);

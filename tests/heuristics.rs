@@ -190,6 +190,65 @@ fn heuristic_start_is_accepted_by_every_backend_that_takes_starts() {
 }
 
 #[test]
+fn a_solve_from_the_heuristic_start_never_ends_worse_than_it() {
+    let p = problem(START_SPEC);
+    let f = pipeline::build(&p);
+    for kind in netspec::solvers::SolverKind::compiled() {
+        if kind == netspec::solvers::SolverKind::GoodLp {
+            continue;
+        }
+        // No time left after the start: whatever the solver manages, the design is at least the start.
+        for limit in [0.0, 30.0] {
+            let options = netspec::solvers::SolveOptions { time_limit: Some(limit), ..Default::default() };
+            let r = pipeline::solve_from(&p, &f, kind, &options, &pipeline::StartFrom::Heuristic { budget: 0.3 }).unwrap_or_else(|e| panic!("{kind}: {e}"));
+            let start = r.start.as_ref().unwrap_or_else(|| panic!("{kind}: no start report"));
+            if !kind.instance().unwrap().capabilities().mip_start {
+                assert!(!start.accepted && start.reason.as_ref().unwrap().contains("does not accept"), "{kind}: {start:?}");
+                continue;
+            }
+            assert!(start.accepted, "{kind}: {start:?}");
+            assert!(start.seconds.is_some());
+            assert!(r.validity.valid, "{kind} at {limit} s: {:?}", r.validity.design_violations);
+            let (obj, start_obj) = (r.objective.as_ref().unwrap().total, start.objective.unwrap());
+            assert!(obj <= start_obj + 1e-6, "{kind} at {limit} s: {obj} worse than the start {start_obj}");
+            if start.returned {
+                assert!((obj - start_obj).abs() <= 1e-6, "{kind}: returned the start but the objective is {obj}, not {start_obj}");
+            }
+        }
+    }
+}
+
+#[test]
+fn solve_reads_a_start_from_a_result_file_and_refuses_one_of_another_spec() {
+    let dir = tempfile::tempdir().unwrap();
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let spec = root.join("fixtures/specs/tiny_network.toml");
+    let run = |args: &[&str]| Command::new(env!("CARGO_BIN_EXE_netspec")).arg("solve").args(args).output().unwrap();
+    let first = dir.path().join("first");
+    let out = run(&[spec.to_str().unwrap(), "--solver", "heuristic", "--time-limit", "0.3", "--out", first.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let result = first.join("result.json");
+    let out = run(&[spec.to_str().unwrap(), "--start", result.to_str().unwrap(), "--time-limit", "20", "--out", dir.path().join("second").to_str().unwrap()]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{stdout}\n{}", String::from_utf8_lossy(&out.stderr));
+    assert!(stdout.contains(&format!("start      {}", result.display())) && stdout.contains("accepted"), "{stdout}");
+    let v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(dir.path().join("second/result.json")).unwrap()).unwrap();
+    assert_eq!(v["start"]["accepted"], true);
+    assert!(v["objective"]["total"].as_f64().unwrap() <= v["start"]["objective"].as_f64().unwrap() + 1e-6);
+    // By default the start is the heuristic's; --no-start solves without one.
+    let out = run(&[spec.to_str().unwrap(), "--time-limit", "20", "--out", dir.path().join("third").to_str().unwrap()]);
+    assert!(String::from_utf8_lossy(&out.stdout).contains("start      heuristic objective"));
+    let out = run(&[spec.to_str().unwrap(), "--no-start", "--time-limit", "20", "--out", dir.path().join("fourth").to_str().unwrap()]);
+    assert!(!String::from_utf8_lossy(&out.stdout).contains("start      "));
+    // A result of another spec (another mesh) is refused with the file named.
+    let other = root.join("models/fig2b.toml");
+    let out = run(&[other.to_str().unwrap(), "--start", result.to_str().unwrap(), "--time-limit", "1", "--out", dir.path().join("fifth").to_str().unwrap()]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success());
+    assert!(stderr.contains(&result.display().to_string()) && stderr.contains("another spec"), "{stderr}");
+}
+
+#[test]
 fn a_corrupted_start_is_refused_with_the_rows_it_breaks() {
     let p = problem(START_SPEC);
     let f = pipeline::build(&p);

@@ -17,6 +17,42 @@ use std::time::Duration;
 /// Exit code when the design fails an independent check.
 const EXIT_INVALID: u8 = 3;
 
+/// Where `solve`'s MIP start comes from.
+pub enum StartArg {
+    /// `--no-start`.
+    Nothing,
+    /// The default: the construction heuristic.
+    Heuristic,
+    /// `--start FILE`: a `result.json` or a `.sol` file.
+    File(PathBuf),
+}
+
+/// Reads `--start FILE`: the network of an earlier `result.json` (its mesh must be this spec's),
+/// or a `.sol` point of this model, decoded.
+fn start_design(file: &Path, problem: &netspec::spec::Problem, nm: &netspec::formulations::Formulation) -> Result<netspec::design::Network> {
+    let is_sol = file.extension().is_some_and(|e| e.eq_ignore_ascii_case("sol"));
+    if is_sol {
+        let sol = netspec::io::sol::read(&nm.model, file)?;
+        return Ok(nm.decode(problem, &sol.values));
+    }
+    #[derive(serde::Deserialize)]
+    struct View {
+        network: Option<netspec::design::Network>,
+    }
+    let text = std::fs::read_to_string(file).with_context(|| format!("reading the start {}", file.display()))?;
+    let view: View = serde_json::from_str(&text).with_context(|| format!("{}: not a netspec result.json", file.display()))?;
+    let net = view.network.with_context(|| format!("{}: the result has no network (`network` is null)", file.display()))?;
+    if net.active.len() != problem.mesh.num_edges() {
+        anyhow::bail!(
+            "{}: the start's network has {} edges, this spec's mesh {} — is it a result of another spec?",
+            file.display(),
+            net.active.len(),
+            problem.mesh.num_edges()
+        );
+    }
+    Ok(net)
+}
+
 /// `explain`: the time budget for explaining an infeasible spec (`None`: do not explain).
 #[allow(clippy::too_many_arguments)]
 pub fn solve_spec(
@@ -28,6 +64,7 @@ pub fn solve_spec(
     formulation: Option<RecipeName>,
     relax: bool,
     explain: Option<f64>,
+    start: StartArg,
 ) -> Result<ExitCode> {
     let mut spec = Spec::load(path)?;
     if let Some(r) = formulation {
@@ -98,18 +135,39 @@ pub fn solve_spec(
     options.seed = options.seed.or(spec.solver.seed);
     options.interrupt = Some(crate::cli::interrupt::install()?);
 
+    let from = match start {
+        StartArg::Nothing => pipeline::StartFrom::Nothing,
+        StartArg::Heuristic => pipeline::StartFrom::Heuristic { budget: pipeline::default_start_budget(options.finite_time_limit()) },
+        StartArg::File(file) => pipeline::StartFrom::Design { network: start_design(&file, &problem, &nm)?, source: file.display().to_string() },
+    };
+    // Prepare the start first, so the progress line can show it while the solver runs.
+    let from = match kind.instance()?.capabilities().mip_start {
+        true => match pipeline::start_for(&problem, &nm, &from, options.seed.unwrap_or(0)) {
+            Some((point, report)) => pipeline::StartFrom::Prepared { point, report },
+            None => from,
+        },
+        false => from,
+    };
+    let start_note = match &from {
+        pipeline::StartFrom::Prepared { report, .. } => {
+            let obj = report.objective.map_or("-".to_string(), |o| format!("{o:.4}"));
+            format!("start {obj}{}", if report.accepted { "" } else { " (refused)" })
+        }
+        _ => "no start".to_string(),
+    };
     let bar = ProgressBar::new_spinner();
     bar.set_style(ProgressStyle::with_template("{spinner} solving with {prefix} {elapsed} {msg}").expect("static template"));
     bar.set_prefix(format!("{kind}{}", options.time_limit.map_or(String::new(), |t| format!(" (limit {t} s)"))));
     bar.enable_steady_tick(Duration::from_millis(200));
+    bar.set_message(start_note.clone());
     if kind.instance()?.capabilities().reports_progress {
         let b = bar.clone();
         options.progress = Some(netspec::solvers::ProgressSink(std::sync::Arc::new(move |p: netspec::solvers::Progress| {
             let f = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.4}"));
-            b.set_message(format!("incumbent {} bound {} nodes {}", f(p.primal), f(p.dual), p.nodes));
+            b.set_message(format!("{start_note}, incumbent {} bound {} nodes {}", f(p.primal), f(p.dual), p.nodes));
         })));
     }
-    let res = pipeline::solve_built(&problem, &nm, kind, &options);
+    let res = pipeline::solve_from(&problem, &nm, kind, &options, &from);
     bar.finish_and_clear();
     let res = res?;
     print_summary(&res);
@@ -259,6 +317,17 @@ fn print_summary(r: &DesignResult) {
             "design     objective {:.6} recomputed from the network: length {:.3}, distance term {:.3}, travel {:.3} (weights length {}, distance {}, travel {})",
             o.total, o.length, o.distance, o.travel, r.spec.weights.length.describe(), r.spec.weights.distance.describe(), r.spec.weights.travel.describe()
         );
+    }
+    if let Some(st) = &r.start {
+        let obj = st.objective.map_or("-".to_string(), |o| format!("{o:.6}"));
+        let secs = st.seconds.map_or(String::new(), |t| format!(" in {t:.2} s"));
+        let verdict = match (&st.reason, st.accepted) {
+            (Some(why), _) => format!("refused: {why}"),
+            (None, true) if st.returned => "accepted; the solver found nothing better, so it is the design returned".to_string(),
+            (None, true) => "accepted".to_string(),
+            (None, false) => "not used".to_string(),
+        };
+        println!("start      {} objective {obj}{secs}, {verdict}", st.source);
     }
     if let Some(l) = &r.lazy {
         println!(

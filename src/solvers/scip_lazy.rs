@@ -72,6 +72,14 @@ impl<'s> Handler<'s> {
 
     /// The point of `sol` (NULL: the current LP or pseudo solution) in variable order.
     fn point(&mut self, scip: *mut ffi::SCIP, sol: *mut ffi::SCIP_SOL) -> Option<Vec<f64>> {
+        // A solution checked before the solve (a MIP start added in the problem stage) or kept in
+        // the original space is read through the original variables.
+        // SAFETY: live SCIP instance; `sol` is NULL or one of its solutions.
+        let original = unsafe { ffi::SCIPgetStage(scip) == ffi::SCIP_Stage_SCIP_STAGE_PROBLEM || (!sol.is_null() && ffi::SCIPsolIsOriginal(sol) != 0) };
+        if original {
+            // SAFETY: live instance, original variables of it.
+            return Some(self.orig.iter().map(|&v| unsafe { ffi::SCIPgetSolVal(scip, sol, v) }).collect());
+        }
         if !self.transformed(scip) {
             return None;
         }

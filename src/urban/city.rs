@@ -480,7 +480,9 @@ fn run_level(
         let observer = opts.observer.clone().expect("checked");
         solve_opts.progress = Some(ProgressSink(Arc::new(move |progress| observer(&CityEvent::LevelProgress { region, level: n, progress }))));
     }
-    let res: DesignResult = match pipeline::solve_built(&problem, &nm, opts.solver, &solve_opts) {
+    // Every level starts from the construction heuristic's design (checked before it is used).
+    let from = pipeline::StartFrom::Heuristic { budget: pipeline::default_start_budget(solve_opts.finite_time_limit()) };
+    let res: DesignResult = match pipeline::solve_from(&problem, &nm, opts.solver, &solve_opts, &from) {
         Ok(r) => r,
         Err(e) => return Ok((LevelOutcome::bare(n, "error", e.to_string()), None)),
     };
