@@ -296,8 +296,11 @@ impl Outcome {
 /// CBC's `status()`/`secondaryStatus()` (see `CbcModel.hpp`) to a [`Termination`].
 fn termination(o: &Outcome, is_mip: bool) -> Termination {
     match (o.status, o.secondary) {
-        // "Linear relaxation not feasible (or worse than cutoff)": also how CBC ends a search
-        // that completes without an integer solution.
+        // "Linear relaxation not feasible (or worse than cutoff)" with an incumbent: the
+        // search found nothing better than it (a MIP start that was already optimal), so the
+        // incumbent is optimal.
+        (0, 1) if o.has_best != 0 => Termination::Optimal,
+        // Without one: also how CBC ends a search that completes without an integer solution.
         (_, 1) => Termination::Infeasible,
         // The LP relaxation is unbounded (CBC stops at the root). For an LP that is the answer;
         // a MIP may still have no integer point.
@@ -395,7 +398,11 @@ fn native(model: &Model, o: &SolveOptions, ctl: &StopControl) -> Result<SolveRes
                 r.termination,
                 Termination::Infeasible | Termination::Unbounded | Termination::InfeasibleOrUnbounded | Termination::Error(_)
             );
-            if bound_meaningful {
+            if bound_meaningful && out.secondary == 1 {
+                // Nothing beats the incumbent: its objective is the bound (CBC's own is the
+                // cutoff's, or infinite).
+                r.dual_bound = r.objective;
+            } else if bound_meaningful {
                 // In the model's own sense, with the constant column.
                 r.dual_bound = finite_cbc(out.bound);
             }

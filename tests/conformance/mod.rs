@@ -379,6 +379,38 @@ pub fn mip_start_is_only_a_start(kind: SolverKind) {
     }
 }
 
+/// An optimal MIP start leaves nothing to find: the solve is still optimal, with the start's
+/// objective (CBC ends such a search as "relaxation worse than the cutoff", which once read as
+/// infeasible).
+pub fn optimal_mip_start_is_proven_optimal(kind: SolverKind) {
+    let caps = kind.instance().unwrap().capabilities();
+    let model = models::general_integer();
+    let best = models::general_integer_optimum();
+    // The optimum by enumeration, as a point.
+    let mut start = None;
+    for a in -5..=5 {
+        for b in -5..=5 {
+            let x = vec![a as f64, b as f64];
+            if netspec::milp::check_point(&model, &x, &netspec::milp::Tolerances::default()).is_feasible() && model.objective_value(&x) == best {
+                start = Some(x);
+            }
+        }
+    }
+    let o = SolveOptions { mip_start: start, ..Default::default() };
+    if refused_unless(caps.mip_start, kind, &model, &o, "mip_start") {
+        return;
+    }
+    assert_optimal_with(kind, &model, &o, best);
+    let model = models::knapsack();
+    let n = model.num_vars();
+    let best = models::knapsack_optimum();
+    let start = (0u32..1 << n)
+        .map(|s| (0..n).map(|i| (s >> i & 1) as f64).collect::<Vec<f64>>())
+        .find(|x| netspec::milp::check_point(&model, x, &netspec::milp::Tolerances::default()).is_feasible() && model.objective_value(x) == best)
+        .unwrap();
+    assert_optimal_with(kind, &model, &SolveOptions { mip_start: Some(start), ..Default::default() }, best);
+}
+
 /// A 6-city tour whose degree-2 relaxation is two triangles: subtour elimination rows are
 /// needed, and come only from a separator (the backend's callback, or the solve–cut–resolve
 /// loop). The optimum is found by brute force over every tour.
@@ -447,7 +479,7 @@ macro_rules! conformance_suite {
                 unbounded_lp, unbounded_mip, infeasible_or_unbounded, time_limit_stops_hard_model,
                 time_limit_zero, mip_start_is_used, mip_start_is_only_a_start, nan_mip_start_is_refused,
                 gap_limit_stops_early, node_limit, two_threads, invalid_model_is_an_error,
-                unsupported_options_are_refused, lazy_subtour_elimination, lazy_solve_from_a_start);
+                unsupported_options_are_refused, lazy_subtour_elimination, lazy_solve_from_a_start, optimal_mip_start_is_proven_optimal);
         }
     )*};
     (@cases $kind:expr; $($case:ident),*) => {$(
