@@ -2,8 +2,8 @@
 """Fig. 13 of Peng et al. 2016, reproduced: the paper's stochastic search against the IP.
 
 For each example, with the `netspec` binary:
-  - the MILP: `netspec solve --solver highs` on the spec with the default (strong) formulation,
-    once per time limit in LIMITS; each point is the objective of the *valid* design the run
+  - the MILP: `netspec solve --solver highs --no-start` (the IP alone, as in the paper's figure)
+    on the spec with the default (strong) formulation, once per time limit in LIMITS; each point is the objective of the *valid* design the run
     returns at that limit (a run that returns none is plotted as missing);
   - the stochastic search: `netspec solve --solver anneal --time-limit ANNEAL` (the best of
     several seeded passes; its result carries the best objective over time);
@@ -62,6 +62,8 @@ def solve(binary, spec, solver, limit, out, threads, seed=None):
     cmd = [binary, "solve", spec, "--solver", solver, "--time-limit", str(limit), "--out", out]
     if threads and solver not in ("heuristic", "anneal"):
         cmd += ["--threads", str(threads)]
+    if solver not in ("heuristic", "anneal"):
+        cmd += ["--no-start"]  # the IP alone, as in the paper's figure
     if seed is not None:
         cmd += ["--seed", str(seed)]
     t0 = time.time()

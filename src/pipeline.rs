@@ -151,10 +151,10 @@ pub enum StartFrom {
     },
 }
 
-/// The heuristic's budget for a solve with this time limit: a twentieth of it, at most 2 s
-/// (2 s without a limit).
+/// The heuristic's budget for a solve with this time limit: a twentieth of it, at most 1 s (1 s
+/// without a limit), so the solver has its incumbent by the first second.
 pub fn default_start_budget(time_limit: Option<f64>) -> f64 {
-    time_limit.filter(|t| t.is_finite()).map_or(2.0, |t| (0.05 * t).min(2.0))
+    time_limit.filter(|t| t.is_finite()).map_or(1.0, |t| (0.05 * t).min(1.0))
 }
 
 /// Builds the MILP of a problem under the recipe its spec asks for (no solve).
