@@ -92,9 +92,9 @@ fn local_search_only_improves() {
 
 #[test]
 fn plain_infeasibility_is_proven_not_searched() {
-    // The level-2 street instance of Fig. 7c froze a sink on a walled corner: its two edges are
-    // walls, and coverage needs a network, so nothing could ever reach a sink.
-    let p = load("models/streets/fig7c/L2/spec.json");
+    // The first Fig. 7c level-2 reconstruction froze its sink on a walled corner: its two edges
+    // are walls, and coverage needs a network, so nothing could ever reach a sink.
+    let p = load("fixtures/specs/walled_corner_sink/spec.json");
     for out in [heuristics::heuristic(&p, &Inputs::default(), &Options::default()), heuristics::anneal(&p, &Inputs::default(), &AnnealOptions::default())] {
         assert_eq!(out.stop, Stop::Infeasible);
         assert!(out.network.is_none());

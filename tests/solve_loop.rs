@@ -64,6 +64,51 @@ fn one_by_one_walled_grid_is_infeasible_on_every_backend() {
     }
 }
 
+/// The issue's third case: a mesh of two separate squares, the sink on one, coverage needing
+/// the other. No design exists (the far square would be an island); every backend, under every
+/// recipe, says infeasible, never "optimal".
+#[test]
+fn two_separate_squares_are_infeasible_on_every_backend() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("squares.json"),
+        r#"{"vertices": [[0,0],[1,0],[1,1],[0,1],[3,0],[4,0],[4,1],[3,1]], "faces": [[0,1,2,3],[4,5,6,7]]}"#,
+    )
+    .unwrap();
+    for recipe in ["paper", "tight", "strong"] {
+        let spec = dir.path().join(format!("{recipe}.toml"));
+        let text = format!("name = \"squares\"\nboundary = \"candidate\"\nformulation = \"{recipe}\"\n[mesh]\nfile = \"squares.json\"\n[sinks]\nvertices = [0]\n[coverage]\nrange = 1\n");
+        std::fs::write(&spec, text).unwrap();
+        let p = netspec::spec::Spec::load(&spec).unwrap().resolve(dir.path()).unwrap();
+        let nm = pipeline::build(&p);
+        for k in crate::network::backends(true) {
+            let r = pipeline::solve_built(&p, &nm, k, &SolveOptions { time_limit: Some(60.0), ..Default::default() }).unwrap();
+            assert_eq!(r.solve.termination, Termination::Infeasible, "{k} {recipe}: {}", r.solve.status_line());
+            assert!(!r.design_found, "{k} {recipe}");
+        }
+    }
+}
+
+/// `solve`'s status line says apart why it stopped and whether a design exists: a time limit
+/// with a design, a time limit without one (no start, no time), and infeasible.
+#[test]
+fn status_line_says_why_and_whether() {
+    let dir = tempfile::tempdir().unwrap();
+    let fig2b = models_dir().join("fig2b.toml");
+    let run = |args: &[&str]| {
+        let out = netspec().arg("solve").args(args).arg("--out").arg(dir.path().join("o")).output().unwrap();
+        String::from_utf8_lossy(&out.stdout).into_owned()
+    };
+    // A start and one second: the solver stops at its limit with the start or better.
+    let with = run(&[fig2b.to_str().unwrap(), "--time-limit", "1"]);
+    assert!(with.lines().any(|l| l.starts_with("status     limit(time), design found (")), "{with}");
+    // No start and no time: nothing to show.
+    let without = run(&[fig2b.to_str().unwrap(), "--time-limit", "0", "--no-start"]);
+    assert!(without.lines().any(|l| l.starts_with("status     limit(time), no design")), "{without}");
+    let v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(dir.path().join("o/result.json")).unwrap()).unwrap();
+    assert_eq!(v["design_found"], false);
+}
+
 /// fig9b1 makes CBC sit in its preprocessing (no clock checks) far past a short limit: netspec's
 /// worker stops it and a result still comes back, marked as stopped by the time limit.
 #[cfg(feature = "cbc")]
