@@ -121,7 +121,9 @@ def main():
     print("Objectives are the design's own (recomputed by netspec from the network), not the formulation's")
     print("surrogate; *optimal* means the solver's bound met the objective (gap ≤ 1e-4) and the design passed")
     print("every check. The paper publishes no objectives and our instances are reconstructions, so only")
-    print("times can be set against the paper's.\n")
+    print("times can be set against the paper's. Fig. 7c's rows are other instances than in the paper-recipe")
+    print("run (its exit moved to (0, 7): the first reconstruction was infeasible), and 7c-L3/L4 are new.")
+    print("A solve's time includes the heuristic start's budget (a twentieth of the limit, at most 1 s).\n")
     head = "| row | paper s | " + " | ".join(l for l, _ in cols) + " | paper recipe, HiGHS |"
     print(head)
     print("|" + "---|" * (3 + len(cols)))

@@ -227,6 +227,13 @@ struct Best<'i, 'p> {
 
 impl Best<'_, '_> {
     fn offer(&mut self, net: Network) {
+        self.offer_reached(net, Vec::new());
+    }
+
+    /// Offers a design that a search reached through the improvements `reached` (when each
+    /// objective was first reached, the last being this design's): if the design is valid and
+    /// better, the improvements below the previous best join the trace at their own times.
+    fn offer_reached(&mut self, net: Network, reached: Vec<TracePoint>) {
         let obj = design::Objective::of(self.p, &net).total;
         if obj >= self.objective - 1e-9 {
             return;
@@ -234,6 +241,12 @@ impl Best<'_, '_> {
         if !is_valid(self.p, self.inputs, &net) {
             self.rejected += 1;
             return;
+        }
+        for t in reached {
+            if t.objective < self.objective - 1e-9 && t.objective > obj + 1e-9 {
+                self.objective = t.objective;
+                self.trace.push(t);
+            }
         }
         self.objective = obj;
         self.network = Some(net);
@@ -276,11 +289,14 @@ pub fn heuristic(p: &Problem, inputs: &Inputs, opts: &Options) -> Outcome {
             }
             let b = Builder::new(rules, s, sub.fork(), 0.3, Some(slice));
             let ls = LocalSearch::new(b);
-            let (s, _, ls_stats) = ls.run(slice, |_| {});
+            // When each improvement was reached (the search keeps every rule as it goes; the
+            // design it ends with is validated by `offer_reached`).
+            let mut reached = Vec::new();
+            let (s, _, ls_stats) = ls.run(slice, |obj| reached.push(TracePoint { seconds: t0.elapsed().as_secs_f64(), objective: obj }));
             stats.moves_tried += ls_stats.tried;
             stats.moves_accepted += ls_stats.accepted;
             stats.kicks += ls_stats.kicks;
-            best.offer(s.network(rules));
+            best.offer_reached(s.network(rules), reached);
         };
         match (&network_rules, inputs.placements) {
             (Some(rules), _) => {
