@@ -116,6 +116,8 @@ def main():
     print("(2-core AMD EPYC, other jobs idle unless said; limit = the paper's time for the row, capped):\n")
     for label, _ in cols:
         print(f"- **{label}**")
+    print("\nEach column: `netspec compare --manifest models/table1.toml --solvers highs --threads 2 --paper-limits")
+    print("--time-limit 60 --grace 15 --out OUT`, one run at a time (the start columns with little else running; the no-start column while other jobs shared the machine), 2026-11-30/12-01.\n")
     print("- **paper recipe, HiGHS** (the column of [the reproduction](table1-reproduction.md): `--formulation paper`")
     print("  as it then was, HiGHS 2 threads, min(paper time, 20 s)) — for contrast; its cap is lower.\n")
     print("Objectives are the design's own (recomputed by netspec from the network), not the formulation's")
