@@ -168,28 +168,78 @@ pub fn build(p: &Problem) -> Formulation {
 pub fn prepare_start(p: &Problem, f: &Formulation, net: &Network, source: &str) -> (Option<Vec<f64>>, StartReport) {
     let objective = Some(Objective::of(p, net).total);
     let mut report = StartReport { source: source.to_string(), objective, accepted: false, reason: None, seconds: None, returned: false };
-    let x = match f.encode(p, net) {
-        Ok(x) => x,
+    let cp = match design_point(f, p, net) {
+        Ok(cp) => cp,
         Err(e) => {
-            report.reason = Some(e.to_string());
+            report.reason = Some(e);
             return (None, report);
         }
     };
-    let check = check_point(&f.model, &x, &Tolerances::default());
-    if !check.is_feasible() {
-        let first: Vec<String> = check.violations.iter().take(3).map(|v| v.to_string()).collect();
-        report.reason = Some(format!("{} violations of the model, e.g. {}", check.violations.len(), first.join("; ")));
+    if !cp.check.is_feasible() {
+        let first: Vec<String> = cp.check.violations.iter().take(3).map(|v| v.to_string()).collect();
+        report.reason = Some(format!("{} violations of the model, e.g. {}", cp.check.violations.len(), first.join("; ")));
         return (None, report);
     }
-    if let Some(mut sep) = f.separator() {
-        let cuts = sep.separate_integral(&x);
-        if !cuts.is_empty() {
-            report.reason = Some(format!("violates {} connectivity rows (an island)", cuts.len()));
-            return (None, report);
-        }
+    if cp.lazy_violations > 0 {
+        report.reason = Some(format!("violates {} connectivity rows (an island)", cp.lazy_violations));
+        return (None, report);
     }
     report.accepted = true;
-    (Some(x), report)
+    (Some(cp.x), report)
+}
+
+/// A design as a point of a formulation, with the MILP checker's report on it.
+pub(crate) struct DesignPoint {
+    /// The point.
+    pub x: Vec<f64>,
+    /// Every emitted row and bound, checked.
+    pub check: CheckReport,
+    /// Lazily separated rows the point violates (0 without a separator).
+    pub lazy_violations: usize,
+}
+
+/// Encodes `net` for `f` and checks the point against every row, bound and lazy row.
+pub(crate) fn design_point(f: &Formulation, p: &Problem, net: &Network) -> Result<DesignPoint, String> {
+    let x = f.encode(p, net).map_err(|e| e.to_string())?;
+    let check = check_point(&f.model, &x, &Tolerances::default());
+    let lazy_violations = f.separator().map_or(0, |mut sep| sep.separate_integral(&x).len());
+    Ok(DesignPoint { x, check, lazy_violations })
+}
+
+/// The validator's verdict on a design of `f`: §6 items 1–5, and the room rules when tiling.
+pub(crate) fn design_violations(p: &Problem, f: &Formulation, net: &Network) -> Vec<Violation> {
+    let mut v = design::validate(p, net, f.path_sets.as_ref());
+    if let Some(pl) = &f.placements {
+        v.extend(design::validate_rooms(p, net, &pl.placements, &net.rooms));
+    }
+    v
+}
+
+/// A design's active edges as vertex pairs, in edge-id order (empty without a design).
+pub(crate) fn active_edge_pairs(p: &Problem, net: Option<&Network>) -> Vec<[u32; 2]> {
+    net.map_or(Vec::new(), |n| {
+        n.active_edges()
+            .into_iter()
+            .map(|e| {
+                let (a, b) = p.mesh.edge_vertices(e);
+                [a.0, b.0]
+            })
+            .collect()
+    })
+}
+
+/// The room part of a result, when `f` tiles rooms.
+pub(crate) fn rooms_result(p: &Problem, f: &Formulation, net: Option<&Network>) -> Option<RoomsResult> {
+    f.placements.as_ref().map(|pl| RoomsResult {
+        enumerated_per_template: pl.per_template.clone(),
+        truncated: pl.truncated,
+        seconds: pl.seconds,
+        block_graph: match (&p.rooms, net) {
+            (Some(r), Some(n)) if r.mode == crate::spec::RoomMode::Game => Some(design::block_graph(p, n, &pl.placements)),
+            _ => None,
+        },
+        chosen: net.map_or(Vec::new(), |n| n.rooms.iter().map(|&k| pl.placements[k].clone()).collect()),
+    })
 }
 
 /// The formulation's point for a repaired version of a disconnected integral point: islands
@@ -328,10 +378,7 @@ fn checked_result(p: &Problem, f: &Formulation, mut result: SolveResult, lazy: O
             check_point(&full, x, &Tolerances::default())
         };
         let n = f.decode(p, x);
-        validity.design_violations = design::validate(p, &n, f.path_sets.as_ref());
-        if let Some(pl) = &f.placements {
-            validity.design_violations.extend(design::validate_rooms(p, &n, &pl.placements, &n.rooms));
-        }
+        validity.design_violations = design_violations(p, f, &n);
         // The solver's objective must be the model's objective at its point (the checker
         // recomputes it), and the design's own objective can only be lower: a formulation's
         // surrogate (labels, flows, indicators) overestimates off the optimum, never under.
@@ -347,26 +394,9 @@ fn checked_result(p: &Problem, f: &Formulation, mut result: SolveResult, lazy: O
         objective = Some(design_objective);
         net = Some(n);
     }
-    let active_edges = net.as_ref().map_or(Vec::new(), |n: &Network| {
-        n.active_edges()
-            .into_iter()
-            .map(|e| {
-                let (a, b) = p.mesh.edge_vertices(e);
-                [a.0, b.0]
-            })
-            .collect()
-    });
+    let active_edges = active_edge_pairs(p, net.as_ref());
     let primal_point = result.primal.take();
-    let rooms = f.placements.as_ref().map(|pl| RoomsResult {
-        enumerated_per_template: pl.per_template.clone(),
-        truncated: pl.truncated,
-        seconds: pl.seconds,
-        block_graph: match (&p.rooms, &net) {
-            (Some(r), Some(n)) if r.mode == crate::spec::RoomMode::Game => Some(design::block_graph(p, n, &pl.placements)),
-            _ => None,
-        },
-        chosen: net.as_ref().map_or(Vec::new(), |n| n.rooms.iter().map(|&k| pl.placements[k].clone()).collect()),
-    });
+    let rooms = rooms_result(p, f, net.as_ref());
     Ok(DesignResult {
         schema: "netspec.design".into(),
         schema_version: DESIGN_SCHEMA_VERSION,

@@ -281,11 +281,16 @@ fn status_line(r: &DesignResult) -> String {
 }
 
 fn verdict(r: &DesignResult) -> String {
-    match (&r.network, r.validity.valid) {
-        (None, _) => "no network".into(),
-        (Some(_), true) => "valid".into(),
-        (Some(_), false) => {
-            let n = r.validity.design_violations.len() + r.validity.milp_check.as_ref().map_or(0, |c| c.violations.len());
+    verdict_line(r.network.is_some(), &r.validity, "no network")
+}
+
+/// The `validity` line: `none` without a design, else valid or how many violations.
+pub(crate) fn verdict_line(has_design: bool, v: &pipeline::Validity, none: &str) -> String {
+    match (has_design, v.valid) {
+        (false, _) => none.into(),
+        (true, true) => "valid".into(),
+        (true, false) => {
+            let n = v.design_violations.len() + v.milp_check.as_ref().map_or(0, |c| c.violations.len());
             format!("INVALID ({n} violations)")
         }
     }

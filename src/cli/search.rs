@@ -70,14 +70,7 @@ pub fn solve_search(
 }
 
 fn verdict(r: &SearchResult) -> String {
-    match (&r.network, r.validity.valid) {
-        (None, _) => "no design".into(),
-        (Some(_), true) => "valid".into(),
-        (Some(_), false) => {
-            let n = r.validity.design_violations.len() + r.validity.milp_check.as_ref().map_or(0, |c| c.violations.len());
-            format!("INVALID ({n} violations)")
-        }
-    }
+    crate::cli::design::verdict_line(r.network.is_some(), &r.validity, "no design")
 }
 
 fn print_summary(r: &SearchResult) {

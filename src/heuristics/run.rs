@@ -7,12 +7,12 @@
 //! reads it like any other run.
 
 use super::{AnnealOptions, Inputs, Options, Outcome, SearchStats, Stop, TracePoint};
-use crate::design::{self, Metrics, Network, Objective};
+use crate::design::{Metrics, Network, Objective};
 use crate::formulations::expr::FamilyStats;
 use crate::formulations::Formulation;
 use crate::mesh::Mesh;
-use crate::milp::{check_point, ModelStats, Tolerances};
-use crate::pipeline::{prepare_start, RoomsResult, Validity, DESIGN_SCHEMA_VERSION};
+use crate::milp::ModelStats;
+use crate::pipeline::{active_edge_pairs, design_point, design_violations, rooms_result, RoomsResult, Validity, DESIGN_SCHEMA_VERSION};
 use crate::rules::paths::PathSets;
 use crate::solvers::{LimitKind, SolverKind, Termination};
 use crate::spec::{Problem, Spec};
@@ -182,43 +182,21 @@ pub fn record(p: &Problem, f: &Formulation, method: SearchMethod, seed: u64, out
     let mut validity = Validity { valid: false, design_violations: Vec::new(), milp_check: None, objective_recomputed: None, objective_agrees: None };
     let (mut metrics, mut objective) = (None, None);
     if let Some(net) = &outcome.network {
-        validity.design_violations = design::validate(p, net, f.path_sets.as_ref());
-        if let Some(pl) = &f.placements {
-            validity.design_violations.extend(design::validate_rooms(p, net, &pl.placements, &net.rooms));
-        }
+        validity.design_violations = design_violations(p, f, net);
         let obj = Objective::of(p, net);
         validity.objective_recomputed = Some(obj.total);
         validity.objective_agrees = outcome.objective.map(|o| crate::milp::objectives_agree(o, obj.total, 1e-6));
         // The design as a point of the formulation, checked row by row (and against the lazy
         // rows), exactly as a MIP start is.
-        let (point, start) = prepare_start(p, f, net, method.name());
-        validity.milp_check = match f.encode(p, net) {
-            Ok(x) => Some(check_point(&f.model, &x, &Tolerances::default())),
-            Err(_) => None,
-        };
-        validity.valid = validity.design_violations.is_empty() && point.is_some() && start.accepted && validity.objective_agrees == Some(true);
+        let point = design_point(f, p, net).ok();
+        let point_ok = point.as_ref().is_some_and(|cp| cp.check.is_feasible() && cp.lazy_violations == 0);
+        validity.milp_check = point.map(|cp| cp.check);
+        validity.valid = validity.design_violations.is_empty() && point_ok && validity.objective_agrees == Some(true);
         metrics = Some(Metrics::of(p, net));
         objective = Some(obj);
     }
-    let active_edges = outcome.network.as_ref().map_or(Vec::new(), |n| {
-        n.active_edges()
-            .into_iter()
-            .map(|e| {
-                let (a, b) = p.mesh.edge_vertices(e);
-                [a.0, b.0]
-            })
-            .collect()
-    });
-    let rooms = f.placements.as_ref().map(|pl| RoomsResult {
-        enumerated_per_template: pl.per_template.clone(),
-        truncated: pl.truncated,
-        seconds: pl.seconds,
-        block_graph: match (&p.rooms, &outcome.network) {
-            (Some(r), Some(n)) if r.mode == crate::spec::RoomMode::Game => Some(design::block_graph(p, n, &pl.placements)),
-            _ => None,
-        },
-        chosen: outcome.network.as_ref().map_or(Vec::new(), |n| n.rooms.iter().map(|&k| pl.placements[k].clone()).collect()),
-    });
+    let active_edges = active_edge_pairs(p, outcome.network.as_ref());
+    let rooms = rooms_result(p, f, outcome.network.as_ref());
     let termination = match outcome.stop {
         Stop::TimeLimit => Termination::Limit(LimitKind::Time),
         Stop::Exhausted => Termination::Limit(LimitKind::Other),
