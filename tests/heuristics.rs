@@ -246,6 +246,12 @@ fn solve_reads_a_start_from_a_result_file_and_refuses_one_of_another_spec() {
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(!out.status.success());
     assert!(stderr.contains(&result.display().to_string()) && stderr.contains("another spec"), "{stderr}");
+    // A JSON file that is not a result says so.
+    let not_a_result = dir.path().join("other.json");
+    std::fs::write(&not_a_result, r#"{"x": 1}"#).unwrap();
+    let out = run(&[spec.to_str().unwrap(), "--start", not_a_result.to_str().unwrap(), "--out", dir.path().join("sixth").to_str().unwrap()]);
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("not a netspec result.json"), "{}", String::from_utf8_lossy(&out.stderr));
 }
 
 #[test]

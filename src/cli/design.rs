@@ -37,10 +37,14 @@ fn start_design(file: &Path, problem: &netspec::spec::Problem, nm: &netspec::for
     }
     #[derive(serde::Deserialize)]
     struct View {
+        schema: Option<String>,
         network: Option<netspec::design::Network>,
     }
     let text = std::fs::read_to_string(file).with_context(|| format!("reading the start {}", file.display()))?;
     let view: View = serde_json::from_str(&text).with_context(|| format!("{}: not a netspec result.json", file.display()))?;
+    if view.schema.as_deref() != Some("netspec.design") {
+        anyhow::bail!("{}: not a netspec result.json (no `\"schema\": \"netspec.design\"`)", file.display());
+    }
     let net = view.network.with_context(|| format!("{}: the result has no network (`network` is null)", file.display()))?;
     if net.active.len() != problem.mesh.num_edges() {
         anyhow::bail!(
