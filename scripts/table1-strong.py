@@ -7,7 +7,7 @@ Usage: scripts/table1-strong.py LABEL=OUT_DIR [LABEL=OUT_DIR ...] > docs/table1-
 Each OUT_DIR is a compare output directory; its runs are read from OUT_DIR/runs/*/run.json
 (so a run stopped part-way still counts) and the design objective — recomputed from the design
 by netspec, not the formulation's surrogate — from OUT_DIR/runs/*/result.json. The paper
-recipe's HiGHS column is read from docs/table1-reproduction.md (its per-row table), the run it
+recipe's HiGHS column is read from docs/table1-paper-recipe.md (its per-row table), the run it
 was generated from. Ratios, never verdicts: time / paper time where a run proved optimality.
 """
 import glob, json, math, os, re, sys
@@ -62,9 +62,9 @@ def load_runs(out):
 
 
 def paper_recipe_column():
-    """The HiGHS column of docs/table1-reproduction.md's per-row table (paper recipe, 20 s cap)."""
+    """The HiGHS column of docs/table1-paper-recipe.md's per-row table (paper recipe, 20 s cap)."""
     out = {}
-    doc = open(os.path.join(ROOT, "docs/table1-reproduction.md")).read()
+    doc = open(os.path.join(ROOT, "docs/table1-paper-recipe.md")).read()
     section = doc.split("## Per row", 1)[1].split("## Per backend", 1)[0]
     for line in section.splitlines():
         cells = [c.strip() for c in line.strip().strip("|").split("|")]
@@ -118,7 +118,7 @@ def main():
         print(f"- **{label}**")
     print("\nEach column: `netspec compare --manifest models/table1.toml --solvers highs --threads 2 --paper-limits")
     print("--time-limit 60 --grace 15 --out OUT`, one run at a time (the start columns with little else running; the no-start column while other jobs shared the machine), 2026-11-30/12-01.\n")
-    print("- **paper recipe, HiGHS** (the column of [the reproduction](table1-reproduction.md): `--formulation paper`")
+    print("- **paper recipe, HiGHS** (the column of [the reproduction](table1-paper-recipe.md): `--formulation paper`")
     print("  as it then was, HiGHS 2 threads, min(paper time, 20 s)) — for contrast; its cap is lower.\n")
     print("Objectives are the design's own (recomputed by netspec from the network), not the formulation's")
     print("surrogate; *optimal* means the solver's bound met the objective (gap ≤ 1e-4) and the design passed")

@@ -545,6 +545,61 @@ struct ValidityView {
     valid: bool,
 }
 
+/// Finished comparisons combined into one ([`merge`]).
+#[derive(Clone, Debug)]
+pub struct Merged {
+    /// The rows of the combined table.
+    pub manifest: Manifest,
+    /// Every column of every comparison, in order.
+    pub columns: Vec<String>,
+    /// Every record of every comparison.
+    pub records: Vec<RunRecord>,
+    /// The largest time limit of the comparisons (the charts' axis).
+    pub time_limit: f64,
+    /// Each comparison's directory and its stored settings, as read.
+    pub sources: Vec<(PathBuf, serde_json::Value)>,
+}
+
+/// Reads the `results.json` of finished comparisons (`compare --out DIR`, or an earlier merge)
+/// and combines them: columns in the order of `dirs`, then of each comparison's own columns.
+/// The rows are `manifest`'s if given, else the first comparison's. A column label that
+/// appears in two comparisons is an error naming both, as is a directory without a readable
+/// `results.json`.
+pub fn merge(dirs: &[PathBuf], manifest: Option<Manifest>) -> Result<Merged, String> {
+    #[derive(Deserialize)]
+    struct Saved {
+        settings: serde_json::Value,
+        records: Vec<RunRecord>,
+        summary: Vec<BackendSummary>,
+    }
+    let mut columns: Vec<(String, PathBuf)> = Vec::new();
+    let mut out = Merged { manifest: Manifest { row: Vec::new() }, columns: Vec::new(), records: Vec::new(), time_limit: 0.0, sources: Vec::new() };
+    let mut first_manifest = None;
+    for dir in dirs {
+        let path = dir.join("results.json");
+        let text = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e} (a finished `netspec compare --out {}`?)", path.display(), dir.display()))?;
+        let saved: Saved = serde_json::from_str(&text).map_err(|e| format!("{}: not a comparison's results: {e}", path.display()))?;
+        for b in &saved.summary {
+            if let Some((_, other)) = columns.iter().find(|(c, _)| *c == b.solver) {
+                return Err(format!("column `{}` is in both {} and {}: merge comparisons with different columns", b.solver, other.display(), dir.display()));
+            }
+            columns.push((b.solver.clone(), dir.clone()));
+        }
+        if let Some(limit) = saved.settings.get("time_limit").and_then(|v| v.as_f64()) {
+            out.time_limit = out.time_limit.max(limit);
+        }
+        if first_manifest.is_none() {
+            let m = saved.settings.get("manifest").cloned().ok_or_else(|| format!("{}: settings.manifest is missing", path.display()))?;
+            first_manifest = Some(serde_json::from_value::<Manifest>(m).map_err(|e| format!("{}: settings.manifest: {e}", path.display()))?);
+        }
+        out.records.extend(saved.records);
+        out.sources.push((dir.clone(), saved.settings));
+    }
+    out.manifest = manifest.or(first_manifest).ok_or("nothing to merge: no comparison directories given")?;
+    out.columns = columns.into_iter().map(|(c, _)| c).collect();
+    Ok(out)
+}
+
 /// Shifted geometric mean `exp(mean(ln(t + shift))) − shift` (the MIPLIB convention).
 pub fn shifted_geometric_mean(times: &[f64], shift: f64) -> f64 {
     if times.is_empty() {

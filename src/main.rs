@@ -89,7 +89,7 @@ enum Command {
     /// time per instance and backend (bars.svg) to --out.
     Compare {
         /// Spec files.
-        #[arg(required_unless_present = "manifest")]
+        #[arg(required_unless_present_any = ["manifest", "merge"])]
         specs: Vec<PathBuf>,
         /// A manifest of instances with the paper's figures (e.g. models/table1.toml).
         #[arg(long, conflicts_with = "specs")]
@@ -120,6 +120,11 @@ enum Command {
         /// Solve without the heuristic's MIP start (each child gets `solve --no-start`).
         #[arg(long)]
         no_start: bool,
+        /// Combine finished comparisons (each DIR's results.json) into one report in --out
+        /// without solving: every column of every DIR, in the order given (column labels must
+        /// differ). With --manifest, its rows are the table's; else the first DIR's.
+        #[arg(long, value_delimiter = ',', value_name = "DIR", conflicts_with_all = ["specs", "solvers", "seeds", "formulations", "no_start", "paper_limits", "threads"])]
+        merge: Vec<PathBuf>,
         /// Output directory.
         #[arg(long, default_value = "out/compare")]
         out: PathBuf,
@@ -340,7 +345,17 @@ fn run(cli: Cli) -> Result<ExitCode> {
             };
             cli::design::solve_spec(&spec, &solve, out, export, no_solve || relax, formulation, relax, (!no_explain).then_some(explain_time), start)
         }
-        Command::Compare { specs, manifest, solvers, time_limit, grace, seeds, threads, paper_limits, formulations, no_start, out } => {
+        Command::Compare { specs, manifest, solvers, time_limit, grace, seeds, threads, paper_limits, formulations, no_start, merge, out } => {
+            if !merge.is_empty() {
+                let manifest = manifest.map(|m| netspec::compare::Manifest::load(&m).map_err(anyhow::Error::msg)).transpose()?;
+                let merged = netspec::compare::merge(&merge, manifest).map_err(anyhow::Error::msg)?;
+                std::fs::create_dir_all(&out).with_context(|| format!("creating {}", out.display()))?;
+                let from: Vec<String> = merge.iter().map(|d| format!("`{}`", d.display())).collect();
+                let settings = serde_json::json!({ "manifest": merged.manifest, "time_limit": merged.time_limit, "merged_from": merged.sources });
+                let md = write_comparison(&out, &merged.manifest, &merged.records, &merged.columns, merged.time_limit, &format!("merged from {}", from.join(", ")), settings)?;
+                print!("{md}");
+                return Ok(ExitCode::SUCCESS);
+            }
             let manifest = match manifest {
                 Some(m) => netspec::compare::Manifest::load(&m).map_err(anyhow::Error::msg)?,
                 None => netspec::compare::Manifest::from_specs(&specs),
@@ -381,26 +396,8 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 );
             })
             .with_context(|| format!("running the comparison into {}", out.display()))?;
-            let summary = netspec::compare::summarize(&records, &solvers, time_limit);
-            let md = netspec::compare::markdown(&settings.manifest, &records, &solvers, &summary);
-            let cpu = std::fs::read_to_string("/proc/cpuinfo")
-                .ok()
-                .and_then(|t| t.lines().find(|l| l.starts_with("model name")).and_then(|l| l.split(':').nth(1)).map(|s| s.trim().to_string()))
-                .unwrap_or_else(|| "unknown CPU".into());
-            let command: Vec<String> = std::env::args().collect();
-            let header = format!(
-                "netspec {} compare, time limit {time_limit} s{}, grace {grace} s; {cpu}, {} cores\n\nCommand: `{}`\n\n",
-                env!("CARGO_PKG_VERSION"),
-                if paper_limits { " (each row at most the paper's time for it)" } else { "" },
-                std::thread::available_parallelism().map_or(0, |n| n.get()),
-                command.join(" ")
-            );
-            std::fs::write(out.join("results.md"), header + &md)?;
-            std::fs::write(out.join("results.csv"), netspec::compare::csv(&records))?;
-            std::fs::write(out.join("profile.svg"), netspec::compare::performance_profile_svg(&records, &solvers, time_limit))?;
-            std::fs::write(out.join("bars.svg"), netspec::compare::bar_chart_svg(&settings.manifest, &records, &solvers, time_limit))?;
-            let all = serde_json::json!({ "netspec_version": env!("CARGO_PKG_VERSION"), "command": command, "cpu": cpu, "settings": settings, "records": records, "summary": summary });
-            std::fs::write(out.join("results.json"), serde_json::to_string_pretty(&all)? + "\n")?;
+            let what = format!("time limit {time_limit} s{}, grace {grace} s", if paper_limits { " (each row at most the paper's time for it)" } else { "" });
+            let md = write_comparison(&out, &settings.manifest, &records, &solvers, time_limit, &what, serde_json::to_value(&settings)?)?;
             print!("\n{md}");
             if settings.interrupt.as_ref().is_some_and(|i| i.is_triggered()) {
                 println!("interrupted: the runs recorded above are kept; rerun to resume");
@@ -496,4 +493,39 @@ fn solve_file(file: &std::path::Path, args: &SolveArgs, start: Option<&std::path
         Termination::Limit(netspec::solvers::LimitKind::Interrupt) => Ok(ExitCode::from(cli::interrupt::EXIT_INTERRUPTED)),
         _ => Ok(ExitCode::SUCCESS),
     }
+}
+
+/// Writes a comparison's reports to `out` (results.md, .csv, .json, profile.svg, bars.svg) and
+/// returns the Markdown table. `what` describes the runs for the header; `settings` is stored
+/// in results.json.
+fn write_comparison(
+    out: &std::path::Path,
+    manifest: &netspec::compare::Manifest,
+    records: &[netspec::compare::RunRecord],
+    columns: &[String],
+    time_limit: f64,
+    what: &str,
+    settings: serde_json::Value,
+) -> Result<String> {
+    let summary = netspec::compare::summarize(records, columns, time_limit);
+    let md = netspec::compare::markdown(manifest, records, columns, &summary);
+    let cpu = std::fs::read_to_string("/proc/cpuinfo")
+        .ok()
+        .and_then(|t| t.lines().find(|l| l.starts_with("model name")).and_then(|l| l.split(':').nth(1)).map(|s| s.trim().to_string()))
+        .unwrap_or_else(|| "unknown CPU".into());
+    let command: Vec<String> = std::env::args().collect();
+    let header = format!(
+        "netspec {} compare, {what}; {cpu}, {} cores\n\nCommand: `{}`\n\n",
+        env!("CARGO_PKG_VERSION"),
+        std::thread::available_parallelism().map_or(0, |n| n.get()),
+        command.join(" ")
+    );
+    let write = |name: &str, text: String| std::fs::write(out.join(name), text).with_context(|| format!("writing {}", out.join(name).display()));
+    write("results.md", header + &md)?;
+    write("results.csv", netspec::compare::csv(records))?;
+    write("profile.svg", netspec::compare::performance_profile_svg(records, columns, time_limit))?;
+    write("bars.svg", netspec::compare::bar_chart_svg(manifest, records, columns, time_limit))?;
+    let all = serde_json::json!({ "netspec_version": env!("CARGO_PKG_VERSION"), "command": command, "cpu": cpu, "settings": settings, "records": records, "summary": summary });
+    write("results.json", serde_json::to_string_pretty(&all)? + "\n")?;
+    Ok(md)
 }

@@ -410,3 +410,47 @@ fn formulation_axis() {
         assert_eq!(res["formulation"], recipe);
     }
 }
+
+/// `compare --merge`: two finished comparisons (other backends, other threads) become one
+/// report, with every column of both, without solving anything; a column in both, or a
+/// directory that holds no comparison, is an error naming it.
+#[test]
+fn merge_combines_finished_comparisons() {
+    let dir = tempfile::tempdir().unwrap();
+    let spec = dir.path().join("a.toml");
+    std::fs::write(&spec, fixture("tiny_network.toml")).unwrap();
+    let netspec = |args: &[&str]| Command::new(env!("CARGO_BIN_EXE_netspec")).current_dir(dir.path()).args(args).output().unwrap();
+    for (solver, threads) in [("highs", "2"), ("microlp", "1")] {
+        let o = netspec(&["compare", "a.toml", "--solvers", solver, "--threads", threads, "--time-limit", "20", "--out", solver]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    }
+    let o = netspec(&["compare", "--merge", "highs,microlp", "--out", "both"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let out = dir.path().join("both");
+    let md = std::fs::read_to_string(out.join("results.md")).unwrap();
+    assert!(md.contains("merged from `highs`, `microlp`"), "{md}");
+    let header = md.lines().find(|l| l.starts_with("| instance |")).unwrap();
+    assert!(header.contains(" highs |") && header.contains(" microlp |"), "{md}");
+    let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(out.join("results.json")).unwrap()).unwrap();
+    let records: Vec<RunRecord> = serde_json::from_value(json["records"].clone()).unwrap();
+    assert_eq!(records.len(), 2);
+    // Each record keeps the settings it ran with.
+    let threads: Vec<Option<u32>> = records.iter().map(|r| r.settings.as_ref().unwrap().threads).collect();
+    assert_eq!(threads, [Some(2), Some(1)]);
+    assert_eq!(json["settings"]["merged_from"].as_array().unwrap().len(), 2);
+    let profile = std::fs::read_to_string(out.join("profile.svg")).unwrap();
+    assert_eq!(profile.matches(r#"class="profile""#).count(), 2);
+    let bars = std::fs::read_to_string(out.join("bars.svg")).unwrap();
+    assert_eq!(bars.matches(r#"class="bar""#).count(), 2);
+    // A merge is a comparison too: it merges again, but not with a comparison it holds.
+    let o = netspec(&["compare", "--merge", "both,highs", "--out", "again"]);
+    assert!(!o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("column `highs` is in both both and highs"), "{err}");
+    let o = netspec(&["compare", "--merge", "highs,nowhere", "--out", "x"]);
+    assert!(!o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("nowhere/results.json"), "{err}");
+    // Merging solves nothing: no run directories in the merged output.
+    assert!(!out.join("runs").exists());
+}
