@@ -9,16 +9,24 @@ Usage: scripts/table1-report.py MERGED_DIR [--hours H]
   design objective (recomputed by netspec from the network, not the formulation's surrogate)
   and picture are read from SOURCE/runs/*/.
   --hours H: the wall time the runs took in all (said in the report).
+  --shared-until ISO-TIME: runs that started before this time shared the machine with the other
+  column's run (two solvers side by side on the two cores); their cells are marked †.
+  --beside DIR[,DIR…]: runs of the same columns made beside the other column and later made
+  again alone (their runs/ moved to DIR): the report sets the two results side by side.
 
 Copies MERGED_DIR/profile.svg and bars.svg to docs/img/table1/, and for every row the picture
-of the best valid design any column found to docs/img/table1/designs/ROW.png. The paper recipe's
+of the best valid design any column found to docs/img/table1/designs/ROW.png (a 560-pixel
+thumbnail; needs Pillow). The paper recipe's
 earlier run (min(paper time, 20 s)) is read from docs/table1-paper-recipe.md's per-row table.
 Ratios, never verdicts: time / paper time where a run proved optimality.
 """
-import glob, json, math, os, shutil, sys
+import datetime, glob, json, math, os, shutil, sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 TOL = 1e-6
+# Rows whose instance changed since the paper recipe's archived run (7a-L3 is built on a new
+# level-2 design; 7c moved its exit): that run's figures are for another instance.
+CHANGED_SINCE_PAPER_RUN = {"7a-L3", "7c-L2"}
 
 
 def seconds(t):
@@ -53,6 +61,11 @@ def run_dirs(source):
     return out
 
 
+def started(run_dir, r):
+    """When a run started: its record's write time less its wall time (seconds since the epoch)."""
+    return os.path.getmtime(os.path.join(run_dir, "run.json")) - r["wall_time"]
+
+
 def design_of(run_dir, r):
     """The design's own objective and the start's, from the run's result.json."""
     d = {"objective": None, "start": None, "start_returned": False, "picture": None}
@@ -72,6 +85,14 @@ def design_of(run_dir, r):
         d["start"] = st.get("objective")
         d["start_returned"] = st.get("returned", False)
     return d
+
+
+def thumbnail(src, dst):
+    """A 560-pixel, 64-colour copy of a design's picture (Pillow; `pip install pillow`)."""
+    from PIL import Image
+    im = Image.open(src)
+    im.thumbnail((560, 560))
+    im.convert("RGB").convert("P", palette=Image.ADAPTIVE, colors=64).save(dst, optimize=True)
 
 
 def paper_recipe_column():
@@ -117,11 +138,18 @@ def cell(r, d):
 
 def main():
     args = sys.argv[1:]
-    hours = None
-    if "--hours" in args:
-        i = args.index("--hours")
-        hours = float(args[i + 1])
+    def option(name):
+        if name not in args:
+            return None
+        i = args.index(name)
+        v = args[i + 1]
         del args[i:i + 2]
+        return v
+    hours = option("--hours")
+    hours = float(hours) if hours else None
+    shared_until = option("--shared-until")
+    shared_until = datetime.datetime.fromisoformat(shared_until.replace("Z", "+00:00")).timestamp() if shared_until else None
+    beside_dir = option("--beside")
     merged = args[0]
     res = json.load(open(os.path.join(merged, "results.json")))
     settings, records = res["settings"], res["records"]
@@ -137,6 +165,7 @@ def main():
             column_source[k[1]] = src
     by = {(r["instance"], r["solver"]): r for r in records}
     designs = {k: design_of(dirs[k], r) if k in dirs else design_of("", r) for k, r in by.items()}
+    shared = {k for k, r in by.items() if shared_until and k in dirs and started(dirs[k], r) < shared_until}
     paper_recipe = paper_recipe_column()
 
     img = os.path.join(ROOT, "docs/img/table1")
@@ -183,10 +212,17 @@ def main():
     w("**Protocol.** Each row ran at the paper's own time for it, capped at 300 s (`--paper-limits")
     w("--time-limit 300`; a run is killed 30 s past its limit), with the strong recipe and the")
     w("heuristic's MIP start (its budget, a twentieth of the limit and at most 1 s, counts in the")
-    w("time). The HiGHS and SCIP runs ran at the same time, one beside the other on the two cores:")
-    w(f"HiGHS with {threads(columns[0])} threads (its branch and bound is serial, so it used about one core),")
-    w("SCIP with 1 thread, because netspec's lazy cutset constraint handler runs only in SCIP's")
-    w("sequential solve (with more threads SCIP would fall back to the solve–cut–resolve loop)." )
+    w("time). HiGHS ran with 2 threads, SCIP with 1 (netspec's lazy cutset constraint handler runs")
+    w("only in SCIP's sequential solve; with more threads SCIP falls back to the solve–cut–resolve")
+    w("loop). The two columns were started side by side, one solver per core, so that both would")
+    w("fit the session. By row 2g it showed that side by side each was far slower than alone (the")
+    w("table under the rows: the same runs again alone), although HiGHS's branch and bound is")
+    w("serial (alone it kept one core busy) — on this 2-vCPU machine two solvers slow each other")
+    w("down (shared caches and memory bandwidth, or vCPUs on one physical core; the cause was not")
+    w("measured). So SCIP was stopped; HiGHS ran the remaining rows alone and then its")
+    w("side-by-side rows with a limit up to 86 s again; SCIP then ran alone every row whose paper")
+    w("time is at most 60 s (`--manifest models/table1-scip.toml`). The long rows that ran side by")
+    w("side (limits 132–300 s) are marked †; they were not run again for lack of machine time.")
     if hours is not None:
         w(f"The runs took {hours:.1f} h of wall time in all.")
     w("")
@@ -215,7 +251,7 @@ def main():
             continue
         recs = [by.get((name, c)) for c in columns]
         limit = next((r.get("time_limit") for r in recs if r and r.get("time_limit")), None)
-        cells = [cell(r, designs.get((name, c))) for r, c in zip(recs, columns)]
+        cells = [cell(r, designs.get((name, c))) + (" †" if (name, c) in shared else "") for r, c in zip(recs, columns)]
         objs = [(designs[(name, c)]["objective"], c) for r, c in zip(recs, columns) if r and designs[(name, c)]["objective"] is not None]
         best = min(objs) if objs else None
         fastest = min(((r["wall_time"], c) for r, c in zip(recs, columns) if r and solved(r)), default=None)
@@ -230,11 +266,31 @@ def main():
         else:
             pic = designs[(name, best[1])]["picture"]
             if pic:
-                shutil.copy(pic, os.path.join(gallery, f"{name}.png"))
-        pr = paper_recipe.get(name)
-        prc = "-" if pr is None else (fmt(pr["best"]) if pr["best"] is not None else "no design") + (f" (optimal: {', '.join(pr['proven'])})" if pr["proven"] else "")
+                thumbnail(pic, os.path.join(gallery, f"{name}.png"))
+        pr = None if name in CHANGED_SINCE_PAPER_RUN else paper_recipe.get(name)
+        prc = "other instance" if name in CHANGED_SINCE_PAPER_RUN else "-" if pr is None else (fmt(pr["best"]) if pr["best"] is not None else "no design") + (f" (optimal: {', '.join(pr['proven'])})" if pr["proven"] else "")
         w(f"| {name} | {paper_t or '-'} | {fmt(limit)} | " + " | ".join(cells) + f" | {fmt(best[0]) if best else '-'} | {prc} |")
     w("")
+    if shared:
+        w("† ran while the other column's solver ran on the other core (see *Protocol*); every other")
+        w("run had the machine to itself.")
+        w("")
+    if beside_dir:
+        w("**Side by side vs alone.** The same runs (same settings) made beside the other solver and")
+        w("again alone; wall time of the whole solve, or the gap where the limit was reached:")
+        w("")
+        w("| row | column | beside the other solver | alone |")
+        w("|---|---|---|---|")
+        paths = [p for d in beside_dir.split(",") for p in glob.glob(os.path.join(d, "runs", "*", "run.json"))]
+        order = {r["name"]: i for i, r in enumerate(rows)}
+        beside_runs = sorted((json.load(open(p)) for p in paths), key=lambda b: (order.get(b["instance"], 0), b["solver"]))
+        for b in beside_runs:
+            a = by.get((b["instance"], b["solver"]))
+            if not a:
+                continue
+            show = lambda r: f"optimal in {r['wall_time']:.1f} s" if solved(r) else f"{r['status']} at {r['wall_time']:.0f} s, gap {100 * (r['gap'] or 0):.1f} %"
+            w(f"| {b['instance']} | {b['solver']} | {show(b)} | {show(a)} |")
+        w("")
     if missing:
         w("Rows without an instance (listed, never dropped): " + "; ".join(f"**{n}** ({why})" for n, why in missing) + ".")
         w("")
@@ -267,11 +323,11 @@ def main():
     w("")
 
     # Against the targets.
-    n_rows = len(rows)
+    n_rows = len(ran)
     w("## Against the issue's targets")
     w("")
     w(f"- **Rows proven optimal (or infeasible) by some backend within min(paper time, 300 s): {len(proven_rows)} of {n_rows}**"
-      f" ({len(ran)} with an instance; target ≥ 30){' — met' if len(proven_rows) >= 30 else ' — missed'}: {', '.join(proven_rows) if proven_rows else 'none'}.")
+      f" (the paper's 43 rows, all with an instance here; target ≥ 30){' — met' if len(proven_rows) >= 30 else ' — missed'}" + (f": {', '.join(proven_rows)}." if proven_rows else "."))
     w(f"- **Rows with a valid design: {len(ran) - len(no_design)} of {len(ran)}** (target: every row){' — met' if not no_design else ' — missed on ' + ', '.join(no_design)}.")
     if ratios:
         g = sgm([x for _, x, _ in ratios], 0.0)
@@ -293,7 +349,9 @@ def main():
         better = sum(1 for _, d in starts if d["objective"] is not None and d["objective"] < d["start"] - TOL * max(1.0, abs(d["start"])))
         returned = sum(1 for _, d in starts if d["start_returned"])
         worse = sum(1 for _, d in starts if d["objective"] is not None and d["objective"] > d["start"] + TOL * max(1.0, abs(d["start"])))
-        w(f"- {c}: a checked start on {len(starts)} rows; the solver improved it on {better}, found nothing better and returned it on {returned}, ended worse than it on {worse}.")
+        equal = len(starts) - better - worse
+        w(f"- {c}: a checked start on {len(starts)} of {len(ran)} rows; the solver improved it on {better}, ended at the start's objective on {equal}"
+          f" (on {returned} of them netspec returned the start because the solver had nothing as good), ended worse than it on {worse}.")
     w("")
 
     # Figures.
