@@ -14,6 +14,11 @@ Usage: scripts/table1-report.py MERGED_DIR [--hours H]
   --beside DIR[,DIR…]: runs of the same columns made beside the other column and later made
   again alone (their runs/ moved to DIR): the report sets the two results side by side.
 
+Run records of the 2026-12-01 run (run.json, result.json and stdout of every run; no pictures):
+docs/table1-runs/2026-12-01.tar.gz — extract it into out/ to resume those comparisons (records
+with the same settings are reused) or to report again; a row whose run has no picture keeps the
+picture already in the gallery.
+
 Copies MERGED_DIR/profile.svg and bars.svg to docs/img/table1/, and for every row the picture
 of the best valid design any column found to docs/img/table1/designs/ROW.png (a 560-pixel
 thumbnail; needs Pillow). The paper recipe's
@@ -187,8 +192,6 @@ def main():
     os.makedirs(gallery, exist_ok=True)
     for f in ("profile.svg", "bars.svg"):
         shutil.copy(os.path.join(merged, f), os.path.join(img, f))
-    for f in glob.glob(os.path.join(gallery, "*.png")):
-        os.remove(f)
 
     def threads(col):
         for r in records:
@@ -246,6 +249,10 @@ def main():
     w("")
 
     # Per row.
+    w("Every run's record (`run.json`, `result.json`, `stdout.txt`) is in")
+    w("[table1-runs/2026-12-01.tar.gz](table1-runs/2026-12-01.tar.gz): extract it into `out/` to")
+    w("resume these comparisons (a record with the same settings is reused) or to report again.")
+    w("")
     w("## Per row")
     w("")
     w("| row | paper s | limit s | " + " | ".join(columns) + " | best design | paper recipe, 20 s |")
@@ -274,6 +281,8 @@ def main():
                 pairs.append((fastest[0], ps))
         if best is None:
             no_design.append(name)
+            if os.path.exists(os.path.join(gallery, f"{name}.png")):
+                os.remove(os.path.join(gallery, f"{name}.png"))
         else:
             pic = designs[(name, best[1])]["picture"]
             if pic:
