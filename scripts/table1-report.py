@@ -25,32 +25,14 @@ thumbnail; needs Pillow). The paper recipe's
 earlier run (min(paper time, 20 s)) is read from docs/table1-paper-recipe.md's per-row table.
 Ratios, never verdicts: time / paper time where a run proved optimality.
 """
-import datetime, glob, json, math, os, shutil, sys
+import datetime, glob, json, os, shutil, sys
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+from table1_common import ROOT, design_of, fmt, paper_recipe_rows, seconds, sgm
+
 TOL = 1e-6
 # Rows whose instance changed since the paper recipe's archived run (7a-L3 is built on a new
 # level-2 design; 7c moved its exit): that run's figures are for another instance.
 CHANGED_SINCE_PAPER_RUN = {"7a-L3", "7c-L2"}
-
-
-def seconds(t):
-    try:
-        return float(t)
-    except (TypeError, ValueError):
-        return None
-
-
-def fmt(v):
-    if v is None:
-        return "-"
-    if abs(v) >= 1e5:
-        return f"{v:.3g}"
-    return f"{v:.4g}" if v != int(v) else f"{int(v)}"
-
-
-def sgm(xs, shift):
-    return math.exp(sum(math.log(x + shift) for x in xs) / len(xs)) - shift if xs else None
 
 
 def solved(r):
@@ -69,27 +51,6 @@ def run_dirs(source):
 def started(run_dir, r):
     """When a run started: its record's write time less its wall time (seconds since the epoch)."""
     return os.path.getmtime(os.path.join(run_dir, "run.json")) - r["wall_time"]
-
-
-def design_of(run_dir, r):
-    """The design's own objective and the start's, from the run's result.json."""
-    d = {"objective": None, "start": None, "start_returned": False, "picture": None}
-    res = os.path.join(run_dir, "result.json")
-    if r.get("killed") or not os.path.exists(res):
-        return d
-    try:
-        j = json.load(open(res))
-    except ValueError:
-        return d
-    if (j.get("validity") or {}).get("valid") and j.get("objective"):
-        d["objective"] = j["objective"]["total"]
-        png = os.path.join(run_dir, "network.png")
-        d["picture"] = png if os.path.exists(png) else None
-    st = j.get("start") or {}
-    if st.get("accepted"):
-        d["start"] = st.get("objective")
-        d["start_returned"] = st.get("returned", False)
-    return d
 
 
 def thumbnail(src, dst):
@@ -115,27 +76,14 @@ def previous_session_times():
 
 
 def paper_recipe_column():
-    """The three columns of docs/table1-paper-recipe.md's per-row table (paper recipe, 20 s cap)."""
+    """Per row of the paper recipe's archived run: its best objective over HiGHS, CBC and SCIP,
+    and which of them proved optimality, in how long."""
     out = {}
-    doc = open(os.path.join(ROOT, "docs/table1-paper-recipe.md")).read()
-    section = doc.split("## Per row", 1)[1].split("## Per backend", 1)[0]
-    for line in section.splitlines():
-        cells = [c.strip() for c in line.strip().strip("|").split("|")]
-        if len(cells) < 8 or cells[0] in ("row", "---"):
-            continue
-        best = None
-        proven = []
-        for name, c in zip(("highs", "cbc", "scip"), cells[5:8]):
-            parts = [p.strip() for p in c.split("/")]
-            if len(parts) != 4:
-                continue
-            status, obj, _gap, t = parts
-            if status == "optimal":
-                proven.append(f"{name} {seconds(t):.1f} s")
-            o = seconds(obj)
-            if o is not None and (best is None or o < best):
-                best = o
-        out[cells[0]] = {"best": best, "proven": proven}
+    for name, row in paper_recipe_rows().items():
+        runs = [(b, row[b]) for b in ("highs", "cbc", "scip") if b in row]
+        objs = [r["objective"] for _, r in runs if r["objective"] is not None]
+        proven = [f"{b} {r['time']:.1f} s" for b, r in runs if r["status"] == "optimal"]
+        out[name] = {"best": min(objs) if objs else None, "proven": proven}
     return out
 
 

@@ -10,9 +10,9 @@ by netspec, not the formulation's surrogate — from OUT_DIR/runs/*/result.json.
 recipe's HiGHS column is read from docs/table1-paper-recipe.md (its per-row table), the run it
 was generated from. Ratios, never verdicts: time / paper time where a run proved optimality.
 """
-import glob, json, math, os, re, sys
+import glob, json, os, re, sys
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+from table1_common import ROOT, design_of, fmt, paper_recipe_rows, seconds, sgm
 
 
 def manifest_rows():
@@ -32,57 +32,21 @@ def manifest_rows():
     return rows
 
 
-def seconds(t):
-    try:
-        return float(t)
-    except (TypeError, ValueError):
-        return None
-
-
 def load_runs(out):
     by = {}
     for path in glob.glob(os.path.join(out, "runs", "*", "run.json")):
         r = json.load(open(path))
-        res = os.path.join(os.path.dirname(path), "result.json")
-        r["design_objective"] = None
-        r["start_objective"] = None
-        if os.path.exists(res) and not r.get("killed"):
-            try:
-                d = json.load(open(res))
-                if d.get("validity", {}).get("valid") and d.get("objective"):
-                    r["design_objective"] = d["objective"]["total"]
-                st = d.get("start") or {}
-                if st.get("accepted"):
-                    r["start_objective"] = st.get("objective")
-                    r["start_returned"] = st.get("returned", False)
-            except (ValueError, KeyError):
-                pass
+        d = design_of(os.path.dirname(path), r)
+        r["design_objective"] = d["objective"]
+        r["start_objective"] = d["start"]
+        r["start_returned"] = d["start_returned"]
         by[r["instance"]] = r
     return by
 
 
 def paper_recipe_column():
     """The HiGHS column of docs/table1-paper-recipe.md's per-row table (paper recipe, 20 s cap)."""
-    out = {}
-    doc = open(os.path.join(ROOT, "docs/table1-paper-recipe.md")).read()
-    section = doc.split("## Per row", 1)[1].split("## Per backend", 1)[0]
-    for line in section.splitlines():
-        cells = [c.strip() for c in line.strip().strip("|").split("|")]
-        if len(cells) < 6 or cells[0] in ("row", "---"):
-            continue
-        parts = [p.strip() for p in cells[5].split("/")]
-        if len(parts) == 4:
-            status, obj, gap, t = parts
-            out[cells[0]] = {"status": status, "objective": None if obj == "-" else float(obj), "gap": gap, "time": seconds(t), "limit": seconds(cells[4])}
-    return out
-
-
-def fmt(v):
-    if v is None:
-        return "-"
-    if abs(v) >= 1e5:
-        return f"{v:.3g}"
-    return f"{v:.4g}" if v != int(v) else f"{int(v)}"
+    return {name: dict(row["highs"], limit=row["limit"]) for name, row in paper_recipe_rows().items() if "highs" in row}
 
 
 def cell(r):
@@ -98,10 +62,6 @@ def cell(r):
     if r.get("killed"):
         return f"killed at {r['wall_time']:.0f} s"
     return f"{r['status']}: {what}{gap}"
-
-
-def sgm(xs, shift):
-    return math.exp(sum(math.log(x + shift) for x in xs) / len(xs)) - shift if xs else None
 
 
 def main():
