@@ -572,9 +572,9 @@ pub fn merge(dirs: &[PathBuf], manifest: Option<Manifest>) -> Result<Merged, Str
         records: Vec<RunRecord>,
         summary: Vec<BackendSummary>,
     }
+    // Each column with the comparison it came from (to name both when it comes again).
     let mut columns: Vec<(String, PathBuf)> = Vec::new();
-    let mut out = Merged { manifest: Manifest { row: Vec::new() }, columns: Vec::new(), records: Vec::new(), time_limit: 0.0, sources: Vec::new() };
-    let mut first_manifest = None;
+    let (mut records, mut sources, mut time_limit, mut first_manifest) = (Vec::new(), Vec::new(), 0.0f64, None);
     for dir in dirs {
         let path = dir.join("results.json");
         let text = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e} (a finished `netspec compare --out {}`?)", path.display(), dir.display()))?;
@@ -586,18 +586,17 @@ pub fn merge(dirs: &[PathBuf], manifest: Option<Manifest>) -> Result<Merged, Str
             columns.push((b.solver.clone(), dir.clone()));
         }
         if let Some(limit) = saved.settings.get("time_limit").and_then(|v| v.as_f64()) {
-            out.time_limit = out.time_limit.max(limit);
+            time_limit = time_limit.max(limit);
         }
         if first_manifest.is_none() {
             let m = saved.settings.get("manifest").cloned().ok_or_else(|| format!("{}: settings.manifest is missing", path.display()))?;
             first_manifest = Some(serde_json::from_value::<Manifest>(m).map_err(|e| format!("{}: settings.manifest: {e}", path.display()))?);
         }
-        out.records.extend(saved.records);
-        out.sources.push((dir.clone(), saved.settings));
+        records.extend(saved.records);
+        sources.push((dir.clone(), saved.settings));
     }
-    out.manifest = manifest.or(first_manifest).ok_or("nothing to merge: no comparison directories given")?;
-    out.columns = columns.into_iter().map(|(c, _)| c).collect();
-    Ok(out)
+    let manifest = manifest.or(first_manifest).ok_or("nothing to merge: no comparison directories given")?;
+    Ok(Merged { manifest, columns: columns.into_iter().map(|(c, _)| c).collect(), records, time_limit, sources })
 }
 
 /// Shifted geometric mean `exp(mean(ln(t + shift))) − shift` (the MIPLIB convention).
