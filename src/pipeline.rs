@@ -134,6 +134,9 @@ pub enum StartFrom {
     Heuristic {
         /// Budget in seconds.
         budget: f64,
+        /// While it has found no design, the heuristic goes on up to this many seconds (at
+        /// least `budget`); see [`default_first_design_budget`].
+        first_design_budget: f64,
     },
     /// A design (e.g. read from an earlier `result.json`).
     Design {
@@ -155,6 +158,22 @@ pub enum StartFrom {
 /// without a limit), so the solver has its incumbent by the first second.
 pub fn default_start_budget(time_limit: Option<f64>) -> f64 {
     time_limit.filter(|t| t.is_finite()).map_or(1.0, |t| (0.05 * t).min(1.0))
+}
+
+/// How long the heuristic may go on while it has no design: a tenth of the time limit, at most
+/// 30 s (30 s without a limit), never less than [`default_start_budget`]. Where the heuristic
+/// needs more than its first second (floor plans, game levels) the solver alone usually finds
+/// nothing either, so these seconds are the solve's best chance of a design; once a design is
+/// found the heuristic stops at its ordinary budget.
+pub fn default_first_design_budget(time_limit: Option<f64>) -> f64 {
+    let t = time_limit.filter(|t| t.is_finite()).map_or(30.0, |t| (0.1 * t).min(30.0));
+    t.max(default_start_budget(time_limit))
+}
+
+/// The default start of a solve with this time limit: the heuristic with
+/// [`default_start_budget`] and [`default_first_design_budget`].
+pub fn default_start(time_limit: Option<f64>) -> StartFrom {
+    StartFrom::Heuristic { budget: default_start_budget(time_limit), first_design_budget: default_first_design_budget(time_limit) }
 }
 
 /// Builds the MILP of a problem under the recipe its spec asks for (no solve).
@@ -272,9 +291,9 @@ pub fn start_for(p: &Problem, f: &Formulation, from: &StartFrom, seed: u64) -> O
     let t0 = std::time::Instant::now();
     let (net, source) = match from {
         StartFrom::Nothing => return None,
-        StartFrom::Heuristic { budget } => {
+        StartFrom::Heuristic { budget, first_design_budget } => {
             let inputs = Inputs { paths: f.path_sets.as_ref(), placements: f.placements.as_ref().map(|r| r.placements.as_slice()) };
-            (heuristics::start(p, &inputs, *budget, seed), "heuristic".to_string())
+            (heuristics::start_within(p, &inputs, *budget, *first_design_budget, seed), "heuristic".to_string())
         }
         StartFrom::Design { network, source } => (Some(network.clone()), source.clone()),
         StartFrom::Prepared { point, report } => return Some((point.clone(), report.clone())),

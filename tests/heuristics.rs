@@ -190,6 +190,29 @@ fn heuristic_start_is_accepted_by_every_backend_that_takes_starts() {
 }
 
 #[test]
+fn without_a_design_the_start_goes_on_to_its_first_design_budget_and_no_further() {
+    let p = problem(START_SPEC);
+    // No time at all: nothing is constructed.
+    let none = heuristics::heuristic(&p, &Inputs::default(), &Options { time_limit: 0.0, ..Options::default() });
+    assert!(none.network.is_none());
+    assert_eq!(none.stats.constructions, 0);
+    // No time but a first-design allowance: the search goes on until its first design, then
+    // stops at once (its ordinary budget is long gone), without restarts or local search.
+    let opts = Options { time_limit: 0.0, first_design_limit: Some(60.0), ..Options::default() };
+    let first = heuristics::heuristic(&p, &Inputs::default(), &opts);
+    let net = first.network.expect("a design within the first-design allowance");
+    assert_valid(&p, &Inputs::default(), &net);
+    assert_eq!(first.stats.constructions, 1);
+    assert_eq!(first.stats.moves_tried, 0);
+    assert_eq!(heuristics::start_within(&p, &Inputs::default(), 0.0, 60.0, 0), Some(net));
+    // The defaults: a twentieth of the limit (≤ 1 s) to improve, a tenth (≤ 30 s) to find one.
+    for (limit, budget, first) in [(Some(300.0), 1.0, 30.0), (Some(100.0), 1.0, 10.0), (Some(4.0), 0.2, 0.4), (Some(1.0), 0.05, 0.1), (None, 1.0, 30.0)] {
+        assert!((pipeline::default_start_budget(limit) - budget).abs() < 1e-12, "{limit:?}");
+        assert!((pipeline::default_first_design_budget(limit) - first).abs() < 1e-12, "{limit:?}");
+    }
+}
+
+#[test]
 fn a_solve_from_the_heuristic_start_never_ends_worse_than_it() {
     let p = problem(START_SPEC);
     let f = pipeline::build(&p);
@@ -200,7 +223,7 @@ fn a_solve_from_the_heuristic_start_never_ends_worse_than_it() {
         // No time left after the start: whatever the solver manages, the design is at least the start.
         for limit in [0.0, 30.0] {
             let options = netspec::solvers::SolveOptions { time_limit: Some(limit), ..Default::default() };
-            let r = pipeline::solve_from(&p, &f, kind, &options, &pipeline::StartFrom::Heuristic { budget: 0.3 }).unwrap_or_else(|e| panic!("{kind}: {e}"));
+            let r = pipeline::solve_from(&p, &f, kind, &options, &pipeline::StartFrom::Heuristic { budget: 0.3, first_design_budget: 0.3 }).unwrap_or_else(|e| panic!("{kind}: {e}"));
             let start = r.start.as_ref().unwrap_or_else(|| panic!("{kind}: no start report"));
             if !kind.instance().unwrap().capabilities().mip_start {
                 assert!(!start.accepted && start.reason.as_ref().unwrap().contains("does not accept"), "{kind}: {start:?}");

@@ -141,7 +141,7 @@ pub fn solve_spec(
 
     let from = match start {
         StartArg::Nothing => pipeline::StartFrom::Nothing,
-        StartArg::Heuristic => pipeline::StartFrom::Heuristic { budget: pipeline::default_start_budget(options.finite_time_limit()) },
+        StartArg::Heuristic => pipeline::default_start(options.finite_time_limit()),
         StartArg::File(file) => pipeline::StartFrom::Design { network: start_design(&file, &problem, &nm)?, source: file.display().to_string() },
     };
     // Prepare the start first, so the progress line can show it while the solver runs.

@@ -95,11 +95,15 @@ pub struct Options {
     pub max_designs: Option<usize>,
     /// Run the local search on each construction (default true).
     pub local_search: bool,
+    /// While no valid design has been found, keep constructing past `time_limit` up to this
+    /// many seconds (default: stop at `time_limit`). Only the search for a first design is
+    /// extended; improving it stays within `time_limit`.
+    pub first_design_limit: Option<f64>,
 }
 
 impl Default for Options {
     fn default() -> Self {
-        Options { time_limit: 10.0, seed: 0, max_constructions: None, max_designs: None, local_search: true }
+        Options { time_limit: 10.0, seed: 0, max_constructions: None, max_designs: None, local_search: true, first_design_limit: None }
     }
 }
 
@@ -262,13 +266,16 @@ pub fn heuristic(p: &Problem, inputs: &Inputs, opts: &Options) -> Outcome {
         return Outcome::infeasible(why, t0);
     }
     let deadline = t0 + Duration::from_secs_f64(opts.time_limit.max(0.0));
+    // Without a design yet, constructions may go on until this later deadline.
+    let first_deadline = t0 + Duration::from_secs_f64(opts.time_limit.max(opts.first_design_limit.unwrap_or(0.0)).max(0.0));
     let mut rng = Rng::new(opts.seed);
     let mut best = Best { p, inputs, t0, network: None, objective: f64::INFINITY, trace: Vec::new(), rejected: 0 };
     let mut stats = SearchStats::default();
     let network_rules = p.rooms.is_none().then(|| Rules::new(p, inputs.paths, None, None));
     let mut stop = Stop::TimeLimit;
     loop {
-        if Instant::now() >= deadline {
+        let limit = if best.network.is_some() { deadline } else { first_deadline };
+        if Instant::now() >= limit {
             break;
         }
         if opts.max_constructions.is_some_and(|m| stats.constructions as usize >= m) || opts.max_designs.is_some_and(|m| stats.constructed as usize >= m) {
@@ -300,13 +307,13 @@ pub fn heuristic(p: &Problem, inputs: &Inputs, opts: &Options) -> Outcome {
         };
         match (&network_rules, inputs.placements) {
             (Some(rules), _) => {
-                let mut b = Builder::new(rules, State::new(rules), sub.fork(), noise, Some(deadline));
+                let mut b = Builder::new(rules, State::new(rules), sub.fork(), noise, Some(limit));
                 if b.repair_all() && b.s.feasible(rules) {
                     polish(rules, b.s, &mut sub, &mut best, &mut stats);
                 }
             }
             (None, Some(placements)) => {
-                if let Some((rules, s)) = rooms::construct(p, placements, inputs.paths, &mut sub, noise, deadline, stats.constructions - 1) {
+                if let Some((rules, s)) = rooms::construct(p, placements, inputs.paths, &mut sub, noise, limit, stats.constructions - 1) {
                     polish(&rules, s, &mut sub, &mut best, &mut stats);
                 }
             }
@@ -440,5 +447,12 @@ pub fn repair(p: &Problem, inputs: &Inputs, net: &Network) -> Option<Network> {
 /// The heuristic's best design within `budget` seconds (construction and local search), for a
 /// MIP start: hand it to [`crate::pipeline::prepare_start`].
 pub fn start(p: &Problem, inputs: &Inputs, budget: f64, seed: u64) -> Option<Network> {
-    heuristic(p, inputs, &Options { time_limit: budget, seed, ..Options::default() }).network
+    start_within(p, inputs, budget, budget, seed)
+}
+
+/// [`start`] that, while it has no design, goes on past `budget` up to `first_design_budget`
+/// seconds to find one (a hard instance's first design is worth more than the solver's first
+/// seconds; once one is found the search stops at `budget`).
+pub fn start_within(p: &Problem, inputs: &Inputs, budget: f64, first_design_budget: f64, seed: u64) -> Option<Network> {
+    heuristic(p, inputs, &Options { time_limit: budget, seed, first_design_limit: Some(first_design_budget), ..Options::default() }).network
 }

@@ -481,7 +481,7 @@ fn run_level(
         solve_opts.progress = Some(ProgressSink(Arc::new(move |progress| observer(&CityEvent::LevelProgress { region, level: n, progress }))));
     }
     // Every level starts from the construction heuristic's design (checked before it is used).
-    let from = pipeline::StartFrom::Heuristic { budget: pipeline::default_start_budget(solve_opts.finite_time_limit()) };
+    let from = pipeline::default_start(solve_opts.finite_time_limit());
     let res: DesignResult = match pipeline::solve_from(&problem, &nm, opts.solver, &solve_opts, &from) {
         Ok(r) => r,
         Err(e) => return Ok((LevelOutcome::bare(n, "error", e.to_string()), None)),
