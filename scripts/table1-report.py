@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Writes docs/table1-reproduction.md (and docs/img/table1/) from Table 1 comparison runs.
 
-Usage: scripts/table1-report.py MERGED_DIR [--hours H]
+Usage: scripts/table1-report.py MERGED_DIR [--hours H] [--shared FROM/TO,…] [--beside DIR,…]
 
   MERGED_DIR: `netspec compare --merge DIR,DIR… --manifest models/table1.toml --out MERGED_DIR`
   over the protocol's runs (each DIR a `netspec compare --manifest models/table1.toml
@@ -9,30 +9,28 @@ Usage: scripts/table1-report.py MERGED_DIR [--hours H]
   design objective (recomputed by netspec from the network, not the formulation's surrogate)
   and picture are read from SOURCE/runs/*/.
   --hours H: the wall time the runs took in all (said in the report).
-  --shared-until ISO-TIME: runs that started before this time shared the machine with the other
-  column's run (two solvers side by side on the two cores); their cells are marked †.
+  --shared FROM/TO[,FROM/TO…] (ISO times): runs that started inside one of these windows shared
+  the machine with another column's run (two solvers side by side on the two cores); their
+  cells are marked †.
   --beside DIR[,DIR…]: runs of the same columns made beside the other column and later made
   again alone (their runs/ moved to DIR): the report sets the two results side by side.
 
-Run records of the 2026-12-01 run (run.json, result.json and stdout of every run; no pictures):
+Run records of the protocol's runs (run.json, result.json and stdout of every run; no pictures):
 docs/table1-runs/2026-12-01.tar.gz — extract it into out/ to resume those comparisons (records
 with the same settings are reused) or to report again; a row whose run has no picture keeps the
 picture already in the gallery.
 
 Copies MERGED_DIR/profile.svg and bars.svg to docs/img/table1/, and for every row the picture
 of the best valid design any column found to docs/img/table1/designs/ROW.png (a 560-pixel
-thumbnail; needs Pillow). The paper recipe's
-earlier run (min(paper time, 20 s)) is read from docs/table1-paper-recipe.md's per-row table.
+thumbnail; needs Pillow). The protocol and the reading are hand-written
+(scripts/table1-protocol.md, scripts/table1-reading.md) and copied in.
 Ratios, never verdicts: time / paper time where a run proved optimality.
 """
 import datetime, glob, json, os, shutil, sys
 
-from table1_common import ROOT, design_of, fmt, paper_recipe_rows, seconds, sgm
+from table1_common import ROOT, design_of, fmt, seconds, sgm
 
 TOL = 1e-6
-# Rows whose instance changed since the paper recipe's archived run (7a-L3 is built on a new
-# level-2 design; 7c moved its exit): that run's figures are for another instance.
-CHANGED_SINCE_PAPER_RUN = {"7a-L3", "7c-L2"}
 
 
 def solved(r):
@@ -75,18 +73,6 @@ def previous_session_times():
     return out
 
 
-def paper_recipe_column():
-    """Per row of the paper recipe's archived run: its best objective over HiGHS, CBC and SCIP,
-    and which of them proved optimality, in how long."""
-    out = {}
-    for name, row in paper_recipe_rows().items():
-        runs = [(b, row[b]) for b in ("highs", "cbc", "scip") if b in row]
-        objs = [r["objective"] for _, r in runs if r["objective"] is not None]
-        proven = [f"{b} {r['time']:.1f} s" for b, r in runs if r["status"] == "optimal"]
-        out[name] = {"best": min(objs) if objs else None, "proven": proven}
-    return out
-
-
 def cell(r, d):
     if r is None:
         return "not run"
@@ -114,8 +100,8 @@ def main():
         return v
     hours = option("--hours")
     hours = float(hours) if hours else None
-    shared_until = option("--shared-until")
-    shared_until = datetime.datetime.fromisoformat(shared_until.replace("Z", "+00:00")).timestamp() if shared_until else None
+    iso = lambda t: datetime.datetime.fromisoformat(t.replace("Z", "+00:00")).timestamp()
+    shared_windows = [tuple(iso(t) for t in w.split("/")) for w in (option("--shared") or "").split(",") if w]
     beside_dir = option("--beside")
     merged = args[0]
     res = json.load(open(os.path.join(merged, "results.json")))
@@ -132,8 +118,7 @@ def main():
             column_source[k[1]] = src
     by = {(r["instance"], r["solver"]): r for r in records}
     designs = {k: design_of(dirs[k], r) if k in dirs else design_of("", r) for k, r in by.items()}
-    shared = {k for k, r in by.items() if shared_until and k in dirs and started(dirs[k], r) < shared_until}
-    paper_recipe = paper_recipe_column()
+    shared = {k for k, r in by.items() if k in dirs and any(a <= started(dirs[k], r) < b for a, b in shared_windows)}
 
     img = os.path.join(ROOT, "docs/img/table1")
     gallery = os.path.join(img, "designs")
@@ -149,13 +134,12 @@ def main():
 
     lines = []
     w = lines.append
-    w("# Reproducing Table 1 (Peng et al. 2016): the strong recipe at the paper's times")
+    w("# Reproducing Table 1 (Peng et al. 2016): the strong and the paper recipe at the paper's times")
     w("")
     w("Generated by `scripts/table1-report.py` from these runs (netspec "
       f"{res['netspec_version']}, {res['cpu']}, 2 cores):")
     w("")
     for src in sources:
-        s = source_settings[src]
         cols = ", ".join(f"`{c}`" for c in columns if column_source.get(c) == src)
         cmd = json.load(open(os.path.join(src, "results.json"))).get("command") or []
         w(f"- {cols}: `netspec {' '.join(cmd[1:])}`")
@@ -170,30 +154,11 @@ def main():
     w("from the network), not the formulation's surrogate; *optimal* means the solver's bound met the")
     w("objective (gap ≤ 1e-4) and the design passed every check of the MILP and of the design.")
     w("")
-    w("**Protocol.** Each row ran at the paper's own time for it, capped at 300 s (`--paper-limits")
-    w("--time-limit 300`; a run is killed 30 s past its limit), with the strong recipe and the")
-    w("heuristic's MIP start (its budget, a twentieth of the limit and at most 1 s, counts in the")
-    w("time). HiGHS ran with 2 threads, SCIP with 1 (netspec's lazy cutset constraint handler runs")
-    w("only in SCIP's sequential solve; with more threads SCIP falls back to the solve–cut–resolve")
-    w("loop). The two columns were started side by side, one solver per core, so that both would")
-    w("fit the session. By row 2g the proven rows were slower than in the previous session's")
-    w("60-s run (2d 14.6 s against 8.4 s), which I took for the two solvers slowing each other, so")
-    w("SCIP was stopped; HiGHS ran the remaining rows alone and then its side-by-side rows with a")
-    w("limit up to 86 s again; SCIP then ran alone every row whose paper time is at most 60 s")
-    w("(`--manifest models/table1-scip.toml`). Alone, the same runs were only 5–15 % faster (the")
-    w("table under the rows): most of the difference is this machine, a new VM of the same kind,")
-    w("on which HiGHS alone took 1.3–1.7× the previous session's times on every row both proved")
-    w("(see *Against the issue's targets*). The long rows that ran side by side (limits 132–300 s)")
-    w("are marked †; they were not run again.")
+    protocol = os.path.join(ROOT, "scripts/table1-protocol.md")
+    if os.path.exists(protocol):
+        w(open(protocol).read().strip())
     if hours is not None:
-        w(f"The comparisons took {hours:.2f} h of wall time in all (the 7a city run before them, 3 min).")
-    w("")
-    w("The paper recipe and the other backends were **not** rerun at these caps (each column is about")
-    w("two hours of one core on this machine); the last column is the best objective any of HiGHS,")
-    w("CBC and SCIP reached with the paper's recipe at min(paper time, 20 s), from the")
-    w("[archived run](table1-paper-recipe.md) (an earlier build; its objectives are the formulation's")
-    w("surrogate, and Fig. 7a/7c's instances have changed since). The heuristic alone and the")
-    w("paper's stochastic search are in [heuristics.md](heuristics.md) and [fig13.md](fig13.md).")
+        w(f"The comparisons took {hours:.2f} h of wall time in all.")
     w("")
 
     # Per row.
@@ -203,8 +168,8 @@ def main():
     w("")
     w("## Per row")
     w("")
-    w("| row | paper s | limit s | " + " | ".join(columns) + " | best design | paper recipe, 20 s |")
-    w("|---|---|---|" + "---|" * (len(columns) + 2))
+    w("| row | paper s | limit s | " + " | ".join(columns) + " | best design |")
+    w("|---|---|---|" + "---|" * (len(columns) + 1))
     proven_rows, ratios, pairs = [], [], []
     missing = []
     no_design = []
@@ -213,13 +178,14 @@ def main():
         paper_t = (row.get("paper") or {}).get("time")
         if not row.get("spec"):
             missing.append((name, row.get("missing")))
-            w(f"| {name} | {paper_t or '-'} | - | " + " | ".join("no spec" for _ in columns) + " | - | - |")
+            w(f"| {name} | {paper_t or '-'} | - | " + " | ".join("no spec" for _ in columns) + " | - |")
             continue
         recs = [by.get((name, c)) for c in columns]
         limit = next((r.get("time_limit") for r in recs if r and r.get("time_limit")), None)
         cells = [cell(r, designs.get((name, c))) + (" †" if (name, c) in shared else "") for r, c in zip(recs, columns)]
         objs = [(designs[(name, c)]["objective"], c) for r, c in zip(recs, columns) if r and designs[(name, c)]["objective"] is not None]
-        best = min(objs) if objs else None
+        # Ties go to the earlier column (the order given to --merge).
+        best = min(objs, key=lambda oc: (oc[0], columns.index(oc[1]))) if objs else None
         fastest = min(((r["wall_time"], c) for r, c in zip(recs, columns) if r and solved(r)), default=None)
         ps = seconds(paper_t)
         if fastest:
@@ -235,12 +201,10 @@ def main():
             pic = designs[(name, best[1])]["picture"]
             if pic:
                 thumbnail(pic, os.path.join(gallery, f"{name}.png"))
-        pr = None if name in CHANGED_SINCE_PAPER_RUN else paper_recipe.get(name)
-        prc = "other instance" if name in CHANGED_SINCE_PAPER_RUN else "-" if pr is None else (fmt(pr["best"]) if pr["best"] is not None else "no design") + (f" (optimal: {', '.join(pr['proven'])})" if pr["proven"] else "")
-        w(f"| {name} | {paper_t or '-'} | {fmt(limit)} | " + " | ".join(cells) + f" | {fmt(best[0]) if best else '-'} | {prc} |")
+        w(f"| {name} | {paper_t or '-'} | {fmt(limit)} | " + " | ".join(cells) + f" | {fmt(best[0]) if best else '-'} |")
     w("")
     if shared:
-        w("† ran while the other column's solver ran on the other core (see *Protocol*); every other")
+        w("† ran while another column's solver ran on the other core (see *Protocol*); every other")
         w("run had the machine to itself.")
         w("")
     if beside_dir:
@@ -287,8 +251,35 @@ def main():
             if ps:
                 rr.append(r["wall_time"] / ps)
         g = sgm(rr, 0.0)
-        w(f"| {c} | {threads(c) or '-'} | {len(mine)} | {len(opt)} | {len(inf)} | {len(valid)} | {best_count} | {b['sgm_time']:.1f} s | {'-' if g is None else f'{g:.2f} ({len(rr)} rows)'} |")
+        plural = "" if len(rr) == 1 else "s"
+        w(f"| {c} | {threads(c) or '-'} | {len(mine)} | {len(opt)} | {len(inf)} | {len(valid)} | {best_count} | {b['sgm_time']:.1f} s | {'-' if g is None else f'{g:.2f} ({len(rr)} row{plural})'} |")
     w("")
+
+    # The recipes against each other, per backend.
+    pairs_rp = [(c, c.split("/")[0] + "/paper") for c in columns if c.endswith("/strong") and c.split("/")[0] + "/paper" in columns]
+    if pairs_rp:
+        w("## The strong recipe against the paper's")
+        w("")
+        w("Same backend, threads and caps; per row, the design's own objective and the solver's bound:")
+        w("")
+        for cs, cp in pairs_rp:
+            both = [n for n in ran if (n, cs) in by and (n, cp) in by]
+            ob = lambda n, c: designs[(n, c)]["objective"]
+            bd = lambda n, c: by[(n, c)].get("dual_bound")
+            better_d = sum(1 for n in both if ob(n, cs) is not None and (ob(n, cp) is None or ob(n, cs) < ob(n, cp) - TOL * max(1.0, abs(ob(n, cp)))))
+            worse_d = sum(1 for n in both if ob(n, cp) is not None and (ob(n, cs) is None or ob(n, cp) < ob(n, cs) - TOL * max(1.0, abs(ob(n, cs)))))
+            with_b = [n for n in both if bd(n, cs) is not None and bd(n, cp) is not None]
+            higher_b = sum(1 for n in with_b if bd(n, cs) > bd(n, cp) + TOL * max(1.0, abs(bd(n, cp))))
+            lower_b = sum(1 for n in with_b if bd(n, cs) < bd(n, cp) - TOL * max(1.0, abs(bd(n, cp))))
+            proven = lambda c: [n for n in both if solved(by[(n, c)])]
+            w(f"- **{cs} vs {cp}** on the {len(both)} rows both ran: proven {len(proven(cs))} vs {len(proven(cp))}"
+              f" ({', '.join(proven(cs)) or '-'} vs {', '.join(proven(cp)) or '-'}); better design on {better_d} rows, worse on {worse_d}, equal on the rest;"
+              f" higher bound on {higher_b} of the {len(with_b)} rows where both have one, lower on {lower_b}.")
+            gaps = [(n, by[(n, cs)].get("gap"), by[(n, cp)].get("gap")) for n in both if not solved(by[(n, cs)]) and by[(n, cs)].get("gap") is not None and by[(n, cp)].get("gap") is not None]
+            if gaps:
+                med = lambda xs: sorted(xs)[len(xs) // 2]
+                w(f"  Median gap on the {len(gaps)} rows {cs} does not prove where both end with a gap: {100 * med([g for _, g, _ in gaps]):.1f} % vs {100 * med([g for _, _, g in gaps]):.1f} %.")
+        w("")
 
     # Against the targets.
     n_rows = len(ran)
