@@ -107,7 +107,6 @@ def main():
     res = json.load(open(os.path.join(merged, "results.json")))
     settings, records = res["settings"], res["records"]
     sources = [s[0] for s in settings["merged_from"]]
-    source_settings = {s[0]: s[1] for s in settings["merged_from"]}
     rows = settings["manifest"]["row"]
     columns = [b["solver"] for b in res["summary"]]
     dirs = {}

@@ -157,7 +157,12 @@ pub enum StartFrom {
 /// The heuristic's budget for a solve with this time limit: a twentieth of it, at most 1 s (1 s
 /// without a limit), so the solver has its incumbent by the first second.
 pub fn default_start_budget(time_limit: Option<f64>) -> f64 {
-    time_limit.filter(|t| t.is_finite()).map_or(1.0, |t| (0.05 * t).min(1.0))
+    share_of_limit(time_limit, 0.05, 1.0)
+}
+
+/// `share` of a finite time limit, at most `cap` (`cap` without one).
+fn share_of_limit(time_limit: Option<f64>, share: f64, cap: f64) -> f64 {
+    time_limit.filter(|t| t.is_finite()).map_or(cap, |t| (share * t).min(cap))
 }
 
 /// How long the heuristic may go on while it has no design: a tenth of the time limit, at most
@@ -166,8 +171,7 @@ pub fn default_start_budget(time_limit: Option<f64>) -> f64 {
 /// nothing either, so these seconds are the solve's best chance of a design; once a design is
 /// found the heuristic stops at its ordinary budget.
 pub fn default_first_design_budget(time_limit: Option<f64>) -> f64 {
-    let t = time_limit.filter(|t| t.is_finite()).map_or(30.0, |t| (0.1 * t).min(30.0));
-    t.max(default_start_budget(time_limit))
+    share_of_limit(time_limit, 0.1, 30.0).max(default_start_budget(time_limit))
 }
 
 /// The default start of a solve with this time limit: the heuristic with
