@@ -12,6 +12,11 @@ pub struct Recipe {
     pub label: String,
     /// No islands: labels (1)–(3), a flow, or lazily separated cutsets.
     pub connectivity: ConnectivityForm,
+    /// No islands on problems that tile rooms (floor plans, game levels), where it differs from
+    /// `connectivity`: `strong` writes a flow there (see [`Recipe::named`]). `None` once the
+    /// spec names a connectivity, which then holds everywhere.
+    #[serde(default)]
+    pub rooms_connectivity: Option<ConnectivityForm>,
     /// The λD term: labels (1)–(3) or a flow with the same value.
     pub distance: DistanceForm,
     /// Coverage (5)–(6) and the edge-coverage rows.
@@ -28,6 +33,12 @@ pub struct Recipe {
 
 impl Recipe {
     /// The parts of a named recipe.
+    ///
+    /// `strong` separates cutsets lazily on street networks but writes the single-commodity
+    /// flow on tilings: there the solver's first design depends on connectivity being in the
+    /// model (measured on Fig. 9b1/9b3, HiGHS: with the flow a first design in 156 s and 18 s,
+    /// with cutsets none within the paper's time; the cutset rounds at the root took up to a
+    /// fifth of the limit and moved no design closer).
     pub fn named(name: RecipeName) -> Recipe {
         use ConnectivityForm as C;
         let (connectivity, distance, coverage, dead_ends, paths, big_m, label_bounds) = match name {
@@ -35,7 +46,8 @@ impl Recipe {
             RecipeName::Tight => (C::Labels, DistanceForm::Labels, CoverageForm::Strong, DeadEndForm::Degree, PathForm::Tight, BigMForm::Tight, true),
             RecipeName::Strong => (C::Cutset, DistanceForm::Flow, CoverageForm::Strong, DeadEndForm::Degree, PathForm::Tight, BigMForm::Tight, true),
         };
-        Recipe { name, label: name.name().to_string(), connectivity, distance, coverage, dead_ends, paths, big_m, label_bounds }
+        let rooms_connectivity = (name == RecipeName::Strong).then_some(C::Flow);
+        Recipe { name, label: name.name().to_string(), connectivity, rooms_connectivity, distance, coverage, dead_ends, paths, big_m, label_bounds }
     }
 
     /// The recipe a spec asks for, with its overrides.
@@ -43,7 +55,10 @@ impl Recipe {
         let parts = f.parts();
         let mut r = Recipe::named(parts.recipe);
         r.label = f.label();
-        r.connectivity = parts.connectivity.unwrap_or(r.connectivity);
+        if let Some(c) = parts.connectivity {
+            r.connectivity = c;
+            r.rooms_connectivity = None;
+        }
         r.distance = parts.distance.unwrap_or(r.distance);
         r.coverage = parts.coverage.unwrap_or(r.coverage);
         r.dead_ends = parts.dead_ends.unwrap_or(r.dead_ends);
@@ -62,6 +77,9 @@ impl Recipe {
     /// (cutsets by a single-commodity flow), for files that must hold the whole model.
     pub fn compact(&self) -> Recipe {
         let mut r = self.clone();
+        if r.rooms_connectivity == Some(ConnectivityForm::Cutset) {
+            r.rooms_connectivity = Some(ConnectivityForm::Flow);
+        }
         if r.connectivity == ConnectivityForm::Cutset {
             r.connectivity = ConnectivityForm::Flow;
             r.label = format!("{} (cutsets written as a flow)", self.label);
@@ -71,11 +89,15 @@ impl Recipe {
 
     /// Which families a problem gets from this recipe.
     pub fn plan(&self, p: &Problem) -> Plan {
+        let connectivity_form = match (p.rooms.is_some(), self.rooms_connectivity) {
+            (true, Some(c)) => c,
+            _ => self.connectivity,
+        };
         let distance = (p.w_distance > 0.0).then_some(self.distance);
-        let labels = distance == Some(DistanceForm::Labels) || (distance.is_none() && self.connectivity == ConnectivityForm::Labels);
+        let labels = distance == Some(DistanceForm::Labels) || (distance.is_none() && connectivity_form == ConnectivityForm::Labels);
         // A labels or distance-flow family already ties every active edge to a sink; a second
         // connectivity family is added only when asked for explicitly (as a strengthening).
-        let connectivity = match (self.connectivity, labels, distance) {
+        let connectivity = match (connectivity_form, labels, distance) {
             (ConnectivityForm::Labels, _, _) => None,
             (ConnectivityForm::Flow, _, Some(DistanceForm::Flow)) => None,
             (c, _, _) => Some(c),

@@ -233,9 +233,11 @@ pub fn solve_loop<S: Solver + ?Sized>(solver: &S, model: &Model, sep: &mut dyn S
         start = best.as_ref().map(|(x, _)| x.clone());
         let out_of_time = o.time_limit.is_some_and(|l| t0.elapsed().as_secs_f64() >= l);
         let interrupted = o.interrupt.as_ref().is_some_and(|i| i.is_triggered());
-        let stopped = !matches!(r.termination, Termination::Optimal);
+        // A round that stopped on its gap stopped on an incumbent that is no design (it breaks
+        // a lazy row), so that gap says nothing: the next round goes on like after an optimum.
+        let stopped = !matches!(r.termination, Termination::Optimal | Termination::Limit(LimitKind::Gap));
         if out_of_time || interrupted || stopped {
-            if r.termination == Termination::Optimal {
+            if matches!(r.termination, Termination::Optimal | Termination::Limit(LimitKind::Gap)) {
                 r.termination = Termination::Limit(if interrupted { LimitKind::Interrupt } else { LimitKind::Time });
             }
             return Ok(LazySolve { result: finish(r, best, bound), rows, report });
@@ -361,4 +363,78 @@ pub fn lp_bound<S: Solver + ?Sized>(solver: &S, model: &Model, sep: Option<&mut 
     root_rounds(solver, &mut work, &mut rows, sep, o, t0, o.time_limit, &mut report)?;
     let (plain, with_cuts) = report.root_bounds.map_or((None, None), |(a, b)| (Some(a), Some(b)));
     Ok(LpBound { plain, with_cuts, rounds: report.root_rounds, rows: rows.len(), seconds: t0.elapsed().as_secs_f64() })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::solvers::{Capabilities, SolverKind};
+    use std::cell::Cell;
+
+    /// A backend that answers from a script: the relaxations at the root get nothing; the first
+    /// MIP round stops on its gap (objective 1, bound 0.5) at a point that breaks the lazy row,
+    /// the second is optimal at one that keeps it.
+    struct Scripted {
+        rounds: Cell<u32>,
+    }
+
+    impl Solver for Scripted {
+        fn kind(&self) -> SolverKind {
+            SolverKind::Microlp
+        }
+        fn version(&self) -> String {
+            "scripted".into()
+        }
+        fn capabilities(&self) -> Capabilities {
+            SolverKind::Microlp.instance().expect("microlp is always compiled").capabilities()
+        }
+        fn solve(&self, model: &Model, _: &SolveOptions) -> Result<SolveResult, SolverError> {
+            let mut r = SolveResult::empty(SolverKind::Microlp, self.version(), Termination::Optimal);
+            if model.var(VarId(0)).kind == crate::milp::VarKind::Continuous {
+                return Ok(r);
+            }
+            self.rounds.set(self.rounds.get() + 1);
+            let (x, obj, bound) = if self.rounds.get() == 1 { (vec![1.0, 0.0], 1.0, 0.5) } else { (vec![1.0, 1.0], 2.0, 2.0) };
+            r.primal = Some(x);
+            r.objective = Some(obj);
+            r.dual_bound = Some(bound);
+            r.finish(model.sense);
+            Ok(r)
+        }
+    }
+
+    /// The lazy row `x1 ≥ x0`.
+    struct Follows;
+
+    impl Separator for Follows {
+        fn name(&self) -> &str {
+            "follows"
+        }
+        fn separate_integral(&mut self, x: &[f64]) -> Vec<LazyRow> {
+            if x[1] + 1e-9 < x[0] {
+                vec![LazyRow { name: "follows".into(), lhs: f64::NEG_INFINITY, rhs: 0.0, terms: vec![(VarId(0), 1.0), (VarId(1), -1.0)] }]
+            } else {
+                Vec::new()
+            }
+        }
+        fn locks(&self) -> Vec<(VarId, Lock)> {
+            Vec::new()
+        }
+    }
+
+    #[test]
+    fn a_round_that_stops_on_its_gap_at_a_point_that_breaks_a_lazy_row_is_not_the_end() {
+        let mut m = Model::new("gap_round");
+        let a = m.add_binary("a", 1.0);
+        let b = m.add_binary("b", 1.0);
+        m.add_ge("one", [(a, 1.0)], 1.0);
+        let _ = b;
+        let solver = Scripted { rounds: Cell::new(0) };
+        let out = solve_loop(&solver, &m, &mut Follows, &SolveOptions { rel_gap: Some(0.99), ..SolveOptions::default() }).unwrap();
+        assert_eq!(solver.rounds.get(), 2, "the loop stopped after the gap-limited round");
+        assert_eq!(out.result.termination, Termination::Optimal);
+        assert_eq!(out.result.primal.as_deref(), Some(&[1.0, 1.0][..]));
+        assert_eq!(out.result.objective, Some(2.0));
+        assert_eq!(out.report.rows_added, 1);
+    }
 }
