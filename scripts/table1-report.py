@@ -19,7 +19,8 @@ Run records of the protocol's runs (run.json, result.json and stdout of every ru
 docs/table1-runs/2026-12-01.tar.gz, and docs/table1-runs/2026-12-01b.tar.gz for the runs of the
 third session: the strong recipe's eight room rows, and 1e (a new instance) in all three columns
 (the first archive keeps the runs they replace; the second also keeps the strong recipe's runs
-on the old 1e with the flow on tilings, under t1-1e-5x5-flow/). Extract the first into out/,
+on the old 1e with the flow on tilings, under t1-1e-5x5-flow/, and a side run of the short rows
+on the second VM, under t1-short-xeon/). Extract the first into out/,
 remove out/t1-{highs,scip}-strong/runs/ROW__* for those rows and out/t1-highs-paper/runs/1e__*,
 extract the second, then resume those comparisons (records with the same settings are reused) or
 report again; a row whose run has no picture keeps the picture already in the gallery.
