@@ -190,6 +190,23 @@ fn heuristic_start_is_accepted_by_every_backend_that_takes_starts() {
 }
 
 #[test]
+fn side_by_side_searches_keep_the_best_design_of_all_and_count_every_construction() {
+    let p = problem(START_SPEC);
+    // Construction only, a fixed number per search: no result depends on timing.
+    let opts = Options { time_limit: 60.0, max_constructions: Some(3), local_search: false, seed: 5, ..Options::default() };
+    let one = heuristics::heuristic(&p, &Inputs::default(), &opts);
+    let two = heuristics::heuristic(&p, &Inputs::default(), &Options { threads: 2, ..opts });
+    assert_eq!(one.stats.constructions, 3);
+    assert_eq!(two.stats.constructions, 6);
+    let (a, b) = (one.objective.expect("one search finds a design"), two.objective.expect("two searches find a design"));
+    assert!(b <= a + 1e-9, "two searches ({b}) ended worse than the first alone ({a})");
+    assert_valid(&p, &Inputs::default(), two.network.as_ref().unwrap());
+    // The trace is the running best over both searches: strictly improving, ending at the best.
+    assert!(two.trace.windows(2).all(|w| w[1].objective < w[0].objective && w[1].seconds >= w[0].seconds));
+    assert!((two.trace.last().unwrap().objective - b).abs() < 1e-9);
+}
+
+#[test]
 fn without_a_design_the_start_goes_on_to_its_first_design_budget_and_no_further() {
     let p = problem(START_SPEC);
     // No time at all: nothing is constructed.
@@ -204,9 +221,9 @@ fn without_a_design_the_start_goes_on_to_its_first_design_budget_and_no_further(
     assert_valid(&p, &Inputs::default(), &net);
     assert_eq!(first.stats.constructions, 1);
     assert_eq!(first.stats.moves_tried, 0);
-    assert_eq!(heuristics::start_within(&p, &Inputs::default(), 0.0, 60.0, 0), Some(net));
-    // The defaults: a twentieth of the limit (≤ 1 s) to improve, a tenth (≤ 30 s) to find one.
-    for (limit, budget, first) in [(Some(300.0), 1.0, 30.0), (Some(100.0), 1.0, 10.0), (Some(4.0), 0.2, 0.4), (Some(1.0), 0.05, 0.1), (None, 1.0, 30.0)] {
+    assert_eq!(heuristics::start_within(&p, &Inputs::default(), 0.0, 60.0, 0, 1), Some(net));
+    // The defaults: a twentieth of the limit (≤ 1 s) to improve, a fifth (≤ 60 s) to find one.
+    for (limit, budget, first) in [(Some(300.0), 1.0, 60.0), (Some(100.0), 1.0, 20.0), (Some(4.0), 0.2, 0.8), (Some(1.0), 0.05, 0.2), (None, 1.0, 60.0)] {
         assert!((pipeline::default_start_budget(limit) - budget).abs() < 1e-12, "{limit:?}");
         assert!((pipeline::default_first_design_budget(limit) - first).abs() < 1e-12, "{limit:?}");
     }
@@ -297,7 +314,7 @@ fn search_results_carry_the_independent_checks() {
     let p = load("fixtures/specs/tiny_floorplan.toml");
     let f = pipeline::build(&p);
     for method in [SearchMethod::Heuristic, SearchMethod::Anneal] {
-        let r = run_search(&p, &f, method, 0.5, 1);
+        let r = run_search(&p, &f, method, 0.5, 1, 1);
         assert!(r.network.is_some(), "{method:?}");
         assert!(r.validity.valid, "{method:?}: {:?} {:?}", r.validity.design_violations, r.validity.milp_check.as_ref().map(|c| &c.violations));
         assert!(r.validity.milp_check.as_ref().unwrap().is_feasible());

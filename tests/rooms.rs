@@ -369,6 +369,28 @@ fn circular_level_with_dead_ends_allowed_is_refused_and_otherwise_a_cycle() {
     assert_level(&problem(&circular), GraphShape::Cycle);
 }
 
+/// The strong recipe's level rows (two inner edges per traversed block where implied, two
+/// crossings per block without a sink) cut off no design: on the linear and the circular strip
+/// it proves the paper recipe's optimum, and the rows are in its model.
+#[test]
+fn strong_level_rows_keep_the_paper_optimum() {
+    let circular = STRIP.replace("level = \"linear\"", "level = \"circular\"").replace("points = [[0, 2], [8, 2]]", "points = [[4, 3]]");
+    for spec in [STRIP.to_string(), circular] {
+        let mut objs = Vec::new();
+        for recipe in ["paper", "strong"] {
+            let p = problem(&spec.replace("[mesh]", &format!("formulation = \"{recipe}\"\n[mesh]")));
+            let nm = pipeline::build(&p);
+            let enter_rows = nm.model.rows().filter(|r| r.name.starts_with("levelenter_")).count();
+            assert_eq!(enter_rows > 0, recipe == "strong", "{recipe}: {enter_rows} levelenter rows");
+            let r = pipeline::solve_built(&p, &nm, SolverKind::Highs, &SolveOptions { time_limit: Some(60.0), ..Default::default() }).unwrap();
+            assert_eq!(r.solve.termination, Termination::Optimal, "{recipe} on {}", p.spec.name);
+            assert!(r.validity.valid, "{recipe} on {}: {:?}", p.spec.name, r.validity.design_violations);
+            objs.push(r.solve.objective.unwrap());
+        }
+        assert!(objectives_agree(objs[0], objs[1], 1e-6), "paper and strong optima differ: {objs:?}");
+    }
+}
+
 /// The picture tells room types apart (each room marked with its type's letter, A, B, …) and its
 /// legend lists only what is drawn: the types used, the sink, no p2p sample, obstacle or route.
 #[test]

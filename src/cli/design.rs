@@ -146,7 +146,7 @@ pub fn solve_spec(
     };
     // Prepare the start first, so the progress line can show it while the solver runs.
     let from = match kind.instance()?.capabilities().mip_start {
-        true => match pipeline::start_for(&problem, &nm, &from, options.seed.unwrap_or(0)) {
+        true => match pipeline::start_for(&problem, &nm, &from, options.seed.unwrap_or(0), options.heuristic_threads()) {
             Some((point, report)) => pipeline::StartFrom::Prepared { point, report },
             None => from,
         },

@@ -35,8 +35,18 @@ pub fn solve_search(
         SearchMethod::Anneal => ANNEAL_SECONDS,
     });
     let seed = args.seed.unwrap_or(0);
-    println!("search     {} (limit {limit} s, seed {seed}, one thread)", method.name());
-    let res = run_search(problem, nm, method, limit, seed);
+    let asked = args.threads.unwrap_or(1).max(1) as usize;
+    let threads = match method {
+        SearchMethod::Heuristic => asked,
+        SearchMethod::Anneal => 1,
+    };
+    let thread_note = match (threads, asked) {
+        (1, 1) => "one thread".to_string(),
+        (1, _) => format!("one thread: the {} search does not run in parallel, --threads {asked} not honoured", method.name()),
+        (t, _) => format!("{t} independent searches, one per thread"),
+    };
+    println!("search     {} (limit {limit} s, seed {seed}, {thread_note})", method.name());
+    let res = run_search(problem, nm, method, limit, seed, threads);
     print_summary(&res);
     let spec = &problem.spec;
     let dir = out.unwrap_or_else(|| PathBuf::from("out").join(&spec.name));

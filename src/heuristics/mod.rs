@@ -40,6 +40,7 @@ use local::LocalSearch;
 use rng::Rng;
 use serde::{Deserialize, Serialize};
 use state::{Rules, State, Tiling};
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
 /// What a search needs besides the problem: the point-to-point path sets and the room
@@ -99,11 +100,16 @@ pub struct Options {
     /// many seconds (default: stop at `time_limit`). Only the search for a first design is
     /// extended; improving it stays within `time_limit`.
     pub first_design_limit: Option<f64>,
+    /// Independent searches run side by side, one per thread (default 1); the best design of
+    /// all is kept. The first runs exactly as a single search with `seed` would (timing
+    /// aside); the others draw from seeds derived from it. A search stops waiting for a first
+    /// design (`first_design_limit`) as soon as any of them has one.
+    pub threads: usize,
 }
 
 impl Default for Options {
     fn default() -> Self {
-        Options { time_limit: 10.0, seed: 0, max_constructions: None, max_designs: None, local_search: true, first_design_limit: None }
+        Options { time_limit: 10.0, seed: 0, max_constructions: None, max_designs: None, local_search: true, first_design_limit: None, threads: 1 }
     }
 }
 
@@ -259,22 +265,77 @@ impl Best<'_, '_> {
 }
 
 /// Construction and local search, restarted until the time limit (or the construction count):
-/// the best valid design found.
+/// the best valid design found. With `opts.threads` > 1, that many independent searches run side
+/// by side and the best design of all is kept (ties: the lowest-numbered search's).
 pub fn heuristic(p: &Problem, inputs: &Inputs, opts: &Options) -> Outcome {
     let t0 = Instant::now();
     if let Some(why) = obvious_infeasibility(p) {
         return Outcome::infeasible(why, t0);
     }
+    let found = AtomicBool::new(false);
+    if opts.threads <= 1 {
+        return search(p, inputs, opts, 0, &found, t0);
+    }
+    let outcomes: Vec<Outcome> = std::thread::scope(|scope| {
+        let found = &found;
+        let workers: Vec<_> = (0..opts.threads).map(|k| scope.spawn(move || search(p, inputs, opts, k, found, t0))).collect();
+        workers.into_iter().map(|w| w.join().expect("a heuristic search thread panicked")).collect()
+    });
+    merge_outcomes(outcomes, t0)
+}
+
+/// The outcome of side-by-side searches: the best design (the first search's on ties), every
+/// counter summed, the running best over all traces, the first search's reason to stop.
+fn merge_outcomes(outcomes: Vec<Outcome>, t0: Instant) -> Outcome {
+    let mut stats = SearchStats::default();
+    let mut points: Vec<TracePoint> = Vec::new();
+    for o in &outcomes {
+        let s = &o.stats;
+        stats.constructions += s.constructions;
+        stats.constructed += s.constructed;
+        stats.moves_tried += s.moves_tried;
+        stats.moves_accepted += s.moves_accepted;
+        stats.kicks += s.kicks;
+        stats.passes += s.passes;
+        stats.steps += s.steps;
+        stats.rejected += s.rejected;
+        points.extend(&o.trace);
+    }
+    points.sort_by(|a, b| a.seconds.total_cmp(&b.seconds));
+    let mut trace: Vec<TracePoint> = Vec::new();
+    for pt in points {
+        if trace.last().is_none_or(|last| pt.objective < last.objective) {
+            trace.push(pt);
+        }
+    }
+    let stop = outcomes[0].stop;
+    let best = outcomes
+        .into_iter()
+        .filter(|o| o.network.is_some())
+        .min_by(|a, b| a.objective.unwrap_or(f64::INFINITY).total_cmp(&b.objective.unwrap_or(f64::INFINITY)));
+    let (network, objective) = best.map_or((None, None), |o| (o.network, o.objective));
+    Outcome { network, objective, trace, stop, infeasible: None, stats, seconds: t0.elapsed().as_secs_f64() }
+}
+
+/// One search of [`heuristic`]: search `worker` of `opts.threads`, which raises `found` once it
+/// has a design and stops waiting for a first design once `found` is up.
+fn search(p: &Problem, inputs: &Inputs, opts: &Options, worker: usize, found: &AtomicBool, t0: Instant) -> Outcome {
     let deadline = t0 + Duration::from_secs_f64(opts.time_limit.max(0.0));
     // Without a design yet, constructions may go on until this later deadline.
     let first_deadline = t0 + Duration::from_secs_f64(opts.time_limit.max(opts.first_design_limit.unwrap_or(0.0)).max(0.0));
-    let mut rng = Rng::new(opts.seed);
+    // Search k > 0 draws from its own seed, and its first construction is noisy too (the
+    // noise-free one is search 0's).
+    let seed = if worker == 0 { opts.seed } else { opts.seed ^ (worker as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15) };
+    let mut rng = Rng::new(seed);
     let mut best = Best { p, inputs, t0, network: None, objective: f64::INFINITY, trace: Vec::new(), rejected: 0 };
     let mut stats = SearchStats::default();
     let network_rules = p.rooms.is_none().then(|| Rules::new(p, inputs.paths, None, None));
     let mut stop = Stop::TimeLimit;
     loop {
-        let limit = if best.network.is_some() { deadline } else { first_deadline };
+        if best.network.is_some() {
+            found.store(true, Ordering::Relaxed);
+        }
+        let limit = if best.network.is_some() || found.load(Ordering::Relaxed) { deadline } else { first_deadline };
         if Instant::now() >= limit {
             break;
         }
@@ -283,7 +344,7 @@ pub fn heuristic(p: &Problem, inputs: &Inputs, opts: &Options) -> Outcome {
             break;
         }
         stats.constructions += 1;
-        let noise = if stats.constructions == 1 { 0.0 } else { 0.4 };
+        let noise = if stats.constructions == 1 && worker == 0 { 0.0 } else { 0.4 };
         let mut sub = rng.fork();
         // Half the time left goes to improving this construction.
         let left = deadline.saturating_duration_since(Instant::now());
@@ -447,12 +508,13 @@ pub fn repair(p: &Problem, inputs: &Inputs, net: &Network) -> Option<Network> {
 /// The heuristic's best design within `budget` seconds (construction and local search), for a
 /// MIP start: hand it to [`crate::pipeline::prepare_start`].
 pub fn start(p: &Problem, inputs: &Inputs, budget: f64, seed: u64) -> Option<Network> {
-    start_within(p, inputs, budget, budget, seed)
+    start_within(p, inputs, budget, budget, seed, 1)
 }
 
 /// [`start`] that, while it has no design, goes on past `budget` up to `first_design_budget`
 /// seconds to find one (a hard instance's first design is worth more than the solver's first
-/// seconds; once one is found the search stops at `budget`).
-pub fn start_within(p: &Problem, inputs: &Inputs, budget: f64, first_design_budget: f64, seed: u64) -> Option<Network> {
-    heuristic(p, inputs, &Options { time_limit: budget, seed, first_design_limit: Some(first_design_budget), ..Options::default() }).network
+/// seconds; once one is found the search stops at `budget`), with `threads` searches side by side
+/// ([`Options::threads`]).
+pub fn start_within(p: &Problem, inputs: &Inputs, budget: f64, first_design_budget: f64, seed: u64, threads: usize) -> Option<Network> {
+    heuristic(p, inputs, &Options { time_limit: budget, seed, first_design_limit: Some(first_design_budget), threads, ..Options::default() }).network
 }

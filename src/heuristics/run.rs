@@ -166,12 +166,13 @@ pub struct SearchResult {
 }
 
 /// Runs a search on a built formulation (its path sets and placements are the ones the design
-/// uses) and checks its design like a solver's.
-pub fn run_search(p: &Problem, f: &Formulation, method: SearchMethod, time_limit: f64, seed: u64) -> SearchResult {
+/// uses) and checks its design like a solver's. The heuristic runs `threads` searches side by
+/// side ([`Options::threads`]); the stochastic search always runs on one thread.
+pub fn run_search(p: &Problem, f: &Formulation, method: SearchMethod, time_limit: f64, seed: u64, threads: usize) -> SearchResult {
     let t0 = Instant::now();
     let inputs = Inputs { paths: f.path_sets.as_ref(), placements: f.placements.as_ref().map(|r| r.placements.as_slice()) };
     let outcome = match method {
-        SearchMethod::Heuristic => super::heuristic(p, &inputs, &Options { time_limit, seed, ..Options::default() }),
+        SearchMethod::Heuristic => super::heuristic(p, &inputs, &Options { time_limit, seed, threads, ..Options::default() }),
         SearchMethod::Anneal => super::anneal(p, &inputs, &AnnealOptions { time_limit, seed, ..AnnealOptions::default() }),
     };
     record(p, f, method, seed, outcome, t0)

@@ -186,6 +186,13 @@ impl SolveOptions {
         self.time_limit.filter(|t| t.is_finite())
     }
 
+    /// How many searches the construction heuristic runs side by side for this solve's MIP start:
+    /// [`SolveOptions::threads`] (the solve's threads are idle until the start is handed over),
+    /// one when no thread count is given.
+    pub fn heuristic_threads(&self) -> usize {
+        self.threads.map_or(1, |t| t.max(1) as usize)
+    }
+
     /// The raw parameters meant for `kind`.
     pub fn params_for(&self, kind: SolverKind) -> impl Iterator<Item = &RawParam> + '_ {
         self.params.iter().filter(move |p| p.solver == kind)

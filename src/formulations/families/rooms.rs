@@ -6,11 +6,35 @@ use crate::formulations::expr::Expr;
 use crate::milp::VarId;
 use crate::rules::placements::{enumerate_placements, PlacementReport};
 use crate::mesh::{EdgeId, VertexId};
-use crate::spec::{LevelType, RoomMode, Rooms};
+use crate::rules::placements::Placement;
+use crate::spec::{Allow, CoverageForm, LevelType, RoomMode, Rooms};
 use std::time::Duration;
 
 /// Time cap on placement enumeration.
 const PLACEMENT_TIME_CAP: Duration = Duration::from_secs(20);
+
+/// Whether a traversed block has at least two active inner edges in every valid design: dead-ends
+/// are forbidden, every inner edge has an end off the block's boundary (true of rectangles at
+/// least two faces wide), and no sink lies off the boundary. Then an active inner edge has an
+/// end `u` strictly inside the block; `u` is not a sink, so it has a second active edge, and every
+/// edge at `u` is an inner edge of the block.
+fn traversal_needs_two(p: &crate::spec::Problem, pl: &Placement) -> bool {
+    if p.dead_ends != Allow::Forbid {
+        return false;
+    }
+    let mesh = &p.mesh;
+    let mut on_boundary: Vec<VertexId> = pl.boundary_edges.iter().flat_map(|&e| {
+        let (a, b) = mesh.edge_vertices(e);
+        [a, b]
+    }).collect();
+    on_boundary.sort_unstable();
+    on_boundary.dedup();
+    let inside = |v: VertexId| on_boundary.binary_search(&v).is_err();
+    pl.inner_edges.iter().all(|&e| {
+        let (a, b) = mesh.edge_vertices(e);
+        (inside(a) || inside(b)) && !(inside(a) && p.is_sink[a.index()]) && !(inside(b) && p.is_sink[b.index()])
+    })
+}
 
 /// Emits `R` per placement and (16) exact cover, then (17)–(18) for floor plans or (19)–(20)
 /// for game levels, then the room-type counts. Returns the enumerated placements (their `R` go
@@ -18,6 +42,8 @@ const PLACEMENT_TIME_CAP: Duration = Duration::from_secs(20);
 pub fn rooms(c: &mut Ctx, rooms: &Rooms) -> PlacementReport {
     let p = c.p;
     let mesh = &p.mesh;
+    // The rows that replace coverage (5)–(6) on tilings are strengthened with it.
+    let strong = c.recipe.coverage == CoverageForm::Strong;
     let report = enumerate_placements(mesh, &rooms.templates, &p.is_obstacle_face, rooms.max_placements, PLACEMENT_TIME_CAP);
     let mut vars = Vec::with_capacity(report.placements.len());
     let mut covering: Vec<Vec<VarId>> = vec![Vec::new(); mesh.num_faces()];
@@ -49,9 +75,11 @@ pub fn rooms(c: &mut Ctx, rooms: &Rooms) -> PlacementReport {
                 c.em.le(format!("room18_{k}"), &ex, 0.0);
             }
             RoomMode::Game => {
-                // (19) R − Σ_inner E_i ≤ 0: a block is traversed.
+                // (19) R − Σ_inner E_i ≤ 0: a block is traversed; strengthened to 2R where
+                // two inner edges are implied (see `traversal_needs_two`).
+                let need = if strong && traversal_needs_two(p, pl) { 2.0 } else { 1.0 };
                 let mut ex = Expr::new();
-                ex.add(r, 1.0);
+                ex.add(r, need);
                 for e in &pl.inner_edges {
                     ex.add_value(c.edge_value(*e), -1.0);
                 }
@@ -94,7 +122,7 @@ pub fn rooms(c: &mut Ctx, rooms: &Rooms) -> PlacementReport {
         c.em.row(format!("roomcount_t{t}"), lo, &ex, hi);
     }
     if rooms.mode == RoomMode::Game && matches!(rooms.level, Some(LevelType::Linear | LevelType::Circular)) {
-        level_shape(c, rooms, &report, &vars);
+        level_shape(c, rooms, &report, &vars, strong);
     }
     c.vars.rooms = vars;
     report
@@ -116,7 +144,13 @@ pub fn rooms(c: &mut Ctx, rooms: &Rooms) -> PlacementReport {
 /// A path (cycle) that enters every traversed block once gives a path (cycle) block graph. A
 /// circular level also needs at least three blocks (two blocks joined twice form a path), unless
 /// one placement covers the whole footprint.
-fn level_shape(c: &mut Ctx, rooms: &Rooms, report: &PlacementReport, vars: &[VarId]) {
+///
+/// With `strong` (and dead-ends and branches forbidden), a block that holds no sink (inside or
+/// on its boundary) is also crossed at
+/// least twice, `Σ crossings ≥ 2R` (`levelenter_…`): its active inner edges are paths (no
+/// branches) with no end inside (no dead-ends) and no cycle (a cycle inside would hold no sink),
+/// so each path has both ends on the boundary.
+fn level_shape(c: &mut Ctx, rooms: &Rooms, report: &PlacementReport, vars: &[VarId], strong: bool) {
     let p = c.p;
     let mesh = &p.mesh;
     let circular = rooms.level == Some(LevelType::Circular);
@@ -170,6 +204,16 @@ fn level_shape(c: &mut Ctx, rooms: &Rooms, report: &PlacementReport, vars: &[Var
                     big += 2.0;
                 }
             }
+        }
+        let holds_sink = border.iter().any(|v| p.is_sink[v.index()])
+            || pl.inner_edges.iter().any(|&e| {
+                let (a, b) = mesh.edge_vertices(e);
+                p.is_sink[a.index()] || p.is_sink[b.index()]
+            });
+        if strong && !holds_sink && p.dead_ends == Allow::Forbid && p.branches == Allow::Forbid && !ex.is_constant() {
+            let mut enter = ex.clone();
+            enter.add(r, -2.0);
+            c.em.ge(format!("levelenter_{k}"), &enter, 0.0);
         }
         if big > 2.0 {
             ex.add(r, big - 2.0);
