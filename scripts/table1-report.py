@@ -16,10 +16,11 @@ Usage: scripts/table1-report.py MERGED_DIR [--hours H] [--shared FROM/TO,…] [-
   again alone (their runs/ moved to DIR): the report sets the two results side by side.
 
 Run records of the protocol's runs (run.json, result.json and stdout of every run; no pictures):
-docs/table1-runs/2026-12-01.tar.gz and, for the third session, 2026-12-01b.tar.gz (which also
+docs/table1-runs/2026-12-01.tar.gz, for the third session 2026-12-01b.tar.gz (which also
 keeps the old 1e's flow runs under t1-1e-5x5-flow/ and a side run of the short rows under
-t1-short-xeon/); how to extract them is written into the report (the paragraph after the
-protocol). A row whose run has no picture keeps the picture already in the gallery.
+t1-short-xeon/), for the fourth 2026-12-02.tar.gz (which also keeps the strong columns' 1e runs
+of its first window under t1-1e-first-window/); how to extract them is written into the
+report (the paragraph after the protocol). A row whose run has no picture keeps the picture already in the gallery.
 
 Copies MERGED_DIR/profile.svg and bars.svg to docs/img/table1/, and for every row the picture
 of the best valid design any column found to docs/img/table1/designs/ROW.png (a 560-pixel
@@ -166,11 +167,13 @@ def main():
 
     # Per row.
     w("Every run's record (`run.json`, `result.json`, `stdout.txt`) is in")
-    w("[table1-runs/2026-12-01.tar.gz](table1-runs/2026-12-01.tar.gz) and, for the third session's")
-    w("runs, [table1-runs/2026-12-01b.tar.gz](table1-runs/2026-12-01b.tar.gz) (the first keeps the")
-    w("runs they replace): extract the first into `out/`, remove its strong-recipe room rows and")
-    w("the paper recipe's 1e, then extract the second, to resume these comparisons (a record with")
-    w("the same settings is reused) or to report again.")
+    w("[table1-runs/2026-12-01.tar.gz](table1-runs/2026-12-01.tar.gz), for the third session's")
+    w("runs [table1-runs/2026-12-01b.tar.gz](table1-runs/2026-12-01b.tar.gz) and for the fourth's")
+    w("[table1-runs/2026-12-02.tar.gz](table1-runs/2026-12-02.tar.gz) (each keeps the runs the next")
+    w("replaces): extract the first into `out/`, remove its strong-recipe room rows and the paper")
+    w("recipe's 1e, extract the second, remove its 1e (all three columns) and its strong-recipe")
+    w("11b, then extract the third, to resume these comparisons (a record with the same settings")
+    w("is reused) or to report again.")
     w("")
     w("## Per row")
     w("")
