@@ -157,6 +157,20 @@ pub struct SearchStats {
     pub rejected: u64,
 }
 
+impl std::ops::AddAssign<&SearchStats> for SearchStats {
+    /// Adds every counter of `other` (searches run side by side).
+    fn add_assign(&mut self, other: &SearchStats) {
+        self.constructions += other.constructions;
+        self.constructed += other.constructed;
+        self.moves_tried += other.moves_tried;
+        self.moves_accepted += other.moves_accepted;
+        self.kicks += other.kicks;
+        self.passes += other.passes;
+        self.steps += other.steps;
+        self.rejected += other.rejected;
+    }
+}
+
 /// What a search found.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Outcome {
@@ -290,15 +304,7 @@ fn merge_outcomes(outcomes: Vec<Outcome>, t0: Instant) -> Outcome {
     let mut stats = SearchStats::default();
     let mut points: Vec<TracePoint> = Vec::new();
     for o in &outcomes {
-        let s = &o.stats;
-        stats.constructions += s.constructions;
-        stats.constructed += s.constructed;
-        stats.moves_tried += s.moves_tried;
-        stats.moves_accepted += s.moves_accepted;
-        stats.kicks += s.kicks;
-        stats.passes += s.passes;
-        stats.steps += s.steps;
-        stats.rejected += s.rejected;
+        stats += &o.stats;
         points.extend(&o.trace);
     }
     points.sort_by(|a, b| a.seconds.total_cmp(&b.seconds));

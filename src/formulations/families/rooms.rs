@@ -4,10 +4,9 @@
 use super::Ctx;
 use crate::formulations::expr::Expr;
 use crate::milp::VarId;
-use crate::rules::placements::{enumerate_placements, PlacementReport};
-use crate::mesh::{EdgeId, VertexId};
-use crate::rules::placements::Placement;
-use crate::spec::{Allow, CoverageForm, LevelType, RoomMode, Rooms};
+use crate::rules::placements::{enumerate_placements, Placement, PlacementReport};
+use crate::mesh::{EdgeId, Mesh, VertexId};
+use crate::spec::{Allow, CoverageForm, LevelType, Problem, RoomMode, Rooms};
 use std::time::Duration;
 
 /// Time cap on placement enumeration.
@@ -18,22 +17,32 @@ const PLACEMENT_TIME_CAP: Duration = Duration::from_secs(20);
 /// least two faces wide), and no sink lies off the boundary. Then an active inner edge has an
 /// end `u` strictly inside the block; `u` is not a sink, so it has a second active edge, and every
 /// edge at `u` is an inner edge of the block.
-fn traversal_needs_two(p: &crate::spec::Problem, pl: &Placement) -> bool {
+fn traversal_needs_two(p: &Problem, pl: &Placement) -> bool {
     if p.dead_ends != Allow::Forbid {
         return false;
     }
     let mesh = &p.mesh;
-    let mut on_boundary: Vec<VertexId> = pl.boundary_edges.iter().flat_map(|&e| {
-        let (a, b) = mesh.edge_vertices(e);
-        [a, b]
-    }).collect();
-    on_boundary.sort_unstable();
-    on_boundary.dedup();
-    let inside = |v: VertexId| on_boundary.binary_search(&v).is_err();
+    let border = border_vertices(mesh, pl);
+    let inside = |v: VertexId| border.binary_search(&v).is_err();
     pl.inner_edges.iter().all(|&e| {
         let (a, b) = mesh.edge_vertices(e);
         (inside(a) || inside(b)) && !(inside(a) && p.is_sink[a.index()]) && !(inside(b) && p.is_sink[b.index()])
     })
+}
+
+/// The vertices on a placement's boundary edges, sorted.
+fn border_vertices(mesh: &Mesh, pl: &Placement) -> Vec<VertexId> {
+    let mut border: Vec<VertexId> = pl
+        .boundary_edges
+        .iter()
+        .flat_map(|&e| {
+            let (a, b) = mesh.edge_vertices(e);
+            [a, b]
+        })
+        .collect();
+    border.sort_unstable();
+    border.dedup();
+    border
 }
 
 /// Emits `R` per placement and (16) exact cover, then (17)–(18) for floor plans or (19)–(20)
@@ -145,11 +154,10 @@ pub fn rooms(c: &mut Ctx, rooms: &Rooms) -> PlacementReport {
 /// circular level also needs at least three blocks (two blocks joined twice form a path), unless
 /// one placement covers the whole footprint.
 ///
-/// With `strong` (and dead-ends and branches forbidden), a block that holds no sink (inside or
-/// on its boundary) is also crossed at
-/// least twice, `Σ crossings ≥ 2R` (`levelenter_…`): its active inner edges are paths (no
-/// branches) with no end inside (no dead-ends) and no cycle (a cycle inside would hold no sink),
-/// so each path has both ends on the boundary.
+/// With `strong`, a block that holds no sink (inside or on its boundary) is also crossed at least
+/// twice, `Σ crossings ≥ 2R` (`levelenter_…`): its active inner edges are paths (no branches)
+/// with no end inside (no dead-ends) and no cycle (a cycle inside would hold no sink), so each
+/// path has both ends on the boundary.
 fn level_shape(c: &mut Ctx, rooms: &Rooms, report: &PlacementReport, vars: &[VarId], strong: bool) {
     let p = c.p;
     let mesh = &p.mesh;
@@ -161,12 +169,7 @@ fn level_shape(c: &mut Ctx, rooms: &Rooms, report: &PlacementReport, vars: &[Var
     for (k, (pl, &r)) in report.placements.iter().zip(vars).enumerate() {
         let inner: std::collections::BTreeSet<EdgeId> = pl.inner_edges.iter().copied().collect();
         let own: std::collections::BTreeSet<EdgeId> = pl.inner_edges.iter().chain(&pl.boundary_edges).copied().collect();
-        let mut border: Vec<VertexId> = pl.boundary_edges.iter().flat_map(|&e| {
-            let (a, b) = mesh.edge_vertices(e);
-            [a, b]
-        }).collect();
-        border.sort();
-        border.dedup();
+        let border = border_vertices(mesh, pl);
         let mut ex = Expr::new();
         let mut big = 0.0;
         for &v in &border {
@@ -210,7 +213,7 @@ fn level_shape(c: &mut Ctx, rooms: &Rooms, report: &PlacementReport, vars: &[Var
                 let (a, b) = mesh.edge_vertices(e);
                 p.is_sink[a.index()] || p.is_sink[b.index()]
             });
-        if strong && !holds_sink && p.dead_ends == Allow::Forbid && p.branches == Allow::Forbid && !ex.is_constant() {
+        if strong && !holds_sink && !ex.is_constant() {
             let mut enter = ex.clone();
             enter.add(r, -2.0);
             c.em.ge(format!("levelenter_{k}"), &enter, 0.0);
