@@ -77,3 +77,24 @@ fn solvers_lists_every_compiled_backend() {
         assert!(names.contains(&k.name()), "{names:?}");
     }
 }
+
+/// The searches take `--threads` as the backends do: 0 is refused with the option named, the
+/// heuristic runs one search per thread, and the stochastic search says it runs on one.
+#[test]
+fn searches_honour_or_refuse_threads() {
+    let spec = concat!(env!("CARGO_MANIFEST_DIR"), "/fixtures/specs/tiny_floorplan.toml");
+    let dir = tempfile::tempdir().unwrap();
+    let run = |solver: &str, threads: &str| {
+        netspec().args(["solve", spec, "--solver", solver, "--threads", threads, "--time-limit", "0.2", "--out"]).arg(dir.path()).output().unwrap()
+    };
+    let zero = run("heuristic", "0");
+    assert!(!zero.status.success());
+    let stderr = String::from_utf8_lossy(&zero.stderr);
+    assert!(stderr.contains("--threads must be ≥ 1, got 0"), "{stderr}");
+    let two = run("heuristic", "2");
+    let stdout = String::from_utf8_lossy(&two.stdout);
+    assert!(two.status.success() && stdout.contains("2 independent searches, one per thread"), "{stdout}");
+    let anneal = run("anneal", "2");
+    let stdout = String::from_utf8_lossy(&anneal.stdout);
+    assert!(anneal.status.success() && stdout.contains("--threads 2 not honoured"), "{stdout}");
+}

@@ -35,7 +35,10 @@ pub fn solve_search(
         SearchMethod::Anneal => ANNEAL_SECONDS,
     });
     let seed = args.seed.unwrap_or(0);
-    let asked = args.threads.unwrap_or(1).max(1) as usize;
+    if args.threads == Some(0) {
+        bail!("--threads must be ≥ 1, got 0");
+    }
+    let asked = args.threads.unwrap_or(1) as usize;
     let threads = match method {
         SearchMethod::Heuristic => asked,
         SearchMethod::Anneal => 1,
