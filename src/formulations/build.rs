@@ -104,7 +104,16 @@ pub fn build_with(p: &Problem, recipe: &Recipe) -> Formulation {
     if !p.forced_vertices.is_empty() || !p.through_routes.is_empty() || !p.forced_edges.is_empty() {
         fam(&mut c, "user specifications", families::user::user_specs);
     }
-    let cutsets = (plan.connectivity == Some(ConnectivityForm::Cutset)).then(|| cutset::CutsetGraph::new(p, &c.vars.edge, &c.vars.vertex));
+    let cutsets = (plan.connectivity == Some(ConnectivityForm::Cutset)).then(|| {
+        let g = cutset::CutsetGraph::new(p, &c.vars.edge, &c.vars.vertex);
+        // Coverage (6) is in the model only without rooms; its balls give the cover cutsets.
+        if p.rooms.is_none() {
+            let girth = (p.dead_ends == Allow::Forbid).then(|| families::coverage::girth(p));
+            g.with_cover_groups(p, &c.vars.vertex, girth)
+        } else {
+            g
+        }
+    });
     if cutsets.is_some() {
         c.em.families.entry("cutsets (§8, lazy)".to_string()).or_default();
     }

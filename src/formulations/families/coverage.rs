@@ -143,7 +143,7 @@ fn ball_cut(c: &mut Ctx, name: &str, cover: &[crate::mesh::VertexId], girth: f64
 ///   bounds a polyomino, and a polyomino no cell of which has two opposite sides on its boundary
 ///   has at least four cells at its corners — the 2×2 block, perimeter 8;
 /// - else 3.
-fn girth(p: &crate::spec::Problem) -> f64 {
+pub(crate) fn girth(p: &crate::spec::Problem) -> f64 {
     let mesh = &p.mesh;
     if !mesh.faces().all(|f| mesh.face_size(f) == 4) {
         return 3.0;

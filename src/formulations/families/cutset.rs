@@ -4,6 +4,14 @@
 //! connected components on integral points (exact), and by max-flow/min-cut from each vertex to
 //! the root on fractional ones.
 //!
+//! Beside them, the **cover cutsets** (this project's strengthening, valid cuts rather than lazy
+//! rows): coverage (6) makes some vertex of a sink-free ball `cover(v)` active, and that vertex
+//! reaches a sink, so every vertex set `S ⊇ cover(v)` without a sink is crossed:
+//! `Σ_{x∈δ(S)} E_x ≥ 1` — the cut rows of a group Steiner tree with the balls as groups. They do
+//! not weaken when the ball's activity is spread thinly over its vertices (the cutsets above
+//! then ask only `≥ V_u` for the most active `u`), and are separated by max-flow from the
+//! contracted ball to the root on fractional points.
+//!
 //! The max-flow is a small Dinic on the contracted mesh graph, kept here (rather than a general
 //! graph crate) because it runs hundreds of times per separation round on the same graph with
 //! new capacities and stops as soon as the flow reaches the vertex's activity.
@@ -27,6 +35,23 @@ pub struct CutsetGraph {
     pub activity: Vec<Value>,
     /// The mesh vertex of each node (`u32::MAX` for the root).
     pub vertex: Vec<u32>,
+    /// The cover groups: the nodes of each sink-free ball `cover(v)` that coverage (6) needs
+    /// active, named by the mesh vertex `v` (inclusion-minimal, deterministic order).
+    #[serde(default)]
+    pub groups: Vec<CoverGroup>,
+    /// With dead-ends forbidden, the shortest cycle a design can hold (the cover cutsets are
+    /// then lifted: one crossing leaves a cycle inside); `None` when dead-ends are allowed.
+    #[serde(default)]
+    pub girth: Option<f64>,
+}
+
+/// A ball `cover(v)` some vertex of which must be active, as nodes of a [`CutsetGraph`].
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct CoverGroup {
+    /// The mesh vertex `v` whose coverage row asks for it.
+    pub vertex: u32,
+    /// Its non-root nodes, ascending.
+    pub nodes: Vec<u32>,
 }
 
 impl CutsetGraph {
@@ -34,7 +59,7 @@ impl CutsetGraph {
     pub fn new(p: &Problem, edge: &[Option<VarId>], vertex: &[Value]) -> CutsetGraph {
         let mesh = &p.mesh;
         let mut node = vec![u32::MAX; mesh.num_vertices()];
-        let mut g = CutsetGraph { nodes: 1, edges: Vec::new(), activity: vec![Value::Const(1.0)], vertex: vec![u32::MAX] };
+        let mut g = CutsetGraph { nodes: 1, edges: Vec::new(), activity: vec![Value::Const(1.0)], vertex: vec![u32::MAX], groups: Vec::new(), girth: None };
         for v in mesh.vertices() {
             if p.is_sink[v.index()] {
                 node[v.index()] = 0;
@@ -55,10 +80,46 @@ impl CutsetGraph {
         }
         g
     }
+
+    /// Adds the cover groups of coverage (6): for every non-obstacle vertex `v` whose ball
+    /// `cover(v)` holds no sink and no vertex active as a constant (`vertex`, as coverage
+    /// reads it), the ball's nodes. Only inclusion-minimal groups are kept (a superset's
+    /// cutsets are among its subset's).
+    pub fn with_cover_groups(mut self, p: &Problem, vertex: &[Value], girth: Option<f64>) -> CutsetGraph {
+        self.girth = girth;
+        let mut node = vec![u32::MAX; p.mesh.num_vertices()];
+        for (k, &v) in self.vertex.iter().enumerate().skip(1) {
+            node[v as usize] = k as u32;
+        }
+        let mut groups: Vec<CoverGroup> = Vec::new();
+        for v in p.mesh.vertices() {
+            if p.is_obstacle_vertex[v.index()] {
+                continue;
+            }
+            let cover = crate::rules::cover_set(p, v);
+            if cover.iter().any(|u| p.is_sink[u.index()] || matches!(vertex[u.index()], Value::Const(c) if c > 0.0)) {
+                continue;
+            }
+            let mut nodes: Vec<u32> = cover.iter().map(|u| node[u.index()]).filter(|&k| k != u32::MAX).collect();
+            nodes.sort_unstable();
+            nodes.dedup();
+            if !nodes.is_empty() {
+                groups.push(CoverGroup { vertex: v.0, nodes });
+            }
+        }
+        let subset = |a: &[u32], b: &[u32]| a.len() <= b.len() && a.iter().all(|k| b.binary_search(k).is_ok());
+        let keep: Vec<bool> = (0..groups.len())
+            .map(|i| !(0..groups.len()).any(|j| j != i && subset(&groups[j].nodes, &groups[i].nodes) && (groups[j].nodes.len() < groups[i].nodes.len() || j < i)))
+            .collect();
+        self.groups = groups.into_iter().zip(keep).filter(|(_, k)| *k).map(|(g, _)| g).collect();
+        self
+    }
 }
 
 /// Residual graph for Dinic's algorithm on an undirected graph: each edge is a pair of arcs,
-/// each the other's reverse, both with the edge's capacity.
+/// each the other's reverse, both with the edge's capacity. Node `nodes` is an extra source
+/// joined to every other non-root node, by arcs of capacity 0 unless a cover group is being
+/// contracted into it.
 struct FlowGraph {
     head: Vec<u32>,
     cap: Vec<f64>,
@@ -66,24 +127,28 @@ struct FlowGraph {
     adj: Vec<u32>,
     level: Vec<i32>,
     iter: Vec<usize>,
+    /// Number of graph edges (the source's arcs come after theirs).
+    edges: usize,
 }
 
 impl FlowGraph {
     fn new(g: &CutsetGraph) -> FlowGraph {
         let n = g.nodes;
-        let mut deg = vec![0usize; n + 1];
-        for &(a, b, _) in &g.edges {
+        let src = n as u32;
+        let links: Vec<(u32, u32)> = g.edges.iter().map(|&(a, b, _)| (a, b)).chain((1..n as u32).map(|v| (src, v))).collect();
+        let mut deg = vec![0usize; n + 2];
+        for &(a, b) in &links {
             deg[a as usize] += 1;
             deg[b as usize] += 1;
         }
-        let mut adj_start = vec![0usize; n + 1];
-        for i in 0..n {
+        let mut adj_start = vec![0usize; n + 2];
+        for i in 0..=n {
             adj_start[i + 1] = adj_start[i] + deg[i];
         }
         let mut fill = adj_start.clone();
-        let mut head = Vec::with_capacity(2 * g.edges.len());
-        let mut adj = vec![0u32; 2 * g.edges.len()];
-        for &(a, b, _) in &g.edges {
+        let mut head = Vec::with_capacity(2 * links.len());
+        let mut adj = vec![0u32; 2 * links.len()];
+        for &(a, b) in &links {
             let k = head.len() as u32;
             head.push(b);
             head.push(a);
@@ -92,13 +157,24 @@ impl FlowGraph {
             adj[fill[b as usize]] = k + 1;
             fill[b as usize] += 1;
         }
-        FlowGraph { cap: vec![0.0; head.len()], head, adj_start, adj, level: vec![0; n], iter: vec![0; n] }
+        FlowGraph { cap: vec![0.0; head.len()], head, adj_start, adj, level: vec![0; n + 1], iter: vec![0; n + 1], edges: g.edges.len() }
     }
 
+    /// Sets the edges' capacities; the extra source is cut off.
     fn set_capacities(&mut self, caps: &[f64]) {
         for (k, &c) in caps.iter().enumerate() {
             self.cap[2 * k] = c;
             self.cap[2 * k + 1] = c;
+        }
+        self.cap[2 * self.edges..].iter_mut().for_each(|c| *c = 0.0);
+    }
+
+    /// Joins the extra source to `nodes` by arcs no cut will cross (contracts them into it).
+    fn contract_into_source(&mut self, nodes: &[u32]) {
+        for &v in nodes {
+            let k = 2 * (self.edges + v as usize - 1);
+            self.cap[k] = f64::INFINITY;
+            self.cap[k + 1] = 0.0;
         }
     }
 
@@ -189,6 +265,8 @@ pub struct CutsetSeparator<'a> {
     count: usize,
     /// Cap on the rows returned per fractional call.
     pub max_fractional_rows: usize,
+    /// Cap on the cover cutsets returned per fractional call (beside the rows above).
+    pub max_group_rows: usize,
     repair: Option<Box<dyn FnMut(&[f64]) -> Option<Vec<f64>> + 'a>>,
 }
 
@@ -196,7 +274,7 @@ impl<'a> CutsetSeparator<'a> {
     /// A separator over `graph`.
     pub fn new(graph: CutsetGraph) -> CutsetSeparator<'a> {
         let flow = FlowGraph::new(&graph);
-        CutsetSeparator { graph, flow, count: 0, max_fractional_rows: 50, repair: None }
+        CutsetSeparator { graph, flow, count: 0, max_fractional_rows: 50, max_group_rows: 100, repair: None }
     }
 
     /// Sets the function that turns a disconnected integral point into a feasible one (used by
@@ -231,6 +309,58 @@ impl<'a> CutsetSeparator<'a> {
         }
         self.count += 1;
         LazyRow { name: format!("cut{}_v{}", self.count, self.graph.vertex[v]), lhs, rhs: f64::INFINITY, terms }
+    }
+
+    /// The cover cutsets most violated by `x` (edge capacities `caps`): for each group a min
+    /// cut `S` between the group, contracted, and the root, giving `Σ_{x∈δ(S)} E_x ≥ 1` and,
+    /// with a girth `g` (dead-ends forbidden), `Σ_{x∈δ(S)} E_x + (1/g)·Σ_{x∈E(S)} E_x ≥ 2`;
+    /// at most [`CutsetSeparator::max_group_rows`] rows, the most violated first.
+    fn separate_groups(&mut self, caps: &[f64]) -> Vec<LazyRow> {
+        let n = self.graph.nodes;
+        let enough = if self.graph.girth.is_some() { 2.0 } else { 1.0 };
+        let mut found: Vec<(f64, u32, bool, Vec<bool>)> = Vec::new();
+        for gi in 0..self.graph.groups.len() {
+            self.flow.set_capacities(caps);
+            self.flow.contract_into_source(&self.graph.groups[gi].nodes);
+            let f = self.flow.max_flow(n, 0, enough);
+            if f >= enough - MIN_VIOLATION {
+                continue;
+            }
+            let mut inside = self.flow.source_side(n);
+            inside.truncate(n);
+            let v = self.graph.groups[gi].vertex;
+            if f < 1.0 - MIN_VIOLATION && !found.iter().any(|(_, _, l, c)| !*l && *c == inside) {
+                found.push((1.0 - f, v, false, inside.clone()));
+            }
+            if let Some(g) = self.graph.girth {
+                let within: f64 = self.graph.edges.iter().zip(caps).filter(|(&(a, b, _), _)| inside[a as usize] && inside[b as usize]).map(|(_, &c)| c).sum();
+                let lhs = f + within / g;
+                if lhs < 2.0 - MIN_VIOLATION && !found.iter().any(|(_, _, l, c)| *l && *c == inside) {
+                    found.push((2.0 - lhs, v, true, inside));
+                }
+            }
+        }
+        found.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)).then(a.2.cmp(&b.2)));
+        found.truncate(self.max_group_rows);
+        found
+            .into_iter()
+            .map(|(_, v, lifted, inside)| {
+                let g = self.graph.girth.unwrap_or(f64::INFINITY);
+                let terms: Vec<(VarId, f64)> = self
+                    .graph
+                    .edges
+                    .iter()
+                    .filter_map(|&(a, b, e)| match (inside[a as usize], inside[b as usize]) {
+                        (true, false) | (false, true) => Some((e, 1.0)),
+                        (true, true) if lifted => Some((e, 1.0 / g)),
+                        _ => None,
+                    })
+                    .collect();
+                self.count += 1;
+                let name = format!("{}{}_v{}", if lifted { "gcut2_" } else { "gcut" }, self.count, v);
+                LazyRow { name, lhs: if lifted { 2.0 } else { 1.0 }, rhs: f64::INFINITY, terms }
+            })
+            .collect()
     }
 
     /// Components of the edges with value above ½ that do not reach the root, as node masks with
@@ -316,6 +446,7 @@ impl Separator for CutsetSeparator<'_> {
             rows.push(self.row(&inside, best));
             seen_cuts.push(inside);
         }
+        rows.extend(self.separate_groups(&caps));
         rows
     }
 
@@ -345,6 +476,8 @@ mod tests {
             edges: vec![(0, 1, VarId(0)), (1, 2, VarId(1)), (2, 3, VarId(2))],
             activity: vec![Value::Const(1.0), Value::Var(VarId(3)), Value::Var(VarId(4)), Value::Var(VarId(5))],
             vertex: vec![u32::MAX, 10, 11, 12],
+            groups: Vec::new(),
+            girth: None,
         };
         CutsetSeparator::new(g)
     }
@@ -383,6 +516,39 @@ mod tests {
         assert!((rows[0].violation(&x) - 0.5).abs() < 1e-9);
         // A point where every cut holds gives nothing.
         assert!(s.separate_fractional(&[0.9, 0.9, 0.9, 0.5, 0.5, 0.5]).is_empty());
+    }
+
+    #[test]
+    fn cover_cutset_contracts_the_ball() {
+        let mut s = path();
+        s.graph.groups = vec![CoverGroup { vertex: 12, nodes: vec![2, 3] }];
+        // r–1 at 0.3, the rest 0.9, activities 0.2 each: every cutset `≥ V_v` holds (the flow
+        // from any one node is 0.3), but the ball {2, 3} sends only 0.3 to the root: the
+        // cover cutset over δ({1, 2, 3}) = {E0} is violated by 0.7.
+        let x = [0.3, 0.9, 0.9, 0.2, 0.2, 0.2];
+        let rows = s.separate_fractional(&x);
+        assert_eq!(rows.len(), 1, "{rows:?}");
+        assert_eq!(rows[0].terms, vec![(VarId(0), 1.0)]);
+        assert_eq!((rows[0].lhs, rows[0].name.as_str()), (1.0, "gcut1_v12"));
+        assert!((rows[0].violation(&x) - 0.7).abs() < 1e-9);
+        // With r–1 and 1–2 at 1 the ball sends a whole unit: nothing.
+        assert!(s.separate_fractional(&[1.0, 1.0, 0.9, 0.2, 0.2, 0.2]).is_empty());
+    }
+
+    #[test]
+    fn lifted_cover_cutset_counts_the_cycle_inside() {
+        let mut s = path();
+        s.graph.groups = vec![CoverGroup { vertex: 12, nodes: vec![2, 3] }];
+        s.graph.girth = Some(4.0);
+        // The ball {2, 3} sends 1 to the root (through 1–2): the plain cover cutset holds, but
+        // one crossing needs a cycle inside, and the edges inside {2, 3} sum to 0.5:
+        // E1 + ¼·E2 ≥ 2 is violated by 2 − (1 + 0.125).
+        let x = [1.0, 1.0, 0.5, 0.2, 0.2, 0.2];
+        let rows = s.separate_fractional(&x);
+        assert_eq!(rows.len(), 1, "{rows:?}");
+        assert_eq!(rows[0].terms, vec![(VarId(1), 1.0), (VarId(2), 0.25)]);
+        assert_eq!((rows[0].lhs, rows[0].name.as_str()), (2.0, "gcut2_1_v12"));
+        assert!((rows[0].violation(&x) - 0.875).abs() < 1e-9);
     }
 
     #[test]
