@@ -109,7 +109,8 @@ pub fn build_with(p: &Problem, recipe: &Recipe) -> Formulation {
         // Coverage (6) is in the model only without rooms; its balls give the cover cutsets.
         if p.rooms.is_none() {
             let girth = (p.dead_ends == Allow::Forbid).then(|| families::coverage::girth(p));
-            g.with_cover_groups(p, &c.vars.vertex, girth)
+            let g = g.with_cover_groups(p, &c.vars.vertex, girth);
+            if plan.distance_flow { g.with_directions(p, &c.vars.edge, &c.vars.half_edge) } else { g }
         } else {
             g
         }

@@ -21,5 +21,5 @@ pub mod vars;
 
 pub use build::{build, build_compact, build_with, Formulation};
 pub use encode::EncodeError;
-pub use families::cutset::{CutsetGraph, CutsetSeparator};
+pub use families::cutset::{CoverGroup, CutsetGraph, CutsetSeparator};
 pub use recipe::{Plan, Recipe};

@@ -39,6 +39,11 @@ pub struct CutsetGraph {
     /// active, named by the mesh vertex `v` (inclusion-minimal, deterministic order).
     #[serde(default)]
     pub groups: Vec<CoverGroup>,
+    /// The direction binaries of each edge in `edges`, `(E(a→b), E(b→a))`, when the recipe
+    /// has them (the distance flow): each active non-sink vertex then has a directed path of
+    /// active half-edges to a sink, and the cover cutsets count only the half-edges leaving `S`.
+    #[serde(default)]
+    pub arcs: Option<Vec<(VarId, VarId)>>,
     /// With dead-ends forbidden, the shortest cycle a design can hold (the cover cutsets are
     /// then lifted: one crossing leaves a cycle inside); `None` when dead-ends are allowed.
     #[serde(default)]
@@ -59,7 +64,7 @@ impl CutsetGraph {
     pub fn new(p: &Problem, edge: &[Option<VarId>], vertex: &[Value]) -> CutsetGraph {
         let mesh = &p.mesh;
         let mut node = vec![u32::MAX; mesh.num_vertices()];
-        let mut g = CutsetGraph { nodes: 1, edges: Vec::new(), activity: vec![Value::Const(1.0)], vertex: vec![u32::MAX], groups: Vec::new(), girth: None };
+        let mut g = CutsetGraph { nodes: 1, edges: Vec::new(), activity: vec![Value::Const(1.0)], vertex: vec![u32::MAX], groups: Vec::new(), arcs: None, girth: None };
         for v in mesh.vertices() {
             if p.is_sink[v.index()] {
                 node[v.index()] = 0;
@@ -116,6 +121,39 @@ impl CutsetGraph {
     }
 }
 
+impl CutsetGraph {
+    /// Adds the direction binaries `half_edge` (one per mesh half-edge) of every edge, when each
+    /// edge of the graph has both; otherwise the graph stays undirected.
+    pub fn with_directions(mut self, p: &Problem, edge: &[Option<VarId>], half_edge: &[Option<VarId>]) -> CutsetGraph {
+        let mesh = &p.mesh;
+        let mut by_var = std::collections::HashMap::new();
+        for e in mesh.edges() {
+            if let Some(x) = edge[e.index()] {
+                by_var.insert(x, e);
+            }
+        }
+        let mut node = vec![u32::MAX; mesh.num_vertices()];
+        for (k, &v) in self.vertex.iter().enumerate().skip(1) {
+            node[v as usize] = k as u32;
+        }
+        let node_of = |v: crate::mesh::VertexId| if p.is_sink[v.index()] { 0 } else { node[v.index()] };
+        let mut arcs = Vec::with_capacity(self.edges.len());
+        for &(a, _, x) in &self.edges {
+            let Some(&e) = by_var.get(&x) else { return self };
+            let [h0, h1] = mesh.edge_half_edges(e);
+            let (Some(d0), Some(d1)) = (half_edge[h0.index()], half_edge[h1.index()]) else { return self };
+            // h0 runs from its tail: from `a` when the tail's node is `a`.
+            if node_of(mesh.he_tail(h0)) == a {
+                arcs.push((d0, d1));
+            } else {
+                arcs.push((d1, d0));
+            }
+        }
+        self.arcs = Some(arcs);
+        self
+    }
+}
+
 /// Residual graph for Dinic's algorithm on an undirected graph: each edge is a pair of arcs,
 /// each the other's reverse, both with the edge's capacity. Node `nodes` is an extra source
 /// joined to every other non-root node, by arcs of capacity 0 unless a cover group is being
@@ -165,6 +203,17 @@ impl FlowGraph {
         for (k, &c) in caps.iter().enumerate() {
             self.cap[2 * k] = c;
             self.cap[2 * k + 1] = c;
+        }
+        self.cap[2 * self.edges..].iter_mut().for_each(|c| *c = 0.0);
+    }
+
+    /// Sets the capacities of directed arcs: `forward[k]` from the first end of edge `k` to
+    /// the second, `backward[k]` the other way (an antiparallel pair shares its residual arcs);
+    /// the extra source is cut off.
+    fn set_directed_capacities(&mut self, forward: &[f64], backward: &[f64]) {
+        for (k, (&f, &b)) in forward.iter().zip(backward).enumerate() {
+            self.cap[2 * k] = f;
+            self.cap[2 * k + 1] = b;
         }
         self.cap[2 * self.edges..].iter_mut().for_each(|c| *c = 0.0);
     }
@@ -257,6 +306,17 @@ const EPS: f64 = 1e-9;
 /// How much a fractional cut must be violated to be returned.
 const MIN_VIOLATION: f64 = 1e-3;
 
+/// The kinds of cover cutset.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+enum CoverRow {
+    /// `Σ_{x∈δ(S)} E_x ≥ 1`.
+    Plain,
+    /// `Σ_{(a→b): a∈S, b∉S} E(a→b) ≥ 1`.
+    Directed,
+    /// `Σ_{x∈δ(S)} E_x + (1/g)·Σ_{x∈E(S)} E_x ≥ 2`.
+    Lifted,
+}
+
 /// Separates the cutset rows of a [`CutsetGraph`]. Rows are named `cut<n>_v<vertex>`.
 pub struct CutsetSeparator<'a> {
     graph: CutsetGraph,
@@ -312,55 +372,85 @@ impl<'a> CutsetSeparator<'a> {
     }
 
     /// The cover cutsets most violated by `x` (edge capacities `caps`): for each group a min
-    /// cut `S` between the group, contracted, and the root, giving `Σ_{x∈δ(S)} E_x ≥ 1` and,
-    /// with a girth `g` (dead-ends forbidden), `Σ_{x∈δ(S)} E_x + (1/g)·Σ_{x∈E(S)} E_x ≥ 2`;
-    /// at most [`CutsetSeparator::max_group_rows`] rows, the most violated first.
-    fn separate_groups(&mut self, caps: &[f64]) -> Vec<LazyRow> {
+    /// cut `S` between the group, contracted, and the root, giving `Σ_{x∈δ(S)} E_x ≥ 1` — with
+    /// direction binaries `Σ_{(a→b): a∈S, b∉S} E(a→b) ≥ 1`, which implies it — and, with a
+    /// girth `g` (dead-ends forbidden), `Σ_{x∈δ(S)} E_x + (1/g)·Σ_{x∈E(S)} E_x ≥ 2`; at most
+    /// [`CutsetSeparator::max_group_rows`] rows, the most violated first.
+    fn separate_groups(&mut self, x: &[f64], caps: &[f64]) -> Vec<LazyRow> {
         let n = self.graph.nodes;
-        let enough = if self.graph.girth.is_some() { 2.0 } else { 1.0 };
-        let mut found: Vec<(f64, u32, bool, Vec<bool>)> = Vec::new();
+        let directed: Option<(Vec<f64>, Vec<f64>)> = self.graph.arcs.as_ref().map(|arcs| arcs.iter().map(|&(f, b)| (x[f.index()].max(0.0), x[b.index()].max(0.0))).unzip());
+        let mut found: Vec<(f64, u32, CoverRow, Vec<bool>)> = Vec::new();
+        let push = |found: &mut Vec<(f64, u32, CoverRow, Vec<bool>)>, violation: f64, v: u32, kind: CoverRow, inside: Vec<bool>| {
+            if !found.iter().any(|(_, _, k, c)| *k == kind && *c == inside) {
+                found.push((violation, v, kind, inside));
+            }
+        };
         for gi in 0..self.graph.groups.len() {
+            let v = self.graph.groups[gi].vertex;
+            let plain = match &directed {
+                Some((fw, bw)) => {
+                    self.flow.set_directed_capacities(fw, bw);
+                    CoverRow::Directed
+                }
+                None => {
+                    self.flow.set_capacities(caps);
+                    CoverRow::Plain
+                }
+            };
+            self.flow.contract_into_source(&self.graph.groups[gi].nodes);
+            let f = self.flow.max_flow(n, 0, 1.0);
+            if f < 1.0 - MIN_VIOLATION {
+                let mut inside = self.flow.source_side(n);
+                inside.truncate(n);
+                push(&mut found, 1.0 - f, v, plain, inside);
+            }
+            let Some(g) = self.graph.girth else { continue };
             self.flow.set_capacities(caps);
             self.flow.contract_into_source(&self.graph.groups[gi].nodes);
-            let f = self.flow.max_flow(n, 0, enough);
-            if f >= enough - MIN_VIOLATION {
+            let f = self.flow.max_flow(n, 0, 2.0);
+            if f >= 2.0 - MIN_VIOLATION {
                 continue;
             }
             let mut inside = self.flow.source_side(n);
             inside.truncate(n);
-            let v = self.graph.groups[gi].vertex;
-            if f < 1.0 - MIN_VIOLATION && !found.iter().any(|(_, _, l, c)| !*l && *c == inside) {
-                found.push((1.0 - f, v, false, inside.clone()));
-            }
-            if let Some(g) = self.graph.girth {
-                let within: f64 = self.graph.edges.iter().zip(caps).filter(|(&(a, b, _), _)| inside[a as usize] && inside[b as usize]).map(|(_, &c)| c).sum();
-                let lhs = f + within / g;
-                if lhs < 2.0 - MIN_VIOLATION && !found.iter().any(|(_, _, l, c)| *l && *c == inside) {
-                    found.push((2.0 - lhs, v, true, inside));
-                }
+            let within: f64 = self.graph.edges.iter().zip(caps).filter(|(&(a, b, _), _)| inside[a as usize] && inside[b as usize]).map(|(_, &c)| c).sum();
+            let lhs = f + within / g;
+            if lhs < 2.0 - MIN_VIOLATION {
+                push(&mut found, 2.0 - lhs, v, CoverRow::Lifted, inside);
             }
         }
         found.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)).then(a.2.cmp(&b.2)));
         found.truncate(self.max_group_rows);
-        found
-            .into_iter()
-            .map(|(_, v, lifted, inside)| {
-                let g = self.graph.girth.unwrap_or(f64::INFINITY);
-                let terms: Vec<(VarId, f64)> = self
-                    .graph
-                    .edges
-                    .iter()
-                    .filter_map(|&(a, b, e)| match (inside[a as usize], inside[b as usize]) {
-                        (true, false) | (false, true) => Some((e, 1.0)),
-                        (true, true) if lifted => Some((e, 1.0 / g)),
-                        _ => None,
-                    })
-                    .collect();
-                self.count += 1;
-                let name = format!("{}{}_v{}", if lifted { "gcut2_" } else { "gcut" }, self.count, v);
-                LazyRow { name, lhs: if lifted { 2.0 } else { 1.0 }, rhs: f64::INFINITY, terms }
-            })
-            .collect()
+        found.into_iter().map(|(_, v, kind, inside)| self.cover_row(v, kind, &inside)).collect()
+    }
+
+    /// The cover cutset of kind `kind` for the node set `inside`, asked for by vertex `v`.
+    fn cover_row(&mut self, v: u32, kind: CoverRow, inside: &[bool]) -> LazyRow {
+        let g = self.graph.girth.unwrap_or(f64::INFINITY);
+        let mut terms: Vec<(VarId, f64)> = Vec::new();
+        for (k, &(a, b, e)) in self.graph.edges.iter().enumerate() {
+            let (ia, ib) = (inside[a as usize], inside[b as usize]);
+            match kind {
+                CoverRow::Directed => {
+                    let (fw, bw) = self.graph.arcs.as_ref().map_or((e, e), |arcs| arcs[k]);
+                    if ia && !ib {
+                        terms.push((fw, 1.0));
+                    } else if ib && !ia {
+                        terms.push((bw, 1.0));
+                    }
+                }
+                CoverRow::Plain | CoverRow::Lifted if ia != ib => terms.push((e, 1.0)),
+                CoverRow::Lifted if ia && ib => terms.push((e, 1.0 / g)),
+                _ => {}
+            }
+        }
+        self.count += 1;
+        let (prefix, lhs) = match kind {
+            CoverRow::Plain => ("gcut", 1.0),
+            CoverRow::Directed => ("gcutd", 1.0),
+            CoverRow::Lifted => ("gcut2_", 2.0),
+        };
+        LazyRow { name: format!("{prefix}{}_v{v}", self.count), lhs, rhs: f64::INFINITY, terms }
     }
 
     /// Components of the edges with value above ½ that do not reach the root, as node masks with
@@ -446,7 +536,7 @@ impl Separator for CutsetSeparator<'_> {
             rows.push(self.row(&inside, best));
             seen_cuts.push(inside);
         }
-        rows.extend(self.separate_groups(&caps));
+        rows.extend(self.separate_groups(x, &caps));
         rows
     }
 
@@ -477,6 +567,7 @@ mod tests {
             activity: vec![Value::Const(1.0), Value::Var(VarId(3)), Value::Var(VarId(4)), Value::Var(VarId(5))],
             vertex: vec![u32::MAX, 10, 11, 12],
             groups: Vec::new(),
+            arcs: None,
             girth: None,
         };
         CutsetSeparator::new(g)
