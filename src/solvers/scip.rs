@@ -358,6 +358,7 @@ impl Solver for ScipSolver {
             repaired_starts: 0,
             root_rounds: 0,
             root_bounds: None,
+            root_rows_dropped: 0,
         };
         Ok(LazySolve { result, rows: std::mem::take(&mut handler.rows), report })
     }
