@@ -530,6 +530,10 @@ impl Search<'_> {
             for id in rows {
                 model.set_row_sides(id, f64::NEG_INFINITY, f64::INFINITY);
             }
+            // So are the cover cutsets the strong recipe separates from it.
+            if let Some(g) = built.cutsets.as_mut() {
+                g.groups.clear();
+            }
         }
         // Feasibility only: the objective is set aside.
         for j in 0..model.num_vars() {
