@@ -105,14 +105,12 @@ pub fn build_with(p: &Problem, recipe: &Recipe) -> Formulation {
         fam(&mut c, "user specifications", families::user::user_specs);
     }
     let cutsets = (plan.connectivity == Some(ConnectivityForm::Cutset)).then(|| {
-        let g = cutset::CutsetGraph::new(p, &c.vars.edge, &c.vars.vertex);
+        let directions = plan.distance_flow.then_some(c.vars.half_edge.as_slice());
+        let g = cutset::CutsetGraph::new(p, &c.vars.edge, &c.vars.vertex, directions);
         // Coverage (6) is in the model only without rooms; its balls give the cover cutsets.
-        if p.rooms.is_none() {
-            let girth = (p.dead_ends == Allow::Forbid).then(|| families::coverage::girth(p));
-            let g = g.with_cover_groups(p, &c.vars.vertex, girth);
-            if plan.distance_flow { g.with_directions(p, &c.vars.edge, &c.vars.half_edge) } else { g }
-        } else {
-            g
+        match p.rooms {
+            None => g.with_cover_groups(p, &c.vars.vertex, (p.dead_ends == Allow::Forbid).then(|| families::coverage::girth(p))),
+            Some(_) => g,
         }
     });
     if cutsets.is_some() {

@@ -376,17 +376,7 @@ impl Blocks {
                     inner_of[e.index()] = Some(b);
                 }
             }
-            let mut vs: Vec<VertexId> = placements[k]
-                .boundary_edges
-                .iter()
-                .flat_map(|&e| {
-                    let (a, c) = mesh.edge_vertices(e);
-                    [a, c]
-                })
-                .collect();
-            vs.sort_unstable();
-            vs.dedup();
-            boundary.push(vs);
+            boundary.push(placements[k].border_vertices(mesh));
         }
         let mut portal_of = vec![Vec::new(); mesh.num_vertices()];
         for v in mesh.vertices() {

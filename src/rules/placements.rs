@@ -22,7 +22,7 @@
 //! Nothing here panics on any valid [`Mesh`]: a short `blocked_faces` slice counts missing
 //! entries as unblocked.
 
-use crate::mesh::{EdgeId, FaceId, Mesh};
+use crate::mesh::{EdgeId, FaceId, Mesh, VertexId};
 use serde::{Deserialize, Serialize};
 use std::collections::{BTreeMap, HashSet, VecDeque};
 use std::time::{Duration, Instant};
@@ -150,6 +150,23 @@ pub struct Placement {
     pub boundary_edges: Vec<EdgeId>,
     /// Whether some boundary edge is a mesh boundary edge.
     pub touches_mesh_boundary: bool,
+}
+
+impl Placement {
+    /// The vertices on the placement's boundary edges, sorted.
+    pub fn border_vertices(&self, mesh: &Mesh) -> Vec<VertexId> {
+        let mut border: Vec<VertexId> = self
+            .boundary_edges
+            .iter()
+            .flat_map(|&e| {
+                let (a, b) = mesh.edge_vertices(e);
+                [a, b]
+            })
+            .collect();
+        border.sort_unstable();
+        border.dedup();
+        border
+    }
 }
 
 /// The result of [`enumerate_placements`].

@@ -29,9 +29,14 @@ pub struct LazyRow {
 }
 
 impl LazyRow {
+    /// The row's activity `Σ a_j x_j` at `x`.
+    pub fn activity(&self, x: &[f64]) -> f64 {
+        self.terms.iter().map(|&(v, c)| c * x[v.index()]).sum()
+    }
+
     /// How far `x` is outside the row's sides (0 when it holds).
     pub fn violation(&self, x: &[f64]) -> f64 {
-        let a: f64 = self.terms.iter().map(|&(v, c)| c * x[v.index()]).sum();
+        let a = self.activity(x);
         (self.lhs - a).max(a - self.rhs).max(0.0)
     }
 
@@ -319,7 +324,7 @@ fn root_rounds<S: Solver + ?Sized>(
     }
     if let Some((x, solved_with)) = last_point {
         let tight = |r: &LazyRow| {
-            let a: f64 = r.terms.iter().map(|&(v, c)| c * x[v.index()]).sum();
+            let a = r.activity(&x);
             let tol = |side: f64| 1e-6 * side.abs().max(1.0);
             (r.lhs.is_finite() && a - r.lhs <= tol(r.lhs)) || (r.rhs.is_finite() && r.rhs - a <= tol(r.rhs))
         };

@@ -60,8 +60,10 @@ pub struct CoverGroup {
 }
 
 impl CutsetGraph {
-    /// The graph of a problem, from its edge variables and vertex activities.
-    pub fn new(p: &Problem, edge: &[Option<VarId>], vertex: &[Value]) -> CutsetGraph {
+    /// The graph of a problem, from its edge variables and vertex activities, and the direction
+    /// binaries of its half-edges when the recipe's distance flow gives them meaning (see
+    /// [`CutsetGraph::arcs`]).
+    pub fn new(p: &Problem, edge: &[Option<VarId>], vertex: &[Value], directions: Option<&[Option<VarId>]>) -> CutsetGraph {
         let mesh = &p.mesh;
         let mut node = vec![u32::MAX; mesh.num_vertices()];
         let mut g = CutsetGraph { nodes: 1, edges: Vec::new(), activity: vec![Value::Const(1.0)], vertex: vec![u32::MAX], groups: Vec::new(), arcs: None, girth: None };
@@ -75,14 +77,25 @@ impl CutsetGraph {
                 g.vertex.push(v.0);
             }
         }
+        let mut arcs = directions.map(|_| Vec::new());
         for e in mesh.edges() {
             let Some(x) = edge[e.index()] else { continue };
             let (a, b) = mesh.edge_vertices(e);
             let (na, nb) = (node[a.index()], node[b.index()]);
-            if na != nb {
-                g.edges.push((na, nb, x));
+            if na == nb {
+                continue;
+            }
+            g.edges.push((na, nb, x));
+            if let (Some(d), Some(list)) = (directions, arcs.as_mut()) {
+                let [h0, h1] = mesh.edge_half_edges(e);
+                let (ab, ba) = if mesh.he_tail(h0) == a { (h0, h1) } else { (h1, h0) };
+                match (d[ab.index()], d[ba.index()]) {
+                    (Some(f), Some(r)) => list.push((f, r)),
+                    _ => arcs = None,
+                }
             }
         }
+        g.arcs = arcs;
         g
     }
 
@@ -117,39 +130,6 @@ impl CutsetGraph {
             .map(|i| !(0..groups.len()).any(|j| j != i && subset(&groups[j].nodes, &groups[i].nodes) && (groups[j].nodes.len() < groups[i].nodes.len() || j < i)))
             .collect();
         self.groups = groups.into_iter().zip(keep).filter(|(_, k)| *k).map(|(g, _)| g).collect();
-        self
-    }
-}
-
-impl CutsetGraph {
-    /// Adds the direction binaries `half_edge` (one per mesh half-edge) of every edge, when each
-    /// edge of the graph has both; otherwise the graph stays undirected.
-    pub fn with_directions(mut self, p: &Problem, edge: &[Option<VarId>], half_edge: &[Option<VarId>]) -> CutsetGraph {
-        let mesh = &p.mesh;
-        let mut by_var = std::collections::HashMap::new();
-        for e in mesh.edges() {
-            if let Some(x) = edge[e.index()] {
-                by_var.insert(x, e);
-            }
-        }
-        let mut node = vec![u32::MAX; mesh.num_vertices()];
-        for (k, &v) in self.vertex.iter().enumerate().skip(1) {
-            node[v as usize] = k as u32;
-        }
-        let node_of = |v: crate::mesh::VertexId| if p.is_sink[v.index()] { 0 } else { node[v.index()] };
-        let mut arcs = Vec::with_capacity(self.edges.len());
-        for &(a, _, x) in &self.edges {
-            let Some(&e) = by_var.get(&x) else { return self };
-            let [h0, h1] = mesh.edge_half_edges(e);
-            let (Some(d0), Some(d1)) = (half_edge[h0.index()], half_edge[h1.index()]) else { return self };
-            // h0 runs from its tail: from `a` when the tail's node is `a`.
-            if node_of(mesh.he_tail(h0)) == a {
-                arcs.push((d0, d1));
-            } else {
-                arcs.push((d1, d0));
-            }
-        }
-        self.arcs = Some(arcs);
         self
     }
 }

@@ -5,7 +5,7 @@ use super::Ctx;
 use crate::formulations::expr::Expr;
 use crate::milp::VarId;
 use crate::rules::placements::{enumerate_placements, Placement, PlacementReport};
-use crate::mesh::{EdgeId, Mesh, VertexId};
+use crate::mesh::{EdgeId, VertexId};
 use crate::spec::{Allow, CoverageForm, LevelType, Problem, RoomMode, Rooms};
 use std::time::Duration;
 
@@ -22,27 +22,12 @@ fn traversal_needs_two(p: &Problem, pl: &Placement) -> bool {
         return false;
     }
     let mesh = &p.mesh;
-    let border = border_vertices(mesh, pl);
+    let border = pl.border_vertices(mesh);
     let inside = |v: VertexId| border.binary_search(&v).is_err();
     pl.inner_edges.iter().all(|&e| {
         let (a, b) = mesh.edge_vertices(e);
         (inside(a) || inside(b)) && !(inside(a) && p.is_sink[a.index()]) && !(inside(b) && p.is_sink[b.index()])
     })
-}
-
-/// The vertices on a placement's boundary edges, sorted.
-fn border_vertices(mesh: &Mesh, pl: &Placement) -> Vec<VertexId> {
-    let mut border: Vec<VertexId> = pl
-        .boundary_edges
-        .iter()
-        .flat_map(|&e| {
-            let (a, b) = mesh.edge_vertices(e);
-            [a, b]
-        })
-        .collect();
-    border.sort_unstable();
-    border.dedup();
-    border
 }
 
 /// Emits `R` per placement and (16) exact cover, then (17)–(18) for floor plans or (19)–(20)
@@ -169,7 +154,7 @@ fn level_shape(c: &mut Ctx, rooms: &Rooms, report: &PlacementReport, vars: &[Var
     for (k, (pl, &r)) in report.placements.iter().zip(vars).enumerate() {
         let inner: std::collections::BTreeSet<EdgeId> = pl.inner_edges.iter().copied().collect();
         let own: std::collections::BTreeSet<EdgeId> = pl.inner_edges.iter().chain(&pl.boundary_edges).copied().collect();
-        let border = border_vertices(mesh, pl);
+        let border = pl.border_vertices(mesh);
         let mut ex = Expr::new();
         let mut big = 0.0;
         for &v in &border {
