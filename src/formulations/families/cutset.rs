@@ -2,7 +2,9 @@
 //! set `C` with `r ∉ C` and every `v ∈ C`, `Σ_{x∈δ(C)} E_x ≥ V_v`. The rows are exponentially
 //! many, so none is written into the model: [`CutsetSeparator`] finds violated ones — by
 //! connected components on integral points (exact), and by max-flow/min-cut from each vertex to
-//! the root on fractional ones.
+//! the root on fractional ones. With the distance flow's direction binaries the fractional rows
+//! are directed, `Σ_{(a→b): a∈C, b∉C} E(a→b) ≥ V_v`: every active non-sink vertex has a path of
+//! active half-edges to a sink, so a sink-free set holding one has an active half-edge leaving it.
 //!
 //! Beside them, the **cover cutsets** (this project's strengthening, valid cuts rather than lazy
 //! rows): coverage (6) makes some vertex of a sink-free ball `cover(v)` active, and that vertex
@@ -329,19 +331,33 @@ impl<'a> CutsetSeparator<'a> {
         &self.graph
     }
 
+    /// The values of the direction binaries at `x` as arc capacities (forward, backward), when
+    /// the graph has them.
+    fn directed_capacities(&self, x: &[f64]) -> Option<(Vec<f64>, Vec<f64>)> {
+        self.graph.arcs.as_ref().map(|arcs| arcs.iter().map(|&(f, b)| (x[f.index()].max(0.0), x[b.index()].max(0.0))).unzip())
+    }
+
     fn activity(&self, node: usize, x: &[f64]) -> f64 {
         self.graph.activity[node].at(x)
     }
 
-    /// The row `Σ_{x∈δ(C)} E_x − V_v ≥ 0` for the node set `inside` and node `v ∈ C`.
-    fn row(&mut self, inside: &[bool], v: usize) -> LazyRow {
-        let mut terms: Vec<(VarId, f64)> = self
-            .graph
-            .edges
-            .iter()
-            .filter(|&&(a, b, _)| inside[a as usize] != inside[b as usize])
-            .map(|&(_, _, x)| (x, 1.0))
-            .collect();
+    /// The row `Σ_{x∈δ(C)} E_x − V_v ≥ 0` for the node set `inside` and node `v ∈ C`; with
+    /// `directed` (the graph has direction binaries), `Σ_{(a→b): a∈C, b∉C} E(a→b) − V_v ≥ 0`,
+    /// which implies it.
+    fn row(&mut self, inside: &[bool], v: usize, directed: bool) -> LazyRow {
+        let mut terms: Vec<(VarId, f64)> = Vec::new();
+        for (k, &(a, b, e)) in self.graph.edges.iter().enumerate() {
+            let (ia, ib) = (inside[a as usize], inside[b as usize]);
+            if ia == ib {
+                continue;
+            }
+            let var = match (directed, self.graph.arcs.as_ref()) {
+                (true, Some(arcs)) if ia => arcs[k].0,
+                (true, Some(arcs)) => arcs[k].1,
+                _ => e,
+            };
+            terms.push((var, 1.0));
+        }
         let mut lhs = 0.0;
         match self.graph.activity[v] {
             Value::Var(y) => terms.push((y, -1.0)),
@@ -358,7 +374,7 @@ impl<'a> CutsetSeparator<'a> {
     /// [`CutsetSeparator::max_group_rows`] rows, the most violated first.
     fn separate_groups(&mut self, x: &[f64], caps: &[f64]) -> Vec<LazyRow> {
         let n = self.graph.nodes;
-        let directed: Option<(Vec<f64>, Vec<f64>)> = self.graph.arcs.as_ref().map(|arcs| arcs.iter().map(|&(f, b)| (x[f.index()].max(0.0), x[b.index()].max(0.0))).unzip());
+        let directed = self.directed_capacities(x);
         let mut found: Vec<(f64, u32, CoverRow, Vec<bool>)> = Vec::new();
         let push = |found: &mut Vec<(f64, u32, CoverRow, Vec<bool>)>, violation: f64, v: u32, kind: CoverRow, inside: Vec<bool>| {
             if !found.iter().any(|(_, _, k, c)| *k == kind && *c == inside) {
@@ -488,11 +504,12 @@ impl Separator for CutsetSeparator<'_> {
 
     fn separate_integral(&mut self, x: &[f64]) -> Vec<LazyRow> {
         let islands = self.islands(x);
-        islands.into_iter().map(|(inside, v)| self.row(&inside, v)).collect()
+        islands.into_iter().map(|(inside, v)| self.row(&inside, v, false)).collect()
     }
 
     fn separate_fractional(&mut self, x: &[f64]) -> Vec<LazyRow> {
         let caps: Vec<f64> = self.graph.edges.iter().map(|&(_, _, e)| x[e.index()].max(0.0)).collect();
+        let directed = self.directed_capacities(x);
         let mut order: Vec<usize> = (1..self.graph.nodes).filter(|&v| self.activity(v, x) > MIN_VIOLATION).collect();
         order.sort_by(|&a, &b| self.activity(b, x).total_cmp(&self.activity(a, x)).then(a.cmp(&b)));
         let mut rows = Vec::new();
@@ -502,7 +519,10 @@ impl Separator for CutsetSeparator<'_> {
                 break;
             }
             let y = self.activity(v, x);
-            self.flow.set_capacities(&caps);
+            match &directed {
+                Some((fw, bw)) => self.flow.set_directed_capacities(fw, bw),
+                None => self.flow.set_capacities(&caps),
+            }
             let f = self.flow.max_flow(v, 0, y);
             if f >= y - MIN_VIOLATION {
                 continue;
@@ -513,7 +533,7 @@ impl Separator for CutsetSeparator<'_> {
             }
             // The most violated row of this cut is the one for its most active node.
             let best = (0..self.graph.nodes).filter(|&u| inside[u]).max_by(|&a, &b| self.activity(a, x).total_cmp(&self.activity(b, x)).then(b.cmp(&a))).unwrap_or(v);
-            rows.push(self.row(&inside, best));
+            rows.push(self.row(&inside, best, directed.is_some()));
             seen_cuts.push(inside);
         }
         rows.extend(self.separate_groups(x, &caps));
@@ -530,6 +550,9 @@ impl Separator for CutsetSeparator<'_> {
             Value::Var(y) => Some((*y, Lock::Up)),
             Value::Const(_) => None,
         }));
+        if let Some(arcs) = &self.graph.arcs {
+            out.extend(arcs.iter().flat_map(|&(f, b)| [(f, Lock::Down), (b, Lock::Down)]));
+        }
         out
     }
 }
@@ -620,6 +643,27 @@ mod tests {
         assert_eq!(rows[0].terms, vec![(VarId(1), 1.0), (VarId(2), 0.25)]);
         assert_eq!((rows[0].lhs, rows[0].name.as_str()), (2.0, "gcut2_1_v12"));
         assert!((rows[0].violation(&x) - 0.875).abs() < 1e-9);
+    }
+
+    #[test]
+    fn directed_cutset_counts_only_the_arcs_leaving() {
+        let mut s = path();
+        // Direction binaries: edge k's arc from its first end to its second is variable 6 + 2k,
+        // the other way 7 + 2k (r→1 is 6, 1→r is 7, 1→2 is 8, 2→1 is 9, 2→3 is 10, 3→2 is 11).
+        s.graph.arcs = Some(vec![(VarId(6), VarId(7)), (VarId(8), VarId(9)), (VarId(10), VarId(11))]);
+        // Every edge at 0.8, but r–1 points away from the root (r→1 at 0.8, 1→r at 0): the
+        // undirected cutsets hold for V3 = 0.7, the directed one over the arcs leaving
+        // {1, 2, 3} (just 1→r) is violated by 0.7.
+        let mut x = vec![0.8, 0.8, 0.8, 0.7, 0.7, 0.7, 0.8, 0.0, 0.4, 0.4, 0.4, 0.4];
+        let rows = s.separate_fractional(&x);
+        assert_eq!(rows.len(), 1, "{rows:?}");
+        let mut terms = rows[0].terms.clone();
+        terms.sort_by_key(|t| t.0);
+        assert_eq!(terms, vec![(VarId(3), -1.0), (VarId(7), 1.0)]);
+        assert!((rows[0].violation(&x) - 0.7).abs() < 1e-9);
+        // With every edge pointed at the root, nothing.
+        x[6..].copy_from_slice(&[0.0, 0.8, 0.0, 0.8, 0.0, 0.8]);
+        assert!(s.separate_fractional(&x).is_empty());
     }
 
     #[test]
