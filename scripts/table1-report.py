@@ -61,20 +61,6 @@ def thumbnail(src, dst):
     im.convert("RGB").convert("P", palette=Image.ADAPTIVE, colors=64).save(dst, optimize=True)
 
 
-def previous_session_times():
-    """Row → seconds to optimality in docs/table1-strong.md's first column (the previous
-    session's strong recipe on HiGHS at min(paper time, 60 s), another VM of this kind)."""
-    import re
-    out = {}
-    for line in open(os.path.join(ROOT, "docs/table1-strong.md")):
-        cells = [c.strip() for c in line.strip().strip("|").split("|")]
-        if len(cells) > 2:
-            m = re.match(r"\*\*optimal\*\* \S+ in ([0-9.]+) s", cells[2])
-            if m:
-                out[cells[0]] = float(m.group(1))
-    return out
-
-
 def cell(r, d):
     if r is None:
         return "not run"
@@ -168,12 +154,15 @@ def main():
     # Per row.
     w("Every run's record (`run.json`, `result.json`, `stdout.txt`) is in")
     w("[table1-runs/2026-12-01.tar.gz](table1-runs/2026-12-01.tar.gz), for the third session's")
-    w("runs [table1-runs/2026-12-01b.tar.gz](table1-runs/2026-12-01b.tar.gz) and for the fourth's")
-    w("[table1-runs/2026-12-02.tar.gz](table1-runs/2026-12-02.tar.gz) (each keeps the runs the next")
+    w("runs [table1-runs/2026-12-01b.tar.gz](table1-runs/2026-12-01b.tar.gz), for the fourth's")
+    w("[table1-runs/2026-12-02.tar.gz](table1-runs/2026-12-02.tar.gz) and for the fifth's")
+    w("[table1-runs/2026-12-02c.tar.gz](table1-runs/2026-12-02c.tar.gz) (each keeps the runs the next")
     w("replaces): extract the first into `out/`, remove its strong-recipe room rows and the paper")
     w("recipe's 1e, extract the second, remove its 1e (all three columns) and its strong-recipe")
-    w("11b, then extract the third, to resume these comparisons (a record with the same settings")
-    w("is reused) or to report again.")
+    w("11b, extract the third, remove HiGHS/strong's rows of `models/table1-cuts.toml` and")
+    w("SCIP/strong's rows of `models/table1-streets-l4.toml` (also from `t1-scip-beside-highs/`),")
+    w("then extract the fifth, to resume these comparisons (a record with the same settings is")
+    w("reused) or to report again.")
     w("")
     w("## Per row")
     w("")
@@ -305,12 +294,6 @@ def main():
           f" geometric mean {g:.2f}; shifted geometric means (shift 10 s) {ours:.1f} s ours vs {theirs:.1f} s the paper's, ratio {ours / theirs:.2f}"
           f" (target < 0.5{', met' if ours / theirs < 0.5 else ', missed'} — on these rows only; every other row is unproven here at its cap).")
         w("  Per row: " + ", ".join(f"{n} {x:.2f}× ({c})" for n, x, c in ratios) + ".")
-    prev = previous_session_times()
-    same = [(n, by[(n, columns[0])]["wall_time"], prev[n]) for n in ran if n in prev and (n, columns[0]) in by and solved(by[(n, columns[0])]) and (n, columns[0]) not in shared]
-    if same:
-        w(f"- **This machine against the previous session's** ({columns[0]} alone both times, the same rows and")
-        w("  code but for the command line; the previous run's limit was min(paper time, 60 s)): "
-          + ", ".join(f"{n} {t:.1f} s vs {p:.1f} s ({t / p:.2f}×)" for n, t, p in same) + ".")
     w("")
 
     # Reading (hand-written against this run; regenerate the rest, then check these lines).
