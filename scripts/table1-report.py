@@ -160,7 +160,7 @@ def main():
     w("replaces): extract the first into `out/`, remove its strong-recipe room rows and the paper")
     w("recipe's 1e, extract the second, remove its 1e (all three columns) and its strong-recipe")
     w("11b, extract the third, remove HiGHS/strong's rows of `models/table1-cuts.toml` and")
-    w("SCIP/strong's rows of `models/table1-streets-l4.toml` (also from `t1-scip-beside-highs/`),")
+    w("SCIP/strong's rows of `models/table1-streets-l4.toml` and 2a–2g (also from `t1-scip-beside-highs/`),")
     w("then extract the fifth, to resume these comparisons (a record with the same settings is")
     w("reused) or to report again.")
     w("")
