@@ -97,6 +97,7 @@ pub(crate) fn tiling_problem<'a>(p: &Problem, placements: &'a [Placement]) -> Ti
         placements
             .iter()
             .map(|pl| {
+                let border = pl.border_vertices(mesh);
                 let mut vs: Vec<u32> = pl
                     .inner_edges
                     .iter()
@@ -104,12 +105,7 @@ pub(crate) fn tiling_problem<'a>(p: &Problem, placements: &'a [Placement]) -> Ti
                         let (a, b) = mesh.edge_vertices(e);
                         [a, b]
                     })
-                    .filter(|v| {
-                        pl.boundary_edges.iter().any(|&e| {
-                            let (a, b) = mesh.edge_vertices(e);
-                            a == *v || b == *v
-                        })
-                    })
+                    .filter(|v| border.binary_search(v).is_ok())
                     .map(|v| v.0)
                     .collect();
                 vs.sort_unstable();

@@ -118,6 +118,13 @@ pub struct LazyReport {
     pub root_rows_dropped: usize,
 }
 
+impl LazyReport {
+    /// A report with nothing done yet.
+    pub fn new(separator: String, mode: LazyMode) -> LazyReport {
+        LazyReport { separator, mode, rounds: 0, rows_added: 0, separation_seconds: 0.0, repaired_starts: 0, root_rounds: 0, root_bounds: None, root_rows_dropped: 0 }
+    }
+}
+
 /// A solve with lazy rows: the result, the rows added, and the report.
 #[derive(Clone, Debug)]
 pub struct LazySolve {
@@ -141,17 +148,7 @@ pub fn solve_loop<S: Solver + ?Sized>(solver: &S, model: &Model, sep: &mut dyn S
     let tol = Tolerances::default();
     let mut work = model.clone();
     let mut rows: Vec<LazyRow> = Vec::new();
-    let mut report = LazyReport {
-        separator: sep.name().to_string(),
-        mode: LazyMode::Loop,
-        rounds: 0,
-        rows_added: 0,
-        separation_seconds: 0.0,
-        repaired_starts: 0,
-        root_rounds: 0,
-        root_bounds: None,
-        root_rows_dropped: 0,
-    };
+    let mut report = LazyReport::new(sep.name().to_string(), LazyMode::Loop);
     root_rounds(solver, &mut work, &mut rows, sep, o, t0, o.time_limit.map(|l| 0.2 * l), &mut report)?;
     // The best point known to satisfy every row (emitted and lazy), with its objective.
     let mut best: Option<(Vec<f64>, f64)> = None;
@@ -275,7 +272,7 @@ fn root_rounds<S: Solver + ?Sized>(
     let mut last = f64::NAN;
     let mut stalled = 0;
     let base = work.clone();
-    let mut added: Vec<LazyRow> = Vec::new();
+    let start = rows.len();
     let mut last_point: Option<(Vec<f64>, usize)> = None;
     for _ in 0..MAX_ROOT_ROUNDS {
         if budget.is_some_and(|b| t0.elapsed().as_secs_f64() >= b) || o.interrupt.as_ref().is_some_and(|i| i.is_triggered()) {
@@ -295,7 +292,7 @@ fn root_rounds<S: Solver + ?Sized>(
         first.get_or_insert(obj);
         let ts = Instant::now();
         let cuts = sep.separate_fractional(&x);
-        last_point = Some((x, added.len()));
+        last_point = Some((x, rows.len()));
         report.separation_seconds += ts.elapsed().as_secs_f64();
         if cuts.is_empty() {
             last = obj;
@@ -316,7 +313,6 @@ fn root_rounds<S: Solver + ?Sized>(
         for c in &cuts {
             c.add_to(work);
         }
-        added.extend(cuts.iter().cloned());
         rows.extend(cuts);
     }
     if let Some(f) = first {
@@ -328,8 +324,8 @@ fn root_rounds<S: Solver + ?Sized>(
             let tol = |side: f64| 1e-6 * side.abs().max(1.0);
             (r.lhs.is_finite() && a - r.lhs <= tol(r.lhs)) || (r.rhs.is_finite() && r.rhs - a <= tol(r.rhs))
         };
-        let keep: Vec<&LazyRow> = added.iter().enumerate().filter(|&(i, r)| i >= solved_with || tight(r)).map(|(_, r)| r).collect();
-        report.root_rows_dropped = added.len() - keep.len();
+        let keep: Vec<&LazyRow> = rows.iter().enumerate().skip(start).filter(|&(i, r)| i >= solved_with || tight(r)).map(|(_, r)| r).collect();
+        report.root_rows_dropped = rows.len() - start - keep.len();
         if report.root_rows_dropped > 0 {
             *work = base;
             for r in keep {
@@ -363,17 +359,7 @@ pub struct LpBound {
 /// given) within `o.time_limit`.
 pub fn lp_bound<S: Solver + ?Sized>(solver: &S, model: &Model, sep: Option<&mut dyn Separator>, o: &SolveOptions) -> Result<LpBound, SolverError> {
     let t0 = Instant::now();
-    let mut report = LazyReport {
-        separator: String::new(),
-        mode: LazyMode::Loop,
-        rounds: 0,
-        rows_added: 0,
-        separation_seconds: 0.0,
-        repaired_starts: 0,
-        root_rounds: 0,
-        root_bounds: None,
-        root_rows_dropped: 0,
-    };
+    let mut report = LazyReport::new(String::new(), LazyMode::Loop);
     let mut work = model.clone();
     let mut rows = Vec::new();
     struct NoRows;

@@ -349,17 +349,7 @@ impl Solver for ScipSolver {
         if let Some(e) = handler.error.take() {
             return Err(rejected(format!("lazy-row handler: {e}")));
         }
-        let report = LazyReport {
-            separator: name,
-            mode: LazyMode::Callback,
-            rounds: handler.calls,
-            rows_added: handler.rows.len(),
-            separation_seconds: handler.seconds,
-            repaired_starts: 0,
-            root_rounds: 0,
-            root_bounds: None,
-            root_rows_dropped: 0,
-        };
+        let report = LazyReport { rounds: handler.calls, rows_added: handler.rows.len(), separation_seconds: handler.seconds, ..LazyReport::new(name, LazyMode::Callback) };
         Ok(LazySolve { result, rows: std::mem::take(&mut handler.rows), report })
     }
 }

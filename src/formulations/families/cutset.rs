@@ -337,6 +337,16 @@ impl<'a> CutsetSeparator<'a> {
         self.graph.arcs.as_ref().map(|arcs| arcs.iter().map(|&(f, b)| (x[f.index()].max(0.0), x[b.index()].max(0.0))).unzip())
     }
 
+    /// The variable of edge `k` in a cut it crosses, its first end inside when `first_inside`:
+    /// with `directed` and direction binaries, the half-edge leaving the inside; else `E_x`.
+    fn crossing_var(&self, k: usize, first_inside: bool, directed: bool) -> VarId {
+        match (directed, self.graph.arcs.as_ref()) {
+            (true, Some(arcs)) if first_inside => arcs[k].0,
+            (true, Some(arcs)) => arcs[k].1,
+            _ => self.graph.edges[k].2,
+        }
+    }
+
     fn activity(&self, node: usize, x: &[f64]) -> f64 {
         self.graph.activity[node].at(x)
     }
@@ -346,17 +356,11 @@ impl<'a> CutsetSeparator<'a> {
     /// which implies it.
     fn row(&mut self, inside: &[bool], v: usize, directed: bool) -> LazyRow {
         let mut terms: Vec<(VarId, f64)> = Vec::new();
-        for (k, &(a, b, e)) in self.graph.edges.iter().enumerate() {
-            let (ia, ib) = (inside[a as usize], inside[b as usize]);
-            if ia == ib {
-                continue;
+        for (k, &(a, b, _)) in self.graph.edges.iter().enumerate() {
+            let ia = inside[a as usize];
+            if ia != inside[b as usize] {
+                terms.push((self.crossing_var(k, ia, directed), 1.0));
             }
-            let var = match (directed, self.graph.arcs.as_ref()) {
-                (true, Some(arcs)) if ia => arcs[k].0,
-                (true, Some(arcs)) => arcs[k].1,
-                _ => e,
-            };
-            terms.push((var, 1.0));
         }
         let mut lhs = 0.0;
         match self.graph.activity[v] {
@@ -427,14 +431,7 @@ impl<'a> CutsetSeparator<'a> {
         for (k, &(a, b, e)) in self.graph.edges.iter().enumerate() {
             let (ia, ib) = (inside[a as usize], inside[b as usize]);
             match kind {
-                CoverRow::Directed => {
-                    let (fw, bw) = self.graph.arcs.as_ref().map_or((e, e), |arcs| arcs[k]);
-                    if ia && !ib {
-                        terms.push((fw, 1.0));
-                    } else if ib && !ia {
-                        terms.push((bw, 1.0));
-                    }
-                }
+                CoverRow::Directed if ia != ib => terms.push((self.crossing_var(k, ia, true), 1.0)),
                 CoverRow::Plain | CoverRow::Lifted if ia != ib => terms.push((e, 1.0)),
                 CoverRow::Lifted if ia && ib => terms.push((e, 1.0 / g)),
                 _ => {}
