@@ -35,8 +35,16 @@ from table1_common import ROOT, design_of, fmt, seconds, sgm
 TOL = 1e-6
 
 
+PROVEN_GAP = 1e-4  # src/compare.rs PROVEN_GAP: the target's gap (Gurobi's default MIPGap)
+
+
+def within_gap(r):
+    """A valid design whose solver went on but whose gap is at most PROVEN_GAP."""
+    return r["status"] != "optimal" and r["valid"] and r.get("gap") is not None and r["gap"] <= PROVEN_GAP
+
+
 def solved(r):
-    return (r["status"] == "optimal" and r["valid"]) or r["status"] == "infeasible"
+    return (r["status"] == "optimal" and r["valid"]) or r["status"] == "infeasible" or within_gap(r)
 
 
 def run_dirs(source):
@@ -71,6 +79,8 @@ def cell(r, d):
         return f"**optimal** {fmt(d['objective'])} in {t:.1f} s"
     if r["status"] == "infeasible":
         return f"**infeasible** (proven) in {t:.1f} s"
+    if within_gap(r):
+        return f"**optimal** {fmt(d['objective'])} in {t:.1f} s ({r['status']} at gap {r['gap']:.1e} ≤ 1e-4)"
     obj = d["objective"]
     gap = f", gap {100 * r['gap']:.1f} %" if r.get("gap") is not None and obj is not None else ""
     bound = f", bound {fmt(r['dual_bound'])}" if r.get("dual_bound") is not None and obj is not None else ""
@@ -141,8 +151,12 @@ def main():
     w("*our* city run found at the level before). The paper publishes no objective values, so no row")
     w("can be said to match or beat the paper's design: only times are set against the paper's, as a")
     w("ratio where we proved optimality. Objectives below are the design's own (recomputed by netspec")
-    w("from the network), not the formulation's surrogate; *optimal* means the solver's bound met the")
-    w("objective (gap ≤ 1e-4) and the design passed every check of the MILP and of the design.")
+    w("from the network), not the formulation's surrogate; *optimal* means the bound met the objective")
+    w("to netspec's own tolerance (1e-6 absolute or 1e-9 relative), or came within the target's gap of")
+    w("1e-4 (Gurobi's default `MIPGap`; the paper names no gap and says it also accepted sub-optimal")
+    w("designs within reasonable time limits; such cells name the status and the gap, and their time is")
+    w("the whole run's, so at least the time to the proof), and the design passed every check of the")
+    w("MILP and of the design.")
     w("")
     protocol = os.path.join(ROOT, "scripts/table1-protocol.md")
     if os.path.exists(protocol):
@@ -155,13 +169,15 @@ def main():
     w("Every run's record (`run.json`, `result.json`, `stdout.txt`) is in")
     w("[table1-runs/2026-12-01.tar.gz](table1-runs/2026-12-01.tar.gz), for the third session's")
     w("runs [table1-runs/2026-12-01b.tar.gz](table1-runs/2026-12-01b.tar.gz), for the fourth's")
-    w("[table1-runs/2026-12-02.tar.gz](table1-runs/2026-12-02.tar.gz) and for the fifth's")
-    w("[table1-runs/2026-12-02c.tar.gz](table1-runs/2026-12-02c.tar.gz) (each keeps the runs the next")
+    w("[table1-runs/2026-12-02.tar.gz](table1-runs/2026-12-02.tar.gz), for the fifth's")
+    w("[table1-runs/2026-12-02c.tar.gz](table1-runs/2026-12-02c.tar.gz) and for the sixth's")
+    w("[table1-runs/2026-12-02d.tar.gz](table1-runs/2026-12-02d.tar.gz) (each keeps the runs the next")
     w("replaces): extract the first into `out/`, remove its strong-recipe room rows and the paper")
     w("recipe's 1e, extract the second, remove its 1e (all three columns) and its strong-recipe")
     w("11b, extract the third, remove HiGHS/strong's rows of `models/table1-cuts.toml` and")
     w("SCIP/strong's rows of `models/table1-streets-l4.toml` and 2a–2g (also from `t1-scip-beside-highs/`),")
-    w("then extract the fifth, to resume these comparisons (a record with the same settings is")
+    w("then extract the fifth, remove both strong columns' rows of `models/table1-split.toml`, then")
+    w("extract the sixth, to resume these comparisons (a record with the same settings is")
     w("reused) or to report again.")
     w("")
     w("## Per row")
@@ -234,7 +250,7 @@ def main():
     for b in res["summary"]:
         c = b["solver"]
         mine = [by[(n, c)] for n in ran if (n, c) in by]
-        opt = [r for r in mine if r["status"] == "optimal" and r["valid"]]
+        opt = [r for r in mine if solved(r) and r["status"] != "infeasible"]
         inf = [r for r in mine if r["status"] == "infeasible"]
         valid = [r for r in mine if designs[(r["instance"], c)]["objective"] is not None]
         best_count = 0

@@ -8,6 +8,7 @@ use crate::heuristics::{self, Inputs};
 use crate::mesh::Mesh;
 use crate::milp::{check_point, objectives_agree, CheckReport, Model, ModelStats, Tolerances};
 use crate::rules::paths::PathSets;
+use crate::solvers::split::{solve_split, ObjectiveSplit, PhaseSolve, SplitReport};
 use crate::solvers::{LazyReport, LazyRow, Separator, SolveOptions, SolveResult, SolverError, SolverKind};
 use crate::spec::{Problem, Spec};
 use indexmap::IndexMap;
@@ -91,6 +92,10 @@ pub struct DesignResult {
     /// Lazily separated rows: how they were handled and how many were added.
     #[serde(default)]
     pub lazy: Option<LazyReport>,
+    /// The two-phase solve, when the objective's two scales called for it
+    /// ([`crate::solvers::split`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub split: Option<SplitReport>,
     /// The MIP start handed to the solver (or refused), if one was prepared.
     #[serde(default)]
     pub start: Option<StartReport>,
@@ -373,15 +378,35 @@ pub fn solve_from(p: &Problem, f: &Formulation, kind: SolverKind, options: &Solv
 /// validated and measured, and its objective recomputed from the design alone.
 pub fn solve_built(p: &Problem, f: &Formulation, kind: SolverKind, options: &SolveOptions) -> Result<DesignResult, SolverError> {
     let solver = kind.instance()?;
-    let (result, lazy_rows, lazy): (SolveResult, Vec<LazyRow>, Option<LazyReport>) = match f.separator() {
-        Some(sep) => {
-            let mut sep = sep.with_repair(Box::new(|x: &[f64]| repair_point(p, f, x)));
-            let ls = solver.solve_lazy(&f.model, &mut sep, options)?;
-            (ls.result, ls.rows, Some(ls.report))
-        }
-        None => (solver.solve(&f.model, options)?, Vec::new(), None),
+    let mut sep = f.separator().map(|sep| sep.with_repair(Box::new(|x: &[f64]| repair_point(p, f, x))));
+    let mut solve = |m: &Model, o: &SolveOptions| -> Result<PhaseSolve, SolverError> {
+        Ok(match sep.as_mut() {
+            Some(sep) => {
+                let ls = solver.solve_lazy(m, sep, o)?;
+                (ls.result, ls.rows, Some(ls.report))
+            }
+            None => (solver.solve(m, o)?, Vec::new(), None),
+        })
     };
-    checked_result(p, f, result, lazy, &lazy_rows)
+    let split = options
+        .mip_start
+        .as_ref()
+        .filter(|_| f.recipe.split_objective)
+        .and_then(|x| ObjectiveSplit::detect(&f.model).filter(|s| s.suits(&f.model, x)));
+    let (result, lazy_rows, lazy, split) = match split {
+        Some(split) => {
+            let polish = |x: &[f64]| f.encode(p, &f.decode(p, x)).ok();
+            let s = solve_split(&f.model, &split, options, &mut solve, polish)?;
+            (s.result, s.rows, s.lazy, Some(s.report))
+        }
+        None => {
+            let (r, rows, lazy) = solve(&f.model, options)?;
+            (r, rows, lazy, None)
+        }
+    };
+    let mut res = checked_result(p, f, result, lazy, &lazy_rows)?;
+    res.split = split;
+    Ok(res)
 }
 
 /// Checks a solver's result and builds the design result: every row and bound of the model
@@ -441,6 +466,7 @@ fn checked_result(p: &Problem, f: &Formulation, mut result: SolveResult, lazy: O
         formulation: f.recipe.label.clone(),
         big_m: f.big_m,
         lazy,
+        split: None,
         start: None,
         path_sets: f.path_sets.clone(),
         rooms,

@@ -349,6 +349,20 @@ fn print_summary(r: &DesignResult) {
             l.root_bounds.map_or(String::new(), |(a, b)| format!("; root LP {a:.4} → {b:.4} in {} cut rounds ({} slack rows left out)", l.root_rounds, l.root_rows_dropped))
         );
     }
+    if let Some(s) = &r.split {
+        let num = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.6}"));
+        let phase2 = s.phase2.as_ref().map_or("did not run".to_string(), |p| {
+            format!("{}, objective {}, bound {}, {:.2} s", p.termination, num(p.objective), num(p.dual_bound), p.wall_time)
+        });
+        println!(
+            "split      lattice {}: phase 1 (min the large terms) {}, {} ≥ bound {}, {:.2} s; phase 2 {phase2}",
+            s.quantum,
+            s.phase1.termination,
+            num(s.phase1.objective),
+            num(s.phase1.dual_bound),
+            s.phase1.wall_time
+        );
+    }
     println!("validity   {}", verdict(r));
     for v in r.validity.design_violations.iter().take(10) {
         println!("  {v}");

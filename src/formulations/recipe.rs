@@ -29,6 +29,10 @@ pub struct Recipe {
     pub big_m: BigMForm,
     /// Label bounds tied to the direction binaries.
     pub label_bounds: bool,
+    /// Solve in two phases when the objective has two scales ([`crate::solvers::split`]):
+    /// `strong` only.
+    #[serde(default)]
+    pub split_objective: bool,
 }
 
 impl Recipe {
@@ -47,7 +51,8 @@ impl Recipe {
             RecipeName::Strong => (C::Cutset, DistanceForm::Flow, CoverageForm::Strong, DeadEndForm::Degree, PathForm::Tight, BigMForm::Tight, true),
         };
         let rooms_connectivity = (name == RecipeName::Strong).then_some(C::Flow);
-        Recipe { name, label: name.name().to_string(), connectivity, rooms_connectivity, distance, coverage, dead_ends, paths, big_m, label_bounds }
+        let split_objective = name == RecipeName::Strong;
+        Recipe { name, label: name.name().to_string(), connectivity, rooms_connectivity, distance, coverage, dead_ends, paths, big_m, label_bounds, split_objective }
     }
 
     /// The recipe a spec asks for, with its overrides.
@@ -65,6 +70,7 @@ impl Recipe {
         r.paths = parts.paths.unwrap_or(r.paths);
         r.big_m = parts.big_m.unwrap_or(r.big_m);
         r.label_bounds = parts.label_bounds.unwrap_or(r.label_bounds);
+        r.split_objective = parts.split_objective.unwrap_or(r.split_objective);
         r
     }
 

@@ -20,6 +20,7 @@ mod scip_lazy;
 
 pub mod lazy;
 mod options;
+pub mod split;
 mod result;
 mod stop;
 

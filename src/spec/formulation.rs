@@ -152,6 +152,9 @@ pub struct FormulationParts {
     /// Valid label bounds tied to the direction binaries (labels only).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub label_bounds: Option<bool>,
+    /// The two-phase solve for objectives in two scales (`solvers::split`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub split_objective: Option<bool>,
 }
 
 /// The `formulation` key: a recipe name or a table of parts.
@@ -210,6 +213,7 @@ impl FormulationSpec {
         push("paths", p.paths.map(|v| s(&v)));
         push("big_m", p.big_m.map(|v| s(&v)));
         push("label_bounds", p.label_bounds.map(|v| v.to_string()));
+        push("split_objective", p.split_objective.map(|v| v.to_string()));
         if over.is_empty() {
             p.recipe.name().to_string()
         } else {
