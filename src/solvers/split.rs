@@ -348,6 +348,72 @@ mod tests {
         assert!(!s.suits(&big, &[0.0, 0.0, 0.0, 3000.0, 1.0]), "S = 0.3 is more than half of q = 0.5 above its floor");
     }
 
+    /// A scripted solve: phase 1 (the model whose small terms cost nothing) returns `phase1`,
+    /// phase 2 returns `phase2`; every model it was given is kept.
+    fn scripted(phase1: Option<(Vec<f64>, f64)>, phase2: Option<(Vec<f64>, f64, Termination)>, seen: &mut Vec<Model>) -> impl FnMut(&Model, &SolveOptions) -> Result<PhaseSolve, SolverError> + '_ {
+        move |m: &Model, _: &SolveOptions| {
+            seen.push(m.clone());
+            let mut r = SolveResult::empty(crate::solvers::SolverKind::Microlp, "scripted".into(), Termination::Limit(crate::solvers::LimitKind::Time));
+            if m.var(VarId(3)).obj == 0.0 {
+                if let Some((x, bound)) = &phase1 {
+                    r.objective = Some(m.objective_value(x));
+                    r.primal = Some(x.clone());
+                    r.dual_bound = Some(*bound);
+                }
+            } else if let Some((x, bound, t)) = &phase2 {
+                r.termination = t.clone();
+                r.objective = Some(m.objective_value(x));
+                r.primal = Some(x.clone());
+                r.dual_bound = Some(*bound);
+            }
+            Ok((r, Vec::new(), None))
+        }
+    }
+
+    #[test]
+    fn solve_split_combines_the_phases_bounds() {
+        let m = two_scales(VarKind::Integer);
+        let s = ObjectiveSplit::detect(&m).unwrap();
+        let o = SolveOptions { mip_start: Some(vec![3.0, 1.0, 0.0, 10.0, 10.0]), ..SolveOptions::default() };
+        // Phase 1: a design with P = 7 and the scaled bound 13.2 (P ≥ 6.6, so P ≥ 7 on the
+        // lattice); its small terms re-derived by `polish` (u = 0, w = 1: S = 2e-4).
+        let x1 = vec![1.0, 1.0, 2.0, 10.0, 10.0];
+        let polish = |x: &[f64]| Some(vec![x[0], x[1], x[2], 0.0, 1.0]);
+        // Phase 2 ends without a design and with a weak bound of its own.
+        let mut seen = Vec::new();
+        let out = solve_split(&m, &s, &o, scripted(Some((x1.clone(), 13.2)), None, &mut seen), polish).unwrap();
+        assert_eq!(out.report.phase1.dual_bound, Some(7.0));
+        assert_eq!(out.report.phase1.objective, Some(7.0));
+        let m2 = &seen[1];
+        let row = m2.row(crate::milp::RowId(m2.num_rows() as u32 - 1));
+        assert_eq!(row.name, "split_primary");
+        assert!((row.lhs - 7.0).abs() < 1e-6 && (row.rhs - 7.0).abs() < 1e-6, "P held at 7: [{}, {}]", row.lhs, row.rhs);
+        // The polished design (better than the start, whose P = 8 is outside [7, 7]) is returned,
+        // and the bound is P ≥ 7 plus the small terms' floor: the design is proven.
+        assert_eq!(out.result.primal.as_deref(), Some(&[1.0, 1.0, 2.0, 0.0, 1.0][..]));
+        assert!((out.result.objective.unwrap() - 7.0002).abs() < 1e-12);
+        assert!((out.result.dual_bound.unwrap() - 7.0002).abs() < 1e-12);
+        // Phase 2's bound holds only for P ≤ P₁: the result's bound is capped at P₁ + q + S_min,
+        // all that is known of the designs with P ≥ P₁ + q.
+        let costly = vec![1.0, 1.0, 2.0, 10.0, 10.0];
+        let mut seen = Vec::new();
+        let out = solve_split(&m, &s, &o, scripted(Some((x1.clone(), 14.0)), Some((costly.clone(), 9.0, Termination::Optimal)), &mut seen), |_: &[f64]| None).unwrap();
+        assert!((out.result.dual_bound.unwrap() - 7.5002).abs() < 1e-12, "{:?}", out.result.dual_bound);
+        assert_eq!(out.result.primal.as_deref(), Some(&costly[..]));
+        // Phase 1 without a design: no phase 2, the bound is phase 1's on P plus S's floor.
+        let mut seen = Vec::new();
+        let out = solve_split(&m, &s, &o, |mm: &Model, oo: &SolveOptions| {
+            let mut f = scripted(None, None, &mut seen);
+            let (mut r, rows, lazy) = f(mm, oo)?;
+            r.dual_bound = Some(12.4);
+            Ok((r, rows, lazy))
+        }, |_: &[f64]| None)
+        .unwrap();
+        assert!(out.report.phase2.is_none());
+        assert!(out.result.primal.is_none());
+        assert!((out.result.dual_bound.unwrap() - 6.5002).abs() < 1e-12, "{:?}", out.result.dual_bound);
+    }
+
     #[test]
     fn round_up_tolerates_noise() {
         let s = ObjectiveSplit { quantum: 0.5, primary: vec![], secondary_floor: 0.0 };
