@@ -361,7 +361,7 @@ pub fn solve_from(p: &Problem, f: &Formulation, kind: SolverKind, options: &Solv
             solve.objective = Some(f.model.objective_value(&x));
             solve.primal = Some(x);
             solve.finish(f.model.sense);
-            let mut again = checked_result(p, f, solve, res.lazy.clone(), &[])?;
+            let mut again = checked_result(p, f, solve, res.lazy.clone(), res.split.clone(), &[])?;
             again.solve.wall_time = res.solve.wall_time;
             report.returned = true;
             res = again;
@@ -404,15 +404,20 @@ pub fn solve_built(p: &Problem, f: &Formulation, kind: SolverKind, options: &Sol
             (r, rows, lazy, None)
         }
     };
-    let mut res = checked_result(p, f, result, lazy, &lazy_rows)?;
-    res.split = split;
-    Ok(res)
+    checked_result(p, f, result, lazy, split, &lazy_rows)
 }
 
 /// Checks a solver's result and builds the design result: every row and bound of the model
 /// and every separated row at the point, the decoded network validated and measured, its
 /// objective recomputed from the design alone.
-fn checked_result(p: &Problem, f: &Formulation, mut result: SolveResult, lazy: Option<LazyReport>, lazy_rows: &[LazyRow]) -> Result<DesignResult, SolverError> {
+fn checked_result(
+    p: &Problem,
+    f: &Formulation,
+    mut result: SolveResult,
+    lazy: Option<LazyReport>,
+    split: Option<SplitReport>,
+    lazy_rows: &[LazyRow],
+) -> Result<DesignResult, SolverError> {
     let mut validity = Validity { valid: false, design_violations: Vec::new(), milp_check: None, objective_recomputed: None, objective_agrees: None };
     let mut net = None;
     let mut metrics = None;
@@ -466,7 +471,7 @@ fn checked_result(p: &Problem, f: &Formulation, mut result: SolveResult, lazy: O
         formulation: f.recipe.label.clone(),
         big_m: f.big_m,
         lazy,
-        split: None,
+        split,
         start: None,
         path_sets: f.path_sets.clone(),
         rooms,

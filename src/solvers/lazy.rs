@@ -125,6 +125,19 @@ impl LazyReport {
     }
 }
 
+impl std::ops::AddAssign<&LazyReport> for LazyReport {
+    /// Adds the counts and seconds of a later solve with the same separator (the two phases of
+    /// [`crate::solvers::split`]); the root bounds stay this report's.
+    fn add_assign(&mut self, later: &LazyReport) {
+        self.rounds += later.rounds;
+        self.rows_added += later.rows_added;
+        self.separation_seconds += later.separation_seconds;
+        self.repaired_starts += later.repaired_starts;
+        self.root_rounds += later.root_rounds;
+        self.root_rows_dropped += later.root_rows_dropped;
+    }
+}
+
 /// A solve with lazy rows: the result, the rows added, and the report.
 #[derive(Clone, Debug)]
 pub struct LazySolve {

@@ -114,11 +114,12 @@ impl ObjectiveSplit {
 /// The largest `q = g/d` (`d ≤ 1000`) of which every coefficient is an integer multiple.
 fn lattice_step(coefs: &[f64]) -> Option<f64> {
     (1..=MAX_DENOMINATOR).find_map(|d| {
-        let scaled: Vec<f64> = coefs.iter().map(|c| (c * d as f64).abs()).collect();
-        if scaled.iter().any(|s| (s - s.round()).abs() > 1e-9 * s.max(1.0) || s.round() > 1e12) {
-            return None;
-        }
-        let g = scaled.iter().map(|s| s.round() as u64).fold(0, gcd);
+        // The gcd of the coefficients times d, or None at the first one that is not an integer.
+        let g = coefs.iter().try_fold(0, |g, c| {
+            let s = (c * d as f64).abs();
+            let n = s.round();
+            ((s - n).abs() <= 1e-9 * s.max(1.0) && n <= 1e12).then(|| gcd(g, n as u64))
+        })?;
         (g > 0).then(|| g as f64 / d as f64)
     })
 }
@@ -144,6 +145,14 @@ pub struct PhaseReport {
     pub nodes: Option<u64>,
     /// Wall time, seconds.
     pub wall_time: f64,
+}
+
+impl PhaseReport {
+    /// The report of a phase that ended with `r`, its objective and bound given in the phase's
+    /// own terms.
+    fn new(r: &SolveResult, objective: Option<f64>, dual_bound: Option<f64>, since: Instant) -> PhaseReport {
+        PhaseReport { termination: r.termination.clone(), objective, dual_bound, nodes: r.nodes, wall_time: since.elapsed().as_secs_f64() }
+    }
 }
 
 /// What the split did ([`solve_split`]).
@@ -179,7 +188,7 @@ pub type PhaseSolve = (SolveResult, Vec<LazyRow>, Option<LazyReport>);
 /// Runs the split ([module docs](self)) with `solve` for each phase (a plain or a lazy solve)
 /// and `polish` to re-derive the continuous part of phase 1's design for phase 2's start.
 /// Phase 1 gets [`PHASE1_SHARE`] of the time limit; an infeasible phase 1 or one without a
-/// design ends the split with phase 1's result (its objective then the original one).
+/// design ends the split with phase 1's result (no design; its bound on `P` plus `S_min`).
 pub fn solve_split(
     model: &Model,
     split: &ObjectiveSplit,
@@ -193,25 +202,25 @@ pub fn solve_split(
     let m1 = split.phase1_model(model);
     let mut o1 = o.clone();
     o1.time_limit = o.finite_time_limit().map(|l| PHASE1_SHARE * l);
-    let (r1, mut rows, lazy1) = solve(&m1, &o1)?;
+    let (mut r1, mut rows, mut lazy) = solve(&m1, &o1)?;
     let q = split.quantum;
-    let p1 = r1.primal.as_ref().map(|x| split.primary_value(x));
     let b1 = r1.dual_bound.map(|b| split.round_up(b * q));
     let mut report = SplitReport {
         quantum: q,
         secondary_floor: split.secondary_floor,
-        phase1: PhaseReport { termination: r1.termination.clone(), objective: p1, dual_bound: b1, nodes: r1.nodes, wall_time: t0.elapsed().as_secs_f64() },
+        phase1: PhaseReport::new(&r1, r1.primal.as_ref().map(|x| split.primary_value(x)), b1, t0),
         phase2: None,
     };
-    let (Some(x1), Some(p1)) = (r1.primal.clone(), p1) else {
+    let Some(x1) = r1.primal.take() else {
         let mut r = r1;
-        r.objective = r.primal.as_ref().map(|x| model.objective_value(x));
+        r.objective = None;
         // P ≥ b₁ holds for every design, and S ≥ its least value.
         r.dual_bound = b1.map(|b| b + split.secondary_floor);
         r.finish(model.sense);
         r.wall_time = t0.elapsed().as_secs_f64();
-        return Ok(SplitSolve { result: r, rows, lazy: lazy1, report });
+        return Ok(SplitSolve { result: r, rows, lazy, report });
     };
+    let p1 = split.primary_value(&x1);
     // Phase 2: the original objective with P held in [b₁, P₁], plus phase 1's lazy rows.
     let mut m2 = model.clone();
     for r in &rows {
@@ -220,19 +229,26 @@ pub fn solve_split(
     let slack = |v: f64| 1e-7 * v.abs().max(1.0);
     let lo = b1.unwrap_or(f64::NEG_INFINITY).min(p1);
     m2.add_row("split_primary", lo - slack(lo), p1 + slack(p1), split.primary.iter().copied());
-    let x1 = polish(&x1).filter(|y| check_point(&m2, y, &tol).is_feasible() && model.objective_value(y) <= model.objective_value(&x1)).unwrap_or(x1);
-    let in_m2 = |x: &Vec<f64>| check_point(&m2, x, &tol).is_feasible();
-    let start = match o.mip_start.as_ref().filter(|x| in_m2(x)) {
-        Some(s) if model.objective_value(s) < model.objective_value(&x1) => s.clone(),
-        _ => x1.clone(),
-    };
+    // The start: the best of phase 1's design with its continuous part re-derived, that design,
+    // and the original start, among those phase 2's model holds (the first of equals).
+    let start = [polish(&x1), Some(x1.clone()), o.mip_start.clone()]
+        .into_iter()
+        .flatten()
+        .filter(|x| check_point(&m2, x, &tol).is_feasible())
+        .map(|x| (model.objective_value(&x), x))
+        .min_by(|a, b| a.0.total_cmp(&b.0))
+        .map_or(x1, |(_, x)| x);
     let mut o2 = o.clone();
     o2.time_limit = left(o);
     o2.mip_start = Some(start.clone());
     let t2 = Instant::now();
     let (mut r, rows2, lazy2) = solve(&m2, &o2)?;
-    report.phase2 = Some(PhaseReport { termination: r.termination.clone(), objective: r.objective, dual_bound: r.dual_bound, nodes: r.nodes, wall_time: t2.elapsed().as_secs_f64() });
+    report.phase2 = Some(PhaseReport::new(&r, r.objective, r.dual_bound, t2));
     rows.extend(rows2);
+    match (&mut lazy, lazy2) {
+        (Some(a), Some(b)) => *a += &b,
+        (a, b) => *a = a.take().or(b),
+    }
     if r.primal.is_none() || r.objective.is_some_and(|z| z > model.objective_value(&start)) {
         r.objective = Some(model.objective_value(&start));
         r.primal = Some(start);
@@ -254,23 +270,7 @@ pub fn solve_split(
     r.mip_start = r1.mip_start;
     r.finish(model.sense);
     r.wall_time = t0.elapsed().as_secs_f64();
-    Ok(SplitSolve { result: r, rows, lazy: merge(lazy1, lazy2), report })
-}
-
-/// Two phases' lazy reports as one (counts and seconds summed; the root bounds are phase 1's).
-fn merge(a: Option<LazyReport>, b: Option<LazyReport>) -> Option<LazyReport> {
-    match (a, b) {
-        (Some(mut a), Some(b)) => {
-            a.rounds += b.rounds;
-            a.rows_added += b.rows_added;
-            a.separation_seconds += b.separation_seconds;
-            a.repaired_starts += b.repaired_starts;
-            a.root_rounds += b.root_rounds;
-            a.root_rows_dropped += b.root_rows_dropped;
-            Some(a)
-        }
-        (a, b) => a.or(b),
-    }
+    Ok(SplitSolve { result: r, rows, lazy, report })
 }
 
 #[cfg(test)]
