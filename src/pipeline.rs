@@ -9,7 +9,7 @@ use crate::mesh::Mesh;
 use crate::milp::{check_point, objectives_agree, CheckReport, Model, ModelStats, Tolerances};
 use crate::rules::paths::PathSets;
 use crate::solvers::split::{solve_split, ObjectiveSplit, PhaseSolve, SplitReport};
-use crate::solvers::{LazyReport, LazyRow, Separator, SolveOptions, SolveResult, SolverError, SolverKind};
+use crate::solvers::{LazyReport, LazyRow, RawParam, Separator, SolveOptions, SolveResult, SolverError, SolverKind};
 use crate::spec::{Problem, Spec};
 use indexmap::IndexMap;
 use serde::{Deserialize, Serialize};
@@ -96,6 +96,10 @@ pub struct DesignResult {
     /// ([`crate::solvers::split`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub split: Option<SplitReport>,
+    /// The recipe's solver settings handed to the backend (`highs.mip_pscost_minreliable=0`;
+    /// [`crate::formulations::Recipe::solver_hints`]), beside the user's own.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub solver_hints: Vec<String>,
     /// The MIP start handed to the solver (or refused), if one was prepared.
     #[serde(default)]
     pub start: Option<StartReport>,
@@ -361,7 +365,8 @@ pub fn solve_from(p: &Problem, f: &Formulation, kind: SolverKind, options: &Solv
             solve.objective = Some(f.model.objective_value(&x));
             solve.primal = Some(x);
             solve.finish(f.model.sense);
-            let mut again = checked_result(p, f, solve, res.lazy.clone(), res.split.clone(), &[])?;
+            let reports = Reports { lazy: res.lazy.clone(), split: res.split.clone(), solver_hints: res.solver_hints.clone() };
+            let mut again = checked_result(p, f, solve, reports, &[])?;
             again.solve.wall_time = res.solve.wall_time;
             report.returned = true;
             res = again;
@@ -378,6 +383,8 @@ pub fn solve_from(p: &Problem, f: &Formulation, kind: SolverKind, options: &Solv
 /// validated and measured, and its objective recomputed from the design alone.
 pub fn solve_built(p: &Problem, f: &Formulation, kind: SolverKind, options: &SolveOptions) -> Result<DesignResult, SolverError> {
     let solver = kind.instance()?;
+    let (tuned, solver_hints) = with_solver_hints(options, &f.recipe.solver_hints(kind));
+    let options = &tuned;
     let mut sep = f.separator().map(|sep| sep.with_repair(Box::new(|x: &[f64]| repair_point(p, f, x))));
     let mut solve = |m: &Model, o: &SolveOptions| -> Result<PhaseSolve, SolverError> {
         Ok(match sep.as_mut() {
@@ -404,7 +411,24 @@ pub fn solve_built(p: &Problem, f: &Formulation, kind: SolverKind, options: &Sol
             (r, rows, lazy, None)
         }
     };
-    checked_result(p, f, result, lazy, split, &lazy_rows)
+    checked_result(p, f, result, Reports { lazy, split, solver_hints }, &lazy_rows)
+}
+
+/// `options` with the recipe's solver `hints` put before the user's parameters, leaving out a
+/// hint whose parameter the user sets (theirs wins); and the hints used, as `highs.name=value`.
+fn with_solver_hints(options: &SolveOptions, hints: &[RawParam]) -> (SolveOptions, Vec<String>) {
+    let used: Vec<RawParam> = hints.iter().filter(|h| !options.params.iter().any(|p| p.solver == h.solver && p.name == h.name)).cloned().collect();
+    let names = used.iter().map(|h| h.to_string()).collect();
+    let mut o = options.clone();
+    o.params = used.into_iter().chain(options.params.iter().cloned()).collect();
+    (o, names)
+}
+
+/// What a solve did besides its result, carried into the design result.
+struct Reports {
+    lazy: Option<LazyReport>,
+    split: Option<SplitReport>,
+    solver_hints: Vec<String>,
 }
 
 /// Checks a solver's result and builds the design result: every row and bound of the model
@@ -414,10 +438,10 @@ fn checked_result(
     p: &Problem,
     f: &Formulation,
     mut result: SolveResult,
-    lazy: Option<LazyReport>,
-    split: Option<SplitReport>,
+    reports: Reports,
     lazy_rows: &[LazyRow],
 ) -> Result<DesignResult, SolverError> {
+    let Reports { lazy, split, solver_hints } = reports;
     let mut validity = Validity { valid: false, design_violations: Vec::new(), milp_check: None, objective_recomputed: None, objective_agrees: None };
     let mut net = None;
     let mut metrics = None;
@@ -472,9 +496,58 @@ fn checked_result(
         big_m: f.big_m,
         lazy,
         split,
+        solver_hints,
         start: None,
         path_sets: f.path_sets.clone(),
         rooms,
         primal_point,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn param(solver: SolverKind, name: &str, value: &str) -> RawParam {
+        RawParam { solver, name: name.into(), value: value.into() }
+    }
+
+    /// The hints go first, so a backend that applies parameters in order lets the user's win;
+    /// a hint the user sets by name is left out and not reported; another backend's parameter
+    /// of the same name does not count.
+    #[test]
+    fn solver_hints_yield_to_the_users_parameters() {
+        let hint = param(SolverKind::Highs, "mip_pscost_minreliable", "0");
+        let user = SolveOptions { params: vec![param(SolverKind::Highs, "mip_heuristic_effort", "0.1")], ..Default::default() };
+        let (o, used) = with_solver_hints(&user, std::slice::from_ref(&hint));
+        assert_eq!(o.params, vec![hint.clone(), user.params[0].clone()]);
+        assert_eq!(used, vec!["highs.mip_pscost_minreliable=0".to_string()]);
+
+        let own = SolveOptions { params: vec![param(SolverKind::Highs, "mip_pscost_minreliable", "8")], ..Default::default() };
+        let (o, used) = with_solver_hints(&own, std::slice::from_ref(&hint));
+        assert_eq!(o.params, own.params);
+        assert!(used.is_empty());
+
+        let other = SolveOptions { params: vec![param(SolverKind::Scip, "mip_pscost_minreliable", "8")], ..Default::default() };
+        let (o, used) = with_solver_hints(&other, std::slice::from_ref(&hint));
+        assert_eq!(o.params, vec![hint, other.params[0].clone()]);
+        assert_eq!(used.len(), 1);
+    }
+
+    /// Only `strong` on HiGHS has a hint, and `solver_tuning = false` removes it.
+    #[test]
+    fn only_the_strong_recipe_on_highs_is_tuned() {
+        use crate::formulations::Recipe;
+        use crate::spec::RecipeName;
+        let strong = Recipe::named(RecipeName::Strong);
+        assert_eq!(strong.solver_hints(SolverKind::Highs).iter().map(|h| h.to_string()).collect::<Vec<_>>(), ["highs.mip_pscost_minreliable=0"]);
+        for k in [SolverKind::Scip, SolverKind::Cbc, SolverKind::Microlp] {
+            assert!(strong.solver_hints(k).is_empty(), "{k}");
+        }
+        for name in [RecipeName::Paper, RecipeName::Tight] {
+            assert!(Recipe::named(name).solver_hints(SolverKind::Highs).is_empty(), "{name:?}");
+        }
+        let off = Recipe { solver_tuning: false, ..strong };
+        assert!(off.solver_hints(SolverKind::Highs).is_empty());
+    }
 }

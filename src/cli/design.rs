@@ -363,6 +363,9 @@ fn print_summary(r: &DesignResult) {
             s.phase1.wall_time
         );
     }
+    if !r.solver_hints.is_empty() {
+        println!("tuning     {} (the recipe's; `solver_tuning = false` in [formulation] or your own --param replaces it)", r.solver_hints.join(", "));
+    }
     println!("validity   {}", verdict(r));
     for v in r.validity.design_violations.iter().take(10) {
         println!("  {v}");

@@ -155,6 +155,9 @@ pub struct FormulationParts {
     /// The two-phase solve for objectives in two scales (`solvers::split`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub split_objective: Option<bool>,
+    /// The recipe's measured solver settings (`Recipe::solver_hints`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub solver_tuning: Option<bool>,
 }
 
 /// The `formulation` key: a recipe name or a table of parts.
@@ -214,6 +217,7 @@ impl FormulationSpec {
         push("big_m", p.big_m.map(|v| s(&v)));
         push("label_bounds", p.label_bounds.map(|v| v.to_string()));
         push("split_objective", p.split_objective.map(|v| v.to_string()));
+        push("solver_tuning", p.solver_tuning.map(|v| v.to_string()));
         if over.is_empty() {
             p.recipe.name().to_string()
         } else {
