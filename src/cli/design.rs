@@ -346,7 +346,12 @@ fn print_summary(r: &DesignResult) {
             l.rounds,
             l.rows_added,
             l.separation_seconds,
-            l.root_bounds.map_or(String::new(), |(a, b)| format!("; root LP {a:.4} → {b:.4} in {} cut rounds ({} slack rows left out)", l.root_rounds, l.root_rows_dropped))
+            l.root_bounds.map_or(String::new(), |(a, b)| format!(
+                "; root LP {a:.4} → {b:.4} in {} cut rounds{} ({} slack rows left out)",
+                l.root_rounds,
+                if l.warm_root_rounds { ", each from the last basis" } else { "" },
+                l.root_rows_dropped
+            ))
         );
     }
     if let Some(s) = &r.split {

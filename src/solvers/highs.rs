@@ -5,7 +5,7 @@
 //! HiGHS is compiled into the binary (vendored source), so it is the default backend.
 
 use super::stop::StopControl;
-use super::{guarded_solve, Capabilities, LimitKind, LogTarget, Progress, ProgressSink, SolveOptions, SolveResult, Solver, SolverError, SolverErrorKind, SolverKind, Termination};
+use super::{guarded_solve, Capabilities, LazyRow, LimitKind, LogTarget, LpSession, Progress, ProgressSink, SolveOptions, SolveResult, Solver, SolverError, SolverErrorKind, SolverKind, Termination};
 use crate::milp::{Model, Sense};
 use highs_sys as sys;
 use std::ffi::{CStr, CString};
@@ -213,6 +213,12 @@ static SCHEDULER_THREADS: RwLock<u32> = RwLock::new(0);
 /// the first solve; a solve that asks for a different count resets it, under an exclusive lock
 /// so that no other HiGHS solve is running meanwhile. Solves that keep the count share the lock.
 fn run_with_threads(m: highs::Model, threads: Option<u32>) -> Result<highs::SolvedModel, highs::HighsStatus> {
+    with_scheduler(threads, || m.try_solve())
+}
+
+/// Runs `run` (a HiGHS solve) under the scheduler lock, resetting HiGHS's global scheduler
+/// first when `threads` differs from its count (see [`run_with_threads`]).
+fn with_scheduler<R>(threads: Option<u32>, run: impl FnOnce() -> R) -> R {
     let current = *SCHEDULER_THREADS.read().unwrap_or_else(|e| e.into_inner());
     match threads {
         Some(t) if t != current => {
@@ -222,11 +228,11 @@ fn run_with_threads(m: highs::Model, threads: Option<u32>) -> Result<highs::Solv
                 unsafe { sys::Highs_resetGlobalScheduler(1) };
                 *guard = t;
             }
-            m.try_solve()
+            run()
         }
         _ => {
             let _shared = SCHEDULER_THREADS.read().unwrap_or_else(|e| e.into_inner());
-            m.try_solve()
+            run()
         }
     }
 }
@@ -323,6 +329,101 @@ impl Solver for HighsSolver {
 
     fn solve(&self, model: &Model, o: &SolveOptions) -> Result<SolveResult, SolverError> {
         guarded_solve(self, model, o, |o, ctl| native(model, o, ctl))
+    }
+
+    fn lp_session(&self, model: &Model, o: &SolveOptions) -> Result<Option<Box<dyn LpSession>>, SolverError> {
+        model.validate().map_err(|e| SolverError::new(KIND, e))?;
+        if model.is_mip() {
+            return Err(rejected("an LP session needs a model without integer variables"));
+        }
+        let mut m = load(model)?;
+        m.make_quiet();
+        if let Some(t) = o.threads {
+            set(&mut m, "threads", t as i32)?;
+        }
+        Ok(Some(Box::new(HighsLp { m, threads: o.threads, cols: model.num_vars(), obj_constant: model.obj_constant })))
+    }
+}
+
+/// An LP kept in a HiGHS instance between solves ([`Solver::lp_session`]): rows added with
+/// `Highs_addRows` leave the basis valid (the new rows' slacks enter it), so the next
+/// `Highs_run` goes on with the dual simplex from there instead of presolving and solving anew.
+struct HighsLp {
+    m: highs::Model,
+    threads: Option<u32>,
+    cols: usize,
+    obj_constant: f64,
+}
+
+impl LpSession for HighsLp {
+    fn add_rows(&mut self, rows: &[LazyRow]) -> Result<(), SolverError> {
+        let (mut lower, mut upper, mut starts, mut index, mut value) = (Vec::new(), Vec::new(), Vec::new(), Vec::new(), Vec::new());
+        for r in rows {
+            starts.push(index.len() as sys::HighsInt);
+            lower.push(r.lhs);
+            upper.push(r.rhs);
+            for &(v, c) in &r.terms {
+                if v.index() >= self.cols {
+                    return Err(rejected(format!("row `{}` names column {} of a session with {}", r.name, v.index(), self.cols)));
+                }
+                index.push(v.index() as sys::HighsInt);
+                value.push(c);
+            }
+        }
+        // SAFETY: live instance; the arrays hold `rows.len()` sides and starts and `index.len()`
+        // entries, every index a column of the instance.
+        let st = unsafe {
+            sys::Highs_addRows(
+                self.m.as_mut_ptr(),
+                rows.len() as sys::HighsInt,
+                lower.as_ptr(),
+                upper.as_ptr(),
+                index.len() as sys::HighsInt,
+                starts.as_ptr(),
+                index.as_ptr(),
+                value.as_ptr(),
+            )
+        };
+        if st == sys::STATUS_ERROR {
+            return Err(rejected("Highs_addRows refused the rows"));
+        }
+        Ok(())
+    }
+
+    fn solve(&mut self, time_limit: Option<f64>) -> Result<SolveResult, SolverError> {
+        let ptr = self.m.as_mut_ptr();
+        // HiGHS's run clock accumulates over runs and its time limit is read against it: zero
+        // it so that the limit is this solve's.
+        // SAFETY: live instance.
+        unsafe { sys::Highs_zeroAllClocks(ptr) };
+        set(&mut self.m, "time_limit", time_limit.unwrap_or(f64::INFINITY))?;
+        // SAFETY: live instance; the scheduler lock is held by `with_scheduler`.
+        let st = with_scheduler(self.threads, || unsafe { sys::Highs_run(ptr) });
+        let version = highs_version();
+        if st == sys::STATUS_ERROR {
+            return Ok(SolveResult::empty(KIND, version, Termination::Error("Highs_run failed on the LP".into())));
+        }
+        // SAFETY: live instance.
+        let status = unsafe { sys::Highs_getModelStatus(ptr) };
+        let mut r = SolveResult::empty(KIND, version, termination(status, &SolveOptions::default()));
+        if info_int(ptr, c"primal_solution_status") == Some(sys::SOLUTION_STATUS_FEASIBLE as i64) {
+            let mut x = vec![0.0; self.cols];
+            // SAFETY: live instance; `x` has one slot per column, the other outputs are null.
+            unsafe { sys::Highs_getSolution(ptr, x.as_mut_ptr(), std::ptr::null_mut(), std::ptr::null_mut(), std::ptr::null_mut()) };
+            r.primal = Some(x);
+            // SAFETY: live instance.
+            r.objective = Some(unsafe { sys::Highs_getObjectiveValue(ptr) });
+        } else if self.cols == 0 && r.termination == Termination::Optimal {
+            r.primal = Some(Vec::new());
+            r.objective = Some(self.obj_constant);
+        }
+        if r.termination == Termination::Optimal {
+            r.dual_bound = r.objective;
+        }
+        r.nodes = Some(0);
+        // SAFETY: live instance.
+        r.solver_time = Some(unsafe { sys::Highs_getRunTime(ptr) });
+        Ok(r)
     }
 }
 

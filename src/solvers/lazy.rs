@@ -116,12 +116,16 @@ pub struct LazyReport {
     /// at the last LP point (still valid, and still checked; part of `rows_added`).
     #[serde(default)]
     pub root_rows_dropped: usize,
+    /// Loop: whether the root rounds kept the LP loaded in the backend, each round starting
+    /// from the last basis ([`Solver::lp_session`]); `false` when each was solved from scratch.
+    #[serde(default)]
+    pub warm_root_rounds: bool,
 }
 
 impl LazyReport {
     /// A report with nothing done yet.
     pub fn new(separator: String, mode: LazyMode) -> LazyReport {
-        LazyReport { separator, mode, rounds: 0, rows_added: 0, separation_seconds: 0.0, repaired_starts: 0, root_rounds: 0, root_bounds: None, root_rows_dropped: 0 }
+        LazyReport { separator, mode, rounds: 0, rows_added: 0, separation_seconds: 0.0, repaired_starts: 0, root_rounds: 0, root_bounds: None, root_rows_dropped: 0, warm_root_rounds: false }
     }
 }
 
@@ -135,6 +139,7 @@ impl std::ops::AddAssign<&LazyReport> for LazyReport {
         self.repaired_starts += later.repaired_starts;
         self.root_rounds += later.root_rounds;
         self.root_rows_dropped += later.root_rows_dropped;
+        self.warm_root_rounds |= later.warm_root_rounds;
     }
 }
 
@@ -287,17 +292,36 @@ fn root_rounds<S: Solver + ?Sized>(
     let base = work.clone();
     let start = rows.len();
     let mut last_point: Option<(Vec<f64>, usize)> = None;
+    let relax = |m: &Model| {
+        let mut relaxed = m.clone();
+        for j in 0..relaxed.num_vars() {
+            relaxed.var_mut(VarId(j as u32)).kind = crate::milp::VarKind::Continuous;
+        }
+        relaxed
+    };
+    let lp_options = SolveOptions { log: super::LogTarget::Quiet, threads: o.threads, interrupt: o.interrupt.clone(), ..SolveOptions::default() };
+    // The LP kept loaded between rounds, when the backend can (each round then starts from the
+    // last basis); a session that fails is dropped and the rounds go on from scratch.
+    let mut session = solver.lp_session(&relax(work), &lp_options).ok().flatten();
+    report.warm_root_rounds = session.is_some();
     for _ in 0..MAX_ROOT_ROUNDS {
         if budget.is_some_and(|b| t0.elapsed().as_secs_f64() >= b) || o.interrupt.as_ref().is_some_and(|i| i.is_triggered()) {
             break;
         }
-        let mut relaxed = work.clone();
-        for j in 0..relaxed.num_vars() {
-            relaxed.var_mut(VarId(j as u32)).kind = crate::milp::VarKind::Continuous;
-        }
-        let mut oi = SolveOptions { log: super::LogTarget::Quiet, threads: o.threads, interrupt: o.interrupt.clone(), ..SolveOptions::default() };
-        oi.time_limit = budget.map(|b| (b - t0.elapsed().as_secs_f64()).max(0.0));
-        let r = solver.solve(&relaxed, &oi)?;
+        let time_left = budget.map(|b| (b - t0.elapsed().as_secs_f64()).max(0.0));
+        let warm = match session.as_mut().map(|s| s.solve(time_left)) {
+            Some(Ok(r)) => Some(r),
+            Some(Err(_)) => {
+                session = None;
+                report.warm_root_rounds = false;
+                None
+            }
+            None => None,
+        };
+        let r = match warm {
+            Some(r) => r,
+            None => solver.solve(&relax(work), &SolveOptions { time_limit: time_left, ..lp_options.clone() })?,
+        };
         let (Some(x), Some(obj)) = (r.primal, r.objective) else { break };
         if r.termination != Termination::Optimal {
             break;
@@ -325,6 +349,10 @@ fn root_rounds<S: Solver + ?Sized>(
         report.rows_added += cuts.len();
         for c in &cuts {
             c.add_to(work);
+        }
+        if session.as_mut().is_some_and(|s| s.add_rows(&cuts).is_err()) {
+            session = None;
+            report.warm_root_rounds = false;
         }
         rows.extend(cuts);
     }

@@ -51,6 +51,23 @@ pub trait Solver {
     fn solve_lazy(&self, model: &Model, separator: &mut dyn Separator, options: &SolveOptions) -> Result<LazySolve, SolverError> {
         lazy::solve_loop(self, model, separator, options)
     }
+    /// An LP `model` (every variable continuous) loaded once for repeated solves, rows added
+    /// between them and each solve starting from the last one's basis: the cutting-plane
+    /// rounds at the root ([`lazy::solve_loop`]) use it. `None` when the backend cannot keep
+    /// a basis between solves (the default); the rounds then solve each LP from scratch with
+    /// [`Solver::solve`]. Only `threads` of `options` is used.
+    fn lp_session(&self, _model: &Model, _options: &SolveOptions) -> Result<Option<Box<dyn LpSession>>, SolverError> {
+        Ok(None)
+    }
+}
+
+/// An LP kept loaded in a backend between solves ([`Solver::lp_session`]).
+pub trait LpSession {
+    /// Adds rows (every term on a column of the session's model).
+    fn add_rows(&mut self, rows: &[LazyRow]) -> Result<(), SolverError>;
+    /// Solves the LP as it stands, from the last basis, within `time_limit` seconds. The
+    /// result is the LP's: termination, point and objective (its own bound when optimal).
+    fn solve(&mut self, time_limit: Option<f64>) -> Result<SolveResult, SolverError>;
 }
 
 /// The backends known to netspec (compiled in or not).

@@ -468,6 +468,49 @@ pub fn lazy_solve_from_a_start(kind: SolverKind) {
     assert!(objectives_agree(r.objective.unwrap(), best, 1e-6), "{kind}: {} vs brute force {best}", r.objective.unwrap());
 }
 
+/// An LP kept loaded between solves ([`netspec::solvers::Solver::lp_session`]), for backends
+/// that offer one: rows added between solves are honoured (each optimum agrees with a fresh
+/// solve of the model with the rows written in, and its point passes the checker on it), for
+/// both senses and with an objective constant; a row that empties the LP makes it infeasible.
+pub fn lp_session_adds_rows(kind: SolverKind) {
+    let solver = kind.instance().unwrap();
+    let o = SolveOptions { threads: Some(1), ..Default::default() };
+    // (model, its optimum, a row to add as (lhs, rhs, terms by column), an infeasible row)
+    type Side = (f64, f64, Vec<(usize, f64)>);
+    let cases: Vec<(Model, f64, Side, Side)> = vec![
+        (models::lp_with_constant(), 4.2, (f64::NEG_INFINITY, 2.0, vec![(0, 1.0), (1, 1.0)]), (3.0, f64::INFINITY, vec![(0, 1.0), (1, 1.0)])),
+        (models::lp_max(), 11.0, (1.5, f64::INFINITY, vec![(1, 1.0)]), (f64::NEG_INFINITY, 1.0, vec![(1, 1.0)])),
+    ];
+    for (model, optimum, row, empties) in cases {
+        let Some(mut lp) = solver.lp_session(&model, &o).unwrap_or_else(|e| panic!("{kind} on {}: {e}", model.name)) else {
+            return;
+        };
+        let lazy = |name: &str, (lhs, rhs, terms): &Side| netspec::solvers::LazyRow {
+            name: name.into(),
+            lhs: *lhs,
+            rhs: *rhs,
+            terms: terms.iter().map(|&(j, c)| (netspec::milp::VarId(j as u32), c)).collect(),
+        };
+        let r = lp.solve(None).unwrap();
+        assert_eq!(r.termination, Termination::Optimal, "{kind} on {}", model.name);
+        assert_checked(&model, &r);
+        assert!(objectives_agree(r.objective.unwrap(), optimum, 1e-6), "{kind} on {}: {:?}", model.name, r.objective);
+        let added = lazy("added", &row);
+        lp.add_rows(std::slice::from_ref(&added)).unwrap();
+        let mut with_row = model.clone();
+        added.add_to(&mut with_row);
+        let fresh = solve(kind, &with_row, &o);
+        let r = lp.solve(Some(10.0)).unwrap();
+        assert_eq!(r.termination, Termination::Optimal, "{kind} on {} with the row", model.name);
+        assert_checked(&with_row, &r);
+        assert!(objectives_agree(r.objective.unwrap(), fresh.objective.unwrap(), 1e-6), "{kind} on {}: {:?} kept, {:?} fresh", model.name, r.objective, fresh.objective);
+        assert!(!objectives_agree(r.objective.unwrap(), optimum, 1e-6), "{kind} on {}: the added row must cut the optimum off", model.name);
+        lp.add_rows(&[lazy("empties", &empties)]).unwrap();
+        let r = lp.solve(None).unwrap();
+        assert!(matches!(r.termination, Termination::Infeasible | Termination::InfeasibleOrUnbounded), "{kind} on {}: {}", model.name, r.termination);
+    }
+}
+
 /// Instantiates every case above for one backend.
 macro_rules! conformance_suite {
     ($($module:ident => $kind:expr, $feature:literal;)*) => {$(
@@ -479,7 +522,8 @@ macro_rules! conformance_suite {
                 unbounded_lp, unbounded_mip, infeasible_or_unbounded, time_limit_stops_hard_model,
                 time_limit_zero, mip_start_is_used, mip_start_is_only_a_start, nan_mip_start_is_refused,
                 gap_limit_stops_early, node_limit, two_threads, invalid_model_is_an_error,
-                unsupported_options_are_refused, lazy_subtour_elimination, lazy_solve_from_a_start, optimal_mip_start_is_proven_optimal);
+                unsupported_options_are_refused, lazy_subtour_elimination, lazy_solve_from_a_start, optimal_mip_start_is_proven_optimal,
+                lp_session_adds_rows);
         }
     )*};
     (@cases $kind:expr; $($case:ident),*) => {$(
