@@ -88,15 +88,15 @@ impl Recipe {
     /// `strong` on HiGHS: `mip_pscost_minreliable=0` (HiGHS's default 8). HiGHS then branches on
     /// pseudocosts from the first node instead of strong-branching every candidate until it has
     /// eight observations; on Fig. 7d-L2 strong branching took 100,088 of the solve's 124,262 LP
-    /// iterations and 7 nodes in 9.5 s. Measured on Table 1 rows (docs/benchmarks.md, *Branching
-    /// without strong branching*): proves 7d-L2 in 9.6 s instead of a 4.7 % gap at 12 s, 2f in
-    /// 21.7 s instead of 38.4 s, and no row lost.
+    /// iterations and 7 nodes in 9.5 s. Measured on Table 1 rows (docs/benchmarks.md, *Pseudocost
+    /// branching and warm root rounds*): proves 7d-L2 in 9.6 s instead of a 4.7 % gap at 12 s, 2f
+    /// in 21.7 s instead of 38.4 s, and no row lost.
     pub fn solver_hints(&self, kind: SolverKind) -> Vec<RawParam> {
-        let mut hints = Vec::new();
         if self.solver_tuning && kind == SolverKind::Highs {
-            hints.push(RawParam { solver: SolverKind::Highs, name: "mip_pscost_minreliable".into(), value: "0".into() });
+            vec![RawParam { solver: kind, name: "mip_pscost_minreliable".into(), value: "0".into() }]
+        } else {
+            Vec::new()
         }
-        hints
     }
 
     /// The recipe of a problem.

@@ -336,12 +336,17 @@ impl Solver for HighsSolver {
         if model.is_mip() {
             return Err(rejected("an LP session needs a model without integer variables"));
         }
+        if model.num_vars() == 0 {
+            // HiGHS calls a model without columns empty without reading its rows;
+            // `Solver::solve` judges those (`empty_model_termination`).
+            return Ok(None);
+        }
         let mut m = load(model)?;
         m.make_quiet();
         if let Some(t) = o.threads {
             set(&mut m, "threads", t as i32)?;
         }
-        Ok(Some(Box::new(HighsLp { m, threads: o.threads, cols: model.num_vars(), obj_constant: model.obj_constant })))
+        Ok(Some(Box::new(HighsLp { m, threads: o.threads, cols: model.num_vars() })))
     }
 }
 
@@ -352,7 +357,6 @@ struct HighsLp {
     m: highs::Model,
     threads: Option<u32>,
     cols: usize,
-    obj_constant: f64,
 }
 
 impl LpSession for HighsLp {
@@ -413,9 +417,6 @@ impl LpSession for HighsLp {
             r.primal = Some(x);
             // SAFETY: live instance.
             r.objective = Some(unsafe { sys::Highs_getObjectiveValue(ptr) });
-        } else if self.cols == 0 && r.termination == Termination::Optimal {
-            r.primal = Some(Vec::new());
-            r.objective = Some(self.obj_constant);
         }
         if r.termination == Termination::Optimal {
             r.dual_bound = r.objective;

@@ -303,24 +303,19 @@ fn root_rounds<S: Solver + ?Sized>(
     // The LP kept loaded between rounds, when the backend can (each round then starts from the
     // last basis); a session that fails is dropped and the rounds go on from scratch.
     let mut session = solver.lp_session(&relax(work), &lp_options).ok().flatten();
-    report.warm_root_rounds = session.is_some();
     for _ in 0..MAX_ROOT_ROUNDS {
         if budget.is_some_and(|b| t0.elapsed().as_secs_f64() >= b) || o.interrupt.as_ref().is_some_and(|i| i.is_triggered()) {
             break;
         }
         let time_left = budget.map(|b| (b - t0.elapsed().as_secs_f64()).max(0.0));
-        let warm = match session.as_mut().map(|s| s.solve(time_left)) {
-            Some(Ok(r)) => Some(r),
-            Some(Err(_)) => {
-                session = None;
-                report.warm_root_rounds = false;
-                None
+        let r = match session.as_mut().map(|s| s.solve(time_left)) {
+            Some(Ok(r)) => r,
+            failed => {
+                if failed.is_some() {
+                    session = None;
+                }
+                solver.solve(&relax(work), &SolveOptions { time_limit: time_left, ..lp_options.clone() })?
             }
-            None => None,
-        };
-        let r = match warm {
-            Some(r) => r,
-            None => solver.solve(&relax(work), &SolveOptions { time_limit: time_left, ..lp_options.clone() })?,
         };
         let (Some(x), Some(obj)) = (r.primal, r.objective) else { break };
         if r.termination != Termination::Optimal {
@@ -352,10 +347,11 @@ fn root_rounds<S: Solver + ?Sized>(
         }
         if session.as_mut().is_some_and(|s| s.add_rows(&cuts).is_err()) {
             session = None;
-            report.warm_root_rounds = false;
         }
         rows.extend(cuts);
     }
+    // A session that failed was dropped, and the rounds after it ran from scratch.
+    report.warm_root_rounds = session.is_some();
     if let Some(f) = first {
         report.root_bounds = Some((f, last));
     }

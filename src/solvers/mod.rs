@@ -54,7 +54,8 @@ pub trait Solver {
     /// An LP `model` (every variable continuous) loaded once for repeated solves, rows added
     /// between them and each solve starting from the last one's basis: the cutting-plane
     /// rounds at the root ([`lazy::solve_loop`]) use it. `None` when the backend cannot keep
-    /// a basis between solves (the default); the rounds then solve each LP from scratch with
+    /// a basis between solves (the default), or not for this model (HiGHS: one without
+    /// columns); the rounds then solve each LP from scratch with
     /// [`Solver::solve`]. Only `threads` of `options` is used.
     fn lp_session(&self, _model: &Model, _options: &SolveOptions) -> Result<Option<Box<dyn LpSession>>, SolverError> {
         Ok(None)
