@@ -8,7 +8,7 @@ use netspec::mesh::{EdgeId, VertexId};
 use netspec::milp::objectives_agree;
 use netspec::pipeline;
 use netspec::solvers::{SolveOptions, Solver, SolverKind, Termination};
-use netspec::spec::{Problem, RecipeName, Spec, SpecErrorKind};
+use netspec::spec::{EdgeRole, PathForm, Problem, RecipeName, Spec, SpecErrorKind};
 use serde::Serialize;
 use std::path::Path;
 
@@ -497,6 +497,45 @@ fn cover_cutsets_raise_the_root_bound_and_keep_the_optimum() {
             assert!(objectives_agree(with_groups, optimum, 1e-6), "{weights}: the directed cover cutsets close the root gap: {with_groups} against {optimum}");
         } else {
             assert!(with_groups <= optimum + 1e-6, "{weights}: bound {with_groups} above the optimum {optimum}");
+        }
+    }
+}
+
+/// The strong recipe chooses one point-to-point path per pair (`paths = "select"`): its LP bound
+/// is above the per-path rows' (`paths = "tight"`) on a spec whose paths share edges, both prove
+/// the same optimum with a valid design, and a network holding several whole paths of a pair
+/// still encodes as a start that passes the checker (one path chosen, the others 0).
+#[test]
+fn selected_paths_tighten_the_relaxation_and_keep_the_optimum() {
+    let p = problem(&spec("select", "boundary = \"wall\"\nformulation = \"strong\"\n[mesh]\ngrid = { width = 6, height = 6 }\n[sinks]\nall_boundary = true\n[weights]\nlength = 0\ndistance = 1\n[point_to_point]\nblocks = 3\ntolerance = 2\nseed = 1\n"));
+    let select = pipeline::build(&p);
+    assert_eq!(select.recipe.paths, PathForm::Select);
+    let tight = formulations::build_with(&p, &formulations::Recipe { paths: PathForm::Tight, ..select.recipe.clone() });
+    let highs = SolverKind::Highs.instance().unwrap();
+    let o = SolveOptions { threads: Some(1), ..SolveOptions::default() };
+    let plain = |f: &formulations::Formulation| netspec::solvers::lazy::lp_bound(highs.as_ref(), &f.model, None, &o).unwrap().plain.unwrap();
+    let (b_select, b_tight) = (plain(&select), plain(&tight));
+    assert!(b_select > b_tight + 0.5, "LP bound: select {b_select}, tight {b_tight}");
+    let solve = |f: &formulations::Formulation| pipeline::solve_built(&p, f, SolverKind::Highs, &SolveOptions::default()).unwrap();
+    let (rs, rt) = (solve(&select), solve(&tight));
+    for r in [&rs, &rt] {
+        assert_eq!(r.solve.termination, Termination::Optimal);
+        assert!(r.validity.valid, "{:?}", r.validity);
+    }
+    let optimum = rt.solve.objective.unwrap();
+    assert!(objectives_agree(rs.solve.objective.unwrap(), optimum, 1e-6), "select {:?}, tight {optimum}", rs.solve.objective);
+    assert!(b_select <= optimum + 1e-6, "bound {b_select} above the optimum {optimum}");
+    // Every usable edge on: every enumerated path is whole.
+    let all = Network { active: p.roles.iter().map(|r| *r != EdgeRole::Excluded).collect(), directions: Vec::new(), labels: Vec::new(), rooms: Vec::new() };
+    for f in [&select, &tight] {
+        let (x, report) = pipeline::prepare_start(&p, f, &all, "every edge");
+        assert!(report.accepted, "{}: {:?}", f.recipe.label, report.reason);
+        let x = x.unwrap();
+        let sets = f.path_sets.as_ref().expect("path sets");
+        for (pair, vars) in sets.pairs.iter().zip(&f.vars.paths) {
+            let on = vars.iter().flatten().filter(|v| x[v.index()] > 0.5).count();
+            let want = if f.recipe.paths == PathForm::Select { 1 } else { pair.paths.len() };
+            assert_eq!(on, want, "{}: paths chosen of a pair", f.recipe.label);
         }
     }
 }

@@ -12,7 +12,7 @@ use super::build::Formulation;
 use super::expr::Value;
 use crate::design::{label_distances, travel_distances, Network};
 use crate::mesh::{HalfEdgeId, VertexId};
-use crate::spec::Problem;
+use crate::spec::{PathForm, Problem};
 
 /// Why a design could not be turned into a point.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -154,9 +154,15 @@ impl Formulation {
 
         // Point-to-point paths, local configurations, T-junctions, rooms.
         if let Some(sets) = &self.path_sets {
+            // The `select` form chooses one path per pair (the first whole one); the others
+            // mark every whole path.
+            let one_per_pair = self.recipe.paths == PathForm::Select;
             for (pair, vars) in sets.pairs.iter().zip(&self.vars.paths) {
+                let mut chosen = false;
                 for (path, v) in pair.paths.iter().zip(vars) {
-                    set(&mut x, *v, if path.edges.iter().all(|&e| on(e)) { 1.0 } else { 0.0 });
+                    let whole = path.edges.iter().all(|&e| on(e)) && !(one_per_pair && chosen);
+                    chosen |= whole && v.is_some();
+                    set(&mut x, *v, if whole { 1.0 } else { 0.0 });
                 }
             }
         }

@@ -53,7 +53,7 @@ impl Recipe {
         let (connectivity, distance, coverage, dead_ends, paths, big_m, label_bounds) = match name {
             RecipeName::Paper => (C::Labels, DistanceForm::Labels, CoverageForm::Aggregated, DeadEndForm::Nu, PathForm::Paper, BigMForm::Paper, false),
             RecipeName::Tight => (C::Labels, DistanceForm::Labels, CoverageForm::Strong, DeadEndForm::Degree, PathForm::Tight, BigMForm::Tight, true),
-            RecipeName::Strong => (C::Cutset, DistanceForm::Flow, CoverageForm::Strong, DeadEndForm::Degree, PathForm::Tight, BigMForm::Tight, true),
+            RecipeName::Strong => (C::Cutset, DistanceForm::Flow, CoverageForm::Strong, DeadEndForm::Degree, PathForm::Select, BigMForm::Tight, true),
         };
         let rooms_connectivity = (name == RecipeName::Strong).then_some(C::Flow);
         let split_objective = name == RecipeName::Strong;

@@ -112,6 +112,10 @@ pub enum PathForm {
     Paper,
     /// `P ≤ E_n` for each edge.
     Tight,
+    /// One path chosen per pair: `Σ_paths P = 1`, and for each candidate edge `e` of the pair's
+    /// paths `Σ_{paths through e} P ≤ E_e` (FORMULATION §3.4 aggregated; see
+    /// `formulations::families::paths`).
+    Select,
 }
 
 /// The constant of the label rows (2).
