@@ -502,7 +502,7 @@ fn cover_cutsets_raise_the_root_bound_and_keep_the_optimum() {
 }
 
 /// The strong recipe chooses one point-to-point path per pair (`paths = "select"`): its LP bound
-/// is above the per-path rows' (`paths = "tight"`) on a spec whose paths share edges, both prove
+/// is above the per-path rows' (`paths = "tight"`) on a spec whose paths share edges and vertices, both prove
 /// the same optimum with a valid design, and a network holding several whole paths of a pair
 /// still encodes as a start that passes the checker (one path chosen, the others 0).
 #[test]
@@ -510,6 +510,8 @@ fn selected_paths_tighten_the_relaxation_and_keep_the_optimum() {
     let p = problem(&spec("select", "boundary = \"wall\"\nformulation = \"strong\"\n[mesh]\ngrid = { width = 6, height = 6 }\n[sinks]\nall_boundary = true\n[weights]\nlength = 0\ndistance = 1\n[point_to_point]\nblocks = 3\ntolerance = 2\nseed = 1\n"));
     let select = pipeline::build(&p);
     assert_eq!(select.recipe.paths, PathForm::Select);
+    let through_a_vertex = select.model.rows().filter(|r| r.name.starts_with("p2p8_") && r.name.contains("_v")).count();
+    assert!(through_a_vertex > 0, "no row for paths sharing a vertex");
     let tight = formulations::build_with(&p, &formulations::Recipe { paths: PathForm::Tight, ..select.recipe.clone() });
     let highs = SolverKind::Highs.instance().unwrap();
     let o = SolveOptions { threads: Some(1), ..SolveOptions::default() };

@@ -1,8 +1,8 @@
 //! Point-to-point path sets (8)–(9).
 
-use super::Ctx;
-use crate::formulations::expr::Expr;
-use crate::mesh::EdgeId;
+use super::{vname, Ctx};
+use crate::formulations::expr::{Expr, Value};
+use crate::mesh::{EdgeId, VertexId};
 use crate::milp::VarId;
 use std::collections::BTreeMap;
 use crate::rules::paths::{enumerate_path_sets, PathSets};
@@ -13,10 +13,12 @@ use crate::spec::PathForm;
 ///
 /// `select` form (FORMULATION §3.4, aggregated over the paths of a pair): one path is chosen per
 /// pair, `Σ_paths P = 1`, and each candidate edge `e` of the pair's paths carries every chosen
-/// path through it, `Σ_{paths through e} P ≤ E_e` (rows `p2p8_p{pair}_e{edge}`). A feasible
-/// network has a whole path per pair, and choosing just that one satisfies the rows, so the
-/// networks allowed are the same; the relaxation is tighter, because paths sharing an edge can
-/// no longer each lean on the same fraction of it (Fig. 2c's LP bound 37.2 → 89.7).
+/// path through it, `Σ_{paths through e} P ≤ E_e` (rows `p2p8_p{pair}_e{edge}`), as does each
+/// vertex `y` two or more of them pass, `Σ_{paths through y} P ≤ V_y` (`p2p8_p{pair}_v{vertex}`).
+/// A feasible network has a whole path per pair, and choosing just that one satisfies the rows,
+/// so the networks allowed are the same; the relaxation is tighter, because paths sharing an edge
+/// or a vertex can no longer each lean on the same fraction of it (Fig. 2c's LP bound 37.2 →
+/// 96.9).
 pub fn point_to_point(c: &mut Ctx) -> PathSets {
     let p = c.p;
     let sets = enumerate_path_sets(p);
@@ -24,8 +26,9 @@ pub fn point_to_point(c: &mut Ctx) -> PathSets {
         let mut nine = Expr::new();
         let mut always = false;
         let mut vars = vec![None; pair.paths.len()];
-        // Select form: the path variables through each candidate edge, by edge.
+        // Select form: the path variables through each candidate edge and each vertex.
         let mut through: BTreeMap<EdgeId, (VarId, Vec<VarId>)> = BTreeMap::new();
+        let mut at: BTreeMap<VertexId, (VarId, Vec<VarId>)> = BTreeMap::new();
         for (k, path) in pair.paths.iter().enumerate() {
             let cand: Vec<VarId> = path.edges.iter().filter_map(|e| c.vars.edge[e.index()]).collect();
             if cand.is_empty() {
@@ -55,6 +58,11 @@ pub fn point_to_point(c: &mut Ctx) -> PathSets {
                             through.entry(e).or_insert((x, Vec::new())).1.push(pv);
                         }
                     }
+                    for &v in &path.vertices {
+                        if let Value::Var(y) = c.vars.vertex[v.index()] {
+                            at.entry(v).or_insert((y, Vec::new())).1.push(pv);
+                        }
+                    }
                 }
             }
             nine.add(pv, 1.0);
@@ -66,6 +74,20 @@ pub fn point_to_point(c: &mut Ctx) -> PathSets {
             }
             ex.add(*x, -1.0);
             c.em.le(format!("p2p8_p{pi}_e{}", e.0), &ex, 0.0);
+        }
+        // Through one vertex, unless one edge at it carries every path through it (the row is
+        // then implied by the edge's row and `E_x ≤ V_y`).
+        let implied = |v: VertexId, ps: &[VarId]| {
+            c.p.mesh.incident_edges(v).any(|e| through.get(&e).is_some_and(|(_, on_e)| ps.iter().all(|pv| on_e.contains(pv))))
+        };
+        let rows: Vec<_> = at.iter().filter(|(v, (_, ps))| !implied(**v, ps)).map(|(v, (y, ps))| (*v, *y, ps.clone())).collect();
+        for (v, y, ps) in rows {
+            let mut ex = Expr::new();
+            for pv in ps {
+                ex.add(pv, 1.0);
+            }
+            ex.add(y, -1.0);
+            c.em.le(format!("p2p8_p{pi}_{}", vname(v)), &ex, 0.0);
         }
         // A path of existing edges connects the pair whatever the design: no (9) then.
         if !always {
