@@ -4,9 +4,9 @@ use super::{vname, Ctx};
 use crate::formulations::expr::{Expr, Value};
 use crate::mesh::{EdgeId, VertexId};
 use crate::milp::VarId;
-use std::collections::BTreeMap;
 use crate::rules::paths::{enumerate_path_sets, PathSets};
 use crate::spec::PathForm;
+use std::collections::BTreeMap;
 
 /// (8)–(9) over the enumerated path sets (returned). `paper` form: `−N + 1 ≤ N·P − Σ_n E_n ≤ 0`; `tight` form:
 /// `P ≤ E_n` for each candidate edge of the path. Then `Σ_paths P ≥ 1` per pair of parts.
@@ -14,11 +14,12 @@ use crate::spec::PathForm;
 /// `select` form (FORMULATION §3.4, aggregated over the paths of a pair): one path is chosen per
 /// pair, `Σ_paths P = 1`, and each candidate edge `e` of the pair's paths carries every chosen
 /// path through it, `Σ_{paths through e} P ≤ E_e` (rows `p2p8_p{pair}_e{edge}`), as does each
-/// vertex `y` two or more of them pass, `Σ_{paths through y} P ≤ V_y` (`p2p8_p{pair}_v{vertex}`).
-/// A feasible network has a whole path per pair, and choosing just that one satisfies the rows,
-/// so the networks allowed are the same; the relaxation is tighter, because paths sharing an edge
-/// or a vertex can no longer each lean on the same fraction of it (Fig. 2c's LP bound 37.2 →
-/// 96.9).
+/// vertex `y` of them where no single edge at `y` carries every path through it,
+/// `Σ_{paths through y} P ≤ V_y` (`p2p8_p{pair}_v{vertex}`; elsewhere the edge's row and
+/// `E_x ≤ V_y` imply it). A feasible network has a whole path per pair, and choosing just that
+/// one satisfies the rows, so the networks allowed are the same; the relaxation is tighter,
+/// because paths sharing an edge or a vertex can no longer each lean on the same fraction of it
+/// (Fig. 2c's LP bound as written 37.2 → 97.4; docs/spec.md *Point-to-point*).
 pub fn point_to_point(c: &mut Ctx) -> PathSets {
     let p = c.p;
     let sets = enumerate_path_sets(p);
