@@ -68,27 +68,18 @@ pub fn point_to_point(c: &mut Ctx) -> PathSets {
             }
             nine.add(pv, 1.0);
         }
+        // `Σ ps − carrier ≤ 0`: the carrier (an edge's or a vertex's variable) holds the paths.
+        let carry = |ps: &[VarId], carrier: VarId| ps.iter().map(|&pv| (pv, 1.0)).chain([(carrier, -1.0)]).collect::<Vec<_>>();
         for (e, (x, ps)) in &through {
-            let mut ex = Expr::new();
-            for &pv in ps {
-                ex.add(pv, 1.0);
-            }
-            ex.add(*x, -1.0);
-            c.em.le(format!("p2p8_p{pi}_e{}", e.0), &ex, 0.0);
+            c.em.model.add_le(format!("p2p8_p{pi}_e{}", e.0), carry(ps, *x), 0.0);
         }
         // Through one vertex, unless one edge at it carries every path through it (the row is
         // then implied by the edge's row and `E_x ≤ V_y`).
         let implied = |v: VertexId, ps: &[VarId]| {
-            c.p.mesh.incident_edges(v).any(|e| through.get(&e).is_some_and(|(_, on_e)| ps.iter().all(|pv| on_e.contains(pv))))
+            p.mesh.incident_edges(v).any(|e| through.get(&e).is_some_and(|(_, on_e)| ps.iter().all(|pv| on_e.contains(pv))))
         };
-        let rows: Vec<_> = at.iter().filter(|(v, (_, ps))| !implied(**v, ps)).map(|(v, (y, ps))| (*v, *y, ps.clone())).collect();
-        for (v, y, ps) in rows {
-            let mut ex = Expr::new();
-            for pv in ps {
-                ex.add(pv, 1.0);
-            }
-            ex.add(y, -1.0);
-            c.em.le(format!("p2p8_p{pi}_{}", vname(v)), &ex, 0.0);
+        for (&v, (y, ps)) in at.iter().filter(|(&v, (_, ps))| !implied(v, ps)) {
+            c.em.model.add_le(format!("p2p8_p{pi}_{}", vname(v)), carry(ps, *y), 0.0);
         }
         // A path of existing edges connects the pair whatever the design: no (9) then.
         if !always {
