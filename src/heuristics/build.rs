@@ -34,12 +34,16 @@ pub(crate) struct Builder<'r, 'a> {
     /// Relative noise on path costs (varies the design between restarts).
     pub noise: f64,
     pub deadline: Option<Instant>,
+    /// Coverage joins the ball vertex nearest the network (the shortest arm) first, instead of
+    /// the one nearest the uncovered vertex: spurs from the sinks rather than streets through
+    /// the uncovered area (what a distance objective with dead-ends allowed rewards).
+    pub short_arms: bool,
 }
 
 impl<'r, 'a> Builder<'r, 'a> {
     /// A builder starting from `s`.
     pub fn new(r: &'r Rules<'a>, s: State, rng: Rng, noise: f64, deadline: Option<Instant>) -> Self {
-        Builder { r, s, ps: PathSearch::new(r.mesh.num_vertices()), rng, noise, deadline }
+        Builder { r, s, ps: PathSearch::new(r.mesh.num_vertices()), rng, noise, deadline, short_arms: false }
     }
 
     fn out_of_time(&self) -> bool {
@@ -502,7 +506,7 @@ impl<'r, 'a> Builder<'r, 'a> {
                 return;
             }
             let u = best[self.rng.below(best.len())];
-            if !self.cover_vertex(u) {
+            if !self.cover_vertex(u, &hops) {
                 failed[u.index()] = true;
             }
         }
@@ -512,18 +516,19 @@ impl<'r, 'a> Builder<'r, 'a> {
     /// others nearest `u` first. The vertex gets a path (an *arm*) to the network, and where
     /// dead-ends are forbidden a second arm, so the network passes through it; when the second
     /// arm cannot be found, the first is tried again leaving the vertex another way.
-    fn cover_vertex(&mut self, u: VertexId) -> bool {
+    fn cover_vertex(&mut self, u: VertexId, hops: &[u32]) -> bool {
         let r = self.r;
-        let mut ball: Vec<(usize, VertexId)> = r
+        let short_arms = self.short_arms;
+        let mut ball: Vec<(u32, usize, VertexId)> = r
             .mesh
             .hop_distances(u, r.balls[u.index()].len())
             .into_iter()
             .filter(|(w, _)| r.balls[u.index()].binary_search(w).is_ok())
-            .map(|(w, d)| (d, w))
+            .map(|(w, d)| (if short_arms { hops[w.index()] } else { 0 }, d, w))
             .collect();
         ball.sort_unstable();
         let mut tried = 0;
-        for (_, t) in ball {
+        for (_, _, t) in ball {
             if tried >= 6 || self.out_of_time() {
                 break;
             }

@@ -375,6 +375,9 @@ fn search(p: &Problem, inputs: &Inputs, opts: &Options, worker: usize, found: &A
         match (&network_rules, inputs.placements) {
             (Some(rules), _) => {
                 let mut b = Builder::new(rules, State::new(rules), sub.fork(), noise, Some(limit));
+                // Where dead-ends are allowed, every other construction covers by the shortest
+                // arms (spurs from the network) instead.
+                b.short_arms = !rules.dead_end_forbid && stats.constructions % 2 == 0;
                 if b.repair_all() && b.s.feasible(rules) {
                     polish(rules, b.s, &mut sub, &mut best, &mut stats);
                 }
