@@ -313,12 +313,14 @@ impl RoundBudget {
         elapsed < limit && gap > 0.0 && toward(*before, *last) >= ROOT_MIN_CLOSED * gap
     }
 
-    /// The time a round allowed to start at `elapsed` may take: up to the productive share when
-    /// the rounds may go on to it (a round's LP that runs out of time ends the rounds, so one
-    /// begun just before the base share ends gets the time its successors might get).
-    fn left(&self, elapsed: f64) -> Option<f64> {
+    /// The time a round allowed to start at `elapsed`, after `rounds` rounds, may take: up to
+    /// the productive share when the rounds may go on to it (a round's LP that runs out of time
+    /// ends the rounds, so one begun just before the base share ends gets the time its
+    /// successors might get) — not before three rounds have shown their pace, so that at a
+    /// tiny limit a slow first LP does not eat the solver's time (Fig. 8-L4 at 1 s).
+    fn left(&self, elapsed: f64, rounds: usize) -> Option<f64> {
         let until = match (self.base, self.productive, self.incumbent) {
-            (Some(_), Some(p), Some(_)) => p,
+            (Some(_), Some(p), Some(_)) if rounds >= 3 => p,
             (b, _, _) => b?,
         };
         Some((until - elapsed).max(0.0))
@@ -366,7 +368,7 @@ fn root_rounds<S: Solver + ?Sized>(
         if !budget.allows(elapsed, &bounds, work.sense) || o.interrupt.as_ref().is_some_and(|i| i.is_triggered()) {
             break;
         }
-        let time_left = budget.left(elapsed);
+        let time_left = budget.left(elapsed, bounds.len());
         let r = match session.as_mut().map(|s| s.solve(time_left)) {
             Some(Ok(r)) => r,
             failed => {
@@ -491,11 +493,12 @@ mod tests {
         let min = Sense::Minimize;
         // Within the base share: always, with its own time left.
         assert!(b.allows(5.0, &[], min));
-        assert_eq!(b.left(5.0), Some(15.0), "up to the productive share, which its successors might reach");
-        assert_eq!(RoundBudget { incumbent: None, ..b }.left(5.0), Some(5.0), "without a start, only the base share");
+        assert_eq!(b.left(5.0, 3), Some(15.0), "up to the productive share, which its successors might reach");
+        assert_eq!(b.left(5.0, 2), Some(5.0), "before three rounds, only the base share");
+        assert_eq!(RoundBudget { incumbent: None, ..b }.left(5.0, 3), Some(5.0), "without a start, only the base share");
         // Past it: the last three rounds (50 → 60) closed 10 of the 40 left (25 % ≥ 5 %).
         assert!(b.allows(12.0, &[40.0, 50.0, 55.0, 58.0, 60.0], min));
-        assert_eq!(b.left(12.0), Some(8.0));
+        assert_eq!(b.left(12.0, 5), Some(8.0));
         // 59.9 → 60 closes 0.25 % of the gap: stop; so too past the productive share, with
         // fewer than four rounds, or without a start.
         assert!(!b.allows(12.0, &[59.9, 59.95, 59.98, 60.0], min));
@@ -508,7 +511,7 @@ mod tests {
         assert!(!max.allows(12.0, &[60.0, 50.0, 45.0, 40.0], min), "a bound moving away from the start");
         // No limit: no budget.
         assert!(RoundBudget::default().allows(1e9, &[], min));
-        assert_eq!(RoundBudget::default().left(3.0), None);
+        assert_eq!(RoundBudget::default().left(3.0, 5), None);
     }
     use crate::solvers::{Capabilities, SolverKind};
     use std::cell::Cell;
