@@ -513,7 +513,8 @@ impl<'r, 'a> Builder<'r, 'a> {
     }
 
     /// Covers `u` by making a vertex of its ball active: `u` itself if it can be, else the
-    /// others nearest `u` first. The vertex gets a path (an *arm*) to the network, and where
+    /// others nearest `u` first — with `short_arms`, those nearest the network first (`hops`:
+    /// each vertex's hop distance from it). The vertex gets a path (an *arm*) to the network, and where
     /// dead-ends are forbidden a second arm, so the network passes through it; when the second
     /// arm cannot be found, the first is tried again leaving the vertex another way.
     fn cover_vertex(&mut self, u: VertexId, hops: &[u32]) -> bool {
@@ -666,6 +667,39 @@ impl<'r, 'a> Builder<'r, 'a> {
             if self.s.active[e.index()] {
                 self.s.toggle(r, e);
             }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::spec::Spec;
+    use std::path::Path;
+
+    /// A 6×1 strip, the sink at its left end (vertex 0; the bottom row is 0..=6, the top row
+    /// 7..=13), dead-ends allowed, coverage one hop.
+    fn strip() -> crate::spec::Problem {
+        let text = "name = \"strip\"\nboundary = \"candidate\"\n[mesh]\ngrid = { width = 6, height = 1 }\n[sinks]\nvertices = [0]\n[coverage]\nrange = 1\n[features]\ndead_ends = \"allow\"\n";
+        Spec::from_toml(text).unwrap().resolve(Path::new(".")).unwrap()
+    }
+
+    #[test]
+    fn short_arms_cover_from_the_ball_vertex_nearest_the_network() {
+        let p = strip();
+        let r = Rules::new(&p, None, None, None);
+        let far = VertexId(6);
+        for (short_arms, arm) in [(false, 6), (true, 5)] {
+            let mut b = Builder::new(&r, State::new(&r), Rng::new(0), 0.0, None);
+            b.short_arms = short_arms;
+            let hops = b.hops_from_network();
+            assert!(b.cover_vertex(far, &hops));
+            // Vertex 6 is covered either by itself (an arm of six edges along the bottom row) or,
+            // with short arms, by its neighbour 5 (five edges), which leaves 6 itself inactive.
+            assert_eq!(b.s.deg[6] > 0, !short_arms, "degrees {:?}", b.s.deg);
+            assert_eq!(b.s.deg[5], if short_arms { 1 } else { 2 });
+            assert!(b.s.covered(&r, far));
+            assert_eq!(b.s.active.iter().filter(|&&a| a).count(), arm);
         }
     }
 }
