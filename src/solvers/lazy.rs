@@ -344,8 +344,6 @@ fn root_rounds<S: Solver + ?Sized>(
     budget: RoundBudget,
     report: &mut LazyReport,
 ) -> Result<(), SolverError> {
-    let mut first = None;
-    let mut last = f64::NAN;
     let mut stalled = 0;
     let base = work.clone();
     let start = rows.len();
@@ -382,26 +380,23 @@ fn root_rounds<S: Solver + ?Sized>(
         if r.termination != Termination::Optimal {
             break;
         }
-        first.get_or_insert(obj);
         bounds.push(obj);
         let ts = Instant::now();
         let cuts = sep.separate_fractional(&x);
         last_point = Some((x, rows.len()));
         report.separation_seconds += ts.elapsed().as_secs_f64();
         if cuts.is_empty() {
-            last = obj;
             break;
         }
-        if last.is_finite() && (obj - last).abs() <= 1e-4 * obj.abs().max(1.0) {
+        let previous = bounds.len().checked_sub(2).map(|i| bounds[i]);
+        if previous.is_some_and(|p| (obj - p).abs() <= 1e-4 * obj.abs().max(1.0)) {
             stalled += 1;
             if stalled >= 3 {
-                last = obj;
                 break;
             }
         } else {
             stalled = 0;
         }
-        last = obj;
         report.root_rounds += 1;
         report.rows_added += cuts.len();
         for c in &cuts {
@@ -414,8 +409,8 @@ fn root_rounds<S: Solver + ?Sized>(
     }
     // A session that failed was dropped, and the rounds after it ran from scratch.
     report.warm_root_rounds = session.is_some();
-    if let Some(f) = first {
-        report.root_bounds = Some((f, last));
+    if let (Some(&first), Some(&last)) = (bounds.first(), bounds.last()) {
+        report.root_bounds = Some((first, last));
     }
     if let Some((x, solved_with)) = last_point {
         let tight = |r: &LazyRow| {
@@ -486,6 +481,8 @@ pub fn lp_bound<S: Solver + ?Sized>(solver: &S, model: &Model, sep: Option<&mut 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::solvers::{Capabilities, SolverKind};
+    use std::cell::Cell;
 
     #[test]
     fn root_rounds_go_on_past_their_share_only_while_they_close_the_gap_fast() {
@@ -513,8 +510,6 @@ mod tests {
         assert!(RoundBudget::default().allows(1e9, &[], min));
         assert_eq!(RoundBudget::default().left(3.0, 5), None);
     }
-    use crate::solvers::{Capabilities, SolverKind};
-    use std::cell::Cell;
 
     /// A backend that answers from a script: the relaxations at the root get nothing; the first
     /// MIP round stops on its gap (objective 1, bound 0.5) at a point that breaks the lazy row,
