@@ -386,10 +386,13 @@ pub fn solve_built(p: &Problem, f: &Formulation, kind: SolverKind, options: &Sol
     let (tuned, solver_hints) = with_solver_hints(options, &f.recipe.solver_hints(kind));
     let options = &tuned;
     let mut sep = f.separator().map(|sep| sep.with_repair(Box::new(|x: &[f64]| repair_point(p, f, x))));
+    // Root-round rows no phase's model kept: checked at the answer with the others.
+    let mut left_out = Vec::new();
     let mut solve = |m: &Model, o: &SolveOptions| -> Result<PhaseSolve, SolverError> {
         Ok(match sep.as_mut() {
             Some(sep) => {
                 let ls = solver.solve_lazy(m, sep, o)?;
+                left_out.extend(ls.left_out);
                 (ls.result, ls.rows, Some(ls.report))
             }
             None => (solver.solve(m, o)?, Vec::new(), None),
@@ -400,7 +403,7 @@ pub fn solve_built(p: &Problem, f: &Formulation, kind: SolverKind, options: &Sol
         .as_ref()
         .filter(|_| f.recipe.split_objective)
         .and_then(|x| ObjectiveSplit::detect(&f.model).filter(|s| s.suits(&f.model, x)));
-    let (result, lazy_rows, lazy, split) = match split {
+    let (result, mut lazy_rows, lazy, split) = match split {
         Some(split) => {
             let polish = |x: &[f64]| f.encode(p, &f.decode(p, x)).ok();
             let s = solve_split(&f.model, &split, options, &mut solve, polish)?;
@@ -411,6 +414,7 @@ pub fn solve_built(p: &Problem, f: &Formulation, kind: SolverKind, options: &Sol
             (r, rows, lazy, None)
         }
     };
+    lazy_rows.extend(left_out);
     checked_result(p, f, result, Reports { lazy, split, solver_hints }, &lazy_rows)
 }
 

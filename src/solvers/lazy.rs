@@ -148,8 +148,13 @@ impl std::ops::AddAssign<&LazyReport> for LazyReport {
 pub struct LazySolve {
     /// The result, for the whole problem (emitted and lazy rows).
     pub result: SolveResult,
-    /// Every row the separator produced and the solver used.
+    /// Every row the separator produced that is in the solver's last model.
     pub rows: Vec<LazyRow>,
+    /// The root rounds' rows left out of the solver's model (slack at the last LP point): valid
+    /// like the others and checked at the answer with them, but not handed to a solver — nor
+    /// to the next phase of a split solve ([`super::split`]), which on Fig. 2e they had slowed
+    /// from 61 s to 77 s.
+    pub left_out: Vec<LazyRow>,
     /// What it cost.
     pub report: LazyReport,
 }
@@ -166,13 +171,14 @@ pub fn solve_loop<S: Solver + ?Sized>(solver: &S, model: &Model, sep: &mut dyn S
     let tol = Tolerances::default();
     let mut work = model.clone();
     let mut rows: Vec<LazyRow> = Vec::new();
+    let mut left_out: Vec<LazyRow> = Vec::new();
     let mut report = LazyReport::new(sep.name().to_string(), LazyMode::Loop);
     let budget = RoundBudget {
         base: o.time_limit.map(|l| ROOT_SHARE * l),
         productive: o.time_limit.map(|l| ROOT_SHARE_PRODUCTIVE * l),
         incumbent: o.mip_start.as_ref().map(|x| model.objective_value(x)),
     };
-    root_rounds(solver, &mut work, &mut rows, sep, o, t0, budget, &mut report)?;
+    root_rounds(solver, &mut work, &mut rows, &mut left_out, sep, o, t0, budget, &mut report)?;
     // The best point known to satisfy every row (emitted and lazy), with its objective.
     let mut best: Option<(Vec<f64>, f64)> = None;
     let better = |a: f64, b: f64| match model.sense {
@@ -231,7 +237,7 @@ pub fn solve_loop<S: Solver + ?Sized>(solver: &S, model: &Model, sep: &mut dyn S
             if r.termination == Termination::Infeasible {
                 best = None;
             }
-            return Ok(LazySolve { result: finish(r, best, bound), rows, report });
+            return Ok(LazySolve { result: finish(r, best, bound), rows, left_out, report });
         };
         let ts = Instant::now();
         let cuts = sep.separate_integral(&x);
@@ -242,7 +248,7 @@ pub fn solve_loop<S: Solver + ?Sized>(solver: &S, model: &Model, sep: &mut dyn S
             if best.as_ref().is_none_or(|(_, b)| better(obj, *b) || (obj - *b).abs() <= 1e-9 * b.abs().max(1.0)) {
                 best = Some((x, obj));
             }
-            return Ok(LazySolve { result: finish(r, best, bound), rows, report });
+            return Ok(LazySolve { result: finish(r, best, bound), rows, left_out, report });
         }
         for c in &cuts {
             c.add_to(&mut work);
@@ -270,7 +276,7 @@ pub fn solve_loop<S: Solver + ?Sized>(solver: &S, model: &Model, sep: &mut dyn S
             if matches!(r.termination, Termination::Optimal | Termination::Limit(LimitKind::Gap)) {
                 r.termination = Termination::Limit(if interrupted { LimitKind::Interrupt } else { LimitKind::Time });
             }
-            return Ok(LazySolve { result: finish(r, best, bound), rows, report });
+            return Ok(LazySolve { result: finish(r, best, bound), rows, left_out, report });
         }
     }
 }
@@ -332,12 +338,15 @@ impl RoundBudget {
 /// [`RoundBudget`]'s time: a fifth of the time limit, two fifths while they close the gap
 /// fast). The rows are valid everywhere, so they join the model: a backend without callbacks
 /// then branches on the strengthened relaxation. Only the rows tight at the
-/// last LP point (and those added after it) stay: slack ones only slow the solver's LPs (on
-/// Fig. 2e the rounds added 1,898 rows and HiGHS no longer proved the row in the paper's time).
+/// last LP point (and those added after it) stay in `work` and `rows`; the others go to
+/// `left_out`: slack ones only slow the solver's LPs (on Fig. 2e the rounds added 1,898 rows and
+/// HiGHS no longer proved the row in the paper's time).
+#[allow(clippy::too_many_arguments)]
 fn root_rounds<S: Solver + ?Sized>(
     solver: &S,
     work: &mut Model,
     rows: &mut Vec<LazyRow>,
+    left_out: &mut Vec<LazyRow>,
     sep: &mut dyn Separator,
     o: &SolveOptions,
     t0: Instant,
@@ -418,14 +427,16 @@ fn root_rounds<S: Solver + ?Sized>(
             let tol = |side: f64| 1e-6 * side.abs().max(1.0);
             (r.lhs.is_finite() && a - r.lhs <= tol(r.lhs)) || (r.rhs.is_finite() && r.rhs - a <= tol(r.rhs))
         };
-        let keep: Vec<&LazyRow> = rows.iter().enumerate().skip(start).filter(|&(i, r)| i >= solved_with || tight(r)).map(|(_, r)| r).collect();
-        report.root_rows_dropped = rows.len() - start - keep.len();
-        if report.root_rows_dropped > 0 {
+        let (keep, slack): (Vec<(usize, LazyRow)>, Vec<(usize, LazyRow)>) = rows.drain(start..).enumerate().map(|(i, r)| (start + i, r)).partition(|(i, r)| *i >= solved_with || tight(r));
+        report.root_rows_dropped = slack.len();
+        if !slack.is_empty() {
             *work = base;
-            for r in keep {
+            for (_, r) in &keep {
                 r.add_to(work);
             }
         }
+        rows.extend(keep.into_iter().map(|(_, r)| r));
+        left_out.extend(slack.into_iter().map(|(_, r)| r));
     }
     Ok(())
 }
@@ -455,7 +466,7 @@ pub fn lp_bound<S: Solver + ?Sized>(solver: &S, model: &Model, sep: Option<&mut 
     let t0 = Instant::now();
     let mut report = LazyReport::new(String::new(), LazyMode::Loop);
     let mut work = model.clone();
-    let mut rows = Vec::new();
+    let (mut rows, mut left_out) = (Vec::new(), Vec::new());
     struct NoRows;
     impl Separator for NoRows {
         fn name(&self) -> &str {
@@ -473,9 +484,9 @@ pub fn lp_bound<S: Solver + ?Sized>(solver: &S, model: &Model, sep: Option<&mut 
         Some(s) => s,
         None => &mut none,
     };
-    root_rounds(solver, &mut work, &mut rows, sep, o, t0, RoundBudget { base: o.time_limit, ..RoundBudget::default() }, &mut report)?;
+    root_rounds(solver, &mut work, &mut rows, &mut left_out, sep, o, t0, RoundBudget { base: o.time_limit, ..RoundBudget::default() }, &mut report)?;
     let (plain, with_cuts) = report.root_bounds.map_or((None, None), |(a, b)| (Some(a), Some(b)));
-    Ok(LpBound { plain, with_cuts, rounds: report.root_rounds, rows: rows.len(), seconds: t0.elapsed().as_secs_f64() })
+    Ok(LpBound { plain, with_cuts, rounds: report.root_rounds, rows: rows.len() + left_out.len(), seconds: t0.elapsed().as_secs_f64() })
 }
 
 #[cfg(test)]
@@ -560,6 +571,49 @@ mod tests {
         fn locks(&self) -> Vec<(VarId, Lock)> {
             Vec::new()
         }
+    }
+
+    /// At the first fractional point: `a ≥ 0.5` (tight at the next LP point) and `a + b ≥ 0.2`
+    /// (slack there); nothing after.
+    struct TwoRoots {
+        calls: u32,
+    }
+
+    impl Separator for TwoRoots {
+        fn name(&self) -> &str {
+            "two roots"
+        }
+        fn separate_integral(&mut self, _: &[f64]) -> Vec<LazyRow> {
+            Vec::new()
+        }
+        fn separate_fractional(&mut self, _: &[f64]) -> Vec<LazyRow> {
+            self.calls += 1;
+            if self.calls > 1 {
+                return Vec::new();
+            }
+            let row = |name: &str, lhs: f64, terms: Vec<(VarId, f64)>| LazyRow { name: name.into(), lhs, rhs: f64::INFINITY, terms };
+            vec![row("tight", 0.5, vec![(VarId(0), 1.0)]), row("slack", 0.2, vec![(VarId(0), 1.0), (VarId(1), 1.0)])]
+        }
+        fn locks(&self) -> Vec<(VarId, Lock)> {
+            Vec::new()
+        }
+    }
+
+    #[test]
+    fn root_rows_slack_at_the_last_lp_point_are_left_out_of_the_model_and_of_the_rows_passed_on() {
+        let mut m = Model::new("roots");
+        let a = m.add_binary("a", 1.0);
+        let b = m.add_binary("b", 1.0);
+        let _ = (a, b);
+        let solver = SolverKind::Microlp.instance().expect("microlp is always compiled");
+        let out = solve_loop(solver.as_ref(), &m, &mut TwoRoots { calls: 0 }, &SolveOptions::default()).unwrap();
+        assert_eq!(out.report.root_rounds, 1);
+        assert_eq!(out.report.root_rows_dropped, 1);
+        let names = |rows: &[LazyRow]| rows.iter().map(|r| r.name.clone()).collect::<Vec<_>>();
+        assert_eq!(names(&out.rows), ["tight"], "only the tight row stays in the model (a split's next phase gets these)");
+        assert_eq!(names(&out.left_out), ["slack"], "the slack one is kept aside, to be checked");
+        assert_eq!(out.result.termination, Termination::Optimal);
+        assert_eq!(out.result.objective, Some(1.0));
     }
 
     #[test]

@@ -350,7 +350,7 @@ impl Solver for ScipSolver {
             return Err(rejected(format!("lazy-row handler: {e}")));
         }
         let report = LazyReport { rounds: handler.calls, rows_added: handler.rows.len(), separation_seconds: handler.seconds, ..LazyReport::new(name, LazyMode::Callback) };
-        Ok(LazySolve { result, rows: std::mem::take(&mut handler.rows), report })
+        Ok(LazySolve { result, rows: std::mem::take(&mut handler.rows), left_out: Vec::new(), report })
     }
 }
 

@@ -221,7 +221,8 @@ pub fn solve_split(
         return Ok(SplitSolve { result: r, rows, lazy, report });
     };
     let p1 = split.primary_value(&x1);
-    // Phase 2: the original objective with P held in [b₁, P₁], plus phase 1's lazy rows.
+    // Phase 2: the original objective with P held in [b₁, P₁], plus the lazy rows phase 1's
+    // model held (not the slack root rows it left out).
     let mut m2 = model.clone();
     for r in &rows {
         r.add_to(&mut m2);
