@@ -247,7 +247,8 @@ struct SolveArgs {
     /// `scip.limits/nodes=1000`, `cbc.cuts=off` (repeatable; each backend takes its own).
     #[arg(long = "param", value_name = "BACKEND.NAME=VALUE")]
     params: Vec<RawParam>,
-    /// Write the solution found (`name value` per variable) to this file.
+    /// Write the solution found (`name value` per variable) to this file; with `solve --relax`,
+    /// the LP relaxation's point after the cut rounds.
     #[arg(long, value_name = "FILE.sol")]
     sol: Option<PathBuf>,
 }

@@ -119,6 +119,11 @@ pub fn solve_spec(
         let b = netspec::solvers::lazy::lp_bound(solver.as_ref(), &nm.model, sep.as_mut().map(|s| s as &mut dyn netspec::solvers::Separator), &args.options()?)?;
         let f = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.6}"));
         println!("LP bound   {} as written, {} after {} cut rounds ({} rows), {:.2} s with {kind}", f(b.plain), f(b.with_cuts), b.rounds, b.rows, b.seconds);
+        if let (Some(sol), Some(x)) = (&args.sol, &b.point) {
+            let header = format!("LP relaxation after {} cut rounds ({kind})", b.rounds);
+            netspec::io::sol::write(&nm.model, x, b.with_cuts, &header, sol)?;
+            println!("LP point   {}", sol.display());
+        }
     }
     if no_solve {
         return Ok(ExitCode::SUCCESS);

@@ -340,7 +340,7 @@ impl RoundBudget {
 /// then branches on the strengthened relaxation. Only the rows tight at the
 /// last LP point (and those added after it) stay in `work` and `rows`; the others go to
 /// `left_out`: slack ones only slow the solver's LPs (on Fig. 2e the rounds added 1,898 rows and
-/// HiGHS no longer proved the row in the paper's time).
+/// HiGHS no longer proved the row in the paper's time). Returns the last LP point.
 #[allow(clippy::too_many_arguments)]
 fn root_rounds<S: Solver + ?Sized>(
     solver: &S,
@@ -352,7 +352,7 @@ fn root_rounds<S: Solver + ?Sized>(
     t0: Instant,
     budget: RoundBudget,
     report: &mut LazyReport,
-) -> Result<(), SolverError> {
+) -> Result<Option<Vec<f64>>, SolverError> {
     let mut stalled = 0;
     let base = work.clone();
     let start = rows.len();
@@ -421,9 +421,10 @@ fn root_rounds<S: Solver + ?Sized>(
     if let (Some(&first), Some(&last)) = (bounds.first(), bounds.last()) {
         report.root_bounds = Some((first, last));
     }
-    if let Some((x, solved_with)) = last_point {
+    if let Some((x, solved_with)) = &last_point {
+        let (x, solved_with) = (x.as_slice(), *solved_with);
         let tight = |r: &LazyRow| {
-            let a = r.activity(&x);
+            let a = r.activity(x);
             let tol = |side: f64| 1e-6 * side.abs().max(1.0);
             (r.lhs.is_finite() && a - r.lhs <= tol(r.lhs)) || (r.rhs.is_finite() && r.rhs - a <= tol(r.rhs))
         };
@@ -438,7 +439,7 @@ fn root_rounds<S: Solver + ?Sized>(
         rows.extend(keep.into_iter().map(|(_, r)| r));
         left_out.extend(slack.into_iter().map(|(_, r)| r));
     }
-    Ok(())
+    Ok(last_point.map(|(x, _)| x))
 }
 
 /// Cap on the cutting-plane rounds at the root.
@@ -458,6 +459,8 @@ pub struct LpBound {
     pub rows: usize,
     /// Seconds in all.
     pub seconds: f64,
+    /// The last LP point (the relaxation's optimum after the rounds), one value per variable.
+    pub point: Option<Vec<f64>>,
 }
 
 /// Solves the LP relaxation of `model` (and runs the separator's cutting-plane rounds on it, if
@@ -484,9 +487,9 @@ pub fn lp_bound<S: Solver + ?Sized>(solver: &S, model: &Model, sep: Option<&mut 
         Some(s) => s,
         None => &mut none,
     };
-    root_rounds(solver, &mut work, &mut rows, &mut left_out, sep, o, t0, RoundBudget { base: o.time_limit, ..RoundBudget::default() }, &mut report)?;
+    let point = root_rounds(solver, &mut work, &mut rows, &mut left_out, sep, o, t0, RoundBudget { base: o.time_limit, ..RoundBudget::default() }, &mut report)?;
     let (plain, with_cuts) = report.root_bounds.map_or((None, None), |(a, b)| (Some(a), Some(b)));
-    Ok(LpBound { plain, with_cuts, rounds: report.root_rounds, rows: rows.len() + left_out.len(), seconds: t0.elapsed().as_secs_f64() })
+    Ok(LpBound { plain, with_cuts, rounds: report.root_rounds, rows: rows.len() + left_out.len(), seconds: t0.elapsed().as_secs_f64(), point })
 }
 
 #[cfg(test)]
