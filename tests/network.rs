@@ -661,3 +661,41 @@ fn validator_guard() {
         }
     }
 }
+
+/// `strong`'s penalised zig-zags, too-close pairs and T-junctions have continuous indicators with
+/// one row each, `Σ E − Z ≤ n − 1`; with `continuous_indicators = false` they are the paper's
+/// binaries with `0 ≤ Σ E − n·Z ≤ n − 1`. Both give the same optimum, with every indicator at 0
+/// or 1 in the solver's answer, and the design's objective counts the penalised configurations.
+#[test]
+fn continuous_indicators_are_exact_and_write_one_row_each() {
+    let text = |continuous: bool| {
+        format!("boundary = \"candidate\"\n[formulation]\nrecipe = \"strong\"\ncontinuous_indicators = {continuous}\n[mesh]\ngrid = {{ width = 3, height = 3 }}\n[sinks]\nvertices = [0]\n[coverage]\nrange = 1\n[weights]\nlength = 1\nzigzag = 0.5\ntoo_close = 0.25\nt_junction = 0.125\n")
+    };
+    let mut optima = Vec::new();
+    for continuous in [true, false] {
+        let p = problem(&spec("indicators", &text(continuous)));
+        let f = pipeline::build(&p);
+        assert_eq!(f.recipe.continuous_indicators, continuous);
+        let indicators: Vec<_> = f.model.vars().iter().enumerate().filter(|(_, v)| v.name.starts_with("Z0_") || v.name.starts_with("Z1_") || v.name.starts_with("T_")).collect();
+        assert!(indicators.iter().any(|(_, v)| v.name.starts_with("Z0_")) && indicators.iter().any(|(_, v)| v.name.starts_with("Z1_")) && indicators.iter().any(|(_, v)| v.name.starts_with("T_")), "every kind of indicator");
+        for (_, v) in &indicators {
+            assert_eq!(v.kind == netspec::milp::VarKind::Continuous, continuous, "{}", v.name);
+        }
+        let ranged = f.model.rows().filter(|r| (r.name.starts_with("zz_") || r.name.starts_with("close_") || r.name.starts_with("tj_")) && r.lhs.is_finite() && r.rhs.is_finite()).count();
+        assert_eq!(ranged == 0, continuous, "two-sided rows only for binary indicators");
+        let r = pipeline::solve_built(&p, &f, SolverKind::Highs, &SolveOptions { threads: Some(1), ..SolveOptions::default() }).unwrap();
+        assert_eq!(r.solve.termination, Termination::Optimal);
+        assert!(r.validity.valid, "{:?}", r.validity);
+        let x = r.primal_point.as_ref().expect("a point");
+        for (j, v) in &indicators {
+            assert!(x[*j].abs() < 1e-6 || (x[*j] - 1.0).abs() < 1e-6, "{} = {}", v.name, x[*j]);
+        }
+        let o = r.objective.as_ref().expect("the design's objective");
+        assert!(o.zigzags + o.too_close + o.t_junctions > 0, "the optimum pays for some configuration: {o:?}");
+        optima.push(r.solve.objective.unwrap());
+    }
+    // 8 edges, a zig-zag, two too-close pairs and a T-junction: 8 + 0.5 + 2·0.25 + 0.125.
+    for o in optima {
+        assert!(objectives_agree(o, 9.125, 1e-9), "{o}");
+    }
+}

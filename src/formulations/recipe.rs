@@ -38,6 +38,12 @@ pub struct Recipe {
     /// ([`Recipe::solver_hints`]): `strong` only.
     #[serde(default)]
     pub solver_tuning: bool,
+    /// Penalised local configurations (zig-zags, too-close pairs, T-junctions) get a continuous
+    /// indicator `Z ∈ [0, 1]` with `Z ≥ Σ E − (n − 1)` (13)–(14) instead of a binary one with
+    /// `0 ≤ Σ E − n·Z ≤ n − 1`: `strong` only. Exact because `Z` has a positive cost and this
+    /// one row: at an optimum `Z = max(0, Σ E − (n − 1))`, which is 0 or 1 at integral edges.
+    #[serde(default)]
+    pub continuous_indicators: bool,
 }
 
 impl Recipe {
@@ -58,7 +64,8 @@ impl Recipe {
         let rooms_connectivity = (name == RecipeName::Strong).then_some(C::Flow);
         let split_objective = name == RecipeName::Strong;
         let solver_tuning = name == RecipeName::Strong;
-        Recipe { name, label: name.name().to_string(), connectivity, rooms_connectivity, distance, coverage, dead_ends, paths, big_m, label_bounds, split_objective, solver_tuning }
+        let continuous_indicators = name == RecipeName::Strong;
+        Recipe { name, label: name.name().to_string(), connectivity, rooms_connectivity, distance, coverage, dead_ends, paths, big_m, label_bounds, split_objective, solver_tuning, continuous_indicators }
     }
 
     /// The recipe a spec asks for, with its overrides.
@@ -78,6 +85,7 @@ impl Recipe {
         r.label_bounds = parts.label_bounds.unwrap_or(r.label_bounds);
         r.split_objective = parts.split_objective.unwrap_or(r.split_objective);
         r.solver_tuning = parts.solver_tuning.unwrap_or(r.solver_tuning);
+        r.continuous_indicators = parts.continuous_indicators.unwrap_or(r.continuous_indicators);
         r
     }
 

@@ -163,6 +163,11 @@ pub struct FormulationParts {
     /// The recipe's measured solver settings (`Recipe::solver_hints`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub solver_tuning: Option<bool>,
+    /// Penalised local configurations (zig-zags, too-close pairs, T-junctions) with a continuous
+    /// indicator in `[0, 1]` and the one row `Z ≥ Σ E − (n − 1)`, instead of the paper's binary
+    /// indicator and its two-sided row.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub continuous_indicators: Option<bool>,
 }
 
 /// The `formulation` key: a recipe name or a table of parts.
@@ -223,6 +228,7 @@ impl FormulationSpec {
         push("label_bounds", p.label_bounds.map(|v| v.to_string()));
         push("split_objective", p.split_objective.map(|v| v.to_string()));
         push("solver_tuning", p.solver_tuning.map(|v| v.to_string()));
+        push("continuous_indicators", p.continuous_indicators.map(|v| v.to_string()));
         if over.is_empty() {
             p.recipe.name().to_string()
         } else {
