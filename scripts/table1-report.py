@@ -22,7 +22,9 @@ t1-short-xeon/), for the fourth 2026-12-02.tar.gz (which also keeps the strong c
 of its first window under t1-1e-first-window/), for the fifth 2026-12-02c.tar.gz, the sixth
 2026-12-02d.tar.gz, the seventh 2026-12-02e.tar.gz, the eighth 2026-12-02f.tar.gz (which
 also keeps its superseded first pass under t1-paths-a733c45/), the ninth 2026-12-02g.tar.gz
-and the tenth 2026-12-03.tar.gz (which also keeps the cells it replaced under t1-before-spurs/);
+the tenth 2026-12-03.tar.gz (which also keeps the cells it replaced under t1-before-spurs/)
+and the eleventh 2026-12-03b.tar.gz (which also keeps the cells it replaced under
+t1-before-indicators/);
 how to extract them is written into the
 report (the paragraph after the protocol). A row whose run has no picture keeps the picture already in the gallery.
 
@@ -178,8 +180,9 @@ def main():
     w("[table1-runs/2026-12-02d.tar.gz](table1-runs/2026-12-02d.tar.gz), for the seventh's")
     w("[table1-runs/2026-12-02e.tar.gz](table1-runs/2026-12-02e.tar.gz), for the eighth's")
     w("[table1-runs/2026-12-02f.tar.gz](table1-runs/2026-12-02f.tar.gz), for the ninth's")
-    w("[table1-runs/2026-12-02g.tar.gz](table1-runs/2026-12-02g.tar.gz) and for the tenth's")
-    w("[table1-runs/2026-12-03.tar.gz](table1-runs/2026-12-03.tar.gz) (each keeps the runs the next")
+    w("[table1-runs/2026-12-02g.tar.gz](table1-runs/2026-12-02g.tar.gz), for the tenth's")
+    w("[table1-runs/2026-12-03.tar.gz](table1-runs/2026-12-03.tar.gz) and for the eleventh's")
+    w("[table1-runs/2026-12-03b.tar.gz](table1-runs/2026-12-03b.tar.gz) (each keeps the runs the next")
     w("replaces): extract the first into `out/`, remove its strong-recipe room rows and the paper")
     w("recipe's 1e, extract the second, remove its 1e (all three columns) and its strong-recipe")
     w("11b, extract the third, remove HiGHS/strong's rows of `models/table1-cuts.toml` and")
@@ -189,6 +192,8 @@ def main():
     w("seventh, remove both strong columns' rows of `models/table1-paths.toml`, then extract the")
     w("eighth, remove HiGHS/strong's rows of `models/table1-rooms.toml`, then extract the ninth,")
     w("remove both strong columns' rows of `models/table1-spurs.toml`, then extract the tenth,")
+    w("remove HiGHS/strong's rows of `models/table1-indicators.toml` and its 7a rows, then extract")
+    w("the eleventh,")
     w("to resume these comparisons (a record with the same settings is")
     w("reused) or to report again.")
     w("")
