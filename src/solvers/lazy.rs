@@ -422,22 +422,24 @@ fn root_rounds<S: Solver + ?Sized>(
         report.root_bounds = Some((first, last));
     }
     if let Some((x, solved_with)) = &last_point {
-        let (x, solved_with) = (x.as_slice(), *solved_with);
         let tight = |r: &LazyRow| {
             let a = r.activity(x);
             let tol = |side: f64| 1e-6 * side.abs().max(1.0);
             (r.lhs.is_finite() && a - r.lhs <= tol(r.lhs)) || (r.rhs.is_finite() && r.rhs - a <= tol(r.rhs))
         };
-        let (keep, slack): (Vec<(usize, LazyRow)>, Vec<(usize, LazyRow)>) = rows.drain(start..).enumerate().map(|(i, r)| (start + i, r)).partition(|(i, r)| *i >= solved_with || tight(r));
+        // The rows added after the last LP point stay; of the earlier ones, the tight.
+        let added_after = rows.split_off(*solved_with);
+        let (kept, slack): (Vec<LazyRow>, Vec<LazyRow>) = rows.drain(start..).partition(|r| tight(r));
+        rows.extend(kept);
+        rows.extend(added_after);
         report.root_rows_dropped = slack.len();
         if !slack.is_empty() {
             *work = base;
-            for (_, r) in &keep {
+            for r in &rows[start..] {
                 r.add_to(work);
             }
         }
-        rows.extend(keep.into_iter().map(|(_, r)| r));
-        left_out.extend(slack.into_iter().map(|(_, r)| r));
+        left_out.extend(slack);
     }
     Ok(last_point.map(|(x, _)| x))
 }

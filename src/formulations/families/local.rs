@@ -90,12 +90,13 @@ fn local_config(c: &mut Ctx, k: u8, tag: String, edges: Vec<EdgeId>, w: Weight) 
     for &e in &edges {
         ex.add_value(c.edge_value(e), 1.0);
     }
+    let row = format!("{}_{tag}", if k == 0 { "zz" } else { "close" });
     let indicator = match w {
         Weight::Forbid => {
-            c.em.le(format!("{}_{tag}", if k == 0 { "zz" } else { "close" }), &ex, n - 1.0);
+            c.em.le(row, &ex, n - 1.0);
             None
         }
-        Weight::Penalty(lambda) => Some(penalty_row(c, format!("Z{k}_{tag}"), format!("{}_{tag}", if k == 0 { "zz" } else { "close" }), ex, n, lambda)),
+        Weight::Penalty(lambda) => Some(penalty_row(c, format!("Z{k}_{tag}"), row, ex, n, lambda)),
         Weight::Off => return,
     };
     c.vars.local_configs.push(LocalConfig { k, edges, indicator });
@@ -154,11 +155,10 @@ fn penalty_row(c: &mut Ctx, var: String, row: String, mut ex: Expr, n: f64, lamb
         let z = c.em.model.add_continuous(var, 0.0, 1.0, lambda);
         ex.add(z, -1.0);
         c.em.le(row, &ex, n - 1.0);
-        z
-    } else {
-        let z = c.em.model.add_binary(var, lambda);
-        ex.add(z, -n);
-        c.em.row(row, 0.0, &ex, n - 1.0);
-        z
+        return z;
     }
+    let z = c.em.model.add_binary(var, lambda);
+    ex.add(z, -n);
+    c.em.row(row, 0.0, &ex, n - 1.0);
+    z
 }
