@@ -8,6 +8,7 @@ use crate::heuristics::{self, Inputs};
 use crate::mesh::Mesh;
 use crate::milp::{check_point, objectives_agree, CheckReport, Model, ModelStats, Tolerances};
 use crate::rules::paths::PathSets;
+use crate::solvers::lattice::LatticeReport;
 use crate::solvers::split::{solve_split, ObjectiveSplit, PhaseSolve, SplitReport};
 use crate::solvers::{LazyReport, LazyRow, RawParam, Separator, SolveOptions, SolveResult, SolverError, SolverKind};
 use crate::spec::{Problem, Spec};
@@ -96,6 +97,10 @@ pub struct DesignResult {
     /// ([`crate::solvers::split`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub split: Option<SplitReport>,
+    /// The objective's lattice, when the recipe used it: the absolute gap handed to the backend
+    /// and the backend's bound before it was rounded up ([`crate::solvers::lattice`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lattice: Option<LatticeReport>,
     /// The recipe's solver settings handed to the backend (`highs.mip_pscost_minreliable=0`;
     /// [`crate::formulations::Recipe::solver_hints`]), beside the user's own.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
@@ -365,7 +370,7 @@ pub fn solve_from(p: &Problem, f: &Formulation, kind: SolverKind, options: &Solv
             solve.objective = Some(f.model.objective_value(&x));
             solve.primal = Some(x);
             solve.finish(f.model.sense);
-            let reports = Reports { lazy: res.lazy.clone(), split: res.split.clone(), solver_hints: res.solver_hints.clone() };
+            let reports = Reports { lazy: res.lazy.clone(), split: res.split.clone(), solver_hints: res.solver_hints.clone(), lattice: res.lattice.clone() };
             let mut again = checked_result(p, f, solve, reports, &[])?;
             again.solve.wall_time = res.solve.wall_time;
             report.returned = true;
@@ -383,7 +388,14 @@ pub fn solve_from(p: &Problem, f: &Formulation, kind: SolverKind, options: &Solv
 /// validated and measured, and its objective recomputed from the design alone.
 pub fn solve_built(p: &Problem, f: &Formulation, kind: SolverKind, options: &SolveOptions) -> Result<DesignResult, SolverError> {
     let solver = kind.instance()?;
-    let (tuned, solver_hints) = with_solver_hints(options, &f.recipe.solver_hints(kind));
+    let (mut tuned, solver_hints) = with_solver_hints(options, &f.recipe.solver_hints(kind));
+    let lattice = f.objective_lattice.filter(|_| f.recipe.objective_lattice);
+    let mut lattice_report = lattice.map(|lattice| LatticeReport { lattice, solver_abs_gap: None, solver_bound: None });
+    if let Some(report) = lattice_report.as_mut().filter(|_| solver.capabilities().abs_gap) {
+        let gap = report.lattice.solver_abs_gap().max(tuned.abs_gap.unwrap_or(0.0));
+        tuned.abs_gap = Some(gap);
+        report.solver_abs_gap = Some(gap);
+    }
     let options = &tuned;
     let mut sep = f.separator().map(|sep| sep.with_repair(Box::new(|x: &[f64]| repair_point(p, f, x))));
     // Root-round rows no phase's model kept: checked at the answer with the others.
@@ -403,7 +415,7 @@ pub fn solve_built(p: &Problem, f: &Formulation, kind: SolverKind, options: &Sol
         .as_ref()
         .filter(|_| f.recipe.split_objective)
         .and_then(|x| ObjectiveSplit::detect(&f.model).filter(|s| s.suits(&f.model, x)));
-    let (result, mut lazy_rows, lazy, split) = match split {
+    let (mut result, mut lazy_rows, lazy, split) = match split {
         Some(split) => {
             let polish = |x: &[f64]| f.encode(p, &f.decode(p, x)).ok();
             let s = solve_split(&f.model, &split, options, &mut solve, polish)?;
@@ -415,7 +427,10 @@ pub fn solve_built(p: &Problem, f: &Formulation, kind: SolverKind, options: &Sol
         }
     };
     lazy_rows.extend(left_out);
-    checked_result(p, f, result, Reports { lazy, split, solver_hints }, &lazy_rows)
+    if let Some(report) = lattice_report.as_mut() {
+        report.solver_bound = report.lattice.settle(&mut result, f.model.sense);
+    }
+    checked_result(p, f, result, Reports { lazy, split, solver_hints, lattice: lattice_report }, &lazy_rows)
 }
 
 /// `options` with the recipe's solver `hints` put before the user's parameters, leaving out a
@@ -433,6 +448,7 @@ struct Reports {
     lazy: Option<LazyReport>,
     split: Option<SplitReport>,
     solver_hints: Vec<String>,
+    lattice: Option<LatticeReport>,
 }
 
 /// Checks a solver's result and builds the design result: every row and bound of the model
@@ -445,7 +461,7 @@ fn checked_result(
     reports: Reports,
     lazy_rows: &[LazyRow],
 ) -> Result<DesignResult, SolverError> {
-    let Reports { lazy, split, solver_hints } = reports;
+    let Reports { lazy, split, solver_hints, lattice } = reports;
     let mut validity = Validity { valid: false, design_violations: Vec::new(), milp_check: None, objective_recomputed: None, objective_agrees: None };
     let mut net = None;
     let mut metrics = None;
@@ -500,6 +516,7 @@ fn checked_result(
         big_m: f.big_m,
         lazy,
         split,
+        lattice,
         solver_hints,
         start: None,
         path_sets: f.path_sets.clone(),

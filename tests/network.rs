@@ -699,3 +699,41 @@ fn continuous_indicators_are_exact_and_write_one_row_each() {
         assert!(objectives_agree(o, 9.125, 1e-9), "{o}");
     }
 }
+
+/// The strong recipe's objective lattice: a distance spec on a unit grid (lengths, zig-zag
+/// penalty and distance flow all integral) has the lattice ℤ; HiGHS gets an absolute gap of
+/// 0.99 and its bound is rounded up to the lattice, proving the same optimum as without it.
+/// microlp takes no absolute gap and still gets the rounding. The paper's labels carry the
+/// distance term on big-M rows: no lattice; without a distance term its objective is integral.
+#[test]
+fn objective_lattice_rounds_the_bound_and_keeps_the_optimum() {
+    let text = |recipe: &str, lattice: bool, distance: f64| {
+        format!("boundary = \"candidate\"\n[formulation]\nrecipe = \"{recipe}\"\nobjective_lattice = {lattice}\n[mesh]\ngrid = {{ width = 4, height = 3 }}\n[sinks]\nvertices = [0]\n[coverage]\nrange = 1\n[weights]\nlength = 1\ndistance = {distance}\nzigzag = 5\n[features]\ndead_ends = \"forbid\"\n")
+    };
+    let one_thread = SolveOptions { threads: Some(1), ..SolveOptions::default() };
+    let mut optima = Vec::new();
+    for (kind, lattice) in [(SolverKind::Highs, true), (SolverKind::Highs, false), (SolverKind::Microlp, true)] {
+        let p = problem(&spec("lattice", &text("strong", lattice, 1.0)));
+        let f = pipeline::build(&p);
+        assert_eq!(f.objective_lattice.map(|l| (l.step, l.offset)), Some((1.0, 0.0)), "a formulation property, used or not");
+        let r = pipeline::solve_built(&p, &f, kind, &one_thread).unwrap();
+        assert_eq!(r.solve.termination, Termination::Optimal, "{kind}");
+        assert!(r.validity.valid, "{:?}", r.validity);
+        assert_eq!(r.solve.dual_bound, r.solve.objective, "{kind}: the bound meets the objective");
+        match (&r.lattice, lattice) {
+            (None, false) => {}
+            (Some(l), true) => {
+                let takes_gap = kind == SolverKind::Highs;
+                assert_eq!(l.solver_abs_gap, takes_gap.then_some(0.99), "{kind}");
+                assert!(l.solver_bound.is_some_and(|b| b <= r.solve.dual_bound.unwrap() + 1e-9), "{kind}: {l:?}");
+            }
+            (l, _) => panic!("{kind}, lattice {lattice}: report {l:?}"),
+        }
+        optima.push(r.solve.objective.unwrap());
+    }
+    assert!(optima.iter().all(|&o| objectives_agree(o, 41.0, 1e-9)), "{optima:?}");
+
+    let paper = |distance| pipeline::build(&problem(&spec("lattice", &text("paper", false, distance)))).objective_lattice;
+    assert_eq!(paper(1.0), None, "labels hold the distance term");
+    assert_eq!(paper(0.0).map(|l| l.step), Some(1.0));
+}

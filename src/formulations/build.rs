@@ -9,6 +9,7 @@ use crate::design::Network;
 use crate::milp::{Model, Sense};
 use crate::rules::paths::PathSets;
 use crate::rules::placements::PlacementReport;
+use crate::solvers::lattice::ObjectiveLattice;
 use crate::spec::{Allow, ConnectivityForm, EdgeRole, Problem, RoomMode, Weight};
 use indexmap::IndexMap;
 
@@ -31,6 +32,9 @@ pub struct Formulation {
     pub placements: Option<PlacementReport>,
     /// The graph of the lazily separated cutsets, when the recipe has them.
     pub cutsets: Option<cutset::CutsetGraph>,
+    /// The lattice every design's objective lies on, when there is one
+    /// ([`objective_lattice`]); the pipeline uses it when the recipe says so.
+    pub objective_lattice: Option<ObjectiveLattice>,
 }
 
 /// Builds the formulation the problem's spec asks for.
@@ -117,7 +121,24 @@ pub fn build_with(p: &Problem, recipe: &Recipe) -> Formulation {
         c.em.families.entry("cutsets (§8, lazy)".to_string()).or_default();
     }
     let Ctx { em, vars, .. } = c;
-    Formulation { recipe: recipe.clone(), model: em.model, vars, families: em.families, big_m, path_sets, placements, cutsets }
+    let objective_lattice = objective_lattice(&em.model, &vars);
+    Formulation { recipe: recipe.clone(), model: em.model, vars, families: em.families, big_m, path_sets, placements, cutsets, objective_lattice }
+}
+
+/// The objective's lattice ([`crate::solvers::lattice`]). Besides integer variables, the
+/// continuous variables with a cost that keep the optimum on the lattice are the flows
+/// (distance, travel, connectivity: at integral direction binaries and vertex activities a
+/// min-cost flow with integral supplies and capacities on a network matrix, whose optimum is
+/// integral) and the continuous indicators of penalised configurations (`Z = max(0, Σ E −
+/// (n − 1))` at an optimum). The paper's labels `D` are not: their rows hold the big-M.
+fn objective_lattice(model: &Model, vars: &VarMap) -> Option<ObjectiveLattice> {
+    let mut certified = vec![false; model.num_vars()];
+    let flows = vars.distance_flow.iter().chain(&vars.travel_flow).chain(&vars.connect_flow).flatten();
+    let indicators = vars.local_configs.iter().filter_map(|c| c.indicator).chain(vars.t_configs.iter().filter_map(|t| t.indicator));
+    for v in flows.copied().chain(indicators) {
+        certified[v.index()] = true;
+    }
+    ObjectiveLattice::of_model(model, |v| certified[v.index()])
 }
 
 /// Runs one family, charging what it adds to `label`.

@@ -44,6 +44,11 @@ pub struct Recipe {
     /// one row: at an optimum `Z = max(0, Σ E − (n − 1))`, which is 0 or 1 at integral edges.
     #[serde(default)]
     pub continuous_indicators: bool,
+    /// Round the solver's bound up to the objective's lattice and hand the backend an absolute
+    /// gap of (nearly) one step, when the formulation's objective has a lattice
+    /// ([`crate::solvers::lattice`]): `strong` only.
+    #[serde(default)]
+    pub objective_lattice: bool,
 }
 
 impl Recipe {
@@ -65,7 +70,23 @@ impl Recipe {
         let split_objective = name == RecipeName::Strong;
         let solver_tuning = name == RecipeName::Strong;
         let continuous_indicators = name == RecipeName::Strong;
-        Recipe { name, label: name.name().to_string(), connectivity, rooms_connectivity, distance, coverage, dead_ends, paths, big_m, label_bounds, split_objective, solver_tuning, continuous_indicators }
+        let objective_lattice = name == RecipeName::Strong;
+        Recipe {
+            name,
+            label: name.name().to_string(),
+            connectivity,
+            rooms_connectivity,
+            distance,
+            coverage,
+            dead_ends,
+            paths,
+            big_m,
+            label_bounds,
+            split_objective,
+            solver_tuning,
+            continuous_indicators,
+            objective_lattice,
+        }
     }
 
     /// The recipe a spec asks for, with its overrides.
@@ -86,6 +107,7 @@ impl Recipe {
         r.split_objective = parts.split_objective.unwrap_or(r.split_objective);
         r.solver_tuning = parts.solver_tuning.unwrap_or(r.solver_tuning);
         r.continuous_indicators = parts.continuous_indicators.unwrap_or(r.continuous_indicators);
+        r.objective_lattice = parts.objective_lattice.unwrap_or(r.objective_lattice);
         r
     }
 

@@ -19,6 +19,7 @@ pub mod scip;
 mod scip_lazy;
 
 pub mod lazy;
+pub mod lattice;
 mod options;
 pub mod split;
 mod result;

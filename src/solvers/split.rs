@@ -19,6 +19,7 @@
 //! as phase 2 does and the design's `S` is below `q + S_min`, which [`ObjectiveSplit::suits`]
 //! asks of the start before the split is tried.
 
+use super::lattice::lattice_step;
 use super::{LazyReport, LazyRow, SolveOptions, SolveResult, SolverError, Termination};
 use crate::milp::{check_point, Model, Sense, Tolerances, VarId, VarKind};
 use serde::{Deserialize, Serialize};
@@ -26,8 +27,6 @@ use std::time::Instant;
 
 /// The least ratio between the smallest large and the largest small objective coefficient.
 const SCALE_RATIO: f64 = 100.0;
-/// The largest denominator tried for the lattice of the large coefficients.
-const MAX_DENOMINATOR: u64 = 1000;
 /// Phase 1's share of the time limit (phase 2 gets the rest, and whatever phase 1 leaves).
 const PHASE1_SHARE: f64 = 0.85;
 
@@ -108,27 +107,6 @@ impl ObjectiveSplit {
         }
         m.obj_constant = 0.0;
         m
-    }
-}
-
-/// The largest `q = g/d` (`d ≤ 1000`) of which every coefficient is an integer multiple.
-fn lattice_step(coefs: &[f64]) -> Option<f64> {
-    (1..=MAX_DENOMINATOR).find_map(|d| {
-        // The gcd of the coefficients times d, or None at the first one that is not an integer.
-        let g = coefs.iter().try_fold(0, |g, c| {
-            let s = (c * d as f64).abs();
-            let n = s.round();
-            ((s - n).abs() <= 1e-9 * s.max(1.0) && n <= 1e12).then(|| gcd(g, n as u64))
-        })?;
-        (g > 0).then(|| g as f64 / d as f64)
-    })
-}
-
-fn gcd(a: u64, b: u64) -> u64 {
-    if b == 0 {
-        a
-    } else {
-        gcd(b, a % b)
     }
 }
 

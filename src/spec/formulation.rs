@@ -168,6 +168,10 @@ pub struct FormulationParts {
     /// indicator and its two-sided row.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub continuous_indicators: Option<bool>,
+    /// The solve rounds its bound to the objective's lattice and prunes with it
+    /// (`solvers::lattice`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub objective_lattice: Option<bool>,
 }
 
 /// The `formulation` key: a recipe name or a table of parts.
@@ -229,6 +233,7 @@ impl FormulationSpec {
         push("split_objective", p.split_objective.map(|v| v.to_string()));
         push("solver_tuning", p.solver_tuning.map(|v| v.to_string()));
         push("continuous_indicators", p.continuous_indicators.map(|v| v.to_string()));
+        push("objective_lattice", p.objective_lattice.map(|v| v.to_string()));
         if over.is_empty() {
             p.recipe.name().to_string()
         } else {
