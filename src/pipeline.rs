@@ -97,8 +97,8 @@ pub struct DesignResult {
     /// ([`crate::solvers::split`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub split: Option<SplitReport>,
-    /// The objective's lattice, when the recipe used it: the absolute gap handed to the backend
-    /// and the backend's bound before it was rounded up ([`crate::solvers::lattice`]).
+    /// The objective's lattice, when the recipe used it, with the backend's bound before it was
+    /// rounded up to the lattice ([`crate::solvers::lattice`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub lattice: Option<LatticeReport>,
     /// The recipe's solver settings handed to the backend (`highs.mip_pscost_minreliable=0`;
@@ -388,14 +388,7 @@ pub fn solve_from(p: &Problem, f: &Formulation, kind: SolverKind, options: &Solv
 /// validated and measured, and its objective recomputed from the design alone.
 pub fn solve_built(p: &Problem, f: &Formulation, kind: SolverKind, options: &SolveOptions) -> Result<DesignResult, SolverError> {
     let solver = kind.instance()?;
-    let (mut tuned, solver_hints) = with_solver_hints(options, &f.recipe.solver_hints(kind));
-    let lattice = f.objective_lattice.filter(|_| f.recipe.objective_lattice);
-    let mut lattice_report = lattice.map(|lattice| LatticeReport { lattice, solver_abs_gap: None, solver_bound: None });
-    if let Some(report) = lattice_report.as_mut().filter(|_| solver.capabilities().abs_gap) {
-        let gap = report.lattice.solver_abs_gap().max(tuned.abs_gap.unwrap_or(0.0));
-        tuned.abs_gap = Some(gap);
-        report.solver_abs_gap = Some(gap);
-    }
+    let (tuned, solver_hints) = with_solver_hints(options, &f.recipe.solver_hints(kind));
     let options = &tuned;
     let mut sep = f.separator().map(|sep| sep.with_repair(Box::new(|x: &[f64]| repair_point(p, f, x))));
     // Root-round rows no phase's model kept: checked at the answer with the others.
@@ -427,10 +420,8 @@ pub fn solve_built(p: &Problem, f: &Formulation, kind: SolverKind, options: &Sol
         }
     };
     lazy_rows.extend(left_out);
-    if let Some(report) = lattice_report.as_mut() {
-        report.solver_bound = report.lattice.settle(&mut result, f.model.sense);
-    }
-    checked_result(p, f, result, Reports { lazy, split, solver_hints, lattice: lattice_report }, &lazy_rows)
+    let lattice = f.objective_lattice.filter(|_| f.recipe.objective_lattice).map(|lattice| LatticeReport { lattice, solver_bound: lattice.settle(&mut result, f.model.sense) });
+    checked_result(p, f, result, Reports { lazy, split, solver_hints, lattice }, &lazy_rows)
 }
 
 /// `options` with the recipe's solver `hints` put before the user's parameters, leaving out a

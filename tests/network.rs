@@ -701,10 +701,10 @@ fn continuous_indicators_are_exact_and_write_one_row_each() {
 }
 
 /// The strong recipe's objective lattice: a distance spec on a unit grid (lengths, zig-zag
-/// penalty and distance flow all integral) has the lattice ℤ; HiGHS gets an absolute gap of
-/// 0.99 and its bound is rounded up to the lattice, proving the same optimum as without it.
-/// microlp takes no absolute gap and still gets the rounding. The paper's labels carry the
-/// distance term on big-M rows: no lattice; without a distance term its objective is integral.
+/// penalty and distance flow all integral) has the lattice ℤ; the backend's bound is rounded up
+/// to it, and the optimum is the one without it, on HiGHS and microlp. The paper's labels carry
+/// the distance term on big-M rows: no lattice; without a distance term its objective is
+/// integral.
 #[test]
 fn objective_lattice_rounds_the_bound_and_keeps_the_optimum() {
     let text = |recipe: &str, lattice: bool, distance: f64| {
@@ -723,8 +723,7 @@ fn objective_lattice_rounds_the_bound_and_keeps_the_optimum() {
         match (&r.lattice, lattice) {
             (None, false) => {}
             (Some(l), true) => {
-                let takes_gap = kind == SolverKind::Highs;
-                assert_eq!(l.solver_abs_gap, takes_gap.then_some(0.99), "{kind}");
+                assert_eq!(l.lattice.step, 1.0);
                 assert!(l.solver_bound.is_some_and(|b| b <= r.solve.dual_bound.unwrap() + 1e-9), "{kind}: {l:?}");
             }
             (l, _) => panic!("{kind}, lattice {lattice}: report {l:?}"),

@@ -375,9 +375,8 @@ fn print_summary(r: &DesignResult) {
     }
     if let Some(l) = &r.lattice {
         let offset = if l.lattice.offset == 0.0 { String::new() } else { format!("{} + ", l.lattice.offset) };
-        let gap = l.solver_abs_gap.map_or("the backend takes no absolute gap".to_string(), |g| format!("absolute gap {g} handed to the backend"));
-        let bound = l.solver_bound.map_or(String::new(), |b| format!("; its bound {b:.6} rounded up to it"));
-        println!("lattice    every design's objective is on {offset}{}·ℤ: {gap}{bound} (`objective_lattice = false` in [formulation] turns this off)", l.lattice.step);
+        let bound = l.solver_bound.map_or("no bound to round".to_string(), |b| format!("the backend's bound {b:.6} rounded up to it"));
+        println!("lattice    every design's objective is on {offset}{}·ℤ: {bound} (`objective_lattice = false` in [formulation] turns this off)", l.lattice.step);
     }
     if !r.solver_hints.is_empty() {
         println!("tuning     {} (the recipe's; `solver_tuning = false` in [formulation] or your own --param replaces it)", r.solver_hints.join(", "));
