@@ -23,8 +23,9 @@ of its first window under t1-1e-first-window/), for the fifth 2026-12-02c.tar.gz
 2026-12-02d.tar.gz, the seventh 2026-12-02e.tar.gz, the eighth 2026-12-02f.tar.gz (which
 also keeps its superseded first pass under t1-paths-a733c45/), the ninth 2026-12-02g.tar.gz
 the tenth 2026-12-03.tar.gz (which also keeps the cells it replaced under t1-before-spurs/)
-and the eleventh 2026-12-03b.tar.gz (which also keeps the cells it replaced under
-t1-before-indicators/);
+the eleventh 2026-12-03b.tar.gz (which also keeps the cells it replaced under
+t1-before-indicators/) and the twelfth 2026-12-03c.tar.gz (the baseline columns, and their
+stopped first attempt under t1-baselines-first-attempt/);
 how to extract them is written into the
 report (the paragraph after the protocol). A row whose run has no picture keeps the picture already in the gallery.
 
@@ -152,7 +153,7 @@ def main():
     w(f"- merged by `netspec compare --merge {','.join(sources)} --manifest models/table1.toml --out {merged}`")
     w("")
     w("**Read this first.** The paper's times are Gurobi (2014) on a 2.4 GHz eight-core CPU; ours are")
-    w("HiGHS 1.15 and SCIP 10.0.2 on 2-core virtual machines. Our instances are reconstructions (same size")
+    w("HiGHS 1.15, SCIP 10.0.2 and CBC 2.10.8 on 2-core virtual machines. Our instances are reconstructions (same size")
     w("class, weights and switches, not the paper's meshes; street levels 3–4 are built on the network")
     w("*our* city run found at the level before). The paper publishes no objective values, so no row")
     w("can be said to match or beat the paper's design: only times are set against the paper's, as a")
@@ -181,8 +182,9 @@ def main():
     w("[table1-runs/2026-12-02e.tar.gz](table1-runs/2026-12-02e.tar.gz), for the eighth's")
     w("[table1-runs/2026-12-02f.tar.gz](table1-runs/2026-12-02f.tar.gz), for the ninth's")
     w("[table1-runs/2026-12-02g.tar.gz](table1-runs/2026-12-02g.tar.gz), for the tenth's")
-    w("[table1-runs/2026-12-03.tar.gz](table1-runs/2026-12-03.tar.gz) and for the eleventh's")
-    w("[table1-runs/2026-12-03b.tar.gz](table1-runs/2026-12-03b.tar.gz) (each keeps the runs the next")
+    w("[table1-runs/2026-12-03.tar.gz](table1-runs/2026-12-03.tar.gz), for the eleventh's")
+    w("[table1-runs/2026-12-03b.tar.gz](table1-runs/2026-12-03b.tar.gz) and for the twelfth's")
+    w("[table1-runs/2026-12-03c.tar.gz](table1-runs/2026-12-03c.tar.gz) (each keeps the runs the next")
     w("replaces): extract the first into `out/`, remove its strong-recipe room rows and the paper")
     w("recipe's 1e, extract the second, remove its 1e (all three columns) and its strong-recipe")
     w("11b, extract the third, remove HiGHS/strong's rows of `models/table1-cuts.toml` and")
@@ -194,7 +196,7 @@ def main():
     w("remove both strong columns' rows of `models/table1-spurs.toml`, then extract the tenth,")
     w("remove HiGHS/strong's rows of `models/table1-indicators.toml` and its 7a rows and SCIP/strong's")
     w("rows of `models/table1-fig2.toml`, then extract")
-    w("the eleventh,")
+    w("the eleventh, then the twelfth (the baseline columns `t1-cbc-strong/` and `t1-anneal/`),")
     w("to resume these comparisons (a record with the same settings is")
     w("reused) or to report again.")
     w("")
