@@ -71,17 +71,20 @@ impl ObjectiveLattice {
 
     /// `bound` rounded up to the lattice (down for a maximisation): to the next lattice point
     /// when it is more than `ROUNDING_SLACK` of a step past the one below, so that a bound a
-    /// hair above a lattice point through round-off is not taken for a whole step more. Never
-    /// moves a bound toward better objectives.
+    /// hair above a lattice point through round-off is not taken for a whole step more — and
+    /// more than `1e-9·|bound|` (a solver's relative accuracy), so that on an objective of
+    /// millions of steps the rounding gives up rather than guesses. Never moves a bound toward
+    /// better objectives.
     pub fn round_up(&self, bound: f64, sense: Sense) -> f64 {
         if !bound.is_finite() {
             return bound;
         }
         let steps = (bound - self.offset) / self.step;
+        let slack = ROUNDING_SLACK.max(1e-9 * bound.abs() / self.step);
         match sense {
-            Sense::Minimize => bound.max(self.offset + self.step * (steps - ROUNDING_SLACK).ceil()),
+            Sense::Minimize => bound.max(self.offset + self.step * (steps - slack).ceil()),
             Sense::Maximize => {
-                bound.min(self.offset + self.step * (steps + ROUNDING_SLACK).floor())
+                bound.min(self.offset + self.step * (steps + slack).floor())
             }
         }
     }
@@ -188,6 +191,9 @@ mod tests {
         assert_eq!(shifted.round_up(1.25, Sense::Minimize), 1.25);
         // A solve stopped on an absolute gap of (1 − 2·slack) steps rounds to its incumbent.
         assert_eq!(l.round_up(68.0 - (1.0 - 2.0 * ROUNDING_SLACK), Sense::Minimize), 68.0);
+        // Ten million steps: 1e-9 relative is a hundredth of a step, more than the slack.
+        assert_eq!(l.round_up(1e7 + 0.008, Sense::Minimize), 1e7 + 0.008);
+        assert_eq!(l.round_up(1e7 + 0.3, Sense::Minimize), 1e7 + 1.0);
     }
 
     fn result(termination: Termination, objective: f64, bound: f64) -> SolveResult {
