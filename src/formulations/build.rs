@@ -33,7 +33,7 @@ pub struct Formulation {
     /// The graph of the lazily separated cutsets, when the recipe has them.
     pub cutsets: Option<cutset::CutsetGraph>,
     /// The lattice every design's objective lies on, when there is one
-    /// ([`objective_lattice`]); the pipeline uses it when the recipe says so.
+    /// ([`crate::solvers::lattice`]); the pipeline uses it when the recipe says so.
     pub objective_lattice: Option<ObjectiveLattice>,
 }
 
