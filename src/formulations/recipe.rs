@@ -44,9 +44,8 @@ pub struct Recipe {
     /// one row: at an optimum `Z = max(0, Σ E − (n − 1))`, which is 0 or 1 at integral edges.
     #[serde(default)]
     pub continuous_indicators: bool,
-    /// Round the solver's bound up to the objective's lattice and hand the backend an absolute
-    /// gap of (nearly) one step, when the formulation's objective has a lattice
-    /// ([`crate::solvers::lattice`]): `strong` only.
+    /// Round the solver's bound up to the objective's lattice, when the formulation's objective
+    /// has one ([`crate::solvers::lattice`]): `strong` only.
     #[serde(default)]
     pub objective_lattice: bool,
 }
@@ -71,22 +70,7 @@ impl Recipe {
         let solver_tuning = name == RecipeName::Strong;
         let continuous_indicators = name == RecipeName::Strong;
         let objective_lattice = name == RecipeName::Strong;
-        Recipe {
-            name,
-            label: name.name().to_string(),
-            connectivity,
-            rooms_connectivity,
-            distance,
-            coverage,
-            dead_ends,
-            paths,
-            big_m,
-            label_bounds,
-            split_objective,
-            solver_tuning,
-            continuous_indicators,
-            objective_lattice,
-        }
+        Recipe { name, label: name.name().to_string(), connectivity, rooms_connectivity, distance, coverage, dead_ends, paths, big_m, label_bounds, split_objective, solver_tuning, continuous_indicators, objective_lattice }
     }
 
     /// The recipe a spec asks for, with its overrides.

@@ -90,7 +90,9 @@ impl ObjectiveSplit {
         self.secondary_value(model, start) - self.secondary_floor < 0.5 * self.quantum
     }
 
-    /// `v` rounded up to the lattice (less a relative 1e-9 for the solver's rounding noise).
+    /// `v` rounded up to the lattice (less a relative 1e-6 for the solver's rounding noise; the
+    /// whole objective's [`super::lattice::ObjectiveLattice::round_up`] is more cautious, keeping
+    /// a bound within 0.005 of a step of a lattice point there).
     fn round_up(&self, v: f64) -> f64 {
         let steps = v / self.quantum;
         self.quantum * (steps - 1e-6 * steps.abs().max(1.0)).ceil()

@@ -168,8 +168,7 @@ pub struct FormulationParts {
     /// indicator and its two-sided row.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub continuous_indicators: Option<bool>,
-    /// The solve rounds its bound to the objective's lattice and prunes with it
-    /// (`solvers::lattice`).
+    /// The solve rounds its bound up to the objective's lattice (`solvers::lattice`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub objective_lattice: Option<bool>,
 }
