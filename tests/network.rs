@@ -542,6 +542,50 @@ fn selected_paths_tighten_the_relaxation_and_keep_the_optimum() {
     }
 }
 
+/// The out-arc rows (`strong`, dead-ends allowed): without direction binaries they bring
+/// parent arcs, and the LP as written rises above the recipe's without them (which may switch
+/// on every vertex of a path whose edges are at ½); with the distance flow they are rows on its
+/// direction binaries alone; with dead-ends forbidden they are not written. Every variant proves
+/// the same optimum, with a valid design, on HiGHS and microlp.
+#[test]
+fn out_arcs_tighten_the_relaxation_and_keep_the_optimum() {
+    let text = |distance: f64, dead_ends: &str| {
+        format!("boundary = \"candidate\"\nformulation = \"strong\"\n[mesh]\ngrid = {{ width = 7, height = 2 }}\n[sinks]\nvertices = [0]\n[coverage]\nrange = 1\n[weights]\nlength = 1\ndistance = {distance}\nzigzag = 0\n[features]\ndead_ends = \"{dead_ends}\"\n")
+    };
+    let highs = SolverKind::Highs.instance().unwrap();
+    let one_thread = SolveOptions { threads: Some(1), ..SolveOptions::default() };
+    let plain = |f: &formulations::Formulation| netspec::solvers::lazy::lp_bound(highs.as_ref(), &f.model, None, &one_thread).unwrap().plain.unwrap();
+    for (distance, dead_ends) in [(0.0, "allow"), (1.0, "allow"), (0.0, "forbid")] {
+        let p = problem(&spec("out-arcs", &text(distance, dead_ends)));
+        let with = pipeline::build(&p);
+        assert!(with.recipe.out_arcs);
+        let without = formulations::build_with(&p, &formulations::Recipe { out_arcs: false, ..with.recipe.clone() });
+        let family = with.families.get("out-arcs (§8)");
+        let parents = with.vars.parent.iter().flatten().count();
+        match (distance > 0.0, dead_ends) {
+            (false, "allow") => {
+                assert!(family.is_some_and(|f| f.vars == parents && parents > 0 && f.rows > 0), "{family:?}");
+                let (b_with, b_without) = (plain(&with), plain(&without));
+                assert!(b_with > b_without + 1.0, "LP bound: with {b_with}, without {b_without}");
+            }
+            (true, _) => assert!(family.is_some_and(|f| f.vars == 0 && f.rows > 0) && parents == 0, "{family:?}"),
+            _ => assert!(family.is_none() && parents == 0, "{family:?}"),
+        }
+        assert!(without.families.get("out-arcs (§8)").is_none());
+        let mut optima = Vec::new();
+        for (f, kind) in [(&with, SolverKind::Highs), (&without, SolverKind::Highs), (&with, SolverKind::Microlp)] {
+            let r = pipeline::solve_built(&p, f, kind, &one_thread).unwrap();
+            assert_eq!(r.solve.termination, Termination::Optimal, "{kind}, distance {distance}, dead-ends {dead_ends}");
+            assert!(r.validity.valid, "{:?}", r.validity);
+            optima.push(r.solve.objective.unwrap());
+        }
+        assert!(optima.iter().all(|&o| objectives_agree(o, optima[0], 1e-9)), "distance {distance}, dead-ends {dead_ends}: {optima:?}");
+        if distance == 0.0 && dead_ends == "allow" {
+            assert!(objectives_agree(optima[0], 8.0, 1e-9), "{optima:?}");
+        }
+    }
+}
+
 /// A design becomes a MIP start for every recipe: the optimal design of one recipe, encoded for
 /// each recipe, passes the MILP checker with that recipe's objective; a corrupted design is
 /// refused with a reason.

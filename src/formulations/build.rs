@@ -82,6 +82,9 @@ pub fn build_with(p: &Problem, recipe: &Recipe) -> Formulation {
     if plan.connectivity == Some(ConnectivityForm::Flow) {
         fam(&mut c, "connectivity flow (§8)", families::connectivity::connectivity_flow);
     }
+    if recipe.out_arcs && p.dead_ends == Allow::Allow {
+        fam(&mut c, "out-arcs (§8)", families::connectivity::out_arcs);
+    }
     if p.dead_ends == Allow::Forbid {
         fam(&mut c, "dead-ends (10)-(11)", families::local::dead_ends);
     }

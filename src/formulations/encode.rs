@@ -4,7 +4,7 @@
 //! Directions point every active edge toward its end with the smaller paper label
 //! (`0` at a sink, else `Δ + h`, see [`crate::design::Objective`]); labels take those values;
 //! successors and the distance flow follow each vertex's best next step; the travel and
-//! connectivity flows follow a shortest-path tree. The point is meant to be checked by the MILP
+//! connectivity flows and the parent arcs follow a shortest-path tree. The point is meant to be checked by the MILP
 //! checker before it is handed to a solver: a design that breaks the spec gives a point that
 //! breaks rows, and the checker says which.
 
@@ -127,7 +127,8 @@ impl Formulation {
         }
         // Travel and connectivity flows: every active non-sink vertex supplies a unit along a
         // shortest-path tree (true distances).
-        if self.vars.travel_flow.iter().any(Option::is_some) || self.vars.connect_flow.iter().any(Option::is_some) {
+        let parents = self.vars.parent.iter().any(Option::is_some);
+        if parents || self.vars.travel_flow.iter().any(Option::is_some) || self.vars.connect_flow.iter().any(Option::is_some) {
             let d = travel_distances(mesh, net, &p.is_sink);
             let mut tree: Vec<Option<HalfEdgeId>> = vec![None; mesh.num_vertices()];
             for v in mesh.vertices() {
@@ -143,6 +144,10 @@ impl Formulation {
                     .copied()
                     .filter(|&g| on(mesh.he_edge(g)))
                     .min_by(|&a, &b| (mesh.he_length(a) + d[mesh.he_head(a).index()]).total_cmp(&(mesh.he_length(b) + d[mesh.he_head(b).index()])));
+            }
+            // Parent arcs: each active non-sink vertex owns the edge to its parent in the tree.
+            for g in tree.iter().flatten() {
+                set(&mut x, self.vars.parent.get(g.index()).copied().flatten(), 1.0);
             }
             for flow in [&self.vars.travel_flow, &self.vars.connect_flow] {
                 if flow.iter().any(Option::is_some) {

@@ -48,6 +48,10 @@ pub struct Recipe {
     /// has one ([`crate::solvers::lattice`]): `strong` only.
     #[serde(default)]
     pub objective_lattice: bool,
+    /// Every active non-sink vertex has an arc out toward the sinks
+    /// ([`crate::formulations::families::connectivity::out_arcs`]): `strong` only.
+    #[serde(default)]
+    pub out_arcs: bool,
 }
 
 impl Recipe {
@@ -70,7 +74,8 @@ impl Recipe {
         let solver_tuning = name == RecipeName::Strong;
         let continuous_indicators = name == RecipeName::Strong;
         let objective_lattice = name == RecipeName::Strong;
-        Recipe { name, label: name.name().to_string(), connectivity, rooms_connectivity, distance, coverage, dead_ends, paths, big_m, label_bounds, split_objective, solver_tuning, continuous_indicators, objective_lattice }
+        let out_arcs = name == RecipeName::Strong;
+        Recipe { name, label: name.name().to_string(), connectivity, rooms_connectivity, distance, coverage, dead_ends, paths, big_m, label_bounds, split_objective, solver_tuning, continuous_indicators, objective_lattice, out_arcs }
     }
 
     /// The recipe a spec asks for, with its overrides.
@@ -92,6 +97,7 @@ impl Recipe {
         r.solver_tuning = parts.solver_tuning.unwrap_or(r.solver_tuning);
         r.continuous_indicators = parts.continuous_indicators.unwrap_or(r.continuous_indicators);
         r.objective_lattice = parts.objective_lattice.unwrap_or(r.objective_lattice);
+        r.out_arcs = parts.out_arcs.unwrap_or(r.out_arcs);
         r
     }
 

@@ -71,6 +71,9 @@ pub struct VarMap {
     pub travel_flow: Vec<Option<VarId>>,
     /// Flow of the connectivity family per half-edge.
     pub connect_flow: Vec<Option<VarId>>,
+    /// Parent arc `P(i→j) ∈ [0, 1]` per half-edge (the out-arc rows without direction binaries).
+    #[serde(default)]
+    pub parent: Vec<Option<VarId>>,
     /// `V_y` per vertex, or its constant activity.
     pub vertex: Vec<Value>,
     /// `P` per enumerated point-to-point path (per pair, per path; `None` when every edge of
@@ -94,6 +97,7 @@ impl VarMap {
             distance_flow: vec![None; 2 * edges],
             travel_flow: vec![None; 2 * edges],
             connect_flow: vec![None; 2 * edges],
+            parent: vec![None; 2 * edges],
             vertex: vec![Value::Const(0.0); vertices],
             ..VarMap::default()
         }

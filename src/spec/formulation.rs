@@ -171,6 +171,9 @@ pub struct FormulationParts {
     /// The solve rounds its bound up to the objective's lattice (`solvers::lattice`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub objective_lattice: Option<bool>,
+    /// Out-arc rows: every active non-sink vertex has an arc out toward the sinks.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub out_arcs: Option<bool>,
 }
 
 /// The `formulation` key: a recipe name or a table of parts.
@@ -233,6 +236,7 @@ impl FormulationSpec {
         push("solver_tuning", p.solver_tuning.map(|v| v.to_string()));
         push("continuous_indicators", p.continuous_indicators.map(|v| v.to_string()));
         push("objective_lattice", p.objective_lattice.map(|v| v.to_string()));
+        push("out_arcs", p.out_arcs.map(|v| v.to_string()));
         if over.is_empty() {
             p.recipe.name().to_string()
         } else {

@@ -134,3 +134,62 @@ pub fn travel_flow(c: &mut Ctx) {
 pub fn connectivity_flow(c: &mut Ctx) {
     c.vars.connect_flow = vertex_flow(c, "C", |_| 0.0);
 }
+
+/// Out-arc rows (FORMULATION §8, a strengthening of the no-island rows): every active
+/// non-sink vertex has an arc out of it toward the sinks, and an edge gives an arc to at most
+/// one of its ends. Valid because a network whose every active vertex reaches a sink has a
+/// shortest-path forest into the sinks, in which each active non-sink vertex owns its parent
+/// edge. Summed over a sink-free vertex set `S`, the rows say `Σ_{v∈S} V_v ≤ Σ E_x` over the
+/// edges with an end in `S` (each component inside `S` has a spanning tree and an edge out);
+/// a relaxation without them may switch on every vertex of a path whose edges are at ½.
+/// - With the distance flow's direction binaries (every active edge points toward its end with
+///   the smaller label in the optimum, and the step of each vertex to its successor points out
+///   of it): `Σ_{(v→w)} E(v→w) ≥ V_v` (`out_v…`), no new variable.
+/// - Without them, continuous parent arcs `P(v→w) ∈ [0, 1]` on the candidate half-edges out of
+///   non-sinks: `P(v→w) + P(w→v) ≤ E_x` (`par_e…`) and `Σ_{(v→w)} P(v→w) ≥ V_v` (`out_v…`).
+///
+/// Only where dead-ends are allowed: forbidden, the degree rows `2·V_v ≤ Σ_{x∈E_v} E_x` already
+/// imply the sums over `S` (with half the edges out of `S`), and the rows moved the root bound
+/// of 7b-L2, 1b-L3 and 7d-L3 by less than 0.2 (docs/benchmarks.md, *Out-arc rows*), so the
+/// family then writes nothing.
+pub fn out_arcs(c: &mut Ctx) {
+    let p = c.p;
+    let mesh = &p.mesh;
+    let directions = c.plan.distance_flow;
+    if p.dead_ends == crate::spec::Allow::Forbid {
+        return;
+    }
+    if !directions {
+        for e in mesh.edges() {
+            let Some(x) = c.vars.edge[e.index()] else { continue };
+            let mut ex = Expr::new();
+            for h in mesh.edge_half_edges(e) {
+                if p.is_sink[mesh.he_tail(h).index()] {
+                    continue;
+                }
+                let a = c.em.model.add_continuous(format!("P_{}", he_name(mesh, h)), 0.0, 1.0, 0.0);
+                c.vars.parent[h.index()] = Some(a);
+                ex.add(a, 1.0);
+            }
+            if !ex.terms.is_empty() {
+                ex.add(x, -1.0);
+                c.em.le(format!("par_e{}", e.0), &ex, 0.0);
+            }
+        }
+    }
+    for v in mesh.vertices() {
+        let crate::formulations::expr::Value::Var(y) = c.vars.vertex[v.index()] else { continue };
+        if p.is_sink[v.index()] {
+            continue;
+        }
+        let arcs = if directions { &c.vars.half_edge } else { &c.vars.parent };
+        let mut ex = Expr::new();
+        for &g in mesh.outgoing(v) {
+            if let Some(a) = arcs[g.index()] {
+                ex.add(a, 1.0);
+            }
+        }
+        ex.add(y, -1.0);
+        c.em.ge(format!("out_{}", vname(v)), &ex, 0.0);
+    }
+}
