@@ -24,8 +24,9 @@ of its first window under t1-1e-first-window/), for the fifth 2026-12-02c.tar.gz
 also keeps its superseded first pass under t1-paths-a733c45/), the ninth 2026-12-02g.tar.gz
 the tenth 2026-12-03.tar.gz (which also keeps the cells it replaced under t1-before-spurs/)
 the eleventh 2026-12-03b.tar.gz (which also keeps the cells it replaced under
-t1-before-indicators/) and the twelfth 2026-12-03c.tar.gz (the baseline columns, and their
-stopped first attempt under t1-baselines-first-attempt/);
+t1-before-indicators/), the twelfth 2026-12-03c.tar.gz (the baseline columns, and their
+stopped first attempt under t1-baselines-first-attempt/) and the thirteenth 2026-12-03d.tar.gz
+(the baseline columns on all 43 rows);
 how to extract them is written into the
 report (the paragraph after the protocol). A row whose run has no picture keeps the picture already in the gallery.
 
@@ -183,8 +184,9 @@ def main():
     w("[table1-runs/2026-12-02f.tar.gz](table1-runs/2026-12-02f.tar.gz), for the ninth's")
     w("[table1-runs/2026-12-02g.tar.gz](table1-runs/2026-12-02g.tar.gz), for the tenth's")
     w("[table1-runs/2026-12-03.tar.gz](table1-runs/2026-12-03.tar.gz), for the eleventh's")
-    w("[table1-runs/2026-12-03b.tar.gz](table1-runs/2026-12-03b.tar.gz) and for the twelfth's")
-    w("[table1-runs/2026-12-03c.tar.gz](table1-runs/2026-12-03c.tar.gz) (each keeps the runs the next")
+    w("[table1-runs/2026-12-03b.tar.gz](table1-runs/2026-12-03b.tar.gz), for the twelfth's")
+    w("[table1-runs/2026-12-03c.tar.gz](table1-runs/2026-12-03c.tar.gz) and for the thirteenth's")
+    w("[table1-runs/2026-12-03d.tar.gz](table1-runs/2026-12-03d.tar.gz) (each keeps the runs the next")
     w("replaces): extract the first into `out/`, remove its strong-recipe room rows and the paper")
     w("recipe's 1e, extract the second, remove its 1e (all three columns) and its strong-recipe")
     w("11b, extract the third, remove HiGHS/strong's rows of `models/table1-cuts.toml` and")
@@ -196,7 +198,8 @@ def main():
     w("remove both strong columns' rows of `models/table1-spurs.toml`, then extract the tenth,")
     w("remove HiGHS/strong's rows of `models/table1-indicators.toml` and its 7a rows and SCIP/strong's")
     w("rows of `models/table1-fig2.toml`, then extract")
-    w("the eleventh, then the twelfth (the baseline columns `t1-cbc-strong/` and `t1-anneal/`),")
+    w("the eleventh, then the twelfth (the baseline columns `t1-cbc-strong/` and `t1-anneal/`), then")
+    w("the thirteenth (the same two columns on all 43 rows; it replaces the twelfth's),")
     w("to resume these comparisons (a record with the same settings is")
     w("reused) or to report again.")
     w("")
