@@ -147,7 +147,7 @@ impl Formulation {
             }
             // Parent arcs: each active non-sink vertex owns the edge to its parent in the tree.
             for g in tree.iter().flatten() {
-                set(&mut x, self.vars.parent.get(g.index()).copied().flatten(), 1.0);
+                set(&mut x, self.vars.parent[g.index()], 1.0);
             }
             for flow in [&self.vars.travel_flow, &self.vars.connect_flow] {
                 if flow.iter().any(Option::is_some) {

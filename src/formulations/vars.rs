@@ -72,7 +72,6 @@ pub struct VarMap {
     /// Flow of the connectivity family per half-edge.
     pub connect_flow: Vec<Option<VarId>>,
     /// Parent arc `P(i→j) ∈ [0, 1]` per half-edge (the out-arc rows without direction binaries).
-    #[serde(default)]
     pub parent: Vec<Option<VarId>>,
     /// `V_y` per vertex, or its constant activity.
     pub vertex: Vec<Value>,

@@ -6,7 +6,7 @@
 //! only. Variables are named `F_`, `G_`, `C_` + the half-edge (`F_v3_v7`).
 
 use super::{he_name, vname, Ctx};
-use crate::formulations::expr::Expr;
+use crate::formulations::expr::{Expr, Value};
 use crate::mesh::HalfEdgeId;
 use crate::milp::VarId;
 
@@ -148,17 +148,14 @@ pub fn connectivity_flow(c: &mut Ctx) {
 /// - Without them, continuous parent arcs `P(v→w) ∈ [0, 1]` on the candidate half-edges out of
 ///   non-sinks: `P(v→w) + P(w→v) ≤ E_x` (`par_e…`) and `Σ_{(v→w)} P(v→w) ≥ V_v` (`out_v…`).
 ///
-/// Only where dead-ends are allowed: forbidden, the degree rows `2·V_v ≤ Σ_{x∈E_v} E_x` already
-/// imply the sums over `S` (with half the edges out of `S`), and the rows moved the root bound
-/// of 7b-L2, 1b-L3 and 7d-L3 by less than 0.2 (docs/benchmarks.md, *Out-arc rows*), so the
-/// family then writes nothing.
+/// The formulation writes it only where dead-ends are allowed: forbidden, the degree rows
+/// `2·V_v ≤ Σ_{x∈E_v} E_x` already imply the sums over `S` (with half the edges out of `S`), and
+/// the rows moved the root bound of 7b-L2, 1b-L3 and 7d-L3 by less than 0.2
+/// (docs/benchmarks.md, *Out-arc rows*).
 pub fn out_arcs(c: &mut Ctx) {
     let p = c.p;
     let mesh = &p.mesh;
     let directions = c.plan.distance_flow;
-    if p.dead_ends == crate::spec::Allow::Forbid {
-        return;
-    }
     if !directions {
         for e in mesh.edges() {
             let Some(x) = c.vars.edge[e.index()] else { continue };
@@ -177,12 +174,12 @@ pub fn out_arcs(c: &mut Ctx) {
             }
         }
     }
+    let arcs = if directions { &c.vars.half_edge } else { &c.vars.parent };
     for v in mesh.vertices() {
-        let crate::formulations::expr::Value::Var(y) = c.vars.vertex[v.index()] else { continue };
+        let Value::Var(y) = c.vars.vertex[v.index()] else { continue };
         if p.is_sink[v.index()] {
             continue;
         }
-        let arcs = if directions { &c.vars.half_edge } else { &c.vars.parent };
         let mut ex = Expr::new();
         for &g in mesh.outgoing(v) {
             if let Some(a) = arcs[g.index()] {
