@@ -10,7 +10,9 @@ use crate::milp::{Model, Sense};
 use crate::rules::paths::PathSets;
 use crate::rules::placements::PlacementReport;
 use crate::solvers::lattice::ObjectiveLattice;
+use crate::mesh::VertexId;
 use crate::spec::{Allow, ConnectivityForm, EdgeRole, Problem, RoomMode, Weight};
+use cutset::GroupOrigin;
 use indexmap::IndexMap;
 
 /// The emitted MILP of one problem under one recipe, with the map from design elements to its
@@ -111,17 +113,27 @@ pub fn build_with(p: &Problem, recipe: &Recipe) -> Formulation {
     if !p.forced_vertices.is_empty() || !p.through_routes.is_empty() || !p.forced_edges.is_empty() {
         fam(&mut c, "user specifications", families::user::user_specs);
     }
-    let cutsets = (plan.connectivity == Some(ConnectivityForm::Cutset)).then(|| {
+    // On tilings with the strong rows, the faces' serving edges give cover groups too, and
+    // their cutsets are separated as cuts beside the compact flow.
+    let room_groups = match (&p.rooms, &placements) {
+        (Some(rooms), Some(report)) if recipe.served_faces => Some(face_groups(&c, rooms.mode, report)),
+        _ => None,
+    };
+    let lazy = plan.connectivity == Some(ConnectivityForm::Cutset);
+    let cutsets = (lazy || room_groups.is_some()).then(|| {
         let directions = plan.distance_flow.then_some(c.vars.half_edge.as_slice());
-        let g = cutset::CutsetGraph::new(p, &c.vars.edge, &c.vars.vertex, directions);
+        let mut g = cutset::CutsetGraph::new(p, &c.vars.edge, &c.vars.vertex, directions);
+        g.cuts_only = !lazy;
+        let girth = (p.dead_ends == Allow::Forbid).then(|| families::coverage::girth(p));
         // Coverage (6) is in the model only without rooms; its balls give the cover cutsets.
-        match p.rooms {
-            None => g.with_cover_groups(p, &c.vars.vertex, (p.dead_ends == Allow::Forbid).then(|| families::coverage::girth(p))),
-            Some(_) => g,
+        match room_groups {
+            None => g.with_cover_groups(p, &c.vars.vertex, girth),
+            Some(groups) => g.with_groups(p, &c.vars.vertex, girth, groups),
         }
     });
     if cutsets.is_some() {
-        c.em.families.entry("cutsets (§8, lazy)".to_string()).or_default();
+        let label = if lazy { "cutsets (§8, lazy)" } else { "cover cutsets (§8, cuts)" };
+        c.em.families.entry(label.to_string()).or_default();
     }
     let Ctx { em, vars, .. } = c;
     let objective_lattice = objective_lattice(&em.model, &vars);
@@ -144,6 +156,25 @@ fn objective_lattice(model: &Model, vars: &VarMap) -> Option<ObjectiveLattice> {
     ObjectiveLattice::of_model(model, |v| certified[v.index()])
 }
 
+/// The cover groups of a tiling: per face, the ends of its serving edges
+/// ([`families::rooms::serving_edges`]); one of them is active in every valid design.
+fn face_groups(c: &Ctx, mode: RoomMode, report: &PlacementReport) -> Vec<(GroupOrigin, Vec<VertexId>)> {
+    let mesh = &c.p.mesh;
+    let serving = families::rooms::serving_edges(c, mode, report);
+    mesh.faces()
+        .filter(|f| !serving[f.index()].is_empty())
+        .map(|f| {
+            let mut ends: Vec<VertexId> = serving[f.index()].iter().flat_map(|&e| {
+                let (a, b) = mesh.edge_vertices(e);
+                [a, b]
+            }).collect();
+            ends.sort();
+            ends.dedup();
+            (GroupOrigin::Face(f.0), ends)
+        })
+        .collect()
+}
+
 /// Runs one family, charging what it adds to `label`.
 fn fam<T>(c: &mut Ctx, label: &str, f: impl FnOnce(&mut Ctx) -> T) -> T {
     let (v0, r0, n0) = (c.em.model.num_vars(), c.em.model.num_rows(), c.em.model.num_nonzeros());
@@ -158,7 +189,7 @@ fn fam<T>(c: &mut Ctx, label: &str, f: impl FnOnce(&mut Ctx) -> T) -> T {
 impl Formulation {
     /// Whether the model holds every row (no lazily separated family).
     pub fn is_complete(&self) -> bool {
-        self.cutsets.is_none()
+        self.cutsets.as_ref().map_or(true, |g| g.cuts_only)
     }
 
     /// A separator for the lazily separated rows, if any.

@@ -52,6 +52,12 @@ pub struct Recipe {
     /// ([`crate::formulations::families::connectivity::out_arcs`]): `strong` only.
     #[serde(default)]
     pub out_arcs: bool,
+    /// On tilings, every face's room or block has one of the edges that can serve it, and
+    /// their ends reach a sink (the served rows of
+    /// [`crate::formulations::families::rooms`] and their cover cutsets, separated as cuts):
+    /// `strong` only.
+    #[serde(default)]
+    pub served_faces: bool,
 }
 
 impl Recipe {
@@ -75,7 +81,8 @@ impl Recipe {
         let continuous_indicators = name == RecipeName::Strong;
         let objective_lattice = name == RecipeName::Strong;
         let out_arcs = name == RecipeName::Strong;
-        Recipe { name, label: name.name().to_string(), connectivity, rooms_connectivity, distance, coverage, dead_ends, paths, big_m, label_bounds, split_objective, solver_tuning, continuous_indicators, objective_lattice, out_arcs }
+        let served_faces = name == RecipeName::Strong;
+        Recipe { name, label: name.name().to_string(), connectivity, rooms_connectivity, distance, coverage, dead_ends, paths, big_m, label_bounds, split_objective, solver_tuning, continuous_indicators, objective_lattice, out_arcs, served_faces }
     }
 
     /// The recipe a spec asks for, with its overrides.
@@ -98,6 +105,7 @@ impl Recipe {
         r.continuous_indicators = parts.continuous_indicators.unwrap_or(r.continuous_indicators);
         r.objective_lattice = parts.objective_lattice.unwrap_or(r.objective_lattice);
         r.out_arcs = parts.out_arcs.unwrap_or(r.out_arcs);
+        r.served_faces = parts.served_faces.unwrap_or(r.served_faces);
         r
     }
 

@@ -174,6 +174,10 @@ pub struct FormulationParts {
     /// Out-arc rows: every active non-sink vertex has an arc out toward the sinks.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub out_arcs: Option<bool>,
+    /// Served faces on tilings: each face's room (block) has a serving edge among the union
+    /// of its placements', and its ends reach a sink (cutsets separated as cuts).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub served_faces: Option<bool>,
 }
 
 /// The `formulation` key: a recipe name or a table of parts.
@@ -237,6 +241,7 @@ impl FormulationSpec {
         push("continuous_indicators", p.continuous_indicators.map(|v| v.to_string()));
         push("objective_lattice", p.objective_lattice.map(|v| v.to_string()));
         push("out_arcs", p.out_arcs.map(|v| v.to_string()));
+        push("served_faces", p.served_faces.map(|v| v.to_string()));
         if over.is_empty() {
             p.recipe.name().to_string()
         } else {

@@ -21,6 +21,7 @@
 use crate::formulations::expr::Value;
 use crate::milp::VarId;
 use crate::solvers::{LazyRow, Lock, Separator};
+use crate::mesh::VertexId;
 use crate::spec::Problem;
 use serde::{Deserialize, Serialize};
 use std::collections::VecDeque;
@@ -37,8 +38,9 @@ pub struct CutsetGraph {
     pub activity: Vec<Value>,
     /// The mesh vertex of each node (`u32::MAX` for the root).
     pub vertex: Vec<u32>,
-    /// The cover groups: the nodes of each sink-free ball `cover(v)` that coverage (6) needs
-    /// active, named by the mesh vertex `v` (inclusion-minimal, deterministic order).
+    /// The cover groups: node sets some node of which every valid design makes active — each
+    /// sink-free ball `cover(v)` of coverage (6), or on tilings the ends of the edges that can
+    /// serve a face (inclusion-minimal, deterministic order).
     #[serde(default)]
     pub groups: Vec<CoverGroup>,
     /// The direction binaries of each edge in `edges`, `(E(a→b), E(b→a))`, when the recipe
@@ -50,15 +52,40 @@ pub struct CutsetGraph {
     /// then lifted: one crossing leaves a cycle inside); `None` when dead-ends are allowed.
     #[serde(default)]
     pub girth: Option<f64>,
+    /// Whether the model already holds connectivity (a flow), so that the cutsets are only
+    /// cuts that tighten it: integral points are then never separated, and the formulation is
+    /// complete without them.
+    #[serde(default)]
+    pub cuts_only: bool,
 }
 
-/// A ball `cover(v)` some vertex of which must be active, as nodes of a [`CutsetGraph`].
+/// A vertex set some vertex of which every valid design makes active, as nodes of a
+/// [`CutsetGraph`].
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct CoverGroup {
-    /// The mesh vertex `v` whose coverage row asks for it.
-    pub vertex: u32,
+    /// What asks for it (it names the group's rows).
+    pub origin: GroupOrigin,
     /// Its non-root nodes, ascending.
     pub nodes: Vec<u32>,
+}
+
+/// What makes a [`CoverGroup`] hold an active vertex.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize, Deserialize)]
+pub enum GroupOrigin {
+    /// The ball `cover(v)` of coverage (6) of this mesh vertex `v`.
+    Ball(u32),
+    /// The ends of the edges that can serve this face of a tiling: (18) makes the room that
+    /// covers it touch a corridor, (19) makes the block that covers it traversed.
+    Face(u32),
+}
+
+impl std::fmt::Display for GroupOrigin {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            GroupOrigin::Ball(v) => write!(f, "v{v}"),
+            GroupOrigin::Face(k) => write!(f, "f{k}"),
+        }
+    }
 }
 
 impl CutsetGraph {
@@ -68,7 +95,7 @@ impl CutsetGraph {
     pub fn new(p: &Problem, edge: &[Option<VarId>], vertex: &[Value], directions: Option<&[Option<VarId>]>) -> CutsetGraph {
         let mesh = &p.mesh;
         let mut node = vec![u32::MAX; mesh.num_vertices()];
-        let mut g = CutsetGraph { nodes: 1, edges: Vec::new(), activity: vec![Value::Const(1.0)], vertex: vec![u32::MAX], groups: Vec::new(), arcs: None, girth: None };
+        let mut g = CutsetGraph { nodes: 1, edges: Vec::new(), activity: vec![Value::Const(1.0)], vertex: vec![u32::MAX], groups: Vec::new(), arcs: None, girth: None, cuts_only: false };
         for v in mesh.vertices() {
             if p.is_sink[v.index()] {
                 node[v.index()] = 0;
@@ -105,26 +132,31 @@ impl CutsetGraph {
     /// `cover(v)` holds no sink and no vertex active as a constant (`vertex`, as coverage
     /// reads it), the ball's nodes. Only inclusion-minimal groups are kept (a superset's
     /// cutsets are among its subset's).
-    pub fn with_cover_groups(mut self, p: &Problem, vertex: &[Value], girth: Option<f64>) -> CutsetGraph {
+    pub fn with_cover_groups(self, p: &Problem, vertex: &[Value], girth: Option<f64>) -> CutsetGraph {
+        let balls = p.mesh.vertices().filter(|v| !p.is_obstacle_vertex[v.index()]).map(|v| (GroupOrigin::Ball(v.0), crate::rules::cover_set(p, v)));
+        self.with_groups(p, vertex, girth, balls)
+    }
+
+    /// Adds cover groups given as mesh vertex sets, each of which some valid design's active
+    /// vertex lies in. A set holding a sink or a vertex active as a constant (`vertex`) gives
+    /// no cut and is left out, as is every set that contains another (a superset's cutsets
+    /// are among its subset's). `girth` as for [`CutsetGraph::with_cover_groups`].
+    pub fn with_groups(mut self, p: &Problem, vertex: &[Value], girth: Option<f64>, sets: impl IntoIterator<Item = (GroupOrigin, Vec<VertexId>)>) -> CutsetGraph {
         self.girth = girth;
         let mut node = vec![u32::MAX; p.mesh.num_vertices()];
         for (k, &v) in self.vertex.iter().enumerate().skip(1) {
             node[v as usize] = k as u32;
         }
         let mut groups: Vec<CoverGroup> = Vec::new();
-        for v in p.mesh.vertices() {
-            if p.is_obstacle_vertex[v.index()] {
+        for (origin, set) in sets {
+            if set.iter().any(|u| p.is_sink[u.index()] || matches!(vertex[u.index()], Value::Const(c) if c > 0.0)) {
                 continue;
             }
-            let cover = crate::rules::cover_set(p, v);
-            if cover.iter().any(|u| p.is_sink[u.index()] || matches!(vertex[u.index()], Value::Const(c) if c > 0.0)) {
-                continue;
-            }
-            let mut nodes: Vec<u32> = cover.iter().map(|u| node[u.index()]).filter(|&k| k != u32::MAX).collect();
+            let mut nodes: Vec<u32> = set.iter().map(|u| node[u.index()]).filter(|&k| k != u32::MAX).collect();
             nodes.sort_unstable();
             nodes.dedup();
             if !nodes.is_empty() {
-                groups.push(CoverGroup { vertex: v.0, nodes });
+                groups.push(CoverGroup { origin, nodes });
             }
         }
         let subset = |a: &[u32], b: &[u32]| a.len() <= b.len() && a.iter().all(|k| b.binary_search(k).is_ok());
@@ -379,14 +411,14 @@ impl<'a> CutsetSeparator<'a> {
     fn separate_groups(&mut self, x: &[f64], caps: &[f64]) -> Vec<LazyRow> {
         let n = self.graph.nodes;
         let directed = self.directed_capacities(x);
-        let mut found: Vec<(f64, u32, CoverRow, Vec<bool>)> = Vec::new();
-        let push = |found: &mut Vec<(f64, u32, CoverRow, Vec<bool>)>, violation: f64, v: u32, kind: CoverRow, inside: Vec<bool>| {
+        let mut found: Vec<(f64, GroupOrigin, CoverRow, Vec<bool>)> = Vec::new();
+        let push = |found: &mut Vec<(f64, GroupOrigin, CoverRow, Vec<bool>)>, violation: f64, v: GroupOrigin, kind: CoverRow, inside: Vec<bool>| {
             if !found.iter().any(|(_, _, k, c)| *k == kind && *c == inside) {
                 found.push((violation, v, kind, inside));
             }
         };
         for gi in 0..self.graph.groups.len() {
-            let v = self.graph.groups[gi].vertex;
+            let v = self.graph.groups[gi].origin;
             let plain = match &directed {
                 Some((fw, bw)) => {
                     self.flow.set_directed_capacities(fw, bw);
@@ -424,8 +456,8 @@ impl<'a> CutsetSeparator<'a> {
         found.into_iter().map(|(_, v, kind, inside)| self.cover_row(v, kind, &inside)).collect()
     }
 
-    /// The cover cutset of kind `kind` for the node set `inside`, asked for by vertex `v`.
-    fn cover_row(&mut self, v: u32, kind: CoverRow, inside: &[bool]) -> LazyRow {
+    /// The cover cutset of kind `kind` for the node set `inside`, asked for by group `v`.
+    fn cover_row(&mut self, v: GroupOrigin, kind: CoverRow, inside: &[bool]) -> LazyRow {
         let g = self.graph.girth.unwrap_or(f64::INFINITY);
         let mut terms: Vec<(VarId, f64)> = Vec::new();
         for (k, &(a, b, e)) in self.graph.edges.iter().enumerate() {
@@ -443,7 +475,7 @@ impl<'a> CutsetSeparator<'a> {
             CoverRow::Directed => ("gcutd", 1.0),
             CoverRow::Lifted => ("gcut2_", 2.0),
         };
-        LazyRow { name: format!("{prefix}{}_v{v}", self.count), lhs, rhs: f64::INFINITY, terms }
+        LazyRow { name: format!("{prefix}{}_{v}", self.count), lhs, rhs: f64::INFINITY, terms }
     }
 
     /// Components of the edges with value above ½ that do not reach the root, as node masks with
@@ -500,6 +532,9 @@ impl Separator for CutsetSeparator<'_> {
     }
 
     fn separate_integral(&mut self, x: &[f64]) -> Vec<LazyRow> {
+        if self.graph.cuts_only {
+            return Vec::new();
+        }
         let islands = self.islands(x);
         islands.into_iter().map(|(inside, v)| self.row(&inside, v, false)).collect()
     }
@@ -569,6 +604,7 @@ mod tests {
             groups: Vec::new(),
             arcs: None,
             girth: None,
+            cuts_only: false,
         };
         CutsetSeparator::new(g)
     }
@@ -612,7 +648,7 @@ mod tests {
     #[test]
     fn cover_cutset_contracts_the_ball() {
         let mut s = path();
-        s.graph.groups = vec![CoverGroup { vertex: 12, nodes: vec![2, 3] }];
+        s.graph.groups = vec![CoverGroup { origin: GroupOrigin::Ball(12), nodes: vec![2, 3] }];
         // r–1 at 0.3, the rest 0.9, activities 0.2 each: every cutset `≥ V_v` holds (the flow
         // from any one node is 0.3), but the ball {2, 3} sends only 0.3 to the root: the
         // cover cutset over δ({1, 2, 3}) = {E0} is violated by 0.7.
@@ -629,7 +665,7 @@ mod tests {
     #[test]
     fn lifted_cover_cutset_counts_the_cycle_inside() {
         let mut s = path();
-        s.graph.groups = vec![CoverGroup { vertex: 12, nodes: vec![2, 3] }];
+        s.graph.groups = vec![CoverGroup { origin: GroupOrigin::Ball(12), nodes: vec![2, 3] }];
         s.graph.girth = Some(4.0);
         // The ball {2, 3} sends 1 to the root (through 1–2): the plain cover cutset holds, but
         // one crossing needs a cycle inside, and the edges inside {2, 3} sum to 0.5:

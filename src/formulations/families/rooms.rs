@@ -2,7 +2,7 @@
 //! `shared/FORMULATION.md` §4–§5 state them. One binary `R` per enumerated placement.
 
 use super::Ctx;
-use crate::formulations::expr::Expr;
+use crate::formulations::expr::{Expr, Value};
 use crate::milp::VarId;
 use crate::rules::placements::{enumerate_placements, Placement, PlacementReport};
 use crate::mesh::{EdgeId, VertexId};
@@ -100,6 +100,9 @@ pub fn rooms(c: &mut Ctx, rooms: &Rooms) -> PlacementReport {
         }
         c.em.eq(format!("room16_f{}", f.0), &ex, 1.0);
     }
+    if c.recipe.served_faces {
+        served_rows(c, rooms.mode, &report);
+    }
     // Room-type counts.
     for (t, &(lo, hi)) in rooms.counts.iter().enumerate() {
         if lo.is_none() && hi.is_none() {
@@ -120,6 +123,63 @@ pub fn rooms(c: &mut Ctx, rooms: &Rooms) -> PlacementReport {
     }
     c.vars.rooms = vars;
     report
+}
+
+/// Per face, the candidate edges one of which is active in every valid tiling with the face's
+/// room or block: the union over the placements covering the face of their boundary edges for
+/// floor plans (18: the room touches a corridor) or of their inner edges for game levels (19: the
+/// block is traversed). Ascending; empty for a face no placement covers, and for a face one of
+/// whose edges is active as a constant (nothing to ask).
+pub(crate) fn serving_edges(c: &Ctx, mode: RoomMode, report: &PlacementReport) -> Vec<Vec<EdgeId>> {
+    let mesh = &c.p.mesh;
+    let mut serving: Vec<Vec<EdgeId>> = vec![Vec::new(); mesh.num_faces()];
+    for pl in &report.placements {
+        let edges = match mode {
+            RoomMode::Floorplan => &pl.boundary_edges,
+            RoomMode::Game => &pl.inner_edges,
+        };
+        for f in &pl.faces {
+            serving[f.index()].extend(edges.iter().copied().filter(|&e| c.edge_value(e) != Value::Const(0.0)));
+        }
+    }
+    for edges in &mut serving {
+        edges.sort();
+        edges.dedup();
+        if edges.iter().any(|&e| c.edge_value(e) == Value::Const(1.0)) {
+            edges.clear();
+        }
+    }
+    serving
+}
+
+/// The served rows (this project's strengthening): exactly one placement covers a face (16)
+/// and it needs an active edge among its own (18, 19), so `Σ_{x∈U(f)} E_x ≥ 1` over the
+/// [`serving_edges`] `U(f)` of each face `f` — `≥ 2` for a game level's face all of whose
+/// blocks need two (see `traversal_needs_two`). Summing (18) over the placements at `f` counts
+/// an edge once per placement that has it; this row counts it once, so fractional rooms can no
+/// longer share one corridor edge.
+fn served_rows(c: &mut Ctx, mode: RoomMode, report: &PlacementReport) {
+    let p = c.p;
+    let serving = serving_edges(c, mode, report);
+    let mut two = vec![mode == RoomMode::Game; p.mesh.num_faces()];
+    if mode == RoomMode::Game {
+        for pl in report.placements.iter().filter(|pl| !traversal_needs_two(p, pl)) {
+            for f in &pl.faces {
+                two[f.index()] = false;
+            }
+        }
+    }
+    for f in p.mesh.faces() {
+        let edges = &serving[f.index()];
+        if edges.is_empty() {
+            continue;
+        }
+        let mut ex = Expr::new();
+        for &e in edges {
+            ex.add_value(c.edge_value(e), 1.0);
+        }
+        c.em.ge(format!("roomserved_f{}", f.0), &ex, if two[f.index()] { 2.0 } else { 1.0 });
+    }
 }
 
 /// What a linear or circular level means, as rows (docs/spec.md "Game level types"). With
