@@ -32,7 +32,8 @@ pub struct Formulation {
     pub path_sets: Option<PathSets>,
     /// Room placements, if room tiling is on (their `R` are `vars.rooms`).
     pub placements: Option<PlacementReport>,
-    /// The graph of the lazily separated cutsets, when the recipe has them.
+    /// The graph of the lazily separated cutsets, when the recipe has them; on tilings with
+    /// served faces, of the cover cutsets separated as cuts ([`cutset::CutsetGraph::cuts_only`]).
     pub cutsets: Option<cutset::CutsetGraph>,
     /// The lattice every design's objective lies on, when there is one
     /// ([`crate::solvers::lattice`]); the pipeline uses it when the recipe says so.
@@ -113,8 +114,8 @@ pub fn build_with(p: &Problem, recipe: &Recipe) -> Formulation {
     if !p.forced_vertices.is_empty() || !p.through_routes.is_empty() || !p.forced_edges.is_empty() {
         fam(&mut c, "user specifications", families::user::user_specs);
     }
-    // On tilings with the strong rows, the faces' serving edges give cover groups too, and
-    // their cutsets are separated as cuts beside the compact flow.
+    // With served faces, a tiling's faces give cover groups (their serving edges' ends), whose
+    // cutsets are separated as cuts beside the compact flow.
     let room_groups = match (&p.rooms, &placements) {
         (Some(rooms), Some(report)) if recipe.served_faces => Some(face_groups(&c, rooms.mode, report)),
         _ => None,
