@@ -414,7 +414,7 @@ fn picture_marks_room_types_and_lists_what_is_drawn() {
     netspec::render::png(&svg).unwrap();
 }
 
-/// The served faces (`strong` on tilings): a served row per face and the faces' cover cutsets,
+/// The served faces (`served_faces = true` on tilings): a served row per face and the faces' cover cutsets,
 /// separated as cuts beside the flow. The LP as written rises above the recipe's without them
 /// (fractional rooms can no longer share one corridor edge), the cuts raise it further, and
 /// with and without prove the same optimum with a valid design — on a floor plan (dead-ends
@@ -454,9 +454,10 @@ templates = [{ name = "block", shape = "rect 2x2" }, { name = "hall", shape = "r
     let one_thread = SolveOptions { threads: Some(1), ..SolveOptions::default() };
     for (text, need, optimum) in [(floorplan, 1.0, 3.0), (linear, 2.0, 14.0)] {
         let p = problem(text);
-        let with = pipeline::build(&p);
-        assert!(with.recipe.served_faces && with.is_complete());
-        let without = formulations::build_with(&p, &formulations::Recipe { served_faces: false, ..with.recipe.clone() });
+        let without = pipeline::build(&p);
+        assert!(!without.recipe.served_faces, "opt-in");
+        let with = formulations::build_with(&p, &formulations::Recipe { served_faces: true, ..without.recipe.clone() });
+        assert!(with.is_complete());
         let served: Vec<_> = with.model.rows().filter(|r| r.name.starts_with("roomserved_f")).collect();
         assert_eq!(served.len(), p.mesh.num_faces(), "{}", p.spec.name);
         assert!(served.iter().all(|r| r.lhs == need), "{}", p.spec.name);

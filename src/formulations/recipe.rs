@@ -55,7 +55,7 @@ pub struct Recipe {
     /// On tilings, every face's room or block has one of the edges that can serve it, and
     /// their ends reach a sink (the served rows of
     /// [`crate::formulations::families::rooms`] and their cover cutsets, separated as cuts):
-    /// `strong` only.
+    /// off in every recipe, `served_faces = true` in `[formulation]` turns it on.
     #[serde(default)]
     pub served_faces: bool,
 }
@@ -81,7 +81,8 @@ impl Recipe {
         let continuous_indicators = name == RecipeName::Strong;
         let objective_lattice = name == RecipeName::Strong;
         let out_arcs = name == RecipeName::Strong;
-        let served_faces = name == RecipeName::Strong;
+        // Opt-in: measured, it raised every tiling row's bound but cost designs (docs/benchmarks.md).
+        let served_faces = false;
         Recipe { name, label: name.name().to_string(), connectivity, rooms_connectivity, distance, coverage, dead_ends, paths, big_m, label_bounds, split_objective, solver_tuning, continuous_indicators, objective_lattice, out_arcs, served_faces }
     }
 
