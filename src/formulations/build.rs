@@ -10,9 +10,7 @@ use crate::milp::{Model, Sense};
 use crate::rules::paths::PathSets;
 use crate::rules::placements::PlacementReport;
 use crate::solvers::lattice::ObjectiveLattice;
-use crate::mesh::VertexId;
 use crate::spec::{Allow, ConnectivityForm, EdgeRole, Problem, RoomMode, Weight};
-use cutset::GroupOrigin;
 use indexmap::IndexMap;
 
 /// The emitted MILP of one problem under one recipe, with the map from design elements to its
@@ -111,15 +109,15 @@ pub fn build_with(p: &Problem, recipe: &Recipe) -> Formulation {
         };
         fam(&mut c, label, |c| families::rooms::rooms(c, rooms))
     });
-    if !p.forced_vertices.is_empty() || !p.through_routes.is_empty() || !p.forced_edges.is_empty() {
-        fam(&mut c, "user specifications", families::user::user_specs);
-    }
     // With served faces, a tiling's faces give cover groups (their serving edges' ends), whose
     // cutsets are separated as cuts beside the compact flow.
     let room_groups = match (&p.rooms, &placements) {
-        (Some(rooms), Some(report)) if recipe.served_faces => Some(face_groups(&c, rooms.mode, report)),
+        (Some(rooms), Some(report)) if recipe.served_faces => Some(fam(&mut c, "served faces", |c| families::rooms::served_faces(c, rooms.mode, report))),
         _ => None,
     };
+    if !p.forced_vertices.is_empty() || !p.through_routes.is_empty() || !p.forced_edges.is_empty() {
+        fam(&mut c, "user specifications", families::user::user_specs);
+    }
     let lazy = plan.connectivity == Some(ConnectivityForm::Cutset);
     let cutsets = (lazy || room_groups.is_some()).then(|| {
         let directions = plan.distance_flow.then_some(c.vars.half_edge.as_slice());
@@ -155,25 +153,6 @@ fn objective_lattice(model: &Model, vars: &VarMap) -> Option<ObjectiveLattice> {
         certified[v.index()] = true;
     }
     ObjectiveLattice::of_model(model, |v| certified[v.index()])
-}
-
-/// The cover groups of a tiling: per face, the ends of its serving edges
-/// ([`families::rooms::serving_edges`]); one of them is active in every valid design.
-fn face_groups(c: &Ctx, mode: RoomMode, report: &PlacementReport) -> Vec<(GroupOrigin, Vec<VertexId>)> {
-    let mesh = &c.p.mesh;
-    let serving = families::rooms::serving_edges(c, mode, report);
-    mesh.faces()
-        .filter(|f| !serving[f.index()].is_empty())
-        .map(|f| {
-            let mut ends: Vec<VertexId> = serving[f.index()].iter().flat_map(|&e| {
-                let (a, b) = mesh.edge_vertices(e);
-                [a, b]
-            }).collect();
-            ends.sort();
-            ends.dedup();
-            (GroupOrigin::Face(f.0), ends)
-        })
-        .collect()
 }
 
 /// Runs one family, charging what it adds to `label`.

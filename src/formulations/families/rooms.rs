@@ -1,6 +1,7 @@
 //! Room tiling on the network IP: floor plans (paper §5.2) and game levels (§5.3), as
 //! `shared/FORMULATION.md` §4–§5 state them. One binary `R` per enumerated placement.
 
+use super::cutset::GroupOrigin;
 use super::Ctx;
 use crate::formulations::expr::{Expr, Value};
 use crate::milp::VarId;
@@ -100,9 +101,6 @@ pub fn rooms(c: &mut Ctx, rooms: &Rooms) -> PlacementReport {
         }
         c.em.eq(format!("room16_f{}", f.0), &ex, 1.0);
     }
-    if c.recipe.served_faces {
-        served_rows(c, rooms.mode, &report);
-    }
     // Room-type counts.
     for (t, &(lo, hi)) in rooms.counts.iter().enumerate() {
         if lo.is_none() && hi.is_none() {
@@ -130,7 +128,7 @@ pub fn rooms(c: &mut Ctx, rooms: &Rooms) -> PlacementReport {
 /// floor plans (18: the room touches a corridor) or of their inner edges for game levels (19: the
 /// block is traversed). Ascending; empty for a face no placement covers, and for a face one of
 /// whose edges is active as a constant (nothing to ask).
-pub(crate) fn serving_edges(c: &Ctx, mode: RoomMode, report: &PlacementReport) -> Vec<Vec<EdgeId>> {
+fn serving_edges(c: &Ctx, mode: RoomMode, report: &PlacementReport) -> Vec<Vec<EdgeId>> {
     let mesh = &c.p.mesh;
     let mut serving: Vec<Vec<EdgeId>> = vec![Vec::new(); mesh.num_faces()];
     for pl in &report.placements {
@@ -152,13 +150,14 @@ pub(crate) fn serving_edges(c: &Ctx, mode: RoomMode, report: &PlacementReport) -
     serving
 }
 
-/// The served rows (this project's strengthening): exactly one placement covers a face (16)
-/// and it needs an active edge among its own (18, 19), so `Σ_{x∈U(f)} E_x ≥ 1` over the
-/// [`serving_edges`] `U(f)` of each face `f` — `≥ 2` for a game level's face all of whose
+/// The served faces (this project's strengthening, opt-in): exactly one placement covers a
+/// face (16) and it needs an active edge among its own (18, 19), so `Σ_{x∈U(f)} E_x ≥ 1` over
+/// the [`serving_edges`] `U(f)` of each face `f` — `≥ 2` for a game level's face all of whose
 /// blocks need two (see `traversal_needs_two`). Summing (18) over the placements at `f` counts
 /// an edge once per placement that has it; this row counts it once, so fractional rooms can no
-/// longer share one corridor edge.
-fn served_rows(c: &mut Ctx, mode: RoomMode, report: &PlacementReport) {
+/// longer share one corridor edge. Returns the ends of each `U(f)`, the cover groups of the
+/// cutset separator (one of them is active in every valid design).
+pub fn served_faces(c: &mut Ctx, mode: RoomMode, report: &PlacementReport) -> Vec<(GroupOrigin, Vec<VertexId>)> {
     let p = c.p;
     let serving = serving_edges(c, mode, report);
     let mut two = vec![mode == RoomMode::Game; p.mesh.num_faces()];
@@ -180,6 +179,16 @@ fn served_rows(c: &mut Ctx, mode: RoomMode, report: &PlacementReport) {
         }
         c.em.ge(format!("roomserved_f{}", f.0), &ex, if two[f.index()] { 2.0 } else { 1.0 });
     }
+    let mesh = &p.mesh;
+    mesh.faces()
+        .filter(|f| !serving[f.index()].is_empty())
+        .map(|f| {
+            let mut ends: Vec<VertexId> = serving[f.index()].iter().flat_map(|&e| <[VertexId; 2]>::from(mesh.edge_vertices(e))).collect();
+            ends.sort();
+            ends.dedup();
+            (GroupOrigin::Face(f.0), ends)
+        })
+        .collect()
 }
 
 /// What a linear or circular level means, as rows (docs/spec.md "Game level types"). With
