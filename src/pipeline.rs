@@ -388,7 +388,7 @@ pub fn solve_from(p: &Problem, f: &Formulation, kind: SolverKind, options: &Solv
 /// validated and measured, and its objective recomputed from the design alone.
 pub fn solve_built(p: &Problem, f: &Formulation, kind: SolverKind, options: &SolveOptions) -> Result<DesignResult, SolverError> {
     let solver = kind.instance()?;
-    let (tuned, solver_hints) = with_solver_hints(options, &f.recipe.solver_hints(kind));
+    let (tuned, solver_hints) = with_solver_hints(options, &f.recipe.solver_hints(kind, options.threads));
     let options = &tuned;
     let mut sep = f.separator().map(|sep| sep.with_repair(Box::new(|x: &[f64]| repair_point(p, f, x))));
     // Root-round rows no phase's model kept: checked at the answer with the others.
@@ -546,20 +546,29 @@ mod tests {
         assert_eq!(used.len(), 1);
     }
 
-    /// Only `strong` on HiGHS has a hint, and `solver_tuning = false` removes it.
+    /// Only `strong` on HiGHS has hints: the pseudocost setting always, the parallel tree search
+    /// from two threads on; `solver_tuning = false` and `parallel_search = false` remove each.
     #[test]
     fn only_the_strong_recipe_on_highs_is_tuned() {
         use crate::formulations::Recipe;
         use crate::spec::RecipeName;
         let strong = Recipe::named(RecipeName::Strong);
-        assert_eq!(strong.solver_hints(SolverKind::Highs).iter().map(|h| h.to_string()).collect::<Vec<_>>(), ["highs.mip_pscost_minreliable=0"]);
+        let names = |r: &Recipe, threads: Option<u32>| r.solver_hints(SolverKind::Highs, threads).iter().map(|h| h.to_string()).collect::<Vec<_>>();
+        assert_eq!(names(&strong, Some(2)), ["highs.mip_pscost_minreliable=0", "highs.parallel=on"]);
+        for threads in [None, Some(1)] {
+            assert_eq!(names(&strong, threads), ["highs.mip_pscost_minreliable=0"], "{threads:?}");
+        }
         for k in [SolverKind::Scip, SolverKind::Cbc, SolverKind::Microlp] {
-            assert!(strong.solver_hints(k).is_empty(), "{k}");
+            assert!(strong.solver_hints(k, Some(2)).is_empty(), "{k}");
         }
         for name in [RecipeName::Paper, RecipeName::Tight] {
-            assert!(Recipe::named(name).solver_hints(SolverKind::Highs).is_empty(), "{name:?}");
+            assert!(Recipe::named(name).solver_hints(SolverKind::Highs, Some(2)).is_empty(), "{name:?}");
         }
-        let off = Recipe { solver_tuning: false, ..strong };
-        assert!(off.solver_hints(SolverKind::Highs).is_empty());
+        let untuned = Recipe { solver_tuning: false, ..strong.clone() };
+        assert_eq!(names(&untuned, Some(2)), ["highs.parallel=on"]);
+        let serial = Recipe { parallel_search: false, ..strong.clone() };
+        assert_eq!(names(&serial, Some(2)), ["highs.mip_pscost_minreliable=0"]);
+        let off = Recipe { solver_tuning: false, parallel_search: false, ..strong };
+        assert!(off.solver_hints(SolverKind::Highs, Some(8)).is_empty());
     }
 }

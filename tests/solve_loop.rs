@@ -122,6 +122,38 @@ fn the_strong_recipes_solver_hint_reaches_highs_and_yields_to_the_user() {
     // `objective_split_proves_the_zero_star_optimum_on_every_backend`.
 }
 
+/// With two threads the strong recipe also hands HiGHS its parallel tree search
+/// (`parallel=on`); it proves the same optimum, and `parallel_search = false` or the user's own
+/// `highs.parallel` leaves it out.
+#[test]
+fn the_parallel_tree_search_reaches_highs_at_two_threads_and_yields_to_the_user() {
+    let text = ZERO_STAR.replace("formulation = \"tight\"", "formulation = \"strong\"");
+    let p = problem(&text);
+    let f = pipeline::build(&p);
+    let o = SolveOptions { time_limit: Some(60.0), threads: Some(2), ..Default::default() };
+    let from = pipeline::default_start(o.time_limit);
+    let check = |r: &pipeline::DesignResult, what: &str| {
+        assert_eq!(r.solve.termination, Termination::Optimal, "{what}: {}", r.solve.status_line());
+        assert!((r.solve.objective.unwrap() - 5.0004).abs() < 1e-9, "{what}: {:?}", r.solve.objective);
+        assert!(r.validity.valid, "{what}");
+    };
+    let r = pipeline::solve_from(&p, &f, SolverKind::Highs, &o, &from).unwrap();
+    check(&r, "parallel");
+    assert_eq!(r.solver_hints, ["highs.mip_pscost_minreliable=0", "highs.parallel=on"]);
+
+    let own = SolveOptions { params: vec!["highs.parallel=off".parse::<RawParam>().unwrap()], ..o.clone() };
+    let r = pipeline::solve_from(&p, &f, SolverKind::Highs, &own, &from).unwrap();
+    check(&r, "user's value");
+    assert_eq!(r.solver_hints, ["highs.mip_pscost_minreliable=0"]);
+
+    let serial = problem(&ZERO_STAR.replace("formulation = \"tight\"", "[formulation]\nrecipe = \"strong\"\nparallel_search = false"));
+    let f_serial = pipeline::build(&serial);
+    assert_eq!(f_serial.recipe.label, "strong(parallel_search=false)");
+    let r = pipeline::solve_from(&serial, &f_serial, SolverKind::Highs, &o, &from).unwrap();
+    check(&r, "serial");
+    assert_eq!(r.solver_hints, ["highs.mip_pscost_minreliable=0"]);
+}
+
 #[test]
 fn one_by_one_walled_grid_is_infeasible_on_every_backend() {
     let p = problem("name = \"g1\"\nboundary = \"wall\"\n[mesh]\ngrid = { width = 1, height = 1, spacing = 1.0 }\n[sinks]\nall_boundary = true\n[coverage]\nrange = 1\n");

@@ -58,6 +58,11 @@ pub struct Recipe {
     /// off in every recipe, `served_faces = true` in `[formulation]` turns it on.
     #[serde(default)]
     pub served_faces: bool,
+    /// Hand HiGHS `parallel=on`, its parallel tree search ([`Recipe::solver_hints`]): `strong`
+    /// only; used when the solve has two threads or more (HiGHS runs one search worker
+    /// otherwise, and the second core idles once the heuristic's start is handed over).
+    #[serde(default)]
+    pub parallel_search: bool,
 }
 
 impl Recipe {
@@ -81,9 +86,10 @@ impl Recipe {
         let continuous_indicators = name == RecipeName::Strong;
         let objective_lattice = name == RecipeName::Strong;
         let out_arcs = name == RecipeName::Strong;
+        let parallel_search = name == RecipeName::Strong;
         // Opt-in: measured, it raised every tiling row's bound but cost designs (docs/benchmarks.md).
         let served_faces = false;
-        Recipe { name, label: name.name().to_string(), connectivity, rooms_connectivity, distance, coverage, dead_ends, paths, big_m, label_bounds, split_objective, solver_tuning, continuous_indicators, objective_lattice, out_arcs, served_faces }
+        Recipe { name, label: name.name().to_string(), connectivity, rooms_connectivity, distance, coverage, dead_ends, paths, big_m, label_bounds, split_objective, solver_tuning, continuous_indicators, objective_lattice, out_arcs, served_faces, parallel_search }
     }
 
     /// The recipe a spec asks for, with its overrides.
@@ -107,6 +113,7 @@ impl Recipe {
         r.objective_lattice = parts.objective_lattice.unwrap_or(r.objective_lattice);
         r.out_arcs = parts.out_arcs.unwrap_or(r.out_arcs);
         r.served_faces = parts.served_faces.unwrap_or(r.served_faces);
+        r.parallel_search = parts.parallel_search.unwrap_or(r.parallel_search);
         r
     }
 
@@ -120,12 +127,24 @@ impl Recipe {
     /// iterations and 7 nodes in 9.5 s. Measured on Table 1 rows (docs/benchmarks.md, *Pseudocost
     /// branching and warm root rounds*): proves 7d-L2 in 9.6 s instead of a 4.7 % gap at 12 s, 2f
     /// in 21.7 s instead of 38.4 s, and no row lost.
-    pub fn solver_hints(&self, kind: SolverKind) -> Vec<RawParam> {
-        if self.solver_tuning && kind == SolverKind::Highs {
-            vec![RawParam { solver: kind, name: "mip_pscost_minreliable".into(), value: "0".into() }]
-        } else {
-            Vec::new()
+    ///
+    /// `strong` on HiGHS with `threads` ≥ 2 ([`Recipe::parallel_search`]): `parallel=on`. HiGHS
+    /// 1.15 otherwise runs its tree search on one worker whatever the thread count; with it, on
+    /// ⌈1.7·threads⌉ workers. On Fig. 7b-L2 (2 threads) the proof took 108 s instead of 176 s
+    /// (docs/benchmarks.md, *Parallel tree search*).
+    pub fn solver_hints(&self, kind: SolverKind, threads: Option<u32>) -> Vec<RawParam> {
+        let mut hints = Vec::new();
+        if kind != SolverKind::Highs {
+            return hints;
         }
+        let hint = |name: &str, value: &str| RawParam { solver: kind, name: name.into(), value: value.into() };
+        if self.solver_tuning {
+            hints.push(hint("mip_pscost_minreliable", "0"));
+        }
+        if self.parallel_search && threads.is_some_and(|t| t >= 2) {
+            hints.push(hint("parallel", "on"));
+        }
+        hints
     }
 
     /// The recipe of a problem.

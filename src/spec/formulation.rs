@@ -178,6 +178,10 @@ pub struct FormulationParts {
     /// of its placements', and its ends reach a sink (cutsets separated as cuts).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub served_faces: Option<bool>,
+    /// HiGHS's parallel tree search (`parallel=on`) when the solve has two threads or more
+    /// (`Recipe::solver_hints`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub parallel_search: Option<bool>,
 }
 
 /// The `formulation` key: a recipe name or a table of parts.
@@ -242,6 +246,7 @@ impl FormulationSpec {
         push("objective_lattice", p.objective_lattice.map(|v| v.to_string()));
         push("out_arcs", p.out_arcs.map(|v| v.to_string()));
         push("served_faces", p.served_faces.map(|v| v.to_string()));
+        push("parallel_search", p.parallel_search.map(|v| v.to_string()));
         if over.is_empty() {
             p.recipe.name().to_string()
         } else {
