@@ -379,7 +379,7 @@ fn print_summary(r: &DesignResult) {
         println!("lattice    every design's objective is on {offset}{}·ℤ: {bound} (`objective_lattice = false` in [formulation] turns this off)", l.lattice.step);
     }
     if !r.solver_hints.is_empty() {
-        println!("tuning     {} (the recipe's; `solver_tuning = false` in [formulation] or your own --param replaces it)", r.solver_hints.join(", "));
+        println!("tuning     {} (the recipe's; `solver_tuning = false` / `parallel_search = false` in [formulation] or your own --param replaces it)", r.solver_hints.join(", "));
     }
     println!("validity   {}", verdict(r));
     for v in r.validity.design_violations.iter().take(10) {
