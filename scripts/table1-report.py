@@ -26,7 +26,7 @@ the tenth 2026-12-03.tar.gz (which also keeps the cells it replaced under t1-bef
 the eleventh 2026-12-03b.tar.gz (which also keeps the cells it replaced under
 t1-before-indicators/), the twelfth 2026-12-03c.tar.gz (the baseline columns, and their
 stopped first attempt under t1-baselines-first-attempt/), the thirteenth 2026-12-03d.tar.gz
-(the baseline columns on all 43 rows) and the fourteenth 2026-12-03e.tar.gz (HiGHS/strong's 23
+(the baseline columns on all 43 rows) and the fourteenth 2026-12-03e.tar.gz (HiGHS/strong's 28
 rows of models/table1-parallel.toml, and the cells they replaced under t1-before-parallel/);
 how to extract them is written into the
 report (the paragraph after the protocol). A row whose run has no picture keeps the picture already in the gallery.
