@@ -84,38 +84,38 @@ fn objective_split_proves_the_zero_star_optimum_on_every_backend() {
     assert!((r.solve.objective.unwrap() - 5.0004).abs() < 1e-9, "{:?}", r.solve.objective);
 }
 
+/// Solves the zero-star grid with `formulation` (TOML in place of its `formulation = "tight"`
+/// line) on HiGHS from the default start, asserts the proven optimum 5.0004 and a valid design,
+/// and returns the result with the recipe's label.
+fn solve_zero_star(formulation: &str, o: &SolveOptions, what: &str) -> (pipeline::DesignResult, String) {
+    let p = problem(&ZERO_STAR.replace("formulation = \"tight\"", formulation));
+    let f = pipeline::build(&p);
+    let r = pipeline::solve_from(&p, &f, SolverKind::Highs, o, &pipeline::default_start(o.time_limit)).unwrap();
+    assert_eq!(r.solve.termination, Termination::Optimal, "{what}: {}", r.solve.status_line());
+    assert!((r.solve.objective.unwrap() - 5.0004).abs() < 1e-9, "{what}: {:?}", r.solve.objective);
+    assert!(r.validity.valid, "{what}");
+    (r, f.recipe.label)
+}
+
 /// The strong recipe's solver hint (`Recipe::solver_hints`): HiGHS gets
 /// `mip_pscost_minreliable=0` and the result says so; the user's own value for it, or
 /// `solver_tuning = false`, replaces it and the result lists none; every way ends at the same
 /// proven optimum.
 #[test]
 fn the_strong_recipes_solver_hint_reaches_highs_and_yields_to_the_user() {
-    let text = ZERO_STAR.replace("formulation = \"tight\"", "formulation = \"strong\"");
-    let p = problem(&text);
-    let f = pipeline::build(&p);
+    let strong = "formulation = \"strong\"";
     let o = SolveOptions { time_limit: Some(60.0), threads: Some(1), ..Default::default() };
-    let from = pipeline::default_start(o.time_limit);
-    let check = |r: &pipeline::DesignResult, what: &str| {
-        assert_eq!(r.solve.termination, Termination::Optimal, "{what}: {}", r.solve.status_line());
-        assert!((r.solve.objective.unwrap() - 5.0004).abs() < 1e-9, "{what}: {:?}", r.solve.objective);
-        assert!(r.validity.valid, "{what}");
-    };
-    let r = pipeline::solve_from(&p, &f, SolverKind::Highs, &o, &from).unwrap();
-    check(&r, "hinted");
+    let (r, _) = solve_zero_star(strong, &o, "hinted");
     assert_eq!(r.solver_hints, ["highs.mip_pscost_minreliable=0"]);
     let json = serde_json::to_value(&r).unwrap();
     assert_eq!(json["solver_hints"][0], "highs.mip_pscost_minreliable=0");
 
     let own = SolveOptions { params: vec!["highs.mip_pscost_minreliable=8".parse::<RawParam>().unwrap()], ..o.clone() };
-    let r = pipeline::solve_from(&p, &f, SolverKind::Highs, &own, &from).unwrap();
-    check(&r, "user's value");
+    let (r, _) = solve_zero_star(strong, &own, "user's value");
     assert!(r.solver_hints.is_empty(), "{:?}", r.solver_hints);
 
-    let off = problem(&ZERO_STAR.replace("formulation = \"tight\"", "[formulation]\nrecipe = \"strong\"\nsolver_tuning = false"));
-    let f_off = pipeline::build(&off);
-    assert_eq!(f_off.recipe.label, "strong(solver_tuning=false)");
-    let r = pipeline::solve_from(&off, &f_off, SolverKind::Highs, &o, &from).unwrap();
-    check(&r, "tuning off");
+    let (r, label) = solve_zero_star("[formulation]\nrecipe = \"strong\"\nsolver_tuning = false", &o, "tuning off");
+    assert_eq!(label, "strong(solver_tuning=false)");
     assert!(r.solver_hints.is_empty());
     assert!(serde_json::to_value(&r).unwrap().get("solver_hints").is_none());
     // Other backends get no hint: checked per backend in
@@ -127,30 +127,17 @@ fn the_strong_recipes_solver_hint_reaches_highs_and_yields_to_the_user() {
 /// `highs.parallel` leaves it out.
 #[test]
 fn the_parallel_tree_search_reaches_highs_at_two_threads_and_yields_to_the_user() {
-    let text = ZERO_STAR.replace("formulation = \"tight\"", "formulation = \"strong\"");
-    let p = problem(&text);
-    let f = pipeline::build(&p);
+    let strong = "formulation = \"strong\"";
     let o = SolveOptions { time_limit: Some(60.0), threads: Some(2), ..Default::default() };
-    let from = pipeline::default_start(o.time_limit);
-    let check = |r: &pipeline::DesignResult, what: &str| {
-        assert_eq!(r.solve.termination, Termination::Optimal, "{what}: {}", r.solve.status_line());
-        assert!((r.solve.objective.unwrap() - 5.0004).abs() < 1e-9, "{what}: {:?}", r.solve.objective);
-        assert!(r.validity.valid, "{what}");
-    };
-    let r = pipeline::solve_from(&p, &f, SolverKind::Highs, &o, &from).unwrap();
-    check(&r, "parallel");
+    let (r, _) = solve_zero_star(strong, &o, "parallel");
     assert_eq!(r.solver_hints, ["highs.mip_pscost_minreliable=0", "highs.parallel=on"]);
 
     let own = SolveOptions { params: vec!["highs.parallel=off".parse::<RawParam>().unwrap()], ..o.clone() };
-    let r = pipeline::solve_from(&p, &f, SolverKind::Highs, &own, &from).unwrap();
-    check(&r, "user's value");
+    let (r, _) = solve_zero_star(strong, &own, "user's value");
     assert_eq!(r.solver_hints, ["highs.mip_pscost_minreliable=0"]);
 
-    let serial = problem(&ZERO_STAR.replace("formulation = \"tight\"", "[formulation]\nrecipe = \"strong\"\nparallel_search = false"));
-    let f_serial = pipeline::build(&serial);
-    assert_eq!(f_serial.recipe.label, "strong(parallel_search=false)");
-    let r = pipeline::solve_from(&serial, &f_serial, SolverKind::Highs, &o, &from).unwrap();
-    check(&r, "serial");
+    let (r, label) = solve_zero_star("[formulation]\nrecipe = \"strong\"\nparallel_search = false", &o, "serial");
+    assert_eq!(label, "strong(parallel_search=false)");
     assert_eq!(r.solver_hints, ["highs.mip_pscost_minreliable=0"]);
 }
 
