@@ -466,7 +466,11 @@ fn cover_cutsets_raise_the_root_bound_and_keep_the_optimum() {
             }
         }
         let directed = p.w_distance > 0.0;
-        assert_eq!(g.arcs.is_some(), directed, "{weights}: direction binaries exactly with the distance flow");
+        // Direction binaries with the distance flow, else the parent arcs (`directed_cutsets`).
+        let arcs = g.arcs.as_ref().expect("the strong recipe's cutsets are directed");
+        let kinds: Vec<&[Option<netspec::milp::VarId>]> = vec![&f.vars.half_edge, &f.vars.parent];
+        let owner = if directed { kinds[0] } else { kinds[1] };
+        assert!(arcs.iter().flat_map(|&(a, b)| [a, b]).flatten().all(|a| owner.contains(&Some(a))), "{weights}: arcs of the wrong kind");
         let highs = SolverKind::Highs.instance().unwrap();
         let o = SolveOptions { threads: Some(1), ..SolveOptions::default() };
         let bound = |graph: formulations::CutsetGraph| {
@@ -496,7 +500,39 @@ fn cover_cutsets_raise_the_root_bound_and_keep_the_optimum() {
             assert!(with_groups > undirected + 0.1, "{weights}: directed {with_groups}, undirected {undirected}");
             assert!(objectives_agree(with_groups, optimum, 1e-6), "{weights}: the directed cover cutsets close the root gap: {with_groups} against {optimum}");
         } else {
+            assert!(with_groups >= undirected - 1e-6, "{weights}: parent-arc cutsets {with_groups}, undirected {undirected}");
             assert!(with_groups <= optimum + 1e-6, "{weights}: bound {with_groups} above the optimum {optimum}");
+        }
+    }
+}
+
+/// The directed cutsets on parent arcs (`strong` without the distance flow): on a length-only
+/// 5×5 grid with one corner sink they raise the root LP bound after the cut rounds over the
+/// undirected rows (`directed_cutsets = false`) — to the optimum where dead-ends are allowed —
+/// and every variant proves the same optimum, with a valid design, on HiGHS and microlp.
+#[test]
+fn directed_cutsets_on_parent_arcs_raise_the_root_bound_and_keep_the_optimum() {
+    let highs = SolverKind::Highs.instance().unwrap();
+    let one_thread = SolveOptions { threads: Some(1), ..SolveOptions::default() };
+    for (dead_ends, optimum, undirected_root, directed_root) in [("allow", 10.0, 8.0, 10.0), ("forbid", 12.0, 10.542373, 11.235294)] {
+        let p = problem(&spec("directed", &format!("boundary = \"candidate\"\nformulation = \"strong\"\n[mesh]\ngrid = {{ width = 5, height = 5 }}\n[sinks]\nvertices = [0]\n[coverage]\nrange = 2\n[weights]\nlength = 1\n[features]\ndead_ends = \"{dead_ends}\"\n")));
+        let directed = pipeline::build(&p);
+        assert!(directed.recipe.directed_cutsets);
+        let undirected = formulations::build_with(&p, &formulations::Recipe { directed_cutsets: false, ..directed.recipe.clone() });
+        let arcs = directed.cutsets.as_ref().and_then(|g| g.arcs.as_ref()).expect("parent arcs in the cutset graph");
+        assert!(arcs.iter().flat_map(|&(a, b)| [a, b]).flatten().all(|a| directed.vars.parent.contains(&Some(a))));
+        assert!(undirected.cutsets.as_ref().is_some_and(|g| g.arcs.is_none()));
+        let root = |f: &formulations::Formulation| {
+            let mut sep = formulations::CutsetSeparator::new(f.cutsets.clone().unwrap());
+            netspec::solvers::lazy::lp_bound(highs.as_ref(), &f.model, Some(&mut sep), &one_thread).unwrap().with_cuts.unwrap()
+        };
+        let (b_directed, b_undirected) = (root(&directed), root(&undirected));
+        assert!(objectives_agree(b_directed, directed_root, 1e-5) && objectives_agree(b_undirected, undirected_root, 1e-5), "{dead_ends}: root {b_directed} directed, {b_undirected} undirected");
+        for (f, kind) in [(&directed, SolverKind::Highs), (&undirected, SolverKind::Highs), (&directed, SolverKind::Microlp), (&undirected, SolverKind::Microlp)] {
+            let r = pipeline::solve_built(&p, f, kind, &one_thread).unwrap();
+            assert_eq!(r.solve.termination, Termination::Optimal, "{kind}, {}, dead-ends {dead_ends}", f.recipe.label);
+            assert!(r.validity.valid, "{:?}", r.validity);
+            assert!(objectives_agree(r.solve.objective.unwrap(), optimum, 1e-9), "{kind}, {}, dead-ends {dead_ends}: {:?}", f.recipe.label, r.solve.objective);
         }
     }
 }
@@ -545,8 +581,9 @@ fn selected_paths_tighten_the_relaxation_and_keep_the_optimum() {
 /// The out-arc rows (`strong`, dead-ends allowed): without direction binaries they bring
 /// parent arcs, and the LP as written rises above the recipe's without them (which may switch
 /// on every vertex of a path whose edges are at ½); with the distance flow they are rows on its
-/// direction binaries alone; with dead-ends forbidden they are not written. Every variant proves
-/// the same optimum, with a valid design, on HiGHS and microlp.
+/// direction binaries alone; with dead-ends forbidden they are written only for the directed
+/// cutsets on parent arcs (`directed_cutsets`, no distance flow). Every variant proves the same
+/// optimum, with a valid design, on HiGHS and microlp.
 #[test]
 fn out_arcs_tighten_the_relaxation_and_keep_the_optimum() {
     let text = |distance: f64, dead_ends: &str| {
@@ -559,9 +596,13 @@ fn out_arcs_tighten_the_relaxation_and_keep_the_optimum() {
         let p = problem(&spec("out-arcs", &text(distance, dead_ends)));
         let with = pipeline::build(&p);
         assert!(with.recipe.out_arcs);
-        let without = formulations::build_with(&p, &formulations::Recipe { out_arcs: false, ..with.recipe.clone() });
+        let without = formulations::build_with(&p, &formulations::Recipe { out_arcs: false, directed_cutsets: false, ..with.recipe.clone() });
+        let undirected = formulations::build_with(&p, &formulations::Recipe { directed_cutsets: false, ..with.recipe.clone() });
         let family = with.families.get("out-arcs (§8)");
         let parents = with.vars.parent.iter().flatten().count();
+        // Parent arcs with the directed cutsets are a forest's: one out of each active vertex.
+        let out_rows: Vec<(f64, f64)> = with.model.rows().filter(|r| r.name.starts_with("out_")).map(|r| (r.lhs, r.rhs)).collect();
+        assert!(!out_rows.is_empty() && out_rows.iter().all(|&(lo, hi)| lo == 0.0 && (hi == 0.0) == (distance == 0.0)), "{out_rows:?}");
         match (distance > 0.0, dead_ends) {
             (false, "allow") => {
                 assert!(family.is_some_and(|f| f.vars == parents && parents > 0 && f.rows > 0), "{family:?}");
@@ -569,7 +610,10 @@ fn out_arcs_tighten_the_relaxation_and_keep_the_optimum() {
                 assert!(b_with > b_without + 1.0, "LP bound: with {b_with}, without {b_without}");
             }
             (true, _) => assert!(family.is_some_and(|f| f.vars == 0 && f.rows > 0) && parents == 0, "{family:?}"),
-            _ => assert!(family.is_none() && parents == 0, "{family:?}"),
+            _ => {
+                assert!(family.is_some_and(|f| f.vars == parents && parents > 0 && f.rows > 0), "{family:?}");
+                assert!(undirected.families.get("out-arcs (§8)").is_none() && undirected.vars.parent.iter().all(Option::is_none));
+            }
         }
         assert!(without.families.get("out-arcs (§8)").is_none());
         let mut optima = Vec::new();

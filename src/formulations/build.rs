@@ -83,7 +83,11 @@ pub fn build_with(p: &Problem, recipe: &Recipe) -> Formulation {
     if plan.connectivity == Some(ConnectivityForm::Flow) {
         fam(&mut c, "connectivity flow (§8)", families::connectivity::connectivity_flow);
     }
-    if recipe.out_arcs && p.dead_ends == Allow::Allow {
+    // Cutsets are separated on streets (lazily) and, with served faces, on tilings (as cuts);
+    // without direction binaries the directed ones count the parent arcs, which need writing.
+    let separates_cutsets = plan.connectivity == Some(ConnectivityForm::Cutset) || (p.rooms.is_some() && recipe.served_faces);
+    let parent_cutsets = recipe.directed_cutsets && !plan.distance_flow && separates_cutsets;
+    if (recipe.out_arcs && p.dead_ends == Allow::Allow) || parent_cutsets {
         fam(&mut c, "out-arcs (§8)", families::connectivity::out_arcs);
     }
     if p.dead_ends == Allow::Forbid {
@@ -120,7 +124,11 @@ pub fn build_with(p: &Problem, recipe: &Recipe) -> Formulation {
     }
     let lazy = plan.connectivity == Some(ConnectivityForm::Cutset);
     let cutsets = (lazy || room_groups.is_some()).then(|| {
-        let directions = plan.distance_flow.then_some(c.vars.half_edge.as_slice());
+        let directions = if plan.distance_flow {
+            Some(c.vars.half_edge.as_slice())
+        } else {
+            parent_cutsets.then_some(c.vars.parent.as_slice())
+        };
         let mut g = cutset::CutsetGraph::new(p, &c.vars.edge, &c.vars.vertex, directions);
         g.cuts_only = !lazy;
         let girth = (p.dead_ends == Allow::Forbid).then(|| families::coverage::girth(p));

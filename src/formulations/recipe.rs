@@ -52,6 +52,12 @@ pub struct Recipe {
     /// ([`crate::formulations::families::connectivity::out_arcs`]): `strong` only.
     #[serde(default)]
     pub out_arcs: bool,
+    /// Without the distance flow's direction binaries, the cutsets and cover cutsets count
+    /// only the parent arcs leaving a set (the parent arcs of
+    /// [`crate::formulations::families::connectivity::out_arcs`], then written whatever the
+    /// dead-end rule): `strong` only.
+    #[serde(default)]
+    pub directed_cutsets: bool,
     /// On tilings, every face's room or block has one of the edges that can serve it, and
     /// their ends reach a sink (the served rows of
     /// [`crate::formulations::families::rooms`] and their cover cutsets, separated as cuts):
@@ -86,10 +92,11 @@ impl Recipe {
         let continuous_indicators = name == RecipeName::Strong;
         let objective_lattice = name == RecipeName::Strong;
         let out_arcs = name == RecipeName::Strong;
+        let directed_cutsets = name == RecipeName::Strong;
         let parallel_search = name == RecipeName::Strong;
         // Opt-in: measured, it raised every tiling row's bound but cost designs (docs/benchmarks.md).
         let served_faces = false;
-        Recipe { name, label: name.name().to_string(), connectivity, rooms_connectivity, distance, coverage, dead_ends, paths, big_m, label_bounds, split_objective, solver_tuning, continuous_indicators, objective_lattice, out_arcs, served_faces, parallel_search }
+        Recipe { name, label: name.name().to_string(), connectivity, rooms_connectivity, distance, coverage, dead_ends, paths, big_m, label_bounds, split_objective, solver_tuning, continuous_indicators, objective_lattice, out_arcs, directed_cutsets, served_faces, parallel_search }
     }
 
     /// The recipe a spec asks for, with its overrides.
@@ -112,6 +119,7 @@ impl Recipe {
         r.continuous_indicators = parts.continuous_indicators.unwrap_or(r.continuous_indicators);
         r.objective_lattice = parts.objective_lattice.unwrap_or(r.objective_lattice);
         r.out_arcs = parts.out_arcs.unwrap_or(r.out_arcs);
+        r.directed_cutsets = parts.directed_cutsets.unwrap_or(r.directed_cutsets);
         r.served_faces = parts.served_faces.unwrap_or(r.served_faces);
         r.parallel_search = parts.parallel_search.unwrap_or(r.parallel_search);
         r

@@ -174,6 +174,9 @@ pub struct FormulationParts {
     /// Out-arc rows: every active non-sink vertex has an arc out toward the sinks.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub out_arcs: Option<bool>,
+    /// Directed cutsets on parent arcs where the recipe has no direction binaries.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub directed_cutsets: Option<bool>,
     /// Served faces on tilings: each face's room (block) has a serving edge among the union
     /// of its placements', and its ends reach a sink (cutsets separated as cuts).
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -245,6 +248,7 @@ impl FormulationSpec {
         push("continuous_indicators", p.continuous_indicators.map(|v| v.to_string()));
         push("objective_lattice", p.objective_lattice.map(|v| v.to_string()));
         push("out_arcs", p.out_arcs.map(|v| v.to_string()));
+        push("directed_cutsets", p.directed_cutsets.map(|v| v.to_string()));
         push("served_faces", p.served_faces.map(|v| v.to_string()));
         push("parallel_search", p.parallel_search.map(|v| v.to_string()));
         if over.is_empty() {

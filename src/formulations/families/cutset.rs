@@ -5,6 +5,9 @@
 //! the root on fractional ones. With the distance flow's direction binaries the fractional rows
 //! are directed, `Σ_{(a→b): a∈C, b∉C} E(a→b) ≥ V_v`: every active non-sink vertex has a path of
 //! active half-edges to a sink, so a sink-free set holding one has an active half-edge leaving it.
+//! Without them (`directed_cutsets`) the rows count the continuous parent arcs `P(a→b)` of the
+//! out-arc rows the same way: a shortest-path forest into the sinks gives each active non-sink
+//! vertex a path of parent arcs at 1, so `Σ_{(a→b): a∈C, b∉C} P(a→b) ≥ V_v` holds too.
 //!
 //! Beside them, the **cover cutsets** (this project's strengthening, valid cuts rather than lazy
 //! rows): coverage (6) makes some vertex of a sink-free ball `cover(v)` active, and that vertex
@@ -43,11 +46,14 @@ pub struct CutsetGraph {
     /// serve a face (inclusion-minimal, deterministic order).
     #[serde(default)]
     pub groups: Vec<CoverGroup>,
-    /// The direction binaries of each edge in `edges`, `(E(a→b), E(b→a))`, when the recipe
-    /// has them (the distance flow): each active non-sink vertex then has a directed path of
-    /// active half-edges to a sink, and the cover cutsets count only the half-edges leaving `S`.
+    /// The arcs of each edge in `edges`, `(a→b, b→a)`, when the recipe has them: the distance
+    /// flow's direction binaries `E(a→b)`, or else the parent arcs `P(a→b)` of the out-arc rows
+    /// (`directed_cutsets`). Either way each active non-sink vertex has a directed path of
+    /// active arcs to a sink, and the cutsets count only the arcs leaving a set. An arc out of
+    /// the root is `None` when the recipe has none (parent arcs leave only non-sinks); no cut
+    /// counts it, since the root is never inside.
     #[serde(default)]
-    pub arcs: Option<Vec<(VarId, VarId)>>,
+    pub arcs: Option<Vec<(Option<VarId>, Option<VarId>)>>,
     /// With dead-ends forbidden, the shortest cycle a design can hold (the cover cutsets are
     /// then lifted: one crossing leaves a cycle inside); `None` when dead-ends are allowed.
     #[serde(default)]
@@ -89,9 +95,10 @@ impl std::fmt::Display for GroupOrigin {
 }
 
 impl CutsetGraph {
-    /// The graph of a problem, from its edge variables and vertex activities, and the direction
-    /// binaries of its half-edges when the recipe's distance flow gives them meaning (see
-    /// [`CutsetGraph::arcs`]).
+    /// The graph of a problem, from its edge variables and vertex activities, and the arcs of
+    /// its half-edges (direction binaries or parent arcs) when the recipe has them (see
+    /// [`CutsetGraph::arcs`]). An arc may be missing only out of a sink; otherwise the graph
+    /// gets no arcs.
     pub fn new(p: &Problem, edge: &[Option<VarId>], vertex: &[Value], directions: Option<&[Option<VarId>]>) -> CutsetGraph {
         let mesh = &p.mesh;
         let mut node = vec![u32::MAX; mesh.num_vertices()];
@@ -118,9 +125,11 @@ impl CutsetGraph {
             if let (Some(d), Some(list)) = (directions, arcs.as_mut()) {
                 let [h0, h1] = mesh.edge_half_edges(e);
                 let (ab, ba) = if mesh.he_tail(h0) == a { (h0, h1) } else { (h1, h0) };
-                match (d[ab.index()], d[ba.index()]) {
-                    (Some(f), Some(r)) => list.push((f, r)),
-                    _ => arcs = None,
+                let (f, r) = (d[ab.index()], d[ba.index()]);
+                if (f.is_some() || na == 0) && (r.is_some() || nb == 0) {
+                    list.push((f, r));
+                } else {
+                    arcs = None;
                 }
             }
         }
@@ -363,20 +372,23 @@ impl<'a> CutsetSeparator<'a> {
         &self.graph
     }
 
-    /// The values of the direction binaries at `x` as arc capacities (forward, backward), when
-    /// the graph has them.
+    /// The values of the arcs at `x` as capacities (forward, backward), when the graph has
+    /// them (a missing arc out of the root: 0).
     fn directed_capacities(&self, x: &[f64]) -> Option<(Vec<f64>, Vec<f64>)> {
-        self.graph.arcs.as_ref().map(|arcs| arcs.iter().map(|&(f, b)| (x[f.index()].max(0.0), x[b.index()].max(0.0))).unzip())
+        let at = |a: Option<VarId>| a.map_or(0.0, |a| x[a.index()].max(0.0));
+        self.graph.arcs.as_ref().map(|arcs| arcs.iter().map(|&(f, b)| (at(f), at(b))).unzip())
     }
 
     /// The variable of edge `k` in a cut it crosses, its first end inside when `first_inside`:
-    /// with `directed` and direction binaries, the half-edge leaving the inside; else `E_x`.
+    /// with `directed` and arcs, the arc leaving the inside; else `E_x` (also for an arc out of
+    /// the root the recipe lacks, which no cut has inside).
     fn crossing_var(&self, k: usize, first_inside: bool, directed: bool) -> VarId {
-        match (directed, self.graph.arcs.as_ref()) {
+        let arc = match (directed, self.graph.arcs.as_ref()) {
             (true, Some(arcs)) if first_inside => arcs[k].0,
             (true, Some(arcs)) => arcs[k].1,
-            _ => self.graph.edges[k].2,
-        }
+            _ => None,
+        };
+        arc.unwrap_or(self.graph.edges[k].2)
     }
 
     fn activity(&self, node: usize, x: &[f64]) -> f64 {
@@ -583,7 +595,7 @@ impl Separator for CutsetSeparator<'_> {
             Value::Const(_) => None,
         }));
         if let Some(arcs) = &self.graph.arcs {
-            out.extend(arcs.iter().flat_map(|&(f, b)| [(f, Lock::Down), (b, Lock::Down)]));
+            out.extend(arcs.iter().flat_map(|&(f, b)| [f, b]).flatten().map(|a| (a, Lock::Down)));
         }
         out
     }
@@ -683,7 +695,7 @@ mod tests {
         let mut s = path();
         // Direction binaries: edge k's arc from its first end to its second is variable 6 + 2k,
         // the other way 7 + 2k (r→1 is 6, 1→r is 7, 1→2 is 8, 2→1 is 9, 2→3 is 10, 3→2 is 11).
-        s.graph.arcs = Some(vec![(VarId(6), VarId(7)), (VarId(8), VarId(9)), (VarId(10), VarId(11))]);
+        s.graph.arcs = Some(vec![(Some(VarId(6)), Some(VarId(7))), (Some(VarId(8)), Some(VarId(9))), (Some(VarId(10)), Some(VarId(11)))]);
         // Every edge at 0.8, but r–1 points away from the root (r→1 at 0.8, 1→r at 0): the
         // undirected cutsets hold for V3 = 0.7, the directed one over the arcs leaving
         // {1, 2, 3} (just 1→r) is violated by 0.7.
@@ -696,6 +708,28 @@ mod tests {
         assert!((rows[0].violation(&x) - 0.7).abs() < 1e-9);
         // With every edge pointed at the root, nothing.
         x[6..].copy_from_slice(&[0.0, 0.8, 0.0, 0.8, 0.0, 0.8]);
+        assert!(s.separate_fractional(&x).is_empty());
+    }
+
+    #[test]
+    fn parent_arc_cutsets_lack_the_arcs_out_of_the_root() {
+        let mut s = path();
+        // Parent arcs (no arc leaves the root): r–1 has only P(1→r) = 6; 1→2 is 7, 2→1 is 8,
+        // 2→3 is 9, 3→2 is 10.
+        s.graph.arcs = Some(vec![(None, Some(VarId(6))), (Some(VarId(7)), Some(VarId(8))), (Some(VarId(9)), Some(VarId(10)))]);
+        // Every edge at 0.8, V2 = 0 and V3 = 0.7, but the parent arc on 1–2 points away from
+        // the root: the set {2, 3} has no arc leaving it (the undirected cutsets hold), and
+        // its row counts 2→1 alone.
+        let mut x = vec![0.8, 0.8, 0.8, 0.7, 0.0, 0.7, 0.8, 0.8, 0.0, 0.0, 0.8];
+        let rows = s.separate_fractional(&x);
+        assert_eq!(rows.len(), 1, "{rows:?}");
+        let mut terms = rows[0].terms.clone();
+        terms.sort_by_key(|t| t.0);
+        assert_eq!(terms, vec![(VarId(5), -1.0), (VarId(8), 1.0)]);
+        assert!((rows[0].violation(&x) - 0.7).abs() < 1e-9);
+        // The missing arc is never locked or counted; pointed at the root, nothing is violated.
+        assert_eq!(s.locks().iter().filter(|(v, _)| v.index() >= 6).count(), 5);
+        x[6..].copy_from_slice(&[0.8, 0.0, 0.8, 0.0, 0.8]);
         assert!(s.separate_fractional(&x).is_empty());
     }
 
