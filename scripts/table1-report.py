@@ -28,8 +28,8 @@ t1-before-indicators/), the twelfth 2026-12-03c.tar.gz (the baseline columns, an
 stopped first attempt under t1-baselines-first-attempt/), the thirteenth 2026-12-03d.tar.gz
 (the baseline columns on all 43 rows), the fourteenth 2026-12-03e.tar.gz (HiGHS/strong's 28
 rows of models/table1-parallel.toml, and the cells they replaced under t1-before-parallel/) and
-the fifteenth 2026-12-03f.tar.gz (HiGHS/strong's 10 rows of models/table1-directed.toml, and the
-cells they replaced under t1-before-directed/);
+the fifteenth 2026-12-03f.tar.gz (HiGHS/strong's 10 rows of models/table1-directed.toml and
+SCIP/strong's 1c-L2, 1c-L3, 5L3 and 5L4, and the cells they replaced under t1-before-directed/);
 how to extract them is written into the
 report (the paragraph after the protocol). A row whose run has no picture keeps the picture already in the gallery.
 
@@ -210,7 +210,8 @@ def main():
     w("the eleventh, then the twelfth (the baseline columns `t1-cbc-strong/` and `t1-anneal/`), then")
     w("the thirteenth (the same two columns on all 43 rows; it replaces the twelfth's), remove")
     w("HiGHS/strong's rows of `models/table1-parallel.toml`, then extract the fourteenth, remove")
-    w("HiGHS/strong's rows of `models/table1-directed.toml`, then extract the fifteenth,")
+    w("HiGHS/strong's rows of `models/table1-directed.toml` and SCIP/strong's 1c-L2, 1c-L3, 5L3 and")
+    w("5L4, then extract the fifteenth,")
     w("to resume these comparisons (a record with the same settings is")
     w("reused) or to report again.")
     w("")
