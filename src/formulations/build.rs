@@ -85,7 +85,8 @@ pub fn build_with(p: &Problem, recipe: &Recipe) -> Formulation {
     }
     // Cutsets are separated on streets (lazily) and, with served faces, on tilings (as cuts);
     // without direction binaries the directed ones count the parent arcs, which need writing.
-    let separates_cutsets = plan.connectivity == Some(ConnectivityForm::Cutset) || (p.rooms.is_some() && recipe.served_faces);
+    let lazy = plan.connectivity == Some(ConnectivityForm::Cutset);
+    let separates_cutsets = lazy || (p.rooms.is_some() && recipe.served_faces);
     let parent_cutsets = recipe.directed_cutsets && !plan.distance_flow && separates_cutsets;
     if (recipe.out_arcs && p.dead_ends == Allow::Allow) || parent_cutsets {
         fam(&mut c, "out-arcs (§8)", families::connectivity::out_arcs);
@@ -122,7 +123,6 @@ pub fn build_with(p: &Problem, recipe: &Recipe) -> Formulation {
     if !p.forced_vertices.is_empty() || !p.through_routes.is_empty() || !p.forced_edges.is_empty() {
         fam(&mut c, "user specifications", families::user::user_specs);
     }
-    let lazy = plan.connectivity == Some(ConnectivityForm::Cutset);
     let cutsets = (lazy || room_groups.is_some()).then(|| {
         let directions = if plan.distance_flow {
             Some(c.vars.half_edge.as_slice())

@@ -690,6 +690,16 @@ mod tests {
         assert!((rows[0].violation(&x) - 0.875).abs() < 1e-9);
     }
 
+    /// Separating `x` gives exactly one row, with these terms (in variable order) and violation.
+    fn assert_one_directed_row(s: &mut CutsetSeparator<'_>, x: &[f64], terms: &[(VarId, f64)], violation: f64) {
+        let rows = s.separate_fractional(x);
+        assert_eq!(rows.len(), 1, "{rows:?}");
+        let mut got = rows[0].terms.clone();
+        got.sort_by_key(|t| t.0);
+        assert_eq!(got, terms);
+        assert!((rows[0].violation(x) - violation).abs() < 1e-9);
+    }
+
     #[test]
     fn directed_cutset_counts_only_the_arcs_leaving() {
         let mut s = path();
@@ -700,12 +710,7 @@ mod tests {
         // undirected cutsets hold for V3 = 0.7, the directed one over the arcs leaving
         // {1, 2, 3} (just 1→r) is violated by 0.7.
         let mut x = vec![0.8, 0.8, 0.8, 0.7, 0.7, 0.7, 0.8, 0.0, 0.4, 0.4, 0.4, 0.4];
-        let rows = s.separate_fractional(&x);
-        assert_eq!(rows.len(), 1, "{rows:?}");
-        let mut terms = rows[0].terms.clone();
-        terms.sort_by_key(|t| t.0);
-        assert_eq!(terms, vec![(VarId(3), -1.0), (VarId(7), 1.0)]);
-        assert!((rows[0].violation(&x) - 0.7).abs() < 1e-9);
+        assert_one_directed_row(&mut s, &x, &[(VarId(3), -1.0), (VarId(7), 1.0)], 0.7);
         // With every edge pointed at the root, nothing.
         x[6..].copy_from_slice(&[0.0, 0.8, 0.0, 0.8, 0.0, 0.8]);
         assert!(s.separate_fractional(&x).is_empty());
@@ -721,12 +726,7 @@ mod tests {
         // the root: the set {2, 3} has no arc leaving it (the undirected cutsets hold), and
         // its row counts 2→1 alone.
         let mut x = vec![0.8, 0.8, 0.8, 0.7, 0.0, 0.7, 0.8, 0.8, 0.0, 0.0, 0.8];
-        let rows = s.separate_fractional(&x);
-        assert_eq!(rows.len(), 1, "{rows:?}");
-        let mut terms = rows[0].terms.clone();
-        terms.sort_by_key(|t| t.0);
-        assert_eq!(terms, vec![(VarId(5), -1.0), (VarId(8), 1.0)]);
-        assert!((rows[0].violation(&x) - 0.7).abs() < 1e-9);
+        assert_one_directed_row(&mut s, &x, &[(VarId(5), -1.0), (VarId(8), 1.0)], 0.7);
         // The missing arc is never locked or counted; pointed at the root, nothing is violated.
         assert_eq!(s.locks().iter().filter(|(v, _)| v.index() >= 6).count(), 5);
         x[6..].copy_from_slice(&[0.8, 0.0, 0.8, 0.0, 0.8]);
