@@ -388,7 +388,7 @@ pub fn solve_from(p: &Problem, f: &Formulation, kind: SolverKind, options: &Solv
 /// validated and measured, and its objective recomputed from the design alone.
 pub fn solve_built(p: &Problem, f: &Formulation, kind: SolverKind, options: &SolveOptions) -> Result<DesignResult, SolverError> {
     let solver = kind.instance()?;
-    let (tuned, solver_hints) = with_solver_hints(options, &f.recipe.solver_hints(kind, options.threads));
+    let (tuned, solver_hints) = with_solver_hints(options, &f.solver_hints(kind, options.threads));
     let options = &tuned;
     let mut sep = f.separator().map(|sep| sep.with_repair(Box::new(|x: &[f64]| repair_point(p, f, x))));
     // Root-round rows no phase's model kept: checked at the answer with the others.

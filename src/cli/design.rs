@@ -92,6 +92,9 @@ pub fn solve_spec(
     for (family, st) in &nm.families {
         println!("  {family:<24} {:>7} vars {:>7} rows {:>8} nonzeros", st.vars, st.rows, st.nonzeros);
     }
+    if let Some(order) = nm.symmetry_order {
+        println!("symmetry   the problem maps onto itself under {order} rotations and reflections: connectivity from the distance flow alone (no cutsets), HiGHS presolve off, so HiGHS can use the symmetry (`symmetric_flow = false` in [formulation] turns this off)");
+    }
     if let Some(ps) = &nm.path_sets {
         let truncated = ps.pairs.iter().filter(|p| p.truncated).count();
         println!("paths      {} pairs, {} paths enumerated in {:.3} s ({truncated} pairs truncated)", ps.pairs.len(), ps.total_paths, ps.seconds);
@@ -379,7 +382,7 @@ fn print_summary(r: &DesignResult) {
         println!("lattice    every design's objective is on {offset}{}·ℤ: {bound} (`objective_lattice = false` in [formulation] turns this off)", l.lattice.step);
     }
     if !r.solver_hints.is_empty() {
-        println!("tuning     {} (the recipe's; `solver_tuning = false` / `parallel_search = false` in [formulation] or your own --param replaces it)", r.solver_hints.join(", "));
+        println!("tuning     {} (the recipe's; `solver_tuning = false` / `parallel_search = false` / `symmetric_flow = false` in [formulation] or your own --param replaces it)", r.solver_hints.join(", "));
     }
     println!("validity   {}", verdict(r));
     for v in r.validity.design_violations.iter().take(10) {

@@ -36,6 +36,9 @@ pub struct Formulation {
     /// The lattice every design's objective lies on, when there is one
     /// ([`crate::solvers::lattice`]); the pipeline uses it when the recipe says so.
     pub objective_lattice: Option<ObjectiveLattice>,
+    /// The order of the problem's symmetry group when the recipe left connectivity to the
+    /// distance flow for it ([`Recipe::symmetric_flow`]); `None` otherwise.
+    pub symmetry_order: Option<usize>,
 }
 
 /// Builds the formulation the problem's spec asks for.
@@ -142,9 +145,10 @@ pub fn build_with(p: &Problem, recipe: &Recipe) -> Formulation {
         let label = if lazy { "cutsets (§8, lazy)" } else { "cover cutsets (§8, cuts)" };
         c.em.families.entry(label.to_string()).or_default();
     }
-    let Ctx { em, vars, .. } = c;
+    let Ctx { em, vars, plan, .. } = c;
     let objective_lattice = objective_lattice(&em.model, &vars);
-    Formulation { recipe: recipe.clone(), model: em.model, vars, families: em.families, big_m, path_sets, placements, cutsets, objective_lattice }
+    let symmetry_order = plan.symmetry_order;
+    Formulation { recipe: recipe.clone(), model: em.model, vars, families: em.families, big_m, path_sets, placements, cutsets, objective_lattice, symmetry_order }
 }
 
 /// The objective's lattice ([`crate::solvers::lattice`]). Besides integer variables, the
@@ -175,6 +179,18 @@ fn fam<T>(c: &mut Ctx, label: &str, f: impl FnOnce(&mut Ctx) -> T) -> T {
 }
 
 impl Formulation {
+    /// Solver settings for this model on the backend `kind`: the recipe's
+    /// ([`Recipe::solver_hints`]) and, where the recipe kept the model symmetric for a symmetric
+    /// problem ([`Recipe::symmetric_flow`]), `presolve=off` on HiGHS (its presolve's reductions
+    /// break the symmetry before HiGHS looks for it).
+    pub fn solver_hints(&self, kind: crate::solvers::SolverKind, threads: Option<u32>) -> Vec<crate::solvers::RawParam> {
+        let mut hints = self.recipe.solver_hints(kind, threads);
+        if kind == crate::solvers::SolverKind::Highs && self.symmetry_order.is_some() {
+            hints.push(crate::solvers::RawParam { solver: kind, name: "presolve".into(), value: "off".into() });
+        }
+        hints
+    }
+
     /// Whether the model holds every row (no lazily separated family).
     pub fn is_complete(&self) -> bool {
         self.cutsets.as_ref().map_or(true, |g| g.cuts_only)

@@ -69,7 +69,21 @@ pub struct Recipe {
     /// otherwise, and the second core idles once the heuristic's start is handed over).
     #[serde(default)]
     pub parallel_search: bool,
+    /// On a problem whose symmetry group ([`crate::spec::symmetries`]) has order
+    /// [`SYMMETRIC_FLOW_MIN_ORDER`] or more and which has the distance flow, connectivity comes
+    /// from the distance flow alone (no cutsets, so no asymmetric rows from the separator) and
+    /// HiGHS gets `presolve=off` ([`crate::formulations::Formulation::solver_hints`]): HiGHS
+    /// finds a model's symmetry only without its presolve, and uses it then (orbital fixing).
+    /// `strong` only.
+    #[serde(default)]
+    pub symmetric_flow: bool,
 }
+
+/// The least order of a problem's symmetry group at which [`Recipe::symmetric_flow`] applies:
+/// with one reflection (order 2) the cutsets were worth more than the symmetry (Fig. 2f: 21.5 s
+/// with them, 47.3 s without), with the whole group of the square (order 8) the symmetry more
+/// (Fig. 2b: proven in 30 s instead of a 14 % gap at 35 s; docs/benchmarks.md, *Symmetric grids*).
+pub const SYMMETRIC_FLOW_MIN_ORDER: usize = 4;
 
 impl Recipe {
     /// The parts of a named recipe.
@@ -94,9 +108,10 @@ impl Recipe {
         let out_arcs = name == RecipeName::Strong;
         let directed_cutsets = name == RecipeName::Strong;
         let parallel_search = name == RecipeName::Strong;
+        let symmetric_flow = name == RecipeName::Strong;
         // Opt-in: measured, it raised every tiling row's bound but cost designs (docs/benchmarks.md).
         let served_faces = false;
-        Recipe { name, label: name.name().to_string(), connectivity, rooms_connectivity, distance, coverage, dead_ends, paths, big_m, label_bounds, split_objective, solver_tuning, continuous_indicators, objective_lattice, out_arcs, directed_cutsets, served_faces, parallel_search }
+        Recipe { name, label: name.name().to_string(), connectivity, rooms_connectivity, distance, coverage, dead_ends, paths, big_m, label_bounds, split_objective, solver_tuning, continuous_indicators, objective_lattice, out_arcs, directed_cutsets, served_faces, parallel_search, symmetric_flow }
     }
 
     /// The recipe a spec asks for, with its overrides.
@@ -122,6 +137,7 @@ impl Recipe {
         r.directed_cutsets = parts.directed_cutsets.unwrap_or(r.directed_cutsets);
         r.served_faces = parts.served_faces.unwrap_or(r.served_faces);
         r.parallel_search = parts.parallel_search.unwrap_or(r.parallel_search);
+        r.symmetric_flow = parts.symmetric_flow.unwrap_or(r.symmetric_flow);
         r
     }
 
@@ -182,6 +198,13 @@ impl Recipe {
             _ => self.connectivity,
         };
         let distance = (p.w_distance > 0.0).then_some(self.distance);
+        let symmetry_order = (self.symmetric_flow
+            && connectivity_form == ConnectivityForm::Cutset
+            && p.rooms.is_none()
+            && distance == Some(DistanceForm::Flow))
+        .then(|| crate::spec::symmetries(p).len() + 1)
+        .filter(|&order| order >= SYMMETRIC_FLOW_MIN_ORDER);
+        let connectivity_form = if symmetry_order.is_some() { ConnectivityForm::Flow } else { connectivity_form };
         let labels = distance == Some(DistanceForm::Labels) || (distance.is_none() && connectivity_form == ConnectivityForm::Labels);
         // A labels or distance-flow family already ties every active edge to a sink; a second
         // connectivity family is added only when asked for explicitly (as a strengthening).
@@ -190,7 +213,7 @@ impl Recipe {
             (ConnectivityForm::Flow, _, Some(DistanceForm::Flow)) => None,
             (c, _, _) => Some(c),
         };
-        Plan { labels, distance_flow: distance == Some(DistanceForm::Flow), connectivity, travel_flow: p.w_travel > 0.0 }
+        Plan { labels, distance_flow: distance == Some(DistanceForm::Flow), connectivity, travel_flow: p.w_travel > 0.0, symmetry_order }
     }
 }
 
@@ -205,4 +228,7 @@ pub struct Plan {
     pub connectivity: Option<ConnectivityForm>,
     /// The travel flow (the per-vertex travel term).
     pub travel_flow: bool,
+    /// The order of the problem's symmetry group when [`Recipe::symmetric_flow`] applies (the
+    /// cutsets are then left to the distance flow); `None` otherwise.
+    pub symmetry_order: Option<usize>,
 }

@@ -185,6 +185,11 @@ pub struct FormulationParts {
     /// (`Recipe::solver_hints`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub parallel_search: Option<bool>,
+    /// On a problem with four symmetries or more, connectivity through the distance flow alone
+    /// (no cutsets) and HiGHS's presolve off, so that the model stays symmetric and HiGHS uses
+    /// its symmetry (`Recipe::symmetric_flow`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub symmetric_flow: Option<bool>,
 }
 
 /// The `formulation` key: a recipe name or a table of parts.
@@ -251,6 +256,7 @@ impl FormulationSpec {
         push("directed_cutsets", p.directed_cutsets.map(|v| v.to_string()));
         push("served_faces", p.served_faces.map(|v| v.to_string()));
         push("parallel_search", p.parallel_search.map(|v| v.to_string()));
+        push("symmetric_flow", p.symmetric_flow.map(|v| v.to_string()));
         if over.is_empty() {
             p.recipe.name().to_string()
         } else {
