@@ -537,6 +537,50 @@ fn directed_cutsets_on_parent_arcs_raise_the_root_bound_and_keep_the_optimum() {
     }
 }
 
+/// `symmetric_flow`: on a grid whose problem has the square's eight symmetries (every boundary
+/// vertex a sink, a distance term) `strong` leaves connectivity to the distance flow (no
+/// cutsets) and hands HiGHS `presolve=off`; with `symmetric_flow = false`, or with one corner
+/// sink (one reflection), it separates cutsets. Both models prove the same optimum with a valid
+/// design on HiGHS and microlp, and the image of the design under each symmetry is a valid
+/// design with the same objective, recomputed from the network alone.
+#[test]
+fn symmetric_grids_leave_connectivity_to_the_distance_flow_and_keep_the_optimum() {
+    let text = |sinks: &str| spec("sym", &format!("boundary = \"wall\"\nformulation = \"strong\"\n[mesh]\ngrid = {{ width = 6, height = 6 }}\n[sinks]\n{sinks}\n[coverage]\nrange = 1\n[weights]\nlength = 0\ndistance = 1\nzigzag = 5\ntoo_close = \"forbid\"\n[features]\ndead_ends = \"forbid\"\n"));
+    let corner = pipeline::build(&problem(&text("vertices = [0]")));
+    assert_eq!(corner.symmetry_order, None);
+    assert!(corner.cutsets.is_some());
+    let p = problem(&text("all_boundary = true"));
+    let symmetric = pipeline::build(&p);
+    assert_eq!(symmetric.symmetry_order, Some(8));
+    assert!(symmetric.cutsets.is_none() && symmetric.vars.connect_flow.iter().all(Option::is_none));
+    let presolve_off = |f: &formulations::Formulation, kind| f.solver_hints(kind, Some(1)).iter().any(|h| h.name == "presolve" && h.value == "off");
+    assert!(presolve_off(&symmetric, SolverKind::Highs) && !presolve_off(&symmetric, SolverKind::Microlp));
+    let cutsets = formulations::build_with(&p, &formulations::Recipe { symmetric_flow: false, ..symmetric.recipe.clone() });
+    assert!(cutsets.symmetry_order.is_none() && cutsets.cutsets.is_some() && !presolve_off(&cutsets, SolverKind::Highs));
+    let one_thread = SolveOptions { threads: Some(1), ..SolveOptions::default() };
+    for (f, kind) in [(&symmetric, SolverKind::Highs), (&cutsets, SolverKind::Highs), (&symmetric, SolverKind::Microlp), (&cutsets, SolverKind::Microlp)] {
+        let r = pipeline::solve_built(&p, f, kind, &one_thread).unwrap();
+        assert_eq!(r.solve.termination, Termination::Optimal, "{kind}, {}", f.recipe.label);
+        assert!(r.validity.valid, "{:?}", r.validity);
+        assert!(objectives_agree(r.solve.objective.unwrap(), 8.0, 1e-9), "{kind}, {}: {:?}", f.recipe.label, r.solve.objective);
+        if kind == SolverKind::Highs && f.symmetry_order.is_some() {
+            assert!(r.solver_hints.iter().any(|h| h == "highs.presolve=off"), "{:?}", r.solver_hints);
+        }
+        let net = r.network.unwrap();
+        let symmetries = netspec::spec::symmetries(&p);
+        assert_eq!(symmetries.len(), 7);
+        for s in &symmetries {
+            let mut active = vec![false; net.active.len()];
+            for e in net.active_edges() {
+                active[s.edge[e.index()].index()] = true;
+            }
+            let image = Network { active, directions: Vec::new(), labels: Vec::new(), rooms: Vec::new() };
+            assert!(design::validate(&p, &image, None).is_empty(), "{:?}: {:?}", s.matrix, design::validate(&p, &image, None));
+            assert!(objectives_agree(design::Objective::of(&p, &image).total, 8.0, 1e-9), "{:?}", s.matrix);
+        }
+    }
+}
+
 /// The strong recipe chooses one point-to-point path per pair (`paths = "select"`): its LP bound
 /// is above the per-path rows' (`paths = "tight"`) on a spec whose paths share edges and vertices, both prove
 /// the same optimum with a valid design, and a network holding several whole paths of a pair
