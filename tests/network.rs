@@ -400,11 +400,12 @@ fn validator_accepts_a_good_network_and_objective_recomputes() {
 
 /// A strong-recipe model written to a file is complete: its lazily separated cutsets are
 /// written as the equivalent flow, and the file read back and solved without any separator has
-/// the lazy solve's optimum (with and without the distance term).
+/// the lazy solve's optimum (with and without the distance term). `symmetric_flow` is off: the
+/// grid is symmetric, and with the distance term `strong` would write no cutsets on it.
 #[test]
 fn strong_export_is_complete() {
     for (name, weights) in [("len", "length = 1\nzigzag = 2"), ("dist", "length = 1\ndistance = 0.5")] {
-        let p = problem(&spec(name, &format!("boundary = \"wall\"\nformulation = \"strong\"\n{BASE}\n[weights]\n{weights}\n")));
+        let p = problem(&spec(name, &format!("boundary = \"wall\"\n{BASE}\n[weights]\n{weights}\n[formulation]\nrecipe = \"strong\"\nsymmetric_flow = false\n")));
         let f = pipeline::build(&p);
         assert!(!f.is_complete(), "{name}: strong has lazy cutsets");
         let lazy = pipeline::solve_built(&p, &f, SolverKind::Highs, &SolveOptions::default()).unwrap();
@@ -552,7 +553,7 @@ fn symmetric_grids_leave_connectivity_to_the_distance_flow_and_keep_the_optimum(
     let p = problem(&text("all_boundary = true"));
     let symmetric = pipeline::build(&p);
     assert_eq!(symmetric.symmetry_order, Some(8));
-    assert!(symmetric.cutsets.is_none() && symmetric.vars.connect_flow.iter().all(Option::is_none));
+    assert!(symmetric.cutsets.is_none() && symmetric.vars.connect_flow.iter().all(Option::is_none) && symmetric.is_complete());
     let presolve_off = |f: &formulations::Formulation, kind| f.solver_hints(kind, Some(1)).iter().any(|h| h.name == "presolve" && h.value == "off");
     assert!(presolve_off(&symmetric, SolverKind::Highs) && !presolve_off(&symmetric, SolverKind::Microlp));
     let cutsets = formulations::build_with(&p, &formulations::Recipe { symmetric_flow: false, ..symmetric.recipe.clone() });

@@ -84,6 +84,9 @@ fn objective_split_proves_the_zero_star_optimum_on_every_backend() {
     assert!((r.solve.objective.unwrap() - 5.0004).abs() < 1e-9, "{:?}", r.solve.objective);
 }
 
+/// The strong recipe without `symmetric_flow`, as a `[formulation]` table.
+const SYMMETRY_OFF: &str = "[formulation]\nrecipe = \"strong\"\nsymmetric_flow = false";
+
 /// Solves the zero-star grid with `formulation` (TOML in place of its `formulation = "tight"`
 /// line) on HiGHS from the default start, asserts the proven optimum 5.0004 and a valid design,
 /// and returns the result with the recipe's label.
@@ -100,10 +103,11 @@ fn solve_zero_star(formulation: &str, o: &SolveOptions, what: &str) -> (pipeline
 /// The strong recipe's solver hint (`Recipe::solver_hints`): HiGHS gets
 /// `mip_pscost_minreliable=0` and the result says so; the user's own value for it, or
 /// `solver_tuning = false`, replaces it and the result lists none; every way ends at the same
-/// proven optimum.
+/// proven optimum. (`symmetric_flow` is off: the zero-star grid is symmetric, and its own hint,
+/// `presolve=off`, is tested with it in `network::symmetric_grids_…`.)
 #[test]
 fn the_strong_recipes_solver_hint_reaches_highs_and_yields_to_the_user() {
-    let strong = "formulation = \"strong\"";
+    let strong = SYMMETRY_OFF;
     let o = SolveOptions { time_limit: Some(60.0), threads: Some(1), ..Default::default() };
     let (r, _) = solve_zero_star(strong, &o, "hinted");
     assert_eq!(r.solver_hints, ["highs.mip_pscost_minreliable=0"]);
@@ -114,8 +118,8 @@ fn the_strong_recipes_solver_hint_reaches_highs_and_yields_to_the_user() {
     let (r, _) = solve_zero_star(strong, &own, "user's value");
     assert!(r.solver_hints.is_empty(), "{:?}", r.solver_hints);
 
-    let (r, label) = solve_zero_star("[formulation]\nrecipe = \"strong\"\nsolver_tuning = false", &o, "tuning off");
-    assert_eq!(label, "strong(solver_tuning=false)");
+    let (r, label) = solve_zero_star(&format!("{SYMMETRY_OFF}\nsolver_tuning = false"), &o, "tuning off");
+    assert_eq!(label, "strong(solver_tuning=false,symmetric_flow=false)");
     assert!(r.solver_hints.is_empty());
     assert!(serde_json::to_value(&r).unwrap().get("solver_hints").is_none());
     // Other backends get no hint: checked per backend in
@@ -124,10 +128,10 @@ fn the_strong_recipes_solver_hint_reaches_highs_and_yields_to_the_user() {
 
 /// With two threads the strong recipe also hands HiGHS its parallel tree search
 /// (`parallel=on`); it proves the same optimum, and `parallel_search = false` or the user's own
-/// `highs.parallel` leaves it out.
+/// `highs.parallel` leaves it out (`symmetric_flow` off, as above).
 #[test]
 fn the_parallel_tree_search_reaches_highs_at_two_threads_and_yields_to_the_user() {
-    let strong = "formulation = \"strong\"";
+    let strong = SYMMETRY_OFF;
     let o = SolveOptions { time_limit: Some(60.0), threads: Some(2), ..Default::default() };
     let (r, _) = solve_zero_star(strong, &o, "parallel");
     assert_eq!(r.solver_hints, ["highs.mip_pscost_minreliable=0", "highs.parallel=on"]);
@@ -136,8 +140,8 @@ fn the_parallel_tree_search_reaches_highs_at_two_threads_and_yields_to_the_user(
     let (r, _) = solve_zero_star(strong, &own, "user's value");
     assert_eq!(r.solver_hints, ["highs.mip_pscost_minreliable=0"]);
 
-    let (r, label) = solve_zero_star("[formulation]\nrecipe = \"strong\"\nparallel_search = false", &o, "serial");
-    assert_eq!(label, "strong(parallel_search=false)");
+    let (r, label) = solve_zero_star(&format!("{SYMMETRY_OFF}\nparallel_search = false"), &o, "serial");
+    assert_eq!(label, "strong(parallel_search=false,symmetric_flow=false)");
     assert_eq!(r.solver_hints, ["highs.mip_pscost_minreliable=0"]);
 }
 
