@@ -30,8 +30,10 @@ stopped first attempt under t1-baselines-first-attempt/), the thirteenth 2026-12
 rows of models/table1-parallel.toml, and the cells they replaced under t1-before-parallel/),
 the fifteenth 2026-12-03f.tar.gz (HiGHS/strong's 10 rows of models/table1-directed.toml and
 SCIP/strong's 1c-L2, 1c-L3, 5L3 and 5L4, and the cells they replaced under t1-before-directed/)
-and the sixteenth 2026-12-03g.tar.gz (the three strong columns' 2a and 2b, and the cells they
-replaced under t1-before-symmetric/);
+the sixteenth 2026-12-03g.tar.gz (the three strong columns' 2a and 2b, and the cells they
+replaced under t1-before-symmetric/) and the seventeenth 2026-12-04.tar.gz (HiGHS/strong's eight
+room rows and CBC/strong's 1c-L2, 1c-L3, 5L3 and 5L4, and the cells they replaced under
+t1-before-rerun16/);
 how to extract them is written into the
 report (the paragraph after the protocol). A row whose run has no picture keeps the picture already in the gallery.
 
@@ -197,8 +199,9 @@ def main():
     w("[table1-runs/2026-12-03c.tar.gz](table1-runs/2026-12-03c.tar.gz), for the thirteenth's")
     w("[table1-runs/2026-12-03d.tar.gz](table1-runs/2026-12-03d.tar.gz), for the fourteenth's")
     w("[table1-runs/2026-12-03e.tar.gz](table1-runs/2026-12-03e.tar.gz), for the fifteenth's")
-    w("[table1-runs/2026-12-03f.tar.gz](table1-runs/2026-12-03f.tar.gz) and for the sixteenth's")
-    w("[table1-runs/2026-12-03g.tar.gz](table1-runs/2026-12-03g.tar.gz) (each keeps the runs the next")
+    w("[table1-runs/2026-12-03f.tar.gz](table1-runs/2026-12-03f.tar.gz), for the sixteenth's")
+    w("[table1-runs/2026-12-03g.tar.gz](table1-runs/2026-12-03g.tar.gz) and for the seventeenth's")
+    w("[table1-runs/2026-12-04.tar.gz](table1-runs/2026-12-04.tar.gz) (each keeps the runs the next")
     w("replaces): extract the first into `out/`, remove its strong-recipe room rows and the paper")
     w("recipe's 1e, extract the second, remove its 1e (all three columns) and its strong-recipe")
     w("11b, extract the third, remove HiGHS/strong's rows of `models/table1-cuts.toml` and")
@@ -215,7 +218,8 @@ def main():
     w("HiGHS/strong's rows of `models/table1-parallel.toml`, then extract the fourteenth, remove")
     w("HiGHS/strong's rows of `models/table1-directed.toml` and SCIP/strong's 1c-L2, 1c-L3, 5L3 and")
     w("5L4, then extract the fifteenth, remove HiGHS/strong's, SCIP/strong's and CBC/strong's 2a and")
-    w("2b, then extract the sixteenth,")
+    w("2b, then extract the sixteenth, remove HiGHS/strong's 1d, 1e, 9b1–9b4, 11a and 11b and")
+    w("CBC/strong's 1c-L2, 1c-L3, 5L3 and 5L4, then extract the seventeenth,")
     w("to resume these comparisons (a record with the same settings is")
     w("reused) or to report again.")
     w("")
