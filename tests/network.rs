@@ -571,11 +571,7 @@ fn symmetric_grids_leave_connectivity_to_the_distance_flow_and_keep_the_optimum(
         let symmetries = netspec::spec::symmetries(&p);
         assert_eq!(symmetries.len(), 7);
         for s in &symmetries {
-            let mut active = vec![false; net.active.len()];
-            for e in net.active_edges() {
-                active[s.edge[e.index()].index()] = true;
-            }
-            let image = Network { active, directions: Vec::new(), labels: Vec::new(), rooms: Vec::new() };
+            let image = Network::from_edges(&p, &net.active_edges().iter().map(|e| s.edge[e.index()]).collect::<Vec<_>>());
             assert!(design::validate(&p, &image, None).is_empty(), "{:?}: {:?}", s.matrix, design::validate(&p, &image, None));
             assert!(objectives_agree(design::Objective::of(&p, &image).total, 8.0, 1e-9), "{:?}", s.matrix);
         }

@@ -200,7 +200,6 @@ impl Recipe {
         let distance = (p.w_distance > 0.0).then_some(self.distance);
         let symmetry_order = (self.symmetric_flow
             && connectivity_form == ConnectivityForm::Cutset
-            && p.rooms.is_none()
             && distance == Some(DistanceForm::Flow))
         .then(|| crate::spec::symmetries(p).len() + 1)
         .filter(|&order| order >= SYMMETRIC_FLOW_MIN_ORDER);

@@ -51,13 +51,7 @@ pub fn symmetries(p: &Problem) -> Vec<Symmetry> {
     if pos.is_empty() {
         return Vec::new();
     }
-    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-    for q in pos {
-        for k in 0..2 {
-            lo[k] = lo[k].min(q[k]);
-            hi[k] = hi[k].max(q[k]);
-        }
-    }
+    let (lo, hi) = mesh.bounding_box();
     let centre = [(lo[0] + hi[0]) / 2.0, (lo[1] + hi[1]) / 2.0];
     let unit = (hi[0] - lo[0]).max(hi[1] - lo[1]).max(f64::MIN_POSITIVE) * RELATIVE_TOLERANCE;
     let key = |d: [f64; 2]| ((d[0] / unit).round() as i64, (d[1] / unit).round() as i64);
@@ -66,14 +60,7 @@ pub fn symmetries(p: &Problem) -> Vec<Symmetry> {
     if by_place.len() != pos.len() {
         return Vec::new();
     }
-    let by_ends: BTreeMap<(u32, u32), EdgeId> = mesh
-        .edges()
-        .map(|e| {
-            let (a, b) = mesh.edge_vertices(e);
-            ((a.0.min(b.0), a.0.max(b.0)), e)
-        })
-        .collect();
-    MAPS.iter().filter_map(|&m| map_onto_itself(p, m, &by_place, &by_ends, |v| key(apply(m, offset(v))))).collect()
+    MAPS.iter().filter_map(|&m| map_onto_itself(p, m, &by_place, |v| key(apply(m, offset(v))))).collect()
 }
 
 /// `m` applied to the offset `d`.
@@ -86,7 +73,6 @@ fn map_onto_itself(
     p: &Problem,
     m: [i8; 4],
     by_place: &BTreeMap<(i64, i64), u32>,
-    by_ends: &BTreeMap<(u32, u32), EdgeId>,
     image_key: impl Fn(usize) -> (i64, i64),
 ) -> Option<Symmetry> {
     let mesh = &p.mesh;
@@ -99,8 +85,7 @@ fn map_onto_itself(
         .edges()
         .map(|e| {
             let (a, b) = mesh.edge_vertices(e);
-            let (a, b) = (vertex[a.index()].0, vertex[b.index()].0);
-            let f = *by_ends.get(&(a.min(b), a.max(b)))?;
+            let f = mesh.he_edge(mesh.half_edge_between(vertex[a.index()], vertex[b.index()])?);
             (p.roles[f.index()] == p.roles[e.index()]).then_some(f)
         })
         .collect::<Option<_>>()?;
