@@ -18,7 +18,11 @@ fn load(path: &str) -> Problem {
 
 /// The first design, no local search.
 fn first(p: &Problem, inputs: &Inputs) -> Network {
-    let out = heuristics::heuristic(p, inputs, &Options { time_limit: 60.0, max_designs: Some(1), local_search: false, ..Options::default() });
+    let out = heuristics::heuristic(
+        p,
+        inputs,
+        &Options { time_limit: 60.0, max_designs: Some(1), local_search: false, ..Options::default() },
+    );
     let net = out.network.unwrap_or_else(|| panic!("{}: no design", p.spec.name));
     let mut violations = design::validate(p, &net, inputs.paths);
     if let Some(pl) = inputs.placements {
@@ -44,7 +48,9 @@ fn fig5(c: &mut Criterion) {
             broken.active[e.index()] = false;
         }
     }
-    g.bench_function("fig5_L3_1200_edges_repair", |b| b.iter(|| black_box(heuristics::repair(&p, &inputs, &broken).expect("repairable"))));
+    g.bench_function("fig5_L3_1200_edges_repair", |b| {
+        b.iter(|| black_box(heuristics::repair(&p, &inputs, &broken).expect("repairable")))
+    });
     g.finish();
 }
 
@@ -76,7 +82,11 @@ fn paper_size(c: &mut Criterion) {
     for path in PAPER_SIZE {
         let p = load(path);
         let owned = OwnedInputs::enumerate(&p);
-        let name = path.trim_start_matches("models/").trim_end_matches("/spec.json").trim_end_matches(".toml").replace('/', "_");
+        let name = path
+            .trim_start_matches("models/")
+            .trim_end_matches("/spec.json")
+            .trim_end_matches(".toml")
+            .replace('/', "_");
         g.bench_function(name, |b| b.iter(|| black_box(first(&p, &owned.inputs()))));
     }
     g.finish();

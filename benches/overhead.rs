@@ -181,7 +181,10 @@ fn breakdown(models: &[(&str, Model)]) {
 
 fn print_table(rows: &[Row], models: &[(&str, Model)]) {
     let smoke = !std::env::args().any(|a| a == "--bench");
-    println!("\nPer-backend overhead{} (mean over every call, warm-up included)", if smoke { " — smoke run, one call each" } else { "" });
+    println!(
+        "\nPer-backend overhead{} (mean over every call, warm-up included)",
+        if smoke { " — smoke run, one call each" } else { "" }
+    );
     for (name, m) in models {
         println!("  {name}: {}", m.stats());
     }

@@ -9,7 +9,10 @@
 //! On Linux a child dies with the comparison (`PR_SET_PDEATHSIG`), so killing the parent never
 //! leaves a solve running.
 
-use crate::render::{self, chart::{Bar, BarChart, BarGroup, ProfileSeries}};
+use crate::render::{
+    self,
+    chart::{Bar, BarChart, BarGroup, ProfileSeries},
+};
 use crate::solvers::Termination;
 use serde::{Deserialize, Serialize};
 use std::fmt::Write as _;
@@ -190,14 +193,24 @@ impl Manifest {
         let base = path.parent().unwrap_or(Path::new("."));
         for (i, r) in m.row.iter().enumerate() {
             if let Some(j) = m.row[..i].iter().position(|o| o.name == r.name) {
-                return Err(format!("{}: row[{i}] has the same name as row[{j}] ({:?}); names must be unique", path.display(), r.name));
+                return Err(format!(
+                    "{}: row[{i}] has the same name as row[{j}] ({:?}); names must be unique",
+                    path.display(),
+                    r.name
+                ));
             }
         }
         for (i, r) in m.row.iter_mut().enumerate() {
             match (&r.spec, &r.missing) {
                 (Some(s), None) => r.spec = Some(base.join(s)),
                 (None, Some(_)) => {}
-                _ => return Err(format!("{}: row[{i}] ({}): give exactly one of `spec` or `missing`", path.display(), r.name)),
+                _ => {
+                    return Err(format!(
+                        "{}: row[{i}] ({}): give exactly one of `spec` or `missing`",
+                        path.display(),
+                        r.name
+                    ))
+                }
             }
         }
         Ok(m)
@@ -218,11 +231,22 @@ impl Manifest {
     /// than letters, digits, `.`, `_` and `-` replaced by `-` (`fig1b/L2/spec` →
     /// `fig1b-L2-spec`), plus a digest of the name where that would make two rows share one.
     pub fn run_keys(&self) -> Vec<String> {
-        let safe: Vec<String> =
-            self.row.iter().map(|r| r.name.chars().map(|c| if c.is_ascii_alphanumeric() || "._-".contains(c) { c } else { '-' }).collect()).collect();
+        let safe: Vec<String> = self
+            .row
+            .iter()
+            .map(|r| {
+                r.name.chars().map(|c| if c.is_ascii_alphanumeric() || "._-".contains(c) { c } else { '-' }).collect()
+            })
+            .collect();
         safe.iter()
             .zip(&self.row)
-            .map(|(k, r)| if safe.iter().filter(|o| *o == k).count() > 1 { format!("{k}-{}", &crate::io::digest(&[r.name.as_bytes()])[..8]) } else { k.clone() })
+            .map(|(k, r)| {
+                if safe.iter().filter(|o| *o == k).count() > 1 {
+                    format!("{k}-{}", &crate::io::digest(&[r.name.as_bytes()])[..8])
+                } else {
+                    k.clone()
+                }
+            })
             .collect()
     }
 }
@@ -237,7 +261,12 @@ pub fn instance_ids(specs: &[PathBuf]) -> Vec<String> {
         .map(|p| {
             let mut c: Vec<String> = p
                 .components()
-                .filter(|c| !matches!(c, std::path::Component::CurDir | std::path::Component::RootDir | std::path::Component::Prefix(_)))
+                .filter(|c| {
+                    !matches!(
+                        c,
+                        std::path::Component::CurDir | std::path::Component::RootDir | std::path::Component::Prefix(_)
+                    )
+                })
                 .map(|c| c.as_os_str().to_string_lossy().into_owned())
                 .collect();
             if let (Some(last), Some(stem)) = (c.last_mut(), p.file_stem()) {
@@ -263,7 +292,8 @@ pub fn instance_ids(specs: &[PathBuf]) -> Vec<String> {
     }
     let mut ids: Vec<String> = (0..specs.len()).map(|i| suffix(i, k[i])).collect();
     // Still equal: the same path but for the extension, or the same path twice.
-    let clashing: Vec<bool> = (0..ids.len()).map(|i| (0..ids.len()).any(|j| ids[j] == ids[i] && specs[j] != specs[i])).collect();
+    let clashing: Vec<bool> =
+        (0..ids.len()).map(|i| (0..ids.len()).any(|j| ids[j] == ids[i] && specs[j] != specs[i])).collect();
     for (i, clash) in clashing.into_iter().enumerate() {
         if let (true, Some(ext)) = (clash, specs[i].extension()) {
             ids[i] = format!("{}.{}", ids[i], ext.to_string_lossy());
@@ -354,8 +384,14 @@ pub enum RunSource {
 /// Runs every (instance, backend, seed) combination that has no record with the same settings;
 /// returns all records, in a fixed order. `exe` is the `netspec` binary; `progress` is called
 /// after each run.
-pub fn run_all(exe: &Path, settings: &CompareSettings, out: &Path, mut progress: impl FnMut(&RunRecord, &RunSource)) -> std::io::Result<Vec<RunRecord>> {
-    let seeds: Vec<Option<u64>> = if settings.seeds.is_empty() { vec![None] } else { settings.seeds.iter().map(|&s| Some(s)).collect() };
+pub fn run_all(
+    exe: &Path,
+    settings: &CompareSettings,
+    out: &Path,
+    mut progress: impl FnMut(&RunRecord, &RunSource),
+) -> std::io::Result<Vec<RunRecord>> {
+    let seeds: Vec<Option<u64>> =
+        if settings.seeds.is_empty() { vec![None] } else { settings.seeds.iter().map(|&s| Some(s)).collect() };
     let mut records = Vec::new();
     let interrupted = || settings.interrupt.as_ref().is_some_and(|i| i.is_triggered());
     for (row, key) in settings.manifest.row.iter().zip(settings.manifest.run_keys()) {
@@ -365,7 +401,11 @@ pub fn run_all(exe: &Path, settings: &CompareSettings, out: &Path, mut progress:
                 if interrupted() {
                     return Ok(records);
                 }
-                let dir = out.join("runs").join(format!("{key}__{}__{}", label.replace('/', "+"), seed.map_or("default".into(), |s| s.to_string())));
+                let dir = out.join("runs").join(format!(
+                    "{key}__{}__{}",
+                    label.replace('/', "+"),
+                    seed.map_or("default".into(), |s| s.to_string())
+                ));
                 let record_path = dir.join("run.json");
                 let mut wanted = RunSettings::new(spec, &label, seed, settings.threads, settings.limit_for(row));
                 if formulation.is_some() {
@@ -374,7 +414,8 @@ pub fn run_all(exe: &Path, settings: &CompareSettings, out: &Path, mut progress:
                 if !SEARCHES.contains(&solver.as_str()) {
                     wanted.start = Some(if settings.no_start { "none" } else { "heuristic" }.to_string());
                 }
-                let old = std::fs::read_to_string(&record_path).ok().and_then(|t| serde_json::from_str::<RunRecord>(&t).ok());
+                let old =
+                    std::fs::read_to_string(&record_path).ok().and_then(|t| serde_json::from_str::<RunRecord>(&t).ok());
                 let source = match old {
                     // An interrupted run is not finished: it runs again.
                     Some(r) if r.status == "interrupted" => Some(vec!["interrupted".to_string()]),
@@ -391,7 +432,8 @@ pub fn run_all(exe: &Path, settings: &CompareSettings, out: &Path, mut progress:
                     None => None,
                 };
                 std::fs::create_dir_all(&dir)?;
-                let mut r = run_one(exe, spec, &solver, formulation.as_deref(), seed, settings, settings.limit_for(row), &dir)?;
+                let mut r =
+                    run_one(exe, spec, &solver, formulation.as_deref(), seed, settings, settings.limit_for(row), &dir)?;
                 r.solver = label.clone();
                 r.instance = row.name.clone();
                 r.settings = Some(wanted);
@@ -405,10 +447,22 @@ pub fn run_all(exe: &Path, settings: &CompareSettings, out: &Path, mut progress:
 }
 
 #[allow(clippy::too_many_arguments)]
-fn run_one(exe: &Path, spec: &Path, solver: &str, formulation: Option<&str>, seed: Option<u64>, s: &CompareSettings, limit: f64, dir: &Path) -> std::io::Result<RunRecord> {
+fn run_one(
+    exe: &Path,
+    spec: &Path,
+    solver: &str,
+    formulation: Option<&str>,
+    seed: Option<u64>,
+    s: &CompareSettings,
+    limit: f64,
+    dir: &Path,
+) -> std::io::Result<RunRecord> {
     let mut cmd = Command::new(exe);
     // The run's wall time is the solve's: an infeasible spec is not explained here.
-    cmd.arg("solve").arg(spec).args(["--no-explain", "--solver", solver, "--time-limit", &limit.to_string(), "--out"]).arg(dir);
+    cmd.arg("solve")
+        .arg(spec)
+        .args(["--no-explain", "--solver", solver, "--time-limit", &limit.to_string(), "--out"])
+        .arg(dir);
     if let Some(f) = formulation {
         cmd.args(["--formulation", f]);
     }
@@ -421,7 +475,9 @@ fn run_one(exe: &Path, spec: &Path, solver: &str, formulation: Option<&str>, see
     if s.no_start && !SEARCHES.contains(&solver) {
         cmd.arg("--no-start");
     }
-    cmd.stdin(Stdio::null()).stdout(std::fs::File::create(dir.join("stdout.txt"))?).stderr(std::fs::File::create(dir.join("stderr.txt"))?);
+    cmd.stdin(Stdio::null())
+        .stdout(std::fs::File::create(dir.join("stdout.txt"))?)
+        .stderr(std::fs::File::create(dir.join("stderr.txt"))?);
     // Its own process group: a Ctrl-C at the terminal reaches this process only, which passes
     // it on once (a second SIGINT would make the child quit without its result).
     std::os::unix::process::CommandExt::process_group(&mut cmd, 0);
@@ -577,11 +633,18 @@ pub fn merge(dirs: &[PathBuf], manifest: Option<Manifest>) -> Result<Merged, Str
     let (mut records, mut sources, mut time_limit, mut first_manifest) = (Vec::new(), Vec::new(), 0.0f64, None);
     for dir in dirs {
         let path = dir.join("results.json");
-        let text = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e} (a finished `netspec compare --out {}`?)", path.display(), dir.display()))?;
-        let saved: Saved = serde_json::from_str(&text).map_err(|e| format!("{}: not a comparison's results: {e}", path.display()))?;
+        let text = std::fs::read_to_string(&path)
+            .map_err(|e| format!("{}: {e} (a finished `netspec compare --out {}`?)", path.display(), dir.display()))?;
+        let saved: Saved =
+            serde_json::from_str(&text).map_err(|e| format!("{}: not a comparison's results: {e}", path.display()))?;
         for b in &saved.summary {
             if let Some((_, other)) = columns.iter().find(|(c, _)| *c == b.solver) {
-                return Err(format!("column `{}` is in both {} and {}: merge comparisons with different columns", b.solver, other.display(), dir.display()));
+                return Err(format!(
+                    "column `{}` is in both {} and {}: merge comparisons with different columns",
+                    b.solver,
+                    other.display(),
+                    dir.display()
+                ));
             }
             columns.push((b.solver.clone(), dir.clone()));
         }
@@ -589,8 +652,15 @@ pub fn merge(dirs: &[PathBuf], manifest: Option<Manifest>) -> Result<Merged, Str
             time_limit = time_limit.max(limit);
         }
         if first_manifest.is_none() {
-            let m = saved.settings.get("manifest").cloned().ok_or_else(|| format!("{}: settings.manifest is missing", path.display()))?;
-            first_manifest = Some(serde_json::from_value::<Manifest>(m).map_err(|e| format!("{}: settings.manifest: {e}", path.display()))?);
+            let m = saved
+                .settings
+                .get("manifest")
+                .cloned()
+                .ok_or_else(|| format!("{}: settings.manifest is missing", path.display()))?;
+            first_manifest = Some(
+                serde_json::from_value::<Manifest>(m)
+                    .map_err(|e| format!("{}: settings.manifest: {e}", path.display()))?,
+            );
         }
         records.extend(saved.records);
         sources.push((dir.clone(), saved.settings));
@@ -662,7 +732,13 @@ pub fn summarize(records: &[RunRecord], solvers: &[String], limit: f64) -> Vec<B
                     best.is_some_and(|b| &b.solver == s)
                 })
                 .count();
-            BackendSummary { solver: s.clone(), sgm_time: shifted_geometric_mean(&times, 10.0), solved: mine.iter().filter(|r| solved(r)).count(), runs: mine.len(), wins }
+            BackendSummary {
+                solver: s.clone(),
+                sgm_time: shifted_geometric_mean(&times, 10.0),
+                solved: mine.iter().filter(|r| solved(r)).count(),
+                runs: mine.len(),
+                wins,
+            }
         })
         .collect()
 }
@@ -698,11 +774,25 @@ pub fn markdown(manifest: &Manifest, records: &[RunRecord], solvers: &[String], 
             continue;
         }
         let (edges, vars) = rows.first().map_or((None, None), |r| (r.edges, r.vars));
-        let _ = write!(s, "| {i} | {} ({}) | {} ({}) | {paper_time} |", num(edges), num(p.edges), num(vars), num(p.variables));
+        let _ = write!(
+            s,
+            "| {i} | {} ({}) | {} ({}) | {paper_time} |",
+            num(edges),
+            num(p.edges),
+            num(vars),
+            num(p.variables)
+        );
         for b in solvers {
             match rows.iter().find(|r| &r.solver == b) {
                 Some(r) => {
-                    let _ = write!(s, " {:.2} s {}{} gap {} |", r.wall_time, r.status, if r.valid { "" } else { " (invalid)" }, opt(r.gap.map(|g| g * 100.0), 1));
+                    let _ = write!(
+                        s,
+                        " {:.2} s {}{} gap {} |",
+                        r.wall_time,
+                        r.status,
+                        if r.valid { "" } else { " (invalid)" },
+                        opt(r.gap.map(|g| g * 100.0), 1)
+                    );
                 }
                 None => s.push_str(" - |"),
             }
@@ -760,7 +850,11 @@ pub fn performance_profile_svg(records: &[RunRecord], solvers: &[String], limit:
         .iter()
         .map(|b| {
             let mine: Vec<&RunRecord> = records.iter().filter(|r| &r.solver == b).collect();
-            ProfileSeries { name: b.clone(), solved_times: mine.iter().filter(|r| solved(r)).map(|r| r.wall_time).collect(), runs: mine.len() }
+            ProfileSeries {
+                name: b.clone(),
+                solved_times: mine.iter().filter(|r| solved(r)).map(|r| r.wall_time).collect(),
+                runs: mine.len(),
+            }
         })
         .collect();
     render::chart::performance_profile_svg(&series, limit)
@@ -812,7 +906,8 @@ pub fn bar_chart_svg(manifest: &Manifest, records: &[RunRecord], solvers: &[Stri
             bars: solvers
                 .iter()
                 .map(|b| {
-                    let runs: Vec<&RunRecord> = records.iter().filter(|r| r.instance == row.name && &r.solver == b).collect();
+                    let runs: Vec<&RunRecord> =
+                        records.iter().filter(|r| r.instance == row.name && &r.solver == b).collect();
                     if runs.is_empty() {
                         return None;
                     }
@@ -825,7 +920,13 @@ pub fn bar_chart_svg(manifest: &Manifest, records: &[RunRecord], solvers: &[Stri
                         status: if shown.killed { "killed".into() } else { shown.status.clone() },
                         killed: shown.killed,
                         failed: shown.status == "failed" && !shown.killed,
-                        label: run_label(shown).map(|l| if runs.len() > 1 && unsolved > 0 { format!("{unsolved}/{} {l}", runs.len()) } else { l }),
+                        label: run_label(shown).map(|l| {
+                            if runs.len() > 1 && unsolved > 0 {
+                                format!("{unsolved}/{} {l}", runs.len())
+                            } else {
+                                l
+                            }
+                        }),
                     })
                 })
                 .collect(),

@@ -155,9 +155,10 @@ impl Requirement {
             Requirement::Branches => Family::Branches,
             Requirement::Forbidden { config } => Family::Forbidden(config),
             Requirement::Wall { .. } => Family::Walls,
-            Requirement::ObstacleVertex { .. } | Requirement::ObstacleEdge { .. } | Requirement::ObstacleFace { .. } | Requirement::ObstaclePolygon { .. } => {
-                Family::Obstacles
-            }
+            Requirement::ObstacleVertex { .. }
+            | Requirement::ObstacleEdge { .. }
+            | Requirement::ObstacleFace { .. }
+            | Requirement::ObstaclePolygon { .. } => Family::Obstacles,
             Requirement::ForcedEdge { .. } => Family::ForcedEdges,
             Requirement::ForcedVertex { .. } => Family::ForcedVertices,
             Requirement::ThroughRoute { .. } => Family::ThroughRoutes,
@@ -259,7 +260,14 @@ pub struct ExplainOptions {
 
 impl Default for ExplainOptions {
     fn default() -> Self {
-        ExplainOptions { check_time_limit: 5.0, time_budget: 60.0, max_conflicts: 10, max_depth: 3, threads: None, known_infeasible: false }
+        ExplainOptions {
+            check_time_limit: 5.0,
+            time_budget: 60.0,
+            max_conflicts: 10,
+            max_depth: 3,
+            threads: None,
+            known_infeasible: false,
+        }
     }
 }
 
@@ -286,7 +294,11 @@ pub fn requirements(p: &Problem) -> Vec<Requirement> {
     if s.features.branches == Allow::Forbid {
         out.push(Requirement::Branches);
     }
-    for (config, w) in [(ForbiddenKind::Zigzag, p.w_zigzag), (ForbiddenKind::TooClose, p.w_too_close), (ForbiddenKind::TJunction, p.w_t_junction)] {
+    for (config, w) in [
+        (ForbiddenKind::Zigzag, p.w_zigzag),
+        (ForbiddenKind::TooClose, p.w_too_close),
+        (ForbiddenKind::TJunction, p.w_t_junction),
+    ] {
         if w == crate::spec::Weight::Forbid {
             out.push(Requirement::Forbidden { config });
         }
@@ -327,7 +339,8 @@ pub fn requirements(p: &Problem) -> Vec<Requirement> {
 fn excluded_by_obstacle(p: &Problem, e: EdgeId) -> bool {
     let mesh = &p.mesh;
     let (a, b) = mesh.edge_vertices(e);
-    let face = mesh.edge_half_edges(e).into_iter().filter_map(|h| mesh.he_face(h)).any(|f| p.is_obstacle_face[f.index()]);
+    let face =
+        mesh.edge_half_edges(e).into_iter().filter_map(|h| mesh.he_face(h)).any(|f| p.is_obstacle_face[f.index()]);
     face || p.is_obstacle_vertex[a.index()]
         || p.is_obstacle_vertex[b.index()]
         || p.spec.user.obstacle_edges.iter().any(|&[x, y]| (x, y) == (a.0, b.0) || (x, y) == (b.0, a.0))
@@ -341,8 +354,17 @@ pub fn describe(p: &Problem, r: Requirement) -> RequirementInfo {
         let (a, b) = mesh.edge_vertices(e);
         [a.0, b.0]
     };
-    let mut info = RequirementInfo { requirement: r, field: String::new(), text: String::new(), vertices: Vec::new(), edges: Vec::new(), faces: Vec::new() };
-    let faces_in = |poly: &[[f64; 2]]| -> Vec<u32> { mesh.faces().filter(|&f| crate::mesh::point_in_polygon(mesh.face_centroid(f), poly)).map(|f| f.0).collect() };
+    let mut info = RequirementInfo {
+        requirement: r,
+        field: String::new(),
+        text: String::new(),
+        vertices: Vec::new(),
+        edges: Vec::new(),
+        faces: Vec::new(),
+    };
+    let faces_in = |poly: &[[f64; 2]]| -> Vec<u32> {
+        mesh.faces().filter(|&f| crate::mesh::point_in_polygon(mesh.face_centroid(f), poly)).map(|f| f.0).collect()
+    };
     match r {
         Requirement::Coverage => {
             info.field = "coverage".into();
@@ -426,7 +448,8 @@ pub fn describe(p: &Problem, r: Requirement) -> RequirementInfo {
         }
         Requirement::PointToPoint => {
             info.field = "point_to_point".into();
-            let parts: BTreeSet<u32> = p.p2p.iter().flat_map(|q| q.face_part.iter().copied()).filter(|&x| x != u32::MAX).collect();
+            let parts: BTreeSet<u32> =
+                p.p2p.iter().flat_map(|q| q.face_part.iter().copied()).filter(|&x| x != u32::MAX).collect();
             info.text = format!("point-to-point: a short path between every pair of {} parts", parts.len());
         }
         Requirement::RoomTiling => {
@@ -523,10 +546,15 @@ impl Search<'_> {
         let model = &mut built.model;
         // Coverage (6) is relaxed when asked, and always when the room tiling (which replaces
         // it) is dropped: coverage was no requirement of the spec then.
-        let free_coverage = relaxed.contains(&Requirement::Coverage) || (relaxed.contains(&Requirement::RoomTiling) && self.base.rooms.is_some());
+        let free_coverage = relaxed.contains(&Requirement::Coverage)
+            || (relaxed.contains(&Requirement::RoomTiling) && self.base.rooms.is_some());
         if free_coverage {
             // (6) and the rows the strong coverage form derives from it (edge coverage, ball cuts).
-            let rows: Vec<_> = model.rows().filter(|r| ["cov6_", "covedge_", "covball_"].iter().any(|pre| r.name.starts_with(pre))).map(|r| r.id).collect();
+            let rows: Vec<_> = model
+                .rows()
+                .filter(|r| ["cov6_", "covedge_", "covball_"].iter().any(|pre| r.name.starts_with(pre)))
+                .map(|r| r.id)
+                .collect();
             for id in rows {
                 model.set_row_sides(id, f64::NEG_INFINITY, f64::INFINITY);
             }
@@ -551,7 +579,9 @@ impl Search<'_> {
         match pipeline::solve_built(&p, &built, self.kind, &options) {
             Ok(r) if r.solve.termination == Termination::Infeasible => Verdict::Infeasible,
             // A solution counts when netspec's own checker accepts it.
-            Ok(r) if r.network.is_some() && r.validity.milp_check.as_ref().is_some_and(|c| c.is_feasible()) => Verdict::Feasible,
+            Ok(r) if r.network.is_some() && r.validity.milp_check.as_ref().is_some_and(|c| c.is_feasible()) => {
+                Verdict::Feasible
+            }
             _ => Verdict::Unknown,
         }
     }
@@ -645,7 +675,8 @@ fn relaxed_problem(base: &Problem, relaxed: &Set) -> Result<Problem, crate::spec
     u.obstacle_polygons = keep(&u.obstacle_polygons, |index| has(Requirement::ObstaclePolygon { index }));
     u.forced_edges = keep(&u.forced_edges, |index| has(Requirement::ForcedEdge { index }));
     u.forced_vertices = keep(&u.forced_vertices, |index| has(Requirement::ForcedVertex { index }));
-    let routes: Vec<usize> = (0..u.through_routes.len()).filter(|&index| !has(Requirement::ThroughRoute { index })).collect();
+    let routes: Vec<usize> =
+        (0..u.through_routes.len()).filter(|&index| !has(Requirement::ThroughRoute { index })).collect();
     u.through_routes = keep(&u.through_routes, |index| has(Requirement::ThroughRoute { index }));
     if has(Requirement::PointToPoint) {
         s.point_to_point = None;
@@ -690,7 +721,9 @@ fn branches(conflict: &Set) -> Vec<Set> {
             out.push(group);
         }
     }
-    out.extend(conflict.iter().filter(|r| !matches!(r.family(), Family::Walls | Family::Obstacles)).map(|&r| Set::from([r])));
+    out.extend(
+        conflict.iter().filter(|r| !matches!(r.family(), Family::Walls | Family::Obstacles)).map(|&r| Set::from([r])),
+    );
     out.sort();
     out
 }
@@ -721,7 +754,10 @@ fn close_unreachable(p: &mut Problem) -> bool {
             p.roles[e.index()] = EdgeRole::Excluded;
         }
     }
-    let route_edges = p.through_routes.iter().flat_map(|r| r.windows(2).filter_map(|w| mesh.half_edge_between(w[0], w[1])).map(|h| mesh.he_edge(h)));
+    let route_edges = p
+        .through_routes
+        .iter()
+        .flat_map(|r| r.windows(2).filter_map(|w| mesh.half_edge_between(w[0], w[1])).map(|h| mesh.he_edge(h)));
     !p.forced_edges.iter().copied().chain(route_edges).any(|e| p.roles[e.index()] == EdgeRole::Excluded)
 }
 
@@ -730,7 +766,10 @@ pub fn explain(p: &Problem, kind: SolverKind, opts: &ExplainOptions) -> Explanat
     let all = requirements(p);
     let obstacles = {
         let u = &p.spec.user;
-        !(u.obstacle_vertices.is_empty() && u.obstacle_edges.is_empty() && u.obstacle_faces.is_empty() && u.obstacle_polygons.is_empty())
+        !(u.obstacle_vertices.is_empty()
+            && u.obstacle_edges.is_empty()
+            && u.obstacle_faces.is_empty()
+            && u.obstacle_polygons.is_empty())
     };
     let mut search = Search {
         base: p,
@@ -757,7 +796,13 @@ pub fn explain(p: &Problem, kind: SolverKind, opts: &ExplainOptions) -> Explanat
         repairs.sort_by_key(|r| r.len());
         Explanation {
             status,
-            conflicts: conflicts.iter().map(|(c, minimal)| Conflict { requirements: order(c).into_iter().map(|r| describe(p, r)).collect(), minimal: *minimal }).collect(),
+            conflicts: conflicts
+                .iter()
+                .map(|(c, minimal)| Conflict {
+                    requirements: order(c).into_iter().map(|r| describe(p, r)).collect(),
+                    minimal: *minimal,
+                })
+                .collect(),
             repairs: repairs.iter().map(|r| r.iter().map(|&q| describe(p, q).short()).collect()).collect(),
             complete,
             requirements: all.len(),
@@ -863,13 +908,21 @@ impl Explanation {
             self.checks,
             self.solver,
             self.check_time_limit,
-            if self.unknown_checks > 0 { format!(", {} without an answer", self.unknown_checks) } else { String::new() },
+            if self.unknown_checks > 0 {
+                format!(", {} without an answer", self.unknown_checks)
+            } else {
+                String::new()
+            },
             self.seconds
         );
         match self.status {
-            ExplainStatus::Feasible => out.push(format!("with the objective set aside the spec has a solution ({how})")),
+            ExplainStatus::Feasible => {
+                out.push(format!("with the objective set aside the spec has a solution ({how})"))
+            }
             ExplainStatus::Unknown => out.push(format!("no conflict isolated within the limits ({how})")),
-            ExplainStatus::Unexplained => out.push(format!("infeasible even with every requirement relaxed: sinks, existing roads or the mesh itself ({how})")),
+            ExplainStatus::Unexplained => out.push(format!(
+                "infeasible even with every requirement relaxed: sinks, existing roads or the mesh itself ({how})"
+            )),
             ExplainStatus::Explained => {
                 out.push(format!(
                     "{} conflicting set{} of requirements{} ({how}):",
@@ -913,5 +966,9 @@ fn compact(fields: &[String]) -> String {
             (_, None) => groups.push((name, Vec::new())),
         }
     }
-    groups.iter().map(|(n, is)| if is.is_empty() { n.clone() } else { format!("{n}[{}]", is.join(", ")) }).collect::<Vec<_>>().join(" + ")
+    groups
+        .iter()
+        .map(|(n, is)| if is.is_empty() { n.clone() } else { format!("{n}[{}]", is.join(", ")) })
+        .collect::<Vec<_>>()
+        .join(" + ")
 }

@@ -2,9 +2,9 @@
 
 use anyhow::{bail, Context, Result};
 use clap::{Args, Parser, Subcommand};
+use netspec::heuristics::run::Method;
 use netspec::io::{read_model_file, write_model_file};
 use netspec::milp::Tolerances;
-use netspec::heuristics::run::Method;
 use netspec::report::{SolveReport, SCHEMA_VERSION};
 use netspec::solvers::{InvalidOption, LogTarget, RawParam, SolveOptions, SolverKind, Termination};
 use std::path::PathBuf;
@@ -13,9 +13,9 @@ use std::process::ExitCode;
 mod cli {
     pub mod city;
     pub mod design;
-    pub mod traffic;
     pub mod interrupt;
     pub mod search;
+    pub mod traffic;
 }
 
 /// Exit code when the solver's answer fails netspec's independent check.
@@ -339,22 +339,66 @@ fn main() -> ExitCode {
 fn run(cli: Cli) -> Result<ExitCode> {
     match cli.command {
         Command::SolveFile { file, solve, start, json } => solve_file(&file, &solve, start.as_deref(), json.as_deref()),
-        Command::Solve { spec, solve, out, export, no_solve, formulation, relax, no_explain, explain_time, start, no_start } => {
+        Command::Solve {
+            spec,
+            solve,
+            out,
+            export,
+            no_solve,
+            formulation,
+            relax,
+            no_explain,
+            explain_time,
+            start,
+            no_start,
+        } => {
             let start = match (start, no_start) {
                 (_, true) => cli::design::StartArg::Nothing,
                 (Some(file), false) => cli::design::StartArg::File(file),
                 (None, false) => cli::design::StartArg::Heuristic,
             };
-            cli::design::solve_spec(&spec, &solve, out, export, no_solve || relax, formulation, relax, (!no_explain).then_some(explain_time), start)
+            cli::design::solve_spec(
+                &spec,
+                &solve,
+                out,
+                export,
+                no_solve || relax,
+                formulation,
+                relax,
+                (!no_explain).then_some(explain_time),
+                start,
+            )
         }
-        Command::Compare { specs, manifest, solvers, time_limit, grace, seeds, threads, paper_limits, formulations, no_start, merge, out } => {
+        Command::Compare {
+            specs,
+            manifest,
+            solvers,
+            time_limit,
+            grace,
+            seeds,
+            threads,
+            paper_limits,
+            formulations,
+            no_start,
+            merge,
+            out,
+        } => {
             if !merge.is_empty() {
-                let manifest = manifest.map(|m| netspec::compare::Manifest::load(&m).map_err(anyhow::Error::msg)).transpose()?;
+                let manifest =
+                    manifest.map(|m| netspec::compare::Manifest::load(&m).map_err(anyhow::Error::msg)).transpose()?;
                 let merged = netspec::compare::merge(&merge, manifest).map_err(anyhow::Error::msg)?;
                 std::fs::create_dir_all(&out).with_context(|| format!("creating {}", out.display()))?;
                 let from: Vec<String> = merge.iter().map(|d| format!("`{}`", d.display())).collect();
                 let settings = serde_json::json!({ "manifest": merged.manifest, "time_limit": merged.time_limit, "merged_from": merged.sources });
-                let md = write_comparison(&out, &merged.manifest, &merged.records, &merged.columns, merged.time_limit, &format!("merged from {}", from.join(", ")), settings)?;
+                let md = write_comparison(
+                    &out,
+                    &merged.manifest,
+                    &merged.records,
+                    &merged.columns,
+                    merged.time_limit,
+                    &format!("merged from {}", from.join(", ")),
+                    settings,
+                )?;
                 print!("{md}");
                 return Ok(ExitCode::SUCCESS);
             }
@@ -363,7 +407,11 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 None => netspec::compare::Manifest::from_specs(&specs),
             };
             let solvers: Vec<String> = if solvers.is_empty() {
-                SolverKind::compiled().into_iter().filter(|k| *k != SolverKind::GoodLp).map(|k| k.name().to_string()).collect()
+                SolverKind::compiled()
+                    .into_iter()
+                    .filter(|k| *k != SolverKind::GoodLp)
+                    .map(|k| k.name().to_string())
+                    .collect()
             } else {
                 solvers.iter().map(|k| k.name().to_string()).collect()
             };
@@ -377,7 +425,18 @@ fn run(cli: Cli) -> Result<ExitCode> {
             }
             let interrupt = Some(cli::interrupt::install()?);
             let formulations: Vec<String> = formulations.iter().map(|f| f.name().to_string()).collect();
-            let settings = netspec::compare::CompareSettings { manifest, solvers: solvers.clone(), formulations, time_limit, grace, seeds, threads, paper_limits, no_start, interrupt };
+            let settings = netspec::compare::CompareSettings {
+                manifest,
+                solvers: solvers.clone(),
+                formulations,
+                time_limit,
+                grace,
+                seeds,
+                threads,
+                paper_limits,
+                no_start,
+                interrupt,
+            };
             // The columns of every table and chart: a backend, or a (backend, recipe) pair.
             let solvers: Vec<String> = settings.methods().into_iter().map(|(label, _, _)| label).collect();
             std::fs::create_dir_all(&out).with_context(|| format!("creating {}", out.display()))?;
@@ -398,8 +457,19 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 );
             })
             .with_context(|| format!("running the comparison into {}", out.display()))?;
-            let what = format!("time limit {time_limit} s{}, grace {grace} s", if paper_limits { " (each row at most the paper's time for it)" } else { "" });
-            let md = write_comparison(&out, &settings.manifest, &records, &solvers, time_limit, &what, serde_json::to_value(&settings)?)?;
+            let what = format!(
+                "time limit {time_limit} s{}, grace {grace} s",
+                if paper_limits { " (each row at most the paper's time for it)" } else { "" }
+            );
+            let md = write_comparison(
+                &out,
+                &settings.manifest,
+                &records,
+                &solvers,
+                time_limit,
+                &what,
+                serde_json::to_value(&settings)?,
+            )?;
             print!("\n{md}");
             if settings.interrupt.as_ref().is_some_and(|i| i.is_triggered()) {
                 println!("interrupted: the runs recorded above are kept; rerun to resume");
@@ -407,19 +477,34 @@ fn run(cli: Cli) -> Result<ExitCode> {
             }
             Ok(ExitCode::SUCCESS)
         }
-        Command::City { spec, solver, time_limit, threads, threads_per_solve, gap, fresh, out } => {
-            cli::city::run_city(&spec, cli::city::CityArgs { solver, time_limit, threads, threads_per_solve, gap, fresh, out })
-        }
-        Command::Traffic { designs, labels, duration, through_rate, local_rate, seed, metres_per_unit, level, sumo_home, out } => {
-            cli::traffic::run_traffic(cli::traffic::TrafficArgs {
-                designs,
-                labels,
-                demand: netspec::traffic::DemandSettings { duration, through_per_hour: through_rate, local_per_hour: local_rate, seed },
-                load: netspec::traffic::network::LoadOptions { metres_per_unit, level },
-                sumo_home,
-                out,
-            })
-        }
+        Command::City { spec, solver, time_limit, threads, threads_per_solve, gap, fresh, out } => cli::city::run_city(
+            &spec,
+            cli::city::CityArgs { solver, time_limit, threads, threads_per_solve, gap, fresh, out },
+        ),
+        Command::Traffic {
+            designs,
+            labels,
+            duration,
+            through_rate,
+            local_rate,
+            seed,
+            metres_per_unit,
+            level,
+            sumo_home,
+            out,
+        } => cli::traffic::run_traffic(cli::traffic::TrafficArgs {
+            designs,
+            labels,
+            demand: netspec::traffic::DemandSettings {
+                duration,
+                through_per_hour: through_rate,
+                local_per_hour: local_rate,
+                seed,
+            },
+            load: netspec::traffic::network::LoadOptions { metres_per_unit, level },
+            sumo_home,
+            out,
+        }),
         Command::Convert { input, output } => {
             let read = read_model_file(&input)?;
             for w in &read.warnings {
@@ -430,7 +515,11 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 "wrote {} ({}){}",
                 output.display(),
                 read.model.stats(),
-                if map.is_identity() { String::new() } else { format!("; {} names sanitised", map.vars.len() + map.rows.len()) }
+                if map.is_identity() {
+                    String::new()
+                } else {
+                    format!("; {} names sanitised", map.vars.len() + map.rows.len())
+                }
             );
             Ok(ExitCode::SUCCESS)
         }
@@ -452,7 +541,12 @@ fn run(cli: Cli) -> Result<ExitCode> {
     }
 }
 
-fn solve_file(file: &std::path::Path, args: &SolveArgs, start: Option<&std::path::Path>, json: Option<&std::path::Path>) -> Result<ExitCode> {
+fn solve_file(
+    file: &std::path::Path,
+    args: &SolveArgs,
+    start: Option<&std::path::Path>,
+    json: Option<&std::path::Path>,
+) -> Result<ExitCode> {
     let mut options = args.options()?;
     let read = read_model_file(file)?;
     for w in &read.warnings {
@@ -461,7 +555,12 @@ fn solve_file(file: &std::path::Path, args: &SolveArgs, start: Option<&std::path
     if let Some(path) = start {
         let sol = netspec::io::sol::read(&read.model, path)?;
         if !sol.missing.is_empty() {
-            eprintln!("warning: {}: {} variables not in the file start at 0 (first: {})", path.display(), sol.missing.len(), sol.missing[0]);
+            eprintln!(
+                "warning: {}: {} variables not in the file start at 0 (first: {})",
+                path.display(),
+                sol.missing.len(),
+                sol.missing[0]
+            );
         }
         options.mip_start = Some(sol.values);
     }
@@ -492,7 +591,9 @@ fn solve_file(file: &std::path::Path, args: &SolveArgs, start: Option<&std::path
     }
     match &report.result.termination {
         Termination::Error(e) => bail!("the solver failed: {e}"),
-        Termination::Limit(netspec::solvers::LimitKind::Interrupt) => Ok(ExitCode::from(cli::interrupt::EXIT_INTERRUPTED)),
+        Termination::Limit(netspec::solvers::LimitKind::Interrupt) => {
+            Ok(ExitCode::from(cli::interrupt::EXIT_INTERRUPTED))
+        }
         _ => Ok(ExitCode::SUCCESS),
     }
 }
@@ -513,7 +614,12 @@ fn write_comparison(
     let md = netspec::compare::markdown(manifest, records, columns, &summary);
     let cpu = std::fs::read_to_string("/proc/cpuinfo")
         .ok()
-        .and_then(|t| t.lines().find(|l| l.starts_with("model name")).and_then(|l| l.split(':').nth(1)).map(|s| s.trim().to_string()))
+        .and_then(|t| {
+            t.lines()
+                .find(|l| l.starts_with("model name"))
+                .and_then(|l| l.split(':').nth(1))
+                .map(|s| s.trim().to_string())
+        })
         .unwrap_or_else(|| "unknown CPU".into());
     let command: Vec<String> = std::env::args().collect();
     let header = format!(
@@ -522,7 +628,9 @@ fn write_comparison(
         std::thread::available_parallelism().map_or(0, |n| n.get()),
         command.join(" ")
     );
-    let write = |name: &str, text: String| std::fs::write(out.join(name), text).with_context(|| format!("writing {}", out.join(name).display()));
+    let write = |name: &str, text: String| {
+        std::fs::write(out.join(name), text).with_context(|| format!("writing {}", out.join(name).display()))
+    };
     write("results.md", header + &md)?;
     write("results.csv", netspec::compare::csv(records))?;
     write("profile.svg", netspec::compare::performance_profile_svg(records, columns, time_limit))?;

@@ -192,7 +192,10 @@ pub fn default_first_design_budget(time_limit: Option<f64>) -> f64 {
 /// The default start of a solve with this time limit: the heuristic with
 /// [`default_start_budget`] and [`default_first_design_budget`].
 pub fn default_start(time_limit: Option<f64>) -> StartFrom {
-    StartFrom::Heuristic { budget: default_start_budget(time_limit), first_design_budget: default_first_design_budget(time_limit) }
+    StartFrom::Heuristic {
+        budget: default_start_budget(time_limit),
+        first_design_budget: default_first_design_budget(time_limit),
+    }
 }
 
 /// Builds the MILP of a problem under the recipe its spec asks for (no solve).
@@ -205,7 +208,14 @@ pub fn build(p: &Problem) -> Formulation {
 /// reported and not returned, never passed to a solver.
 pub fn prepare_start(p: &Problem, f: &Formulation, net: &Network, source: &str) -> (Option<Vec<f64>>, StartReport) {
     let objective = Some(Objective::of(p, net).total);
-    let mut report = StartReport { source: source.to_string(), objective, accepted: false, reason: None, seconds: None, returned: false };
+    let mut report = StartReport {
+        source: source.to_string(),
+        objective,
+        accepted: false,
+        reason: None,
+        seconds: None,
+        returned: false,
+    };
     let cp = match design_point(f, p, net) {
         Ok(cp) => cp,
         Err(e) => {
@@ -215,7 +225,8 @@ pub fn prepare_start(p: &Problem, f: &Formulation, net: &Network, source: &str) 
     };
     if !cp.check.is_feasible() {
         let first: Vec<String> = cp.check.violations.iter().take(3).map(|v| v.to_string()).collect();
-        report.reason = Some(format!("{} violations of the model, e.g. {}", cp.check.violations.len(), first.join("; ")));
+        report.reason =
+            Some(format!("{} violations of the model, e.g. {}", cp.check.violations.len(), first.join("; ")));
         return (None, report);
     }
     if cp.lazy_violations > 0 {
@@ -273,7 +284,9 @@ pub(crate) fn rooms_result(p: &Problem, f: &Formulation, net: Option<&Network>) 
         truncated: pl.truncated,
         seconds: pl.seconds,
         block_graph: match (&p.rooms, net) {
-            (Some(r), Some(n)) if r.mode == crate::spec::RoomMode::Game => Some(design::block_graph(p, n, &pl.placements)),
+            (Some(r), Some(n)) if r.mode == crate::spec::RoomMode::Game => {
+                Some(design::block_graph(p, n, &pl.placements))
+            }
             _ => None,
         },
         chosen: net.map_or(Vec::new(), |n| n.rooms.iter().map(|&k| pl.placements[k].clone()).collect()),
@@ -296,7 +309,8 @@ fn repair_point(p: &Problem, f: &Formulation, x: &[f64]) -> Option<Vec<f64>> {
         return f.encode(p, &net).ok();
     }
     // Dropping the islands broke a rule (coverage, rooms, …): the heuristic's rule steps mend it.
-    let inputs = Inputs { paths: f.path_sets.as_ref(), placements: f.placements.as_ref().map(|r| r.placements.as_slice()) };
+    let inputs =
+        Inputs { paths: f.path_sets.as_ref(), placements: f.placements.as_ref().map(|r| r.placements.as_slice()) };
     let fixed = heuristics::repair_within(p, &inputs, &net, REPAIR_BUDGET)?;
     f.encode(p, &fixed).ok()
 }
@@ -307,13 +321,25 @@ const REPAIR_BUDGET: f64 = 0.2;
 /// Prepares the start `from` for `f`: runs the heuristic (or takes the given design), encodes
 /// and checks it ([`prepare_start`]). `None` for [`StartFrom::Nothing`]. The heuristic runs
 /// `threads` searches side by side: the solve's own threads, idle until the start is handed over.
-pub fn start_for(p: &Problem, f: &Formulation, from: &StartFrom, seed: u64, threads: usize) -> Option<(Option<Vec<f64>>, StartReport)> {
+pub fn start_for(
+    p: &Problem,
+    f: &Formulation,
+    from: &StartFrom,
+    seed: u64,
+    threads: usize,
+) -> Option<(Option<Vec<f64>>, StartReport)> {
     let t0 = std::time::Instant::now();
     let (net, source) = match from {
         StartFrom::Nothing => return None,
         StartFrom::Heuristic { budget, first_design_budget } => {
-            let inputs = Inputs { paths: f.path_sets.as_ref(), placements: f.placements.as_ref().map(|r| r.placements.as_slice()) };
-            (heuristics::start_within(p, &inputs, *budget, *first_design_budget, seed, threads), "heuristic".to_string())
+            let inputs = Inputs {
+                paths: f.path_sets.as_ref(),
+                placements: f.placements.as_ref().map(|r| r.placements.as_slice()),
+            };
+            (
+                heuristics::start_within(p, &inputs, *budget, *first_design_budget, seed, threads),
+                "heuristic".to_string(),
+            )
         }
         StartFrom::Design { network, source } => (Some(network.clone()), source.clone()),
         StartFrom::Prepared { point, report } => return Some((point.clone(), report.clone())),
@@ -322,7 +348,14 @@ pub fn start_for(p: &Problem, f: &Formulation, from: &StartFrom, seed: u64, thre
         Some(net) => prepare_start(p, f, &net, &source),
         None => (
             None,
-            StartReport { source, objective: None, accepted: false, reason: Some("the heuristic found no design".into()), seconds: None, returned: false },
+            StartReport {
+                source,
+                objective: None,
+                accepted: false,
+                reason: Some("the heuristic found no design".into()),
+                seconds: None,
+                returned: false,
+            },
         ),
     };
     report.seconds = Some(t0.elapsed().as_secs_f64());
@@ -333,9 +366,16 @@ pub fn start_for(p: &Problem, f: &Formulation, from: &StartFrom, seed: u64, thre
 /// limit, handed to the backend when the checker accepts it and the backend takes starts, and
 /// returned as the design when the solver ends with nothing better (so a solve never ends worse
 /// than its start). The report is in [`DesignResult::start`].
-pub fn solve_from(p: &Problem, f: &Formulation, kind: SolverKind, options: &SolveOptions, from: &StartFrom) -> Result<DesignResult, SolverError> {
+pub fn solve_from(
+    p: &Problem,
+    f: &Formulation,
+    kind: SolverKind,
+    options: &SolveOptions,
+    from: &StartFrom,
+) -> Result<DesignResult, SolverError> {
     let takes_starts = kind.instance()?.capabilities().mip_start;
-    let prepared = if takes_starts { start_for(p, f, from, options.seed.unwrap_or(0), options.heuristic_threads()) } else { None };
+    let prepared =
+        if takes_starts { start_for(p, f, from, options.seed.unwrap_or(0), options.heuristic_threads()) } else { None };
     let Some((x, mut report)) = prepared else {
         let mut res = solve_built(p, f, kind, options)?;
         if !takes_starts && !matches!(from, StartFrom::Nothing) {
@@ -370,7 +410,12 @@ pub fn solve_from(p: &Problem, f: &Formulation, kind: SolverKind, options: &Solv
             solve.objective = Some(f.model.objective_value(&x));
             solve.primal = Some(x);
             solve.finish(f.model.sense);
-            let reports = Reports { lazy: res.lazy.clone(), split: res.split.clone(), solver_hints: res.solver_hints.clone(), lattice: res.lattice.clone() };
+            let reports = Reports {
+                lazy: res.lazy.clone(),
+                split: res.split.clone(),
+                solver_hints: res.solver_hints.clone(),
+                lattice: res.lattice.clone(),
+            };
             let mut again = checked_result(p, f, solve, reports, &[])?;
             again.solve.wall_time = res.solve.wall_time;
             report.returned = true;
@@ -381,12 +426,16 @@ pub fn solve_from(p: &Problem, f: &Formulation, kind: SolverKind, options: &Solv
     Ok(res)
 }
 
-
 /// Solves a built formulation and checks the answer: lazily separated rows go through the
 /// backend's `solve_lazy` (its callback, or the solve–cut–resolve loop), every row and bound of
 /// the model and every separated row is checked at the returned point, the network is decoded,
 /// validated and measured, and its objective recomputed from the design alone.
-pub fn solve_built(p: &Problem, f: &Formulation, kind: SolverKind, options: &SolveOptions) -> Result<DesignResult, SolverError> {
+pub fn solve_built(
+    p: &Problem,
+    f: &Formulation,
+    kind: SolverKind,
+    options: &SolveOptions,
+) -> Result<DesignResult, SolverError> {
     let solver = kind.instance()?;
     let (tuned, solver_hints) = with_solver_hints(options, &f.solver_hints(kind, options.threads));
     let options = &tuned;
@@ -420,14 +469,21 @@ pub fn solve_built(p: &Problem, f: &Formulation, kind: SolverKind, options: &Sol
         }
     };
     lazy_rows.extend(left_out);
-    let lattice = f.objective_lattice.filter(|_| f.recipe.objective_lattice).map(|lattice| LatticeReport { lattice, solver_bound: lattice.settle(&mut result, f.model.sense) });
+    let lattice = f
+        .objective_lattice
+        .filter(|_| f.recipe.objective_lattice)
+        .map(|lattice| LatticeReport { lattice, solver_bound: lattice.settle(&mut result, f.model.sense) });
     checked_result(p, f, result, Reports { lazy, split, solver_hints, lattice }, &lazy_rows)
 }
 
 /// `options` with the recipe's solver `hints` put before the user's parameters, leaving out a
 /// hint whose parameter the user sets (theirs wins); and the hints used, as `highs.name=value`.
 fn with_solver_hints(options: &SolveOptions, hints: &[RawParam]) -> (SolveOptions, Vec<String>) {
-    let used: Vec<RawParam> = hints.iter().filter(|h| !options.params.iter().any(|p| p.solver == h.solver && p.name == h.name)).cloned().collect();
+    let used: Vec<RawParam> = hints
+        .iter()
+        .filter(|h| !options.params.iter().any(|p| p.solver == h.solver && p.name == h.name))
+        .cloned()
+        .collect();
     let names = used.iter().map(|h| h.to_string()).collect();
     let mut o = options.clone();
     o.params = used.into_iter().chain(options.params.iter().cloned()).collect();
@@ -453,7 +509,13 @@ fn checked_result(
     lazy_rows: &[LazyRow],
 ) -> Result<DesignResult, SolverError> {
     let Reports { lazy, split, solver_hints, lattice } = reports;
-    let mut validity = Validity { valid: false, design_violations: Vec::new(), milp_check: None, objective_recomputed: None, objective_agrees: None };
+    let mut validity = Validity {
+        valid: false,
+        design_violations: Vec::new(),
+        milp_check: None,
+        objective_recomputed: None,
+        objective_agrees: None,
+    };
     let mut net = None;
     let mut metrics = None;
     let mut objective = None;
@@ -476,9 +538,11 @@ fn checked_result(
         let surrogate = check.objective;
         validity.objective_recomputed = Some(design_objective.total);
         validity.objective_agrees = result.objective.map(|o| {
-            objectives_agree(o, surrogate, 1e-6) && design_objective.total <= surrogate + 1e-6 * surrogate.abs().max(1.0)
+            objectives_agree(o, surrogate, 1e-6)
+                && design_objective.total <= surrogate + 1e-6 * surrogate.abs().max(1.0)
         });
-        validity.valid = check.is_feasible() && validity.design_violations.is_empty() && validity.objective_agrees == Some(true);
+        validity.valid =
+            check.is_feasible() && validity.design_violations.is_empty() && validity.objective_agrees == Some(true);
         validity.milp_check = Some(check);
         metrics = Some(Metrics::of(p, &n));
         objective = Some(design_objective);
@@ -530,17 +594,24 @@ mod tests {
     #[test]
     fn solver_hints_yield_to_the_users_parameters() {
         let hint = param(SolverKind::Highs, "mip_pscost_minreliable", "0");
-        let user = SolveOptions { params: vec![param(SolverKind::Highs, "mip_heuristic_effort", "0.1")], ..Default::default() };
+        let user = SolveOptions {
+            params: vec![param(SolverKind::Highs, "mip_heuristic_effort", "0.1")],
+            ..Default::default()
+        };
         let (o, used) = with_solver_hints(&user, std::slice::from_ref(&hint));
         assert_eq!(o.params, vec![hint.clone(), user.params[0].clone()]);
         assert_eq!(used, vec!["highs.mip_pscost_minreliable=0".to_string()]);
 
-        let own = SolveOptions { params: vec![param(SolverKind::Highs, "mip_pscost_minreliable", "8")], ..Default::default() };
+        let own = SolveOptions {
+            params: vec![param(SolverKind::Highs, "mip_pscost_minreliable", "8")],
+            ..Default::default()
+        };
         let (o, used) = with_solver_hints(&own, std::slice::from_ref(&hint));
         assert_eq!(o.params, own.params);
         assert!(used.is_empty());
 
-        let other = SolveOptions { params: vec![param(SolverKind::Scip, "mip_pscost_minreliable", "8")], ..Default::default() };
+        let other =
+            SolveOptions { params: vec![param(SolverKind::Scip, "mip_pscost_minreliable", "8")], ..Default::default() };
         let (o, used) = with_solver_hints(&other, std::slice::from_ref(&hint));
         assert_eq!(o.params, vec![hint, other.params[0].clone()]);
         assert_eq!(used.len(), 1);
@@ -553,7 +624,9 @@ mod tests {
         use crate::formulations::Recipe;
         use crate::spec::RecipeName;
         let strong = Recipe::named(RecipeName::Strong);
-        let names = |r: &Recipe, threads: Option<u32>| r.solver_hints(SolverKind::Highs, threads).iter().map(|h| h.to_string()).collect::<Vec<_>>();
+        let names = |r: &Recipe, threads: Option<u32>| {
+            r.solver_hints(SolverKind::Highs, threads).iter().map(|h| h.to_string()).collect::<Vec<_>>()
+        };
         assert_eq!(names(&strong, Some(2)), ["highs.mip_pscost_minreliable=0", "highs.parallel=on"]);
         for threads in [None, Some(1)] {
             assert_eq!(names(&strong, threads), ["highs.mip_pscost_minreliable=0"], "{threads:?}");

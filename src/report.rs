@@ -74,7 +74,11 @@ impl SolveReport {
         let _ = writeln!(s, "solver     {} {}", r.solver, r.solver_version);
         if let Some(st) = &r.mip_start {
             if st.accepted {
-                let _ = writeln!(s, "start      passed netspec's check (objective {}) and was handed to the solver", st.objective);
+                let _ = writeln!(
+                    s,
+                    "start      passed netspec's check (objective {}) and was handed to the solver",
+                    st.objective
+                );
             } else {
                 let _ = writeln!(
                     s,

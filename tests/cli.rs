@@ -11,7 +11,8 @@ fn netspec() -> Command {
 fn solve_file_prints_summary_and_json() {
     let dir = tempfile::tempdir().unwrap();
     let json = dir.path().join("r.json");
-    let out = netspec().arg("solve-file").arg(corpus_dir().join("afiro.mps")).arg("--json").arg(&json).output().unwrap();
+    let out =
+        netspec().arg("solve-file").arg(corpus_dir().join("afiro.mps")).arg("--json").arg(&json).output().unwrap();
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(out.status.success(), "{stdout}\n{}", String::from_utf8_lossy(&out.stderr));
     assert!(stdout.contains("status     optimal"), "{stdout}");
@@ -85,7 +86,11 @@ fn searches_honour_or_refuse_threads() {
     let spec = concat!(env!("CARGO_MANIFEST_DIR"), "/fixtures/specs/tiny_floorplan.toml");
     let dir = tempfile::tempdir().unwrap();
     let run = |solver: &str, threads: &str| {
-        netspec().args(["solve", spec, "--solver", solver, "--threads", threads, "--time-limit", "0.2", "--out"]).arg(dir.path()).output().unwrap()
+        netspec()
+            .args(["solve", spec, "--solver", solver, "--threads", threads, "--time-limit", "0.2", "--out"])
+            .arg(dir.path())
+            .output()
+            .unwrap()
     };
     let zero = run("heuristic", "0");
     assert!(!zero.status.success());
@@ -104,18 +109,32 @@ fn relax_writes_the_lp_point_after_the_cut_rounds() {
     let dir = tempfile::tempdir().unwrap();
     let sol = dir.path().join("lp.sol");
     let spec = concat!(env!("CARGO_MANIFEST_DIR"), "/fixtures/specs/tiny_network.toml");
-    let out = netspec().args(["solve", spec, "--relax", "--formulation", "strong", "--threads", "1", "--sol"]).arg(&sol).output().unwrap();
+    let out = netspec()
+        .args(["solve", spec, "--relax", "--formulation", "strong", "--threads", "1", "--sol"])
+        .arg(&sol)
+        .output()
+        .unwrap();
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(out.status.success(), "{stdout}\n{}", String::from_utf8_lossy(&out.stderr));
     // "LP bound   A as written, B after N cut rounds …": the file holds the point of B.
     let line = stdout.lines().find(|l| l.starts_with("LP bound")).expect("an LP bound line");
     let after: f64 = line.split(", ").nth(1).and_then(|s| s.split_whitespace().next()).unwrap().parse().unwrap();
-    let vars: usize = stdout.lines().find(|l| l.starts_with("model")).and_then(|l| l.split_whitespace().nth(1)).unwrap().parse().unwrap();
+    let vars: usize = stdout
+        .lines()
+        .find(|l| l.starts_with("model"))
+        .and_then(|l| l.split_whitespace().nth(1))
+        .unwrap()
+        .parse()
+        .unwrap();
     let text = std::fs::read_to_string(&sol).unwrap();
     assert!(text.starts_with("# netspec solution: LP relaxation after "), "{text}");
     let objective: f64 = text.lines().find_map(|l| l.strip_prefix("# Objective value = ")).unwrap().parse().unwrap();
     assert!((objective - after).abs() <= 1e-5 * after.abs().max(1.0), "{objective} against {after}");
-    let values: Vec<f64> = text.lines().filter(|l| !l.starts_with('#')).map(|l| l.split_whitespace().nth(1).unwrap().parse().unwrap()).collect();
+    let values: Vec<f64> = text
+        .lines()
+        .filter(|l| !l.starts_with('#'))
+        .map(|l| l.split_whitespace().nth(1).unwrap().parse().unwrap())
+        .collect();
     assert_eq!(values.len(), vars, "one value per variable");
     assert!(values.iter().any(|v| *v > 1e-9), "not the zero point");
 }

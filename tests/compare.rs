@@ -1,6 +1,9 @@
 //! `netspec compare` on a tiny manifest: two small instances × every compiled backend.
 
-use netspec::compare::{bar_chart_svg, instance_ids, paper_seconds, shifted_geometric_mean, summarize, Manifest, ManifestRow, PaperRow, RunRecord};
+use netspec::compare::{
+    bar_chart_svg, instance_ids, paper_seconds, shifted_geometric_mean, summarize, Manifest, ManifestRow, PaperRow,
+    RunRecord,
+};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -37,10 +40,15 @@ fn compare_runs_tables_and_resumes() {
     let md = std::fs::read_to_string(out.join("results.md")).unwrap();
     // Header + separator + two instances, then the summary with a row per backend.
     let table: Vec<&str> = md.lines().filter(|l| l.starts_with("| ")).collect();
-    assert!(table[0].contains("| instance | edges (paper) | vars (paper) | paper time |") && backends.iter().all(|b| table[0].contains(b)), "{md}");
+    assert!(
+        table[0].contains("| instance | edges (paper) | vars (paper) | paper time |")
+            && backends.iter().all(|b| table[0].contains(b)),
+        "{md}"
+    );
     assert!(table.iter().any(|l| l.starts_with("| a |") && l.ends_with("| 3.0000 |")), "{md}");
     assert!(table.iter().any(|l| l.starts_with("| b |")), "{md}");
-    let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(out.join("results.json")).unwrap()).unwrap();
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("results.json")).unwrap()).unwrap();
     let records: Vec<RunRecord> = serde_json::from_value(json["records"].clone()).unwrap();
     assert_eq!(records.len(), 2 * backends.len());
     for r in &records {
@@ -63,7 +71,9 @@ fn compare_runs_tables_and_resumes() {
     for i in ["a", "b"] {
         assert_eq!(bars.matches(&format!(r#"<g class="instance" data-instance="{i}">"#)).count(), 1, "{bars}");
         for b in &backends {
-            let bar = format!(r#"<rect class="bar" data-instance="{i}" data-solver="{b}" data-status="optimal" data-solved="true""#);
+            let bar = format!(
+                r#"<rect class="bar" data-instance="{i}" data-solver="{b}" data-status="optimal" data-solved="true""#
+            );
             assert_eq!(bars.matches(&bar).count(), 1, "{i}/{b}: {bars}");
         }
     }
@@ -71,7 +81,10 @@ fn compare_runs_tables_and_resumes() {
     assert_eq!(bars.matches(r#"class="limit""#).count(), 1);
     assert!(!bars.contains(r#"class="label""#) && !bars.contains(r#"class="paper""#), "{bars}");
     // The legend lists only what the chart uses: everything solved, no paper times.
-    assert!(bars.contains(">time limit</text>") && !bars.contains("not solved") && !bars.contains(">failed</text>"), "{bars}");
+    assert!(
+        bars.contains(">time limit</text>") && !bars.contains("not solved") && !bars.contains(">failed</text>"),
+        "{bars}"
+    );
     assert!(!bars.contains("killed at limit") && !bars.contains("paper (Gurobi"), "{bars}");
     assert!(md.contains("`bars.svg`"), "{md}");
     let csv = std::fs::read_to_string(out.join("results.csv")).unwrap();
@@ -125,7 +138,9 @@ fn bar_chart_marks_unsolved_killed_failed_and_paper_times() {
         missing: (!spec).then(|| "not yet".into()),
         paper: PaperRow { edges: None, variables: None, time: time.map(Into::into) },
     };
-    let manifest = Manifest { row: vec![row("2a", true, Some("132")), row("1a", false, Some("379/366/49")), row("x<&>", true, Some("-"))] };
+    let manifest = Manifest {
+        row: vec![row("2a", true, Some("132")), row("1a", false, Some("379/366/49")), row("x<&>", true, Some("-"))],
+    };
     assert_eq!(paper_seconds(&manifest.row[0].paper), Some(132.0));
     assert_eq!(paper_seconds(&manifest.row[1].paper), None);
     assert_eq!(paper_seconds(&manifest.row[2].paper), None);
@@ -136,7 +151,8 @@ fn bar_chart_marks_unsolved_killed_failed_and_paper_times() {
     (killed.killed, killed.solver_time) = (true, None);
     let mut failed = record("x<&>", "cbc", "failed", 0.0);
     failed.solver_time = None;
-    let records = vec![record("2a", "highs", "optimal", 12.5), gap, killed, record("x<&>", "highs", "optimal", 0.02), failed];
+    let records =
+        vec![record("2a", "highs", "optimal", 12.5), gap, killed, record("x<&>", "highs", "optimal", 0.02), failed];
     let svg = bar_chart_svg(&manifest, &records, &solvers, 60.0);
     assert_eq!(svg, bar_chart_svg(&manifest, &records, &solvers, 60.0), "deterministic");
     assert!(svg.starts_with("<svg") && svg.ends_with("</svg>\n"));
@@ -146,11 +162,27 @@ fn bar_chart_marks_unsolved_killed_failed_and_paper_times() {
     assert!(svg.contains("Not shown (no spec yet): 1a"), "{svg}");
     // One bar per run; no bar where there is no run (x<&> on scip).
     assert_eq!(svg.matches(r#"class="bar""#).count(), 5, "{svg}");
-    assert!(svg.contains(r#"data-instance="2a" data-solver="highs" data-status="optimal" data-solved="true" data-time="12.5""#), "{svg}");
-    assert!(svg.contains(r#"data-instance="2a" data-solver="cbc" data-status="limit(time)" data-solved="false" data-time="60""#), "{svg}");
-    assert!(svg.contains(r#"data-solver="scip" data-status="killed" data-solved="false" data-time="75.5""#), "killed: wall time; {svg}");
+    assert!(
+        svg.contains(
+            r#"data-instance="2a" data-solver="highs" data-status="optimal" data-solved="true" data-time="12.5""#
+        ),
+        "{svg}"
+    );
+    assert!(
+        svg.contains(
+            r#"data-instance="2a" data-solver="cbc" data-status="limit(time)" data-solved="false" data-time="60""#
+        ),
+        "{svg}"
+    );
+    assert!(
+        svg.contains(r#"data-solver="scip" data-status="killed" data-solved="false" data-time="75.5""#),
+        "killed: wall time; {svg}"
+    );
     assert!(svg.contains(r#"data-solver="cbc" data-status="failed" data-solved="false" data-time="0.5""#), "{svg}");
-    assert!(svg.contains(">limit(time) 12.5%</text>") && svg.contains(">killed</text>") && svg.contains(">failed</text>"), "{svg}");
+    assert!(
+        svg.contains(">limit(time) 12.5%</text>") && svg.contains(">killed</text>") && svg.contains(">failed</text>"),
+        "{svg}"
+    );
     assert_eq!(svg.matches(r#"class="killed""#).count(), 1);
     assert_eq!(svg.matches(r#"fill="url(#hatch-"#).count(), 2 + 1, "two hatched bars and the legend");
     // The paper's time only where it is one number; the axis reaches it (1000 s decade).
@@ -158,14 +190,24 @@ fn bar_chart_marks_unsolved_killed_failed_and_paper_times() {
     assert!(svg.contains(r#"<g class="paper" data-instance="2a" data-time="132">"#), "{svg}");
     assert!(svg.contains(">1000</text>") && svg.contains(">0.01</text>") && svg.contains("log scale"), "{svg}");
     assert!(svg.contains(r#"class="limit""#) && svg.contains("limit 60 s"));
-    for entry in [">not solved (status, gap)</text>", ">failed</text>", ">killed at limit + grace</text>", ">time limit</text>", ">paper (Gurobi 2014)</text>"] {
+    for entry in [
+        ">not solved (status, gap)</text>",
+        ">failed</text>",
+        ">killed at limit + grace</text>",
+        ">time limit</text>",
+        ">paper (Gurobi 2014)</text>",
+    ] {
         assert!(svg.contains(entry), "legend entry {entry} missing: {svg}");
     }
 }
 
 #[test]
 fn unsolved_runs_are_charged_the_limit() {
-    let rec = |solver: &str, status: &str, t: f64| RunRecord { solver_time: None, wall_time: t, ..record("i", solver, status, t) };
+    let rec = |solver: &str, status: &str, t: f64| RunRecord {
+        solver_time: None,
+        wall_time: t,
+        ..record("i", solver, status, t)
+    };
     let recs = vec![rec("x", "optimal", 2.0), rec("y", "limit(time)", 7.0)];
     let s = summarize(&recs, &["x".into(), "y".into()], 60.0);
     assert!((s[0].sgm_time - 2.0).abs() < 1e-9 && s[0].solved == 1 && s[0].wins == 1);
@@ -207,9 +249,13 @@ paper = { edges = 657, time = "379/366/49" }
     // The repository's Table 1 manifest loads and lists every row of the paper's table (street
     // rows once per level: 11 street rows → 9 × 3 levels + 5L3 + 5L4 = 29 entries, plus the 15
     // others), and every spec it names exists and resolves.
-    let m = netspec::compare::Manifest::load(&std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("models/table1.toml")).unwrap();
+    let m =
+        netspec::compare::Manifest::load(&std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("models/table1.toml"))
+            .unwrap();
     assert_eq!(m.row.len(), 44);
-    for fig in ["1a-L2", "1c-L4", "1d", "1e", "2a", "2g", "5L3", "5L4", "7a-L2", "7e-L4", "8-L3", "9b1", "9b4", "11a", "11b"] {
+    for fig in
+        ["1a-L2", "1c-L4", "1d", "1e", "2a", "2g", "5L3", "5L4", "7a-L2", "7e-L4", "8-L3", "9b1", "9b4", "11a", "11b"]
+    {
         assert!(m.row.iter().any(|r| r.name == fig), "{fig} missing from table1.toml");
     }
     for r in &m.row {
@@ -221,7 +267,10 @@ paper = { edges = 657, time = "379/366/49" }
     // The manifests of parts of the table hold rows of the whole one, unchanged (same spec
     // file and paper times), so their runs are the same runs.
     for part in ["table1-short.toml", "table1-scip.toml"] {
-        let p = netspec::compare::Manifest::load(&std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("models").join(part)).unwrap();
+        let p = netspec::compare::Manifest::load(
+            &std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("models").join(part),
+        )
+        .unwrap();
         assert!(!p.row.is_empty(), "{part}");
         for r in &p.row {
             assert!(m.row.contains(r), "{part}: row {} differs from table1.toml's", r.name);
@@ -234,8 +283,24 @@ paper = { edges = 657, time = "379/366/49" }
 #[test]
 fn paper_limits_per_row() {
     use netspec::compare::CompareSettings;
-    let row = |time: &str| ManifestRow { name: "r".into(), spec: None, missing: Some("-".into()), paper: PaperRow { edges: None, variables: None, time: Some(time.into()) } };
-    let mut s = CompareSettings { manifest: Manifest { row: vec![] }, solvers: vec![], formulations: vec![], time_limit: 100.0, grace: 1.0, seeds: vec![], threads: None, paper_limits: true, no_start: false, interrupt: None };
+    let row = |time: &str| ManifestRow {
+        name: "r".into(),
+        spec: None,
+        missing: Some("-".into()),
+        paper: PaperRow { edges: None, variables: None, time: Some(time.into()) },
+    };
+    let mut s = CompareSettings {
+        manifest: Manifest { row: vec![] },
+        solvers: vec![],
+        formulations: vec![],
+        time_limit: 100.0,
+        grace: 1.0,
+        seeds: vec![],
+        threads: None,
+        paper_limits: true,
+        no_start: false,
+        interrupt: None,
+    };
     assert_eq!(s.limit_for(&row("35")), 35.0);
     assert_eq!(s.limit_for(&row("1018")), 100.0);
     assert_eq!(s.limit_for(&row("379/366/49")), 100.0);
@@ -265,7 +330,12 @@ fn instance_ids_are_path_derived_and_unique() {
     let clash = Manifest {
         row: ["a/b", "a-b"]
             .iter()
-            .map(|n| ManifestRow { name: n.to_string(), spec: Some("s.toml".into()), missing: None, paper: PaperRow::default() })
+            .map(|n| ManifestRow {
+                name: n.to_string(),
+                spec: Some("s.toml".into()),
+                missing: None,
+                paper: PaperRow::default(),
+            })
             .collect(),
     };
     let keys = clash.run_keys();
@@ -283,7 +353,8 @@ fn compare(specs: &[&Path], extra: &[&str], out: &Path) -> (String, Vec<RunRecor
         .output()
         .unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(out.join("results.json")).unwrap()).unwrap();
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("results.json")).unwrap()).unwrap();
     (String::from_utf8(o.stdout).unwrap(), serde_json::from_value(json["records"].clone()).unwrap())
 }
 
@@ -306,7 +377,10 @@ fn same_file_names_are_different_instances() {
     // Different instances, different answers: the floor plan's corridor is 3 long.
     assert_eq!(records[0].objective, Some(3.0));
     assert_ne!(records[0].objective, records[1].objective);
-    assert!(out.join("runs/x-L2-spec__highs__default/run.json").exists() && out.join("runs/y-L2-spec__highs__default/run.json").exists());
+    assert!(
+        out.join("runs/x-L2-spec__highs__default/run.json").exists()
+            && out.join("runs/y-L2-spec__highs__default/run.json").exists()
+    );
 }
 
 /// A record is reused only with the same settings: another time limit, thread count or an
@@ -369,7 +443,10 @@ fn killing_compare_kills_its_child() {
         std::fs::read_dir("/proc")
             .unwrap()
             .filter_map(|e| e.ok()?.file_name().to_str()?.parse::<u32>().ok())
-            .filter(|&pid| stat(pid).is_some_and(|s| s.rsplit(')').next().unwrap().split_whitespace().nth(1) == Some(&ppid.to_string())))
+            .filter(|&pid| {
+                stat(pid)
+                    .is_some_and(|s| s.rsplit(')').next().unwrap().split_whitespace().nth(1) == Some(&ppid.to_string()))
+            })
             .collect()
     };
     let t0 = Instant::now();
@@ -382,7 +459,9 @@ fn killing_compare_kills_its_child() {
     };
     // Let the child get into its solve, then kill the parent outright.
     std::thread::sleep(Duration::from_millis(500));
-    let alive = |pid: u32| stat(pid).is_some_and(|s| !matches!(s.rsplit(')').next().unwrap().split_whitespace().next(), Some("Z" | "X")));
+    let alive = |pid: u32| {
+        stat(pid).is_some_and(|s| !matches!(s.rsplit(')').next().unwrap().split_whitespace().next(), Some("Z" | "X")))
+    };
     assert!(alive(child), "the child ended early");
     parent.kill().unwrap();
     parent.wait().unwrap();
@@ -415,7 +494,10 @@ fn formulation_axis() {
     let md = std::fs::read_to_string(out.join("results.md")).unwrap();
     assert!(md.contains("highs/paper") && md.contains("highs/strong"), "{md}");
     for (label, recipe) in [("highs+paper", "paper"), ("highs+strong", "strong")] {
-        let res: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(out.join(format!("runs/net__{label}__default/result.json"))).unwrap()).unwrap();
+        let res: serde_json::Value = serde_json::from_str(
+            &std::fs::read_to_string(out.join(format!("runs/net__{label}__default/result.json"))).unwrap(),
+        )
+        .unwrap();
         assert_eq!(res["formulation"], recipe);
     }
 }
@@ -428,9 +510,22 @@ fn merge_combines_finished_comparisons() {
     let dir = tempfile::tempdir().unwrap();
     let spec = dir.path().join("a.toml");
     std::fs::write(&spec, fixture("tiny_network.toml")).unwrap();
-    let netspec = |args: &[&str]| Command::new(env!("CARGO_BIN_EXE_netspec")).current_dir(dir.path()).args(args).output().unwrap();
+    let netspec = |args: &[&str]| {
+        Command::new(env!("CARGO_BIN_EXE_netspec")).current_dir(dir.path()).args(args).output().unwrap()
+    };
     for (solver, threads) in [("highs", "2"), ("microlp", "1")] {
-        let o = netspec(&["compare", "a.toml", "--solvers", solver, "--threads", threads, "--time-limit", "20", "--out", solver]);
+        let o = netspec(&[
+            "compare",
+            "a.toml",
+            "--solvers",
+            solver,
+            "--threads",
+            threads,
+            "--time-limit",
+            "20",
+            "--out",
+            solver,
+        ]);
         assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     }
     let o = netspec(&["compare", "--merge", "highs,microlp", "--out", "both"]);
@@ -440,7 +535,8 @@ fn merge_combines_finished_comparisons() {
     assert!(md.contains("merged from `highs`, `microlp`"), "{md}");
     let header = md.lines().find(|l| l.starts_with("| instance |")).unwrap();
     assert!(header.contains(" highs |") && header.contains(" microlp |"), "{md}");
-    let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(out.join("results.json")).unwrap()).unwrap();
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("results.json")).unwrap()).unwrap();
     let records: Vec<RunRecord> = serde_json::from_value(json["records"].clone()).unwrap();
     assert_eq!(records.len(), 2);
     // Each record keeps the settings it ran with.

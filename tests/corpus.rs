@@ -34,9 +34,23 @@ pub fn expected() -> Vec<Expected> {
 /// microlp is a simple pure-Rust branch and bound: it gets the files it solves in well under a
 /// second in a release build. The others are MIPLIB instances that take it minutes or more.
 pub const MICROLP_FILES: &[&str] = &[
-    "adlittle.mps", "afiro.mps", "avgas.mps", "bgetam.mps", "blending.mps", "comment.mps", "ex72a.mps",
-    "flugpl.mps", "infeasible-mip0.mps", "infeasible-mip1.mps", "silly-names.mps", "small_mip.mps",
-    "1448.lp", "fixed-binary.lp", "issue-2388.lp", "issue-2585.lp", "no-newline-eof.lp",
+    "adlittle.mps",
+    "afiro.mps",
+    "avgas.mps",
+    "bgetam.mps",
+    "blending.mps",
+    "comment.mps",
+    "ex72a.mps",
+    "flugpl.mps",
+    "infeasible-mip0.mps",
+    "infeasible-mip1.mps",
+    "silly-names.mps",
+    "small_mip.mps",
+    "1448.lp",
+    "fixed-binary.lp",
+    "issue-2388.lp",
+    "issue-2585.lp",
+    "no-newline-eof.lp",
 ];
 
 fn run_backend(kind: SolverKind) {

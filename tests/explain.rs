@@ -32,7 +32,12 @@ vertices = [0]
 fn corner_sink_behind_a_wall_on_every_backend() {
     let p = problem(CORNER);
     // Edges 0–1 and 0–4 (on the 4 × 4 vertex grid).
-    let wall = |a: u32, b: u32| Requirement::Wall { edge: p.mesh.he_edge(p.mesh.half_edge_between(netspec::mesh::VertexId(a), netspec::mesh::VertexId(b)).unwrap()).0 };
+    let wall = |a: u32, b: u32| Requirement::Wall {
+        edge: p
+            .mesh
+            .he_edge(p.mesh.half_edge_between(netspec::mesh::VertexId(a), netspec::mesh::VertexId(b)).unwrap())
+            .0,
+    };
     for kind in backends(false) {
         let e = explain(&p, kind, &opts());
         assert_eq!(e.status, ExplainStatus::Explained, "{kind}: {e:#?}");
@@ -70,7 +75,11 @@ forced_edges = [[24, 31]]   # (3, 3)–(3, 4), up from the route's middle
 "#,
     );
     let e = explain(&p, SolverKind::default_kind().unwrap(), &opts());
-    assert_eq!(sets(&e), vec![vec![Requirement::ForcedEdge { index: 0 }, Requirement::ThroughRoute { index: 0 }]], "{e:#?}");
+    assert_eq!(
+        sets(&e),
+        vec![vec![Requirement::ForcedEdge { index: 0 }, Requirement::ThroughRoute { index: 0 }]],
+        "{e:#?}"
+    );
     assert!(e.complete && e.conflicts[0].minimal);
     let route = &e.conflicts[0].requirements[1];
     assert_eq!(route.field, "user.through_routes[0]");
@@ -101,7 +110,11 @@ templates = [{ name = "office", shape = "rect 2x2", exact = 4 }, { name = "hall"
     let e = explain(&p, SolverKind::default_kind().unwrap(), &opts());
     assert_eq!(
         sets(&e),
-        vec![vec![Requirement::RoomTiling, Requirement::RoomCount { template: 0 }, Requirement::RoomCount { template: 1 }]],
+        vec![vec![
+            Requirement::RoomTiling,
+            Requirement::RoomCount { template: 0 },
+            Requirement::RoomCount { template: 1 }
+        ]],
         "{e:#?}"
     );
     assert!(e.complete && e.conflicts[0].minimal);
@@ -135,28 +148,57 @@ fn every_contradiction_is_reported() {
     let e = explain(&p, SolverKind::default_kind().unwrap(), &opts());
     let mut got = sets(&e);
     got.sort();
-    let fence: Vec<Requirement> = (0..6).map(|index| Requirement::ObstacleEdge { index }).chain([Requirement::ForcedVertex { index: 0 }]).collect();
-    assert_eq!(got, vec![fence, vec![Requirement::ForcedEdge { index: 0 }, Requirement::ThroughRoute { index: 0 }]], "{e:#?}");
+    let fence: Vec<Requirement> = (0..6)
+        .map(|index| Requirement::ObstacleEdge { index })
+        .chain([Requirement::ForcedVertex { index: 0 }])
+        .collect();
+    assert_eq!(
+        got,
+        vec![fence, vec![Requirement::ForcedEdge { index: 0 }, Requirement::ThroughRoute { index: 0 }]],
+        "{e:#?}"
+    );
     assert!(e.complete && e.conflicts.iter().all(|c| c.minimal), "{e:#?}");
     // One requirement (or fence) of each conflict relaxed together repairs it.
     assert_eq!(e.repairs.len(), 4, "{:?}", e.repairs);
-    assert!(e.repairs.iter().all(|r| r.iter().any(|f| f.starts_with("user.forced_edges") || f.starts_with("user.through_routes"))));
+    assert!(e
+        .repairs
+        .iter()
+        .all(|r| r.iter().any(|f| f.starts_with("user.forced_edges") || f.starts_with("user.through_routes"))));
 
     // The command line: console, result.json, picture.
     let dir = tempfile::tempdir().unwrap();
     let spec = dir.path().join("two.toml");
     std::fs::write(&spec, TWO).unwrap();
-    let o = Command::new(env!("CARGO_BIN_EXE_netspec")).arg("solve").arg(&spec).arg("--out").arg(dir.path()).output().unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_netspec"))
+        .arg("solve")
+        .arg(&spec)
+        .arg("--out")
+        .arg(dir.path())
+        .output()
+        .unwrap();
     let stdout = String::from_utf8_lossy(&o.stdout);
     assert!(o.status.success(), "{stdout}{}", String::from_utf8_lossy(&o.stderr));
-    assert!(stdout.contains("status     infeasible") && stdout.contains("explain    2 conflicting sets of requirements ("), "{stdout}");
-    assert!(stdout.contains("- user.forced_edges[0]: forced edge 31–38") && stdout.contains("- user.forced_vertices[0]: forced vertex 16"), "{stdout}");
-    let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(dir.path().join("result.json")).unwrap()).unwrap();
+    assert!(
+        stdout.contains("status     infeasible") && stdout.contains("explain    2 conflicting sets of requirements ("),
+        "{stdout}"
+    );
+    assert!(
+        stdout.contains("- user.forced_edges[0]: forced edge 31–38")
+            && stdout.contains("- user.forced_vertices[0]: forced vertex 16"),
+        "{stdout}"
+    );
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("result.json")).unwrap()).unwrap();
     let inf = &json["infeasibility"];
     assert_eq!(inf["status"], "explained");
     assert_eq!(inf["conflicts"].as_array().unwrap().len(), 2);
     assert_eq!(json["solve"]["termination"]["reason"], "infeasible", "{}", json["solve"]);
-    let fields: Vec<&str> = inf["conflicts"].as_array().unwrap().iter().flat_map(|c| c["requirements"].as_array().unwrap().iter().map(|r| r["field"].as_str().unwrap())).collect();
+    let fields: Vec<&str> = inf["conflicts"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .flat_map(|c| c["requirements"].as_array().unwrap().iter().map(|r| r["field"].as_str().unwrap()))
+        .collect();
     assert!(fields.contains(&"user.through_routes[0]") && fields.contains(&"user.obstacle_edges[5]"), "{fields:?}");
     // The result still reads as a design result.
     let _: netspec::pipeline::DesignResult = serde_json::from_value(json.clone()).unwrap();
@@ -173,9 +215,17 @@ fn every_contradiction_is_reported() {
     assert!(svg.contains(">conflict 1<") && svg.contains(">conflict 2<"));
     assert!(dir.path().join("network.png").exists());
     // --no-explain: the plain infeasible result.
-    let o = Command::new(env!("CARGO_BIN_EXE_netspec")).arg("solve").arg(&spec).arg("--no-explain").arg("--out").arg(dir.path().join("plain")).output().unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_netspec"))
+        .arg("solve")
+        .arg(&spec)
+        .arg("--no-explain")
+        .arg("--out")
+        .arg(dir.path().join("plain"))
+        .output()
+        .unwrap();
     assert!(!String::from_utf8_lossy(&o.stdout).contains("explain"));
-    let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(dir.path().join("plain/result.json")).unwrap()).unwrap();
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("plain/result.json")).unwrap()).unwrap();
     assert!(json.get("infeasibility").is_none());
 }
 
@@ -204,7 +254,10 @@ templates = [{ name = "room", shape = "rect 2x2", max = 4 }]
     assert_eq!(reqs[0], Requirement::DeadEnds, "no coverage with rooms: {reqs:?}");
     assert_eq!(reqs[1], Requirement::Forbidden { config: ForbiddenKind::TooClose });
     assert_eq!(reqs.iter().filter(|r| matches!(r, Requirement::Wall { .. })).count(), 16);
-    assert_eq!(&reqs[reqs.len() - 3..], &[Requirement::RoomTiling, Requirement::RoomCount { template: 0 }, Requirement::LevelType]);
+    assert_eq!(
+        &reqs[reqs.len() - 3..],
+        &[Requirement::RoomTiling, Requirement::RoomCount { template: 0 }, Requirement::LevelType]
+    );
     // This level exists (a cycle through the four blocks).
     let e = explain(&p, SolverKind::default_kind().unwrap(), &opts());
     assert_eq!(e.status, ExplainStatus::Feasible, "{e:#?}");

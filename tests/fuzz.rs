@@ -20,27 +20,115 @@ fn mps_seeds() -> Vec<String> {
 }
 
 fn lp_seeds() -> Vec<String> {
-    texts(&["fixtures/lp/highs-check/1448.lp", "fixtures/lp/highs-check/fixed-binary.lp", "fixtures/lp/highs-check/issue-2388.lp"])
+    texts(&[
+        "fixtures/lp/highs-check/1448.lp",
+        "fixtures/lp/highs-check/fixed-binary.lp",
+        "fixtures/lp/highs-check/issue-2388.lp",
+    ])
 }
 
 fn spec_seeds() -> Vec<String> {
-    texts(&["models/fig2b.toml", "models/fig9b1.toml", "models/fig11a.toml", "fixtures/specs/tiny_network.toml", "fixtures/specs/tiny_floorplan.toml"])
+    texts(&[
+        "models/fig2b.toml",
+        "models/fig9b1.toml",
+        "models/fig11a.toml",
+        "fixtures/specs/tiny_network.toml",
+        "fixtures/specs/tiny_floorplan.toml",
+    ])
 }
 
 const MPS_TOKENS: &[&str] = &[
-    "NAME", "ROWS", "COLUMNS", "RHS", "RANGES", "BOUNDS", "ENDATA", "OBJSENSE", "MAX", " N  obj", " L  c", " E  e", " G  g",
-    "    MARKER                 'MARKER'                 'INTORG'", "'INTEND'", " UP BND x", " LO BND x", " FX BND", " FR BND", " MI",
-    " PL", " BV BND", " LI", " UI", " SC", "* netspec: range c 1 0", "* netspec: binary x", "$", "*",
+    "NAME",
+    "ROWS",
+    "COLUMNS",
+    "RHS",
+    "RANGES",
+    "BOUNDS",
+    "ENDATA",
+    "OBJSENSE",
+    "MAX",
+    " N  obj",
+    " L  c",
+    " E  e",
+    " G  g",
+    "    MARKER                 'MARKER'                 'INTORG'",
+    "'INTEND'",
+    " UP BND x",
+    " LO BND x",
+    " FX BND",
+    " FR BND",
+    " MI",
+    " PL",
+    " BV BND",
+    " LI",
+    " UI",
+    " SC",
+    "* netspec: range c 1 0",
+    "* netspec: binary x",
+    "$",
+    "*",
 ];
 const LP_TOKENS: &[&str] = &[
-    "Minimize", "Maximize", "Subject To", "st", "Bounds", "General", "Binary", "Semi", "SOS", "End", "obj:", "c1:", ">=", "<=", "=",
-    "+", "-", "x", "y", "free", "-inf", "+infinity", "[", "]", "^", "\\", ":", "e", "E+",
+    "Minimize",
+    "Maximize",
+    "Subject To",
+    "st",
+    "Bounds",
+    "General",
+    "Binary",
+    "Semi",
+    "SOS",
+    "End",
+    "obj:",
+    "c1:",
+    ">=",
+    "<=",
+    "=",
+    "+",
+    "-",
+    "x",
+    "y",
+    "free",
+    "-inf",
+    "+infinity",
+    "[",
+    "]",
+    "^",
+    "\\",
+    ":",
+    "e",
+    "E+",
 ];
 const SPEC_TOKENS: &[&str] = &[
-    "[mesh]", "[sinks]", "[rooms]", "[user]", "[[row]]", "=", "[", "]", "{", "}", ",", "\"", "forbid", "width", "height", "grid",
-    "spacing", "range", "templates", "shape", "\"rect 0x0\"", "\"L 9x1\"", "exact", "max_placements", "level", "\"circular\"",
+    "[mesh]",
+    "[sinks]",
+    "[rooms]",
+    "[user]",
+    "[[row]]",
+    "=",
+    "[",
+    "]",
+    "{",
+    "}",
+    ",",
+    "\"",
+    "forbid",
+    "width",
+    "height",
+    "grid",
+    "spacing",
+    "range",
+    "templates",
+    "shape",
+    "\"rect 0x0\"",
+    "\"L 9x1\"",
+    "exact",
+    "max_placements",
+    "level",
+    "\"circular\"",
 ];
-const NUMBERS: &[&str] = &["nan", "inf", "-inf", "1e400", "-1e400", "-0", "18446744073709551616", "0", "1e-400", "-1", "2"];
+const NUMBERS: &[&str] =
+    &["nan", "inf", "-inf", "1e400", "-1e400", "-0", "18446744073709551616", "0", "1e-400", "-1", "2"];
 
 /// An edit of a text.
 #[derive(Clone, Debug)]

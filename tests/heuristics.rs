@@ -33,7 +33,11 @@ fn assert_valid(p: &Problem, inputs: &Inputs, net: &Network) {
 
 /// The first design of the heuristic (no local search), within a generous bound.
 fn first_design(p: &Problem, inputs: &Inputs) -> heuristics::Outcome {
-    heuristics::heuristic(p, inputs, &Options { time_limit: 60.0, max_designs: Some(1), local_search: false, ..Options::default() })
+    heuristics::heuristic(
+        p,
+        inputs,
+        &Options { time_limit: 60.0, max_designs: Some(1), local_search: false, ..Options::default() },
+    )
 }
 
 /// The spec files under models/ small enough for the test suite (the paper-size floor plans,
@@ -82,11 +86,16 @@ fn local_search_only_improves() {
     let p = load("models/fig2a.toml");
     let inputs = Inputs::default();
     let first = first_design(&p, &inputs).objective.unwrap();
-    let out = heuristics::heuristic(&p, &inputs, &Options { time_limit: 1.0, max_designs: Some(1), ..Options::default() });
+    let out =
+        heuristics::heuristic(&p, &inputs, &Options { time_limit: 1.0, max_designs: Some(1), ..Options::default() });
     assert_valid(&p, &inputs, out.network.as_ref().unwrap());
     let best = out.objective.unwrap();
     assert!(best <= first + 1e-9, "{best} > {first}");
-    assert!(out.trace.windows(2).all(|w| w[1].objective < w[0].objective && w[1].seconds >= w[0].seconds), "{:?}", out.trace);
+    assert!(
+        out.trace.windows(2).all(|w| w[1].objective < w[0].objective && w[1].seconds >= w[0].seconds),
+        "{:?}",
+        out.trace
+    );
     assert_eq!(out.trace.last().unwrap().objective, best);
 }
 
@@ -95,7 +104,10 @@ fn plain_infeasibility_is_proven_not_searched() {
     // The first Fig. 7c level-2 reconstruction froze its sink on a walled corner: its two edges
     // are walls, and coverage needs a network, so nothing could ever reach a sink.
     let p = load("fixtures/specs/walled_corner_sink/spec.json");
-    for out in [heuristics::heuristic(&p, &Inputs::default(), &Options::default()), heuristics::anneal(&p, &Inputs::default(), &AnnealOptions::default())] {
+    for out in [
+        heuristics::heuristic(&p, &Inputs::default(), &Options::default()),
+        heuristics::anneal(&p, &Inputs::default(), &AnnealOptions::default()),
+    ] {
         assert_eq!(out.stop, Stop::Infeasible);
         assert!(out.network.is_none());
         assert!(out.infeasible.as_deref().unwrap().contains("no sink (v140)"), "{:?}", out.infeasible);
@@ -114,7 +126,8 @@ fn repair_mends_islands_dead_ends_and_forbidden_pairs() {
     bad.active[off.index()] = false;
     let island = mesh.edges().find(|&e| {
         let (a, b) = mesh.edge_vertices(e);
-        p.roles[e.index()] == netspec::spec::EdgeRole::Candidate && mesh.incident_edges(a).chain(mesh.incident_edges(b)).all(|x| !good.active[x.index()])
+        p.roles[e.index()] == netspec::spec::EdgeRole::Candidate
+            && mesh.incident_edges(a).chain(mesh.incident_edges(b)).all(|x| !good.active[x.index()])
     });
     if let Some(e) = island {
         bad.active[e.index()] = true;
@@ -180,7 +193,11 @@ fn heuristic_start_is_accepted_by_every_backend_that_takes_starts() {
             if !solver.capabilities().mip_start || kind == netspec::solvers::SolverKind::GoodLp {
                 continue;
             }
-            let options = netspec::solvers::SolveOptions { time_limit: Some(60.0), mip_start: Some(x.clone()), ..Default::default() };
+            let options = netspec::solvers::SolveOptions {
+                time_limit: Some(60.0),
+                mip_start: Some(x.clone()),
+                ..Default::default()
+            };
             let r = pipeline::solve_built(&p, &f, kind, &options).unwrap_or_else(|e| panic!("{kind} {recipe}: {e}"));
             assert!(r.validity.valid, "{kind} {recipe}: {:?}", r.validity.design_violations);
             let obj = r.objective.as_ref().unwrap().total;
@@ -193,12 +210,14 @@ fn heuristic_start_is_accepted_by_every_backend_that_takes_starts() {
 fn side_by_side_searches_keep_the_best_design_of_all_and_count_every_construction() {
     let p = problem(START_SPEC);
     // Construction only, a fixed number per search: no result depends on timing.
-    let opts = Options { time_limit: 60.0, max_constructions: Some(3), local_search: false, seed: 5, ..Options::default() };
+    let opts =
+        Options { time_limit: 60.0, max_constructions: Some(3), local_search: false, seed: 5, ..Options::default() };
     let one = heuristics::heuristic(&p, &Inputs::default(), &opts);
     let two = heuristics::heuristic(&p, &Inputs::default(), &Options { threads: 2, ..opts });
     assert_eq!(one.stats.constructions, 3);
     assert_eq!(two.stats.constructions, 6);
-    let (a, b) = (one.objective.expect("one search finds a design"), two.objective.expect("two searches find a design"));
+    let (a, b) =
+        (one.objective.expect("one search finds a design"), two.objective.expect("two searches find a design"));
     assert!(b <= a + 1e-9, "two searches ({b}) ended worse than the first alone ({a})");
     assert_valid(&p, &Inputs::default(), two.network.as_ref().unwrap());
     // The trace is the running best over both searches: strictly improving, ending at the best.
@@ -223,7 +242,13 @@ fn without_a_design_the_start_goes_on_to_its_first_design_budget_and_no_further(
     assert_eq!(first.stats.moves_tried, 0);
     assert_eq!(heuristics::start_within(&p, &Inputs::default(), 0.0, 60.0, 0, 1), Some(net));
     // The defaults: a twentieth of the limit (≤ 1 s) to improve, a fifth (≤ 60 s) to find one.
-    for (limit, budget, first) in [(Some(300.0), 1.0, 60.0), (Some(100.0), 1.0, 20.0), (Some(4.0), 0.2, 0.8), (Some(1.0), 0.05, 0.2), (None, 1.0, 60.0)] {
+    for (limit, budget, first) in [
+        (Some(300.0), 1.0, 60.0),
+        (Some(100.0), 1.0, 20.0),
+        (Some(4.0), 0.2, 0.8),
+        (Some(1.0), 0.05, 0.2),
+        (None, 1.0, 60.0),
+    ] {
         assert!((pipeline::default_start_budget(limit) - budget).abs() < 1e-12, "{limit:?}");
         assert!((pipeline::default_first_design_budget(limit) - first).abs() < 1e-12, "{limit:?}");
     }
@@ -240,10 +265,20 @@ fn a_solve_from_the_heuristic_start_never_ends_worse_than_it() {
         // No time left after the start: whatever the solver manages, the design is at least the start.
         for limit in [0.0, 30.0] {
             let options = netspec::solvers::SolveOptions { time_limit: Some(limit), ..Default::default() };
-            let r = pipeline::solve_from(&p, &f, kind, &options, &pipeline::StartFrom::Heuristic { budget: 0.3, first_design_budget: 0.3 }).unwrap_or_else(|e| panic!("{kind}: {e}"));
+            let r = pipeline::solve_from(
+                &p,
+                &f,
+                kind,
+                &options,
+                &pipeline::StartFrom::Heuristic { budget: 0.3, first_design_budget: 0.3 },
+            )
+            .unwrap_or_else(|e| panic!("{kind}: {e}"));
             let start = r.start.as_ref().unwrap_or_else(|| panic!("{kind}: no start report"));
             if !kind.instance().unwrap().capabilities().mip_start {
-                assert!(!start.accepted && start.reason.as_ref().unwrap().contains("does not accept"), "{kind}: {start:?}");
+                assert!(
+                    !start.accepted && start.reason.as_ref().unwrap().contains("does not accept"),
+                    "{kind}: {start:?}"
+                );
                 continue;
             }
             assert!(start.accepted, "{kind}: {start:?}");
@@ -252,7 +287,10 @@ fn a_solve_from_the_heuristic_start_never_ends_worse_than_it() {
             let (obj, start_obj) = (r.objective.as_ref().unwrap().total, start.objective.unwrap());
             assert!(obj <= start_obj + 1e-6, "{kind} at {limit} s: {obj} worse than the start {start_obj}");
             if start.returned {
-                assert!((obj - start_obj).abs() <= 1e-6, "{kind}: returned the start but the objective is {obj}, not {start_obj}");
+                assert!(
+                    (obj - start_obj).abs() <= 1e-6,
+                    "{kind}: returned the start but the objective is {obj}, not {start_obj}"
+                );
             }
         }
     }
@@ -265,33 +303,75 @@ fn solve_reads_a_start_from_a_result_file_and_refuses_one_of_another_spec() {
     let spec = root.join("fixtures/specs/tiny_network.toml");
     let run = |args: &[&str]| Command::new(env!("CARGO_BIN_EXE_netspec")).arg("solve").args(args).output().unwrap();
     let first = dir.path().join("first");
-    let out = run(&[spec.to_str().unwrap(), "--solver", "heuristic", "--time-limit", "0.3", "--out", first.to_str().unwrap()]);
+    let out = run(&[
+        spec.to_str().unwrap(),
+        "--solver",
+        "heuristic",
+        "--time-limit",
+        "0.3",
+        "--out",
+        first.to_str().unwrap(),
+    ]);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let result = first.join("result.json");
-    let out = run(&[spec.to_str().unwrap(), "--start", result.to_str().unwrap(), "--time-limit", "20", "--out", dir.path().join("second").to_str().unwrap()]);
+    let out = run(&[
+        spec.to_str().unwrap(),
+        "--start",
+        result.to_str().unwrap(),
+        "--time-limit",
+        "20",
+        "--out",
+        dir.path().join("second").to_str().unwrap(),
+    ]);
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(out.status.success(), "{stdout}\n{}", String::from_utf8_lossy(&out.stderr));
     assert!(stdout.contains(&format!("start      {}", result.display())) && stdout.contains("accepted"), "{stdout}");
-    let v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(dir.path().join("second/result.json")).unwrap()).unwrap();
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("second/result.json")).unwrap()).unwrap();
     assert_eq!(v["start"]["accepted"], true);
     assert!(v["objective"]["total"].as_f64().unwrap() <= v["start"]["objective"].as_f64().unwrap() + 1e-6);
     // By default the start is the heuristic's; --no-start solves without one.
     let out = run(&[spec.to_str().unwrap(), "--time-limit", "20", "--out", dir.path().join("third").to_str().unwrap()]);
     assert!(String::from_utf8_lossy(&out.stdout).contains("start      heuristic objective"));
-    let out = run(&[spec.to_str().unwrap(), "--no-start", "--time-limit", "20", "--out", dir.path().join("fourth").to_str().unwrap()]);
+    let out = run(&[
+        spec.to_str().unwrap(),
+        "--no-start",
+        "--time-limit",
+        "20",
+        "--out",
+        dir.path().join("fourth").to_str().unwrap(),
+    ]);
     assert!(!String::from_utf8_lossy(&out.stdout).contains("start      "));
     // A result of another spec (another mesh) is refused with the file named.
     let other = root.join("models/fig2b.toml");
-    let out = run(&[other.to_str().unwrap(), "--start", result.to_str().unwrap(), "--time-limit", "1", "--out", dir.path().join("fifth").to_str().unwrap()]);
+    let out = run(&[
+        other.to_str().unwrap(),
+        "--start",
+        result.to_str().unwrap(),
+        "--time-limit",
+        "1",
+        "--out",
+        dir.path().join("fifth").to_str().unwrap(),
+    ]);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(!out.status.success());
     assert!(stderr.contains(&result.display().to_string()) && stderr.contains("another spec"), "{stderr}");
     // A JSON file that is not a result says so.
     let not_a_result = dir.path().join("other.json");
     std::fs::write(&not_a_result, r#"{"x": 1}"#).unwrap();
-    let out = run(&[spec.to_str().unwrap(), "--start", not_a_result.to_str().unwrap(), "--out", dir.path().join("sixth").to_str().unwrap()]);
+    let out = run(&[
+        spec.to_str().unwrap(),
+        "--start",
+        not_a_result.to_str().unwrap(),
+        "--out",
+        dir.path().join("sixth").to_str().unwrap(),
+    ]);
     assert!(!out.status.success());
-    assert!(String::from_utf8_lossy(&out.stderr).contains("not a netspec result.json"), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        String::from_utf8_lossy(&out.stderr).contains("not a netspec result.json"),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
 }
 
 #[test]
@@ -300,13 +380,19 @@ fn a_corrupted_start_is_refused_with_the_rows_it_breaks() {
     let f = pipeline::build(&p);
     let mut start = heuristics::start(&p, &Inputs::default(), 0.5, 0).unwrap();
     // Switch off one edge of the design: its ends become dead-ends (or an island appears).
-    let e = start.active_edges().into_iter().find(|e| p.roles[e.index()] == netspec::spec::EdgeRole::Candidate).unwrap();
+    let e =
+        start.active_edges().into_iter().find(|e| p.roles[e.index()] == netspec::spec::EdgeRole::Candidate).unwrap();
     start.active[e.index()] = false;
     let (x, report) = pipeline::prepare_start(&p, &f, &start, "corrupted");
     assert!(x.is_none());
     assert!(!report.accepted);
     let reason = report.reason.unwrap();
-    assert!(reason.contains("violations of the model") || reason.contains("connectivity") || reason.contains("cannot reach"), "{reason}");
+    assert!(
+        reason.contains("violations of the model")
+            || reason.contains("connectivity")
+            || reason.contains("cannot reach"),
+        "{reason}"
+    );
 }
 
 #[test]
@@ -316,7 +402,12 @@ fn search_results_carry_the_independent_checks() {
     for method in [SearchMethod::Heuristic, SearchMethod::Anneal] {
         let r = run_search(&p, &f, method, 0.5, 1, 1);
         assert!(r.network.is_some(), "{method:?}");
-        assert!(r.validity.valid, "{method:?}: {:?} {:?}", r.validity.design_violations, r.validity.milp_check.as_ref().map(|c| &c.violations));
+        assert!(
+            r.validity.valid,
+            "{method:?}: {:?} {:?}",
+            r.validity.design_violations,
+            r.validity.milp_check.as_ref().map(|c| &c.violations)
+        );
         assert!(r.validity.milp_check.as_ref().unwrap().is_feasible());
         assert_eq!(r.validity.objective_agrees, Some(true));
         assert_eq!(r.solve.solver, method.name());
@@ -340,12 +431,18 @@ fn solve_and_compare_take_the_searches_as_solvers() {
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(out.status.success(), "{stdout}\n{}", String::from_utf8_lossy(&out.stderr));
     assert!(stdout.contains("validity   valid"), "{stdout}");
-    let v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(dir.path().join("h/result.json")).unwrap()).unwrap();
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("h/result.json")).unwrap()).unwrap();
     assert_eq!(v["solve"]["solver"], "heuristic");
     assert_eq!(v["validity"]["valid"], true);
     assert!(dir.path().join("h/network.png").exists());
     // An option a search cannot honour is refused.
-    let out = Command::new(env!("CARGO_BIN_EXE_netspec")).arg("solve").arg(&spec).args(["--solver", "anneal", "--gap", "0.1"]).output().unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_netspec"))
+        .arg("solve")
+        .arg(&spec)
+        .args(["--solver", "anneal", "--gap", "0.1"])
+        .output()
+        .unwrap();
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("`--gap` is not supported by the anneal search"));
     // compare lists them beside a MILP backend.
@@ -358,7 +455,8 @@ fn solve_and_compare_take_the_searches_as_solvers() {
         .output()
         .unwrap();
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    let records: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(cmp.join("results.json")).unwrap()).unwrap();
+    let records: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(cmp.join("results.json")).unwrap()).unwrap();
     let runs = records["records"].as_array().unwrap();
     assert_eq!(runs.len(), 3);
     for r in runs {

@@ -47,7 +47,13 @@ fn solve_all(p: &Problem, small: bool) -> Snapshot {
         let o = SolveOptions { time_limit: Some(60.0), ..Default::default() };
         let r = pipeline::solve_built(p, &nm, k, &o).unwrap_or_else(|e| panic!("{}: {e}", p.spec.name));
         assert_eq!(r.solve.termination, Termination::Optimal, "{k} on {}", p.spec.name);
-        assert!(r.validity.valid, "{k} on {}: {:?} {:?}", p.spec.name, r.validity.design_violations, r.validity.milp_check.as_ref().map(|c| &c.violations));
+        assert!(
+            r.validity.valid,
+            "{k} on {}: {:?} {:?}",
+            p.spec.name,
+            r.validity.design_violations,
+            r.validity.milp_check.as_ref().map(|c| &c.violations)
+        );
         objs.push((k, r.solve.objective.unwrap()));
         first.get_or_insert(r);
     }
@@ -60,16 +66,25 @@ fn solve_all(p: &Problem, small: bool) -> Snapshot {
     let expected = objs[0].1;
     for recipe in RecipeName::ALL {
         let f = formulations::build_with(p, &formulations::Recipe::named(recipe));
-        let kinds: &[SolverKind] = if recipe == RecipeName::Strong { &[SolverKind::Highs, SolverKind::Scip] } else { &[SolverKind::Highs] };
+        let kinds: &[SolverKind] =
+            if recipe == RecipeName::Strong { &[SolverKind::Highs, SolverKind::Scip] } else { &[SolverKind::Highs] };
         for &k in kinds.iter().filter(|k| k.is_compiled()) {
             let o = SolveOptions { time_limit: Some(60.0), ..Default::default() };
             let r = pipeline::solve_built(p, &f, k, &o).unwrap_or_else(|e| panic!("{recipe} {k}: {e}"));
             assert_eq!(r.solve.termination, Termination::Optimal, "{recipe} {k} on {}", p.spec.name);
             assert!(r.validity.valid, "{recipe} {k} on {}: {:?}", p.spec.name, r.validity);
             let got = r.solve.objective.unwrap();
-            assert!(objectives_agree(got, expected, 1e-6), "{}: {recipe} on {k} gives {got}, expected {expected}", p.spec.name);
+            assert!(
+                objectives_agree(got, expected, 1e-6),
+                "{}: {recipe} on {k} gives {got}, expected {expected}",
+                p.spec.name
+            );
             let design = r.objective.as_ref().unwrap().total;
-            assert!(objectives_agree(design, expected, 1e-6), "{}: {recipe} on {k}: design objective {design}, solver {expected}", p.spec.name);
+            assert!(
+                objectives_agree(design, expected, 1e-6),
+                "{}: {recipe} on {k}: design objective {design}, solver {expected}",
+                p.spec.name
+            );
         }
     }
     let r = first.unwrap();
@@ -347,7 +362,10 @@ fn edges_between(p: &Problem, pairs: &[(u32, u32)]) -> Vec<EdgeId> {
 
 /// A 4×4 grid (vertex id = 5·row + col) with a wall boundary and all boundary vertices sinks.
 fn grid4() -> Problem {
-    problem(&spec("hand", &format!("boundary = \"wall\"\n{BASE}\n[coverage]\nrange = 1\n[features]\nbranches = \"forbid\"")))
+    problem(&spec(
+        "hand",
+        &format!("boundary = \"wall\"\n{BASE}\n[coverage]\nrange = 1\n[features]\nbranches = \"forbid\""),
+    ))
 }
 
 #[test]
@@ -418,13 +436,19 @@ fn strong_export_is_complete() {
         let dir = tempfile::tempdir().unwrap();
         for ext in ["lp", "mps"] {
             let path = dir.path().join(format!("m.{ext}"));
-            netspec::io::write_model_file_with_comments(&compact.model, &path, &["cutsets written as a flow".into()]).unwrap();
+            netspec::io::write_model_file_with_comments(&compact.model, &path, &["cutsets written as a flow".into()])
+                .unwrap();
             let text = std::fs::read_to_string(&path).unwrap();
             assert!(text.contains("cutsets written as a flow"), "{ext}: header comment");
             let back = netspec::io::read_model_file(&path).unwrap().model;
             let r = SolverKind::Highs.instance().unwrap().solve(&back, &SolveOptions::default()).unwrap();
             assert_eq!(r.termination, Termination::Optimal);
-            assert!(objectives_agree(r.objective.unwrap(), lazy.solve.objective.unwrap(), 1e-6), "{name} {ext}: {:?} vs {:?}", r.objective, lazy.solve.objective);
+            assert!(
+                objectives_agree(r.objective.unwrap(), lazy.solve.objective.unwrap(), 1e-6),
+                "{name} {ext}: {:?} vs {:?}",
+                r.objective,
+                lazy.solve.objective
+            );
         }
     }
 }
@@ -442,7 +466,11 @@ impl Solver for FromScratch<'_> {
     fn capabilities(&self) -> netspec::solvers::Capabilities {
         self.0.capabilities()
     }
-    fn solve(&self, model: &netspec::milp::Model, options: &SolveOptions) -> Result<netspec::solvers::SolveResult, netspec::solvers::SolverError> {
+    fn solve(
+        &self,
+        model: &netspec::milp::Model,
+        options: &SolveOptions,
+    ) -> Result<netspec::solvers::SolveResult, netspec::solvers::SolverError> {
         self.0.solve(model, options)
     }
 }
@@ -463,7 +491,10 @@ fn cover_cutsets_raise_the_root_bound_and_keep_the_optimum() {
         for (i, a) in g.groups.iter().enumerate() {
             assert!(a.nodes.iter().all(|&k| k > 0 && (k as usize) < g.nodes), "group {i} holds the root");
             for (j, b) in g.groups.iter().enumerate() {
-                assert!(i == j || !a.nodes.iter().all(|k| b.nodes.contains(k)), "group {i} ⊆ group {j}: {j} is not minimal");
+                assert!(
+                    i == j || !a.nodes.iter().all(|k| b.nodes.contains(k)),
+                    "group {i} ⊆ group {j}: {j} is not minimal"
+                );
             }
         }
         let directed = p.w_distance > 0.0;
@@ -471,7 +502,10 @@ fn cover_cutsets_raise_the_root_bound_and_keep_the_optimum() {
         let arcs = g.arcs.as_ref().expect("the strong recipe's cutsets are directed");
         let kinds: Vec<&[Option<netspec::milp::VarId>]> = vec![&f.vars.half_edge, &f.vars.parent];
         let owner = if directed { kinds[0] } else { kinds[1] };
-        assert!(arcs.iter().flat_map(|&(a, b)| [a, b]).flatten().all(|a| owner.contains(&Some(a))), "{weights}: arcs of the wrong kind");
+        assert!(
+            arcs.iter().flat_map(|&(a, b)| [a, b]).flatten().all(|a| owner.contains(&Some(a))),
+            "{weights}: arcs of the wrong kind"
+        );
         let highs = SolverKind::Highs.instance().unwrap();
         let o = SolveOptions { threads: Some(1), ..SolveOptions::default() };
         let bound = |graph: formulations::CutsetGraph| {
@@ -483,25 +517,50 @@ fn cover_cutsets_raise_the_root_bound_and_keep_the_optimum() {
         // each time they reach the same bound here (both run until no row is violated).
         let scratch = {
             let mut sep = formulations::CutsetSeparator::new(g.clone());
-            netspec::solvers::lazy::lp_bound(&FromScratch(highs.as_ref()), &f.model, Some(&mut sep), &o).unwrap().with_cuts.unwrap()
+            netspec::solvers::lazy::lp_bound(&FromScratch(highs.as_ref()), &f.model, Some(&mut sep), &o)
+                .unwrap()
+                .with_cuts
+                .unwrap()
         };
-        assert!(objectives_agree(with_groups, scratch, 1e-6), "{weights}: root bound {with_groups} kept loaded, {scratch} from scratch");
+        assert!(
+            objectives_agree(with_groups, scratch, 1e-6),
+            "{weights}: root bound {with_groups} kept loaded, {scratch} from scratch"
+        );
         let undirected = bound(formulations::CutsetGraph { arcs: None, ..g.clone() });
         let cutsets_only = bound(formulations::CutsetGraph { groups: Vec::new(), arcs: None, ..g.clone() });
-        assert!(undirected > cutsets_only + 0.1, "{weights}: root bound {undirected} with cover cutsets, {cutsets_only} without");
+        assert!(
+            undirected > cutsets_only + 0.1,
+            "{weights}: root bound {undirected} with cover cutsets, {cutsets_only} without"
+        );
         let strong = pipeline::solve_built(&p, &f, SolverKind::Highs, &SolveOptions::default()).unwrap();
-        let paper = pipeline::solve_built(&p, &formulations::build_with(&p, &formulations::Recipe::named(RecipeName::Paper)), SolverKind::Highs, &SolveOptions::default()).unwrap();
+        let paper = pipeline::solve_built(
+            &p,
+            &formulations::build_with(&p, &formulations::Recipe::named(RecipeName::Paper)),
+            SolverKind::Highs,
+            &SolveOptions::default(),
+        )
+        .unwrap();
         for r in [&strong, &paper] {
             assert_eq!(r.solve.termination, Termination::Optimal, "{weights}");
             assert!(r.validity.valid, "{weights}: {:?}", r.validity);
         }
         let optimum = paper.solve.objective.unwrap();
-        assert!(objectives_agree(strong.solve.objective.unwrap(), optimum, 1e-6), "{weights}: strong {:?}, paper {optimum}", strong.solve.objective);
+        assert!(
+            objectives_agree(strong.solve.objective.unwrap(), optimum, 1e-6),
+            "{weights}: strong {:?}, paper {optimum}",
+            strong.solve.objective
+        );
         if directed {
             assert!(with_groups > undirected + 0.1, "{weights}: directed {with_groups}, undirected {undirected}");
-            assert!(objectives_agree(with_groups, optimum, 1e-6), "{weights}: the directed cover cutsets close the root gap: {with_groups} against {optimum}");
+            assert!(
+                objectives_agree(with_groups, optimum, 1e-6),
+                "{weights}: the directed cover cutsets close the root gap: {with_groups} against {optimum}"
+            );
         } else {
-            assert!(with_groups >= undirected - 1e-6, "{weights}: parent-arc cutsets {with_groups}, undirected {undirected}");
+            assert!(
+                with_groups >= undirected - 1e-6,
+                "{weights}: parent-arc cutsets {with_groups}, undirected {undirected}"
+            );
             assert!(with_groups <= optimum + 1e-6, "{weights}: bound {with_groups} above the optimum {optimum}");
         }
     }
@@ -515,25 +574,44 @@ fn cover_cutsets_raise_the_root_bound_and_keep_the_optimum() {
 fn directed_cutsets_on_parent_arcs_raise_the_root_bound_and_keep_the_optimum() {
     let highs = SolverKind::Highs.instance().unwrap();
     let one_thread = SolveOptions { threads: Some(1), ..SolveOptions::default() };
-    for (dead_ends, optimum, undirected_root, directed_root) in [("allow", 10.0, 8.0, 10.0), ("forbid", 12.0, 10.542373, 11.235294)] {
+    for (dead_ends, optimum, undirected_root, directed_root) in
+        [("allow", 10.0, 8.0, 10.0), ("forbid", 12.0, 10.542373, 11.235294)]
+    {
         let p = problem(&spec("directed", &format!("boundary = \"candidate\"\nformulation = \"strong\"\n[mesh]\ngrid = {{ width = 5, height = 5 }}\n[sinks]\nvertices = [0]\n[coverage]\nrange = 2\n[weights]\nlength = 1\n[features]\ndead_ends = \"{dead_ends}\"\n")));
         let directed = pipeline::build(&p);
         assert!(directed.recipe.directed_cutsets);
-        let undirected = formulations::build_with(&p, &formulations::Recipe { directed_cutsets: false, ..directed.recipe.clone() });
+        let undirected =
+            formulations::build_with(&p, &formulations::Recipe { directed_cutsets: false, ..directed.recipe.clone() });
         let arcs = directed.cutsets.as_ref().and_then(|g| g.arcs.as_ref()).expect("parent arcs in the cutset graph");
         assert!(arcs.iter().flat_map(|&(a, b)| [a, b]).flatten().all(|a| directed.vars.parent.contains(&Some(a))));
         assert!(undirected.cutsets.as_ref().is_some_and(|g| g.arcs.is_none()));
         let root = |f: &formulations::Formulation| {
             let mut sep = formulations::CutsetSeparator::new(f.cutsets.clone().unwrap());
-            netspec::solvers::lazy::lp_bound(highs.as_ref(), &f.model, Some(&mut sep), &one_thread).unwrap().with_cuts.unwrap()
+            netspec::solvers::lazy::lp_bound(highs.as_ref(), &f.model, Some(&mut sep), &one_thread)
+                .unwrap()
+                .with_cuts
+                .unwrap()
         };
         let (b_directed, b_undirected) = (root(&directed), root(&undirected));
-        assert!(objectives_agree(b_directed, directed_root, 1e-5) && objectives_agree(b_undirected, undirected_root, 1e-5), "{dead_ends}: root {b_directed} directed, {b_undirected} undirected");
-        for (f, kind) in [(&directed, SolverKind::Highs), (&undirected, SolverKind::Highs), (&directed, SolverKind::Microlp), (&undirected, SolverKind::Microlp)] {
+        assert!(
+            objectives_agree(b_directed, directed_root, 1e-5) && objectives_agree(b_undirected, undirected_root, 1e-5),
+            "{dead_ends}: root {b_directed} directed, {b_undirected} undirected"
+        );
+        for (f, kind) in [
+            (&directed, SolverKind::Highs),
+            (&undirected, SolverKind::Highs),
+            (&directed, SolverKind::Microlp),
+            (&undirected, SolverKind::Microlp),
+        ] {
             let r = pipeline::solve_built(&p, f, kind, &one_thread).unwrap();
             assert_eq!(r.solve.termination, Termination::Optimal, "{kind}, {}, dead-ends {dead_ends}", f.recipe.label);
             assert!(r.validity.valid, "{:?}", r.validity);
-            assert!(objectives_agree(r.solve.objective.unwrap(), optimum, 1e-9), "{kind}, {}, dead-ends {dead_ends}: {:?}", f.recipe.label, r.solve.objective);
+            assert!(
+                objectives_agree(r.solve.objective.unwrap(), optimum, 1e-9),
+                "{kind}, {}, dead-ends {dead_ends}: {:?}",
+                f.recipe.label,
+                r.solve.objective
+            );
         }
     }
 }
@@ -546,24 +624,45 @@ fn directed_cutsets_on_parent_arcs_raise_the_root_bound_and_keep_the_optimum() {
 /// design with the same objective, recomputed from the network alone.
 #[test]
 fn symmetric_grids_leave_connectivity_to_the_distance_flow_and_keep_the_optimum() {
-    let text = |sinks: &str| spec("sym", &format!("boundary = \"wall\"\nformulation = \"strong\"\n[mesh]\ngrid = {{ width = 6, height = 6 }}\n[sinks]\n{sinks}\n[coverage]\nrange = 1\n[weights]\nlength = 0\ndistance = 1\nzigzag = 5\ntoo_close = \"forbid\"\n[features]\ndead_ends = \"forbid\"\n"));
+    let text = |sinks: &str| {
+        spec("sym", &format!("boundary = \"wall\"\nformulation = \"strong\"\n[mesh]\ngrid = {{ width = 6, height = 6 }}\n[sinks]\n{sinks}\n[coverage]\nrange = 1\n[weights]\nlength = 0\ndistance = 1\nzigzag = 5\ntoo_close = \"forbid\"\n[features]\ndead_ends = \"forbid\"\n"))
+    };
     let corner = pipeline::build(&problem(&text("vertices = [0]")));
     assert_eq!(corner.symmetry_order, None);
     assert!(corner.cutsets.is_some());
     let p = problem(&text("all_boundary = true"));
     let symmetric = pipeline::build(&p);
     assert_eq!(symmetric.symmetry_order, Some(8));
-    assert!(symmetric.cutsets.is_none() && symmetric.vars.connect_flow.iter().all(Option::is_none) && symmetric.is_complete());
-    let presolve_off = |f: &formulations::Formulation, kind| f.solver_hints(kind, Some(1)).iter().any(|h| h.name == "presolve" && h.value == "off");
+    assert!(
+        symmetric.cutsets.is_none()
+            && symmetric.vars.connect_flow.iter().all(Option::is_none)
+            && symmetric.is_complete()
+    );
+    let presolve_off = |f: &formulations::Formulation, kind| {
+        f.solver_hints(kind, Some(1)).iter().any(|h| h.name == "presolve" && h.value == "off")
+    };
     assert!(presolve_off(&symmetric, SolverKind::Highs) && !presolve_off(&symmetric, SolverKind::Microlp));
-    let cutsets = formulations::build_with(&p, &formulations::Recipe { symmetric_flow: false, ..symmetric.recipe.clone() });
-    assert!(cutsets.symmetry_order.is_none() && cutsets.cutsets.is_some() && !presolve_off(&cutsets, SolverKind::Highs));
+    let cutsets =
+        formulations::build_with(&p, &formulations::Recipe { symmetric_flow: false, ..symmetric.recipe.clone() });
+    assert!(
+        cutsets.symmetry_order.is_none() && cutsets.cutsets.is_some() && !presolve_off(&cutsets, SolverKind::Highs)
+    );
     let one_thread = SolveOptions { threads: Some(1), ..SolveOptions::default() };
-    for (f, kind) in [(&symmetric, SolverKind::Highs), (&cutsets, SolverKind::Highs), (&symmetric, SolverKind::Microlp), (&cutsets, SolverKind::Microlp)] {
+    for (f, kind) in [
+        (&symmetric, SolverKind::Highs),
+        (&cutsets, SolverKind::Highs),
+        (&symmetric, SolverKind::Microlp),
+        (&cutsets, SolverKind::Microlp),
+    ] {
         let r = pipeline::solve_built(&p, f, kind, &one_thread).unwrap();
         assert_eq!(r.solve.termination, Termination::Optimal, "{kind}, {}", f.recipe.label);
         assert!(r.validity.valid, "{:?}", r.validity);
-        assert!(objectives_agree(r.solve.objective.unwrap(), 8.0, 1e-9), "{kind}, {}: {:?}", f.recipe.label, r.solve.objective);
+        assert!(
+            objectives_agree(r.solve.objective.unwrap(), 8.0, 1e-9),
+            "{kind}, {}: {:?}",
+            f.recipe.label,
+            r.solve.objective
+        );
         if kind == SolverKind::Highs && f.symmetry_order.is_some() {
             assert!(r.solver_hints.iter().any(|h| h == "highs.presolve=off"), "{:?}", r.solver_hints);
         }
@@ -571,8 +670,14 @@ fn symmetric_grids_leave_connectivity_to_the_distance_flow_and_keep_the_optimum(
         let symmetries = netspec::spec::symmetries(&p);
         assert_eq!(symmetries.len(), 7);
         for s in &symmetries {
-            let image = Network::from_edges(&p, &net.active_edges().iter().map(|e| s.edge[e.index()]).collect::<Vec<_>>());
-            assert!(design::validate(&p, &image, None).is_empty(), "{:?}: {:?}", s.matrix, design::validate(&p, &image, None));
+            let image =
+                Network::from_edges(&p, &net.active_edges().iter().map(|e| s.edge[e.index()]).collect::<Vec<_>>());
+            assert!(
+                design::validate(&p, &image, None).is_empty(),
+                "{:?}: {:?}",
+                s.matrix,
+                design::validate(&p, &image, None)
+            );
             assert!(objectives_agree(design::Objective::of(&p, &image).total, 8.0, 1e-9), "{:?}", s.matrix);
         }
     }
@@ -592,20 +697,33 @@ fn selected_paths_tighten_the_relaxation_and_keep_the_optimum() {
     let tight = formulations::build_with(&p, &formulations::Recipe { paths: PathForm::Tight, ..select.recipe.clone() });
     let highs = SolverKind::Highs.instance().unwrap();
     let o = SolveOptions { threads: Some(1), ..SolveOptions::default() };
-    let plain = |f: &formulations::Formulation| netspec::solvers::lazy::lp_bound(highs.as_ref(), &f.model, None, &o).unwrap().plain.unwrap();
+    let plain = |f: &formulations::Formulation| {
+        netspec::solvers::lazy::lp_bound(highs.as_ref(), &f.model, None, &o).unwrap().plain.unwrap()
+    };
     let (b_select, b_tight) = (plain(&select), plain(&tight));
     assert!(b_select > b_tight + 0.5, "LP bound: select {b_select}, tight {b_tight}");
-    let solve = |f: &formulations::Formulation| pipeline::solve_built(&p, f, SolverKind::Highs, &SolveOptions::default()).unwrap();
+    let solve = |f: &formulations::Formulation| {
+        pipeline::solve_built(&p, f, SolverKind::Highs, &SolveOptions::default()).unwrap()
+    };
     let (rs, rt) = (solve(&select), solve(&tight));
     for r in [&rs, &rt] {
         assert_eq!(r.solve.termination, Termination::Optimal);
         assert!(r.validity.valid, "{:?}", r.validity);
     }
     let optimum = rt.solve.objective.unwrap();
-    assert!(objectives_agree(rs.solve.objective.unwrap(), optimum, 1e-6), "select {:?}, tight {optimum}", rs.solve.objective);
+    assert!(
+        objectives_agree(rs.solve.objective.unwrap(), optimum, 1e-6),
+        "select {:?}, tight {optimum}",
+        rs.solve.objective
+    );
     assert!(b_select <= optimum + 1e-6, "bound {b_select} above the optimum {optimum}");
     // Every usable edge on: every enumerated path is whole.
-    let all = Network { active: p.roles.iter().map(|r| *r != EdgeRole::Excluded).collect(), directions: Vec::new(), labels: Vec::new(), rooms: Vec::new() };
+    let all = Network {
+        active: p.roles.iter().map(|r| *r != EdgeRole::Excluded).collect(),
+        directions: Vec::new(),
+        labels: Vec::new(),
+        rooms: Vec::new(),
+    };
     for f in [&select, &tight] {
         let (x, report) = pipeline::prepare_start(&p, f, &all, "every edge");
         assert!(report.accepted, "{}: {:?}", f.recipe.label, report.reason);
@@ -632,18 +750,28 @@ fn out_arcs_tighten_the_relaxation_and_keep_the_optimum() {
     };
     let highs = SolverKind::Highs.instance().unwrap();
     let one_thread = SolveOptions { threads: Some(1), ..SolveOptions::default() };
-    let plain = |f: &formulations::Formulation| netspec::solvers::lazy::lp_bound(highs.as_ref(), &f.model, None, &one_thread).unwrap().plain.unwrap();
+    let plain = |f: &formulations::Formulation| {
+        netspec::solvers::lazy::lp_bound(highs.as_ref(), &f.model, None, &one_thread).unwrap().plain.unwrap()
+    };
     for (distance, dead_ends) in [(0.0, "allow"), (1.0, "allow"), (0.0, "forbid")] {
         let p = problem(&spec("out-arcs", &text(distance, dead_ends)));
         let with = pipeline::build(&p);
         assert!(with.recipe.out_arcs);
-        let without = formulations::build_with(&p, &formulations::Recipe { out_arcs: false, directed_cutsets: false, ..with.recipe.clone() });
-        let undirected = formulations::build_with(&p, &formulations::Recipe { directed_cutsets: false, ..with.recipe.clone() });
+        let without = formulations::build_with(
+            &p,
+            &formulations::Recipe { out_arcs: false, directed_cutsets: false, ..with.recipe.clone() },
+        );
+        let undirected =
+            formulations::build_with(&p, &formulations::Recipe { directed_cutsets: false, ..with.recipe.clone() });
         let family = with.families.get("out-arcs (§8)");
         let parents = with.vars.parent.iter().flatten().count();
         // Parent arcs with the directed cutsets are a forest's: one out of each active vertex.
-        let out_rows: Vec<(f64, f64)> = with.model.rows().filter(|r| r.name.starts_with("out_")).map(|r| (r.lhs, r.rhs)).collect();
-        assert!(!out_rows.is_empty() && out_rows.iter().all(|&(lo, hi)| lo == 0.0 && (hi == 0.0) == (distance == 0.0)), "{out_rows:?}");
+        let out_rows: Vec<(f64, f64)> =
+            with.model.rows().filter(|r| r.name.starts_with("out_")).map(|r| (r.lhs, r.rhs)).collect();
+        assert!(
+            !out_rows.is_empty() && out_rows.iter().all(|&(lo, hi)| lo == 0.0 && (hi == 0.0) == (distance == 0.0)),
+            "{out_rows:?}"
+        );
         match (distance > 0.0, dead_ends) {
             (false, "allow") => {
                 assert!(family.is_some_and(|f| f.vars == parents && parents > 0 && f.rows > 0), "{family:?}");
@@ -653,7 +781,10 @@ fn out_arcs_tighten_the_relaxation_and_keep_the_optimum() {
             (true, _) => assert!(family.is_some_and(|f| f.vars == 0 && f.rows > 0) && parents == 0, "{family:?}"),
             _ => {
                 assert!(family.is_some_and(|f| f.vars == parents && parents > 0 && f.rows > 0), "{family:?}");
-                assert!(undirected.families.get("out-arcs (§8)").is_none() && undirected.vars.parent.iter().all(Option::is_none));
+                assert!(
+                    undirected.families.get("out-arcs (§8)").is_none()
+                        && undirected.vars.parent.iter().all(Option::is_none)
+                );
             }
         }
         assert!(without.families.get("out-arcs (§8)").is_none());
@@ -664,7 +795,10 @@ fn out_arcs_tighten_the_relaxation_and_keep_the_optimum() {
             assert!(r.validity.valid, "{:?}", r.validity);
             optima.push(r.solve.objective.unwrap());
         }
-        assert!(optima.iter().all(|&o| objectives_agree(o, optima[0], 1e-9)), "distance {distance}, dead-ends {dead_ends}: {optima:?}");
+        assert!(
+            optima.iter().all(|&o| objectives_agree(o, optima[0], 1e-9)),
+            "distance {distance}, dead-ends {dead_ends}: {optima:?}"
+        );
         if distance == 0.0 && dead_ends == "allow" {
             assert!(objectives_agree(optima[0], 8.0, 1e-9), "{optima:?}");
         }
@@ -676,7 +810,10 @@ fn out_arcs_tighten_the_relaxation_and_keep_the_optimum() {
 /// refused with a reason.
 #[test]
 fn designs_encode_as_checked_starts() {
-    let p = problem(&spec("start", &format!("boundary = \"wall\"\n{BASE}\n[weights]\nlength = 1\ndistance = 0.25\nzigzag = 1\n")));
+    let p = problem(&spec(
+        "start",
+        &format!("boundary = \"wall\"\n{BASE}\n[weights]\nlength = 1\ndistance = 0.25\nzigzag = 1\n"),
+    ));
     let r = pipeline::solve_built(&p, &pipeline::build(&p), SolverKind::Highs, &SolveOptions::default()).unwrap();
     let net = r.network.clone().unwrap();
     for recipe in RecipeName::ALL {
@@ -684,7 +821,10 @@ fn designs_encode_as_checked_starts() {
         let (x, report) = pipeline::prepare_start(&p, &f, &net, "test");
         assert!(report.accepted, "{recipe}: {:?}", report.reason);
         let x = x.unwrap();
-        assert!(objectives_agree(f.model.objective_value(&x), r.solve.objective.unwrap(), 1e-9), "{recipe}: start objective");
+        assert!(
+            objectives_agree(f.model.objective_value(&x), r.solve.objective.unwrap(), 1e-9),
+            "{recipe}: start objective"
+        );
         // Handed to a solver with a limit of zero nodes' work, the start comes back as the
         // incumbent at worst.
         let o = SolveOptions { mip_start: Some(x), ..Default::default() };
@@ -699,7 +839,14 @@ fn designs_encode_as_checked_starts() {
     let f = pipeline::build(&p);
     let (x, report) = pipeline::prepare_start(&p, &f, &broken, "broken");
     assert!(x.is_none() && !report.accepted);
-    assert!(report.reason.as_deref().is_some_and(|r| r.contains("violations") || r.contains("connectivity") || r.contains("reach")), "{:?}", report.reason);
+    assert!(
+        report
+            .reason
+            .as_deref()
+            .is_some_and(|r| r.contains("violations") || r.contains("connectivity") || r.contains("reach")),
+        "{:?}",
+        report.reason
+    );
 }
 
 /// The quick infeasibility case: one corner sink behind a wall on a 4×4 grid. The
@@ -783,7 +930,9 @@ fn validator_guard() {
         for recipe in [RecipeName::Paper, RecipeName::Strong] {
             let f = formulations::build_with(&p, &formulations::Recipe::named(recipe));
             for k in [SolverKind::Highs, SolverKind::Scip].into_iter().filter(|k| k.is_compiled()) {
-                let r = pipeline::solve_built(&p, &f, k, &SolveOptions { time_limit: Some(60.0), ..Default::default() }).unwrap();
+                let r =
+                    pipeline::solve_built(&p, &f, k, &SolveOptions { time_limit: Some(60.0), ..Default::default() })
+                        .unwrap();
                 assert_eq!(r.solve.termination, Termination::Optimal, "{names:?} {recipe} {k}");
                 assert!(r.validity.valid, "{names:?} {recipe} {k}: {:?}", r.validity);
             }
@@ -805,14 +954,39 @@ fn continuous_indicators_are_exact_and_write_one_row_each() {
         let p = problem(&spec("indicators", &text(continuous)));
         let f = pipeline::build(&p);
         assert_eq!(f.recipe.continuous_indicators, continuous);
-        let indicators: Vec<_> = f.model.vars().iter().enumerate().filter(|(_, v)| v.name.starts_with("Z0_") || v.name.starts_with("Z1_") || v.name.starts_with("T_")).collect();
-        assert!(indicators.iter().any(|(_, v)| v.name.starts_with("Z0_")) && indicators.iter().any(|(_, v)| v.name.starts_with("Z1_")) && indicators.iter().any(|(_, v)| v.name.starts_with("T_")), "every kind of indicator");
+        let indicators: Vec<_> = f
+            .model
+            .vars()
+            .iter()
+            .enumerate()
+            .filter(|(_, v)| v.name.starts_with("Z0_") || v.name.starts_with("Z1_") || v.name.starts_with("T_"))
+            .collect();
+        assert!(
+            indicators.iter().any(|(_, v)| v.name.starts_with("Z0_"))
+                && indicators.iter().any(|(_, v)| v.name.starts_with("Z1_"))
+                && indicators.iter().any(|(_, v)| v.name.starts_with("T_")),
+            "every kind of indicator"
+        );
         for (_, v) in &indicators {
             assert_eq!(v.kind == netspec::milp::VarKind::Continuous, continuous, "{}", v.name);
         }
-        let ranged = f.model.rows().filter(|r| (r.name.starts_with("zz_") || r.name.starts_with("close_") || r.name.starts_with("tj_")) && r.lhs.is_finite() && r.rhs.is_finite()).count();
+        let ranged = f
+            .model
+            .rows()
+            .filter(|r| {
+                (r.name.starts_with("zz_") || r.name.starts_with("close_") || r.name.starts_with("tj_"))
+                    && r.lhs.is_finite()
+                    && r.rhs.is_finite()
+            })
+            .count();
         assert_eq!(ranged == 0, continuous, "two-sided rows only for binary indicators");
-        let r = pipeline::solve_built(&p, &f, SolverKind::Highs, &SolveOptions { threads: Some(1), ..SolveOptions::default() }).unwrap();
+        let r = pipeline::solve_built(
+            &p,
+            &f,
+            SolverKind::Highs,
+            &SolveOptions { threads: Some(1), ..SolveOptions::default() },
+        )
+        .unwrap();
         assert_eq!(r.solve.termination, Termination::Optimal);
         assert!(r.validity.valid, "{:?}", r.validity);
         let x = r.primal_point.as_ref().expect("a point");
@@ -844,7 +1018,11 @@ fn objective_lattice_rounds_the_bound_and_keeps_the_optimum() {
     for (kind, lattice) in [(SolverKind::Highs, true), (SolverKind::Highs, false), (SolverKind::Microlp, true)] {
         let p = problem(&spec("lattice", &text("strong", lattice, 1.0)));
         let f = pipeline::build(&p);
-        assert_eq!(f.objective_lattice.map(|l| (l.step, l.offset)), Some((1.0, 0.0)), "a formulation property, used or not");
+        assert_eq!(
+            f.objective_lattice.map(|l| (l.step, l.offset)),
+            Some((1.0, 0.0)),
+            "a formulation property, used or not"
+        );
         let r = pipeline::solve_built(&p, &f, kind, &one_thread).unwrap();
         assert_eq!(r.solve.termination, Termination::Optimal, "{kind}");
         assert!(r.validity.valid, "{:?}", r.validity);
@@ -861,7 +1039,8 @@ fn objective_lattice_rounds_the_bound_and_keeps_the_optimum() {
     }
     assert!(optima.iter().all(|&o| objectives_agree(o, 41.0, 1e-9)), "{optima:?}");
 
-    let paper = |distance| pipeline::build(&problem(&spec("lattice", &text("paper", false, distance)))).objective_lattice;
+    let paper =
+        |distance| pipeline::build(&problem(&spec("lattice", &text("paper", false, distance)))).objective_lattice;
     assert_eq!(paper(1.0), None, "labels hold the distance term");
     assert_eq!(paper(0.0).map(|l| l.step), Some(1.0));
 }

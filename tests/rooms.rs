@@ -22,7 +22,8 @@ fn assert_all_optimal(p: &Problem, expected: f64) -> netspec::pipeline::DesignRe
     let nm = pipeline::build(p);
     let mut last = None;
     for k in backends() {
-        let r = pipeline::solve_built(p, &nm, k, &SolveOptions { time_limit: Some(60.0), ..Default::default() }).unwrap();
+        let r =
+            pipeline::solve_built(p, &nm, k, &SolveOptions { time_limit: Some(60.0), ..Default::default() }).unwrap();
         assert_eq!(r.solve.termination, Termination::Optimal, "{k} on {}", p.spec.name);
         assert!(r.validity.valid, "{k} on {}: {:?}", p.spec.name, r.validity.design_violations);
         let obj = r.solve.objective.unwrap();
@@ -160,11 +161,14 @@ fn validator_item_6_on_hand_built_violations() {
     let p = problem(FLOORPLAN_4X4);
     let nm = pipeline::build(&p);
     let pls = &nm.placements.as_ref().unwrap().placements;
-    let find = |faces: &[u32]| pls.iter().position(|pl| pl.faces.iter().map(|f| f.0).collect::<Vec<_>>() == faces).unwrap();
+    let find =
+        |faces: &[u32]| pls.iter().position(|pl| pl.faces.iter().map(|f| f.0).collect::<Vec<_>>() == faces).unwrap();
     // Faces are numbered row by row (4 per row).
     let (a, b, c, d) = (find(&[0, 1, 4, 5]), find(&[2, 3, 6, 7]), find(&[8, 9, 12, 13]), find(&[10, 11, 14, 15]));
     let overlap = find(&[1, 2, 5, 6]);
-    let edge = |u: u32, v: u32| p.mesh.he_edge(p.mesh.half_edge_between(netspec::mesh::VertexId(u), netspec::mesh::VertexId(v)).unwrap());
+    let edge = |u: u32, v: u32| {
+        p.mesh.he_edge(p.mesh.half_edge_between(netspec::mesh::VertexId(u), netspec::mesh::VertexId(v)).unwrap())
+    };
     // A corridor up the middle (vertices 2-7-12-17, grid vertex id = 5·row + col).
     let corridor = [edge(2, 7), edge(7, 12), edge(12, 17)];
     let mut net = Network::from_edges(&p, &corridor);
@@ -177,13 +181,21 @@ fn validator_item_6_on_hand_built_violations() {
     assert!(v.contains(&Violation::Cover { face: FaceId(3), rooms: 0 }), "{v:?}");
     // A corridor inside a room (edge 6-7 lies inside room a).
     net.rooms = vec![a, b, c, d];
-    let net2 = Network { rooms: net.rooms.clone(), ..Network::from_edges(&p, &[edge(2, 7), edge(7, 12), edge(12, 17), edge(6, 7)]) };
+    let net2 = Network {
+        rooms: net.rooms.clone(),
+        ..Network::from_edges(&p, &[edge(2, 7), edge(7, 12), edge(12, 17), edge(6, 7)])
+    };
     let v = design::validate_rooms(&p, &net2, pls, &net2.rooms);
     assert!(v.iter().any(|v| matches!(v, Violation::Room { placement, .. } if *placement == a)), "{v:?}");
     // A room with no corridor along it.
     let net3 = Network { rooms: net.rooms.clone(), ..Network::from_edges(&p, &[edge(2, 7)]) };
     let v = design::validate_rooms(&p, &net3, pls, &net3.rooms);
-    assert!(v.iter().any(|v| matches!(v, Violation::Room { placement, detail } if *placement == c && detail.contains("no corridor"))), "{v:?}");
+    assert!(
+        v.iter().any(
+            |v| matches!(v, Violation::Room { placement, detail } if *placement == c && detail.contains("no corridor"))
+        ),
+        "{v:?}"
+    );
 }
 
 #[test]
@@ -272,7 +284,8 @@ templates = [{{ name = "room", shape = "rect 2x2" }}, {{ name = "hall", shape = 
     let mut objs = Vec::new();
     let mut first = None;
     for k in backends().into_iter().filter(|k| *k != SolverKind::Microlp) {
-        let r = pipeline::solve_built(&p, &nm, k, &SolveOptions { time_limit: Some(60.0), ..Default::default() }).unwrap();
+        let r =
+            pipeline::solve_built(&p, &nm, k, &SolveOptions { time_limit: Some(60.0), ..Default::default() }).unwrap();
         assert_eq!(r.solve.termination, Termination::Optimal, "{k} on {name}");
         assert!(r.validity.valid, "{k} on {name}: {:?}", r.validity.design_violations);
         objs.push(r.solve.objective.unwrap());
@@ -297,17 +310,26 @@ fn snapshot_floorplan_6x6() {
 
 #[test]
 fn snapshot_circular_6x6() {
-    insta::assert_yaml_snapshot!("circular_6x6", six_by_six("circular6", "[10]", "forbid", "game", "level = \"circular\""));
+    insta::assert_yaml_snapshot!(
+        "circular_6x6",
+        six_by_six("circular6", "[10]", "forbid", "game", "level = \"circular\"")
+    );
 }
 
 #[test]
 fn snapshot_linear_6x6() {
-    insta::assert_yaml_snapshot!("linear_6x6", six_by_six("linear6", "[1, 47]", "forbid", "game", "level = \"linear\""));
+    insta::assert_yaml_snapshot!(
+        "linear_6x6",
+        six_by_six("linear6", "[1, 47]", "forbid", "game", "level = \"linear\"")
+    );
 }
 
 #[test]
 fn snapshot_branching_6x6() {
-    insta::assert_yaml_snapshot!("branching_6x6", six_by_six("branching6", "[3]", "forbid", "game", "level = \"branching\""));
+    insta::assert_yaml_snapshot!(
+        "branching_6x6",
+        six_by_six("branching6", "[3]", "forbid", "game", "level = \"branching\"")
+    );
 }
 
 /// Issue 15's strip, made small: a linear level between two boundary sinks with two block
@@ -338,7 +360,8 @@ fn assert_level(p: &Problem, shape: GraphShape) {
     let nm = pipeline::build(p);
     let mut objs = Vec::new();
     for k in backends() {
-        let r = pipeline::solve_built(p, &nm, k, &SolveOptions { time_limit: Some(60.0), ..Default::default() }).unwrap();
+        let r =
+            pipeline::solve_built(p, &nm, k, &SolveOptions { time_limit: Some(60.0), ..Default::default() }).unwrap();
         assert_eq!(r.solve.termination, Termination::Optimal, "{k} on {}", p.spec.name);
         assert!(r.validity.valid, "{k} on {}: {:?}", p.spec.name, r.validity.design_violations);
         let g = r.rooms.as_ref().unwrap().block_graph.as_ref().unwrap();
@@ -362,7 +385,9 @@ fn linear_level_is_one_path_through_every_block() {
 
 #[test]
 fn circular_level_with_dead_ends_allowed_is_refused_and_otherwise_a_cycle() {
-    let circular = STRIP.replace("level = \"linear\"", "level = \"circular\"").replace("points = [[0, 2], [8, 2]]", "points = [[4, 3]]");
+    let circular = STRIP
+        .replace("level = \"linear\"", "level = \"circular\"")
+        .replace("points = [[0, 2], [8, 2]]", "points = [[4, 3]]");
     let spec = Spec::from_toml(&circular.replace("[rooms]", "[features]\ndead_ends = \"allow\"\n[rooms]")).unwrap();
     let e = spec.resolve(Path::new(".")).unwrap_err().to_string();
     assert!(e.contains("features.dead_ends") && e.contains("circular"), "{e}");
@@ -374,7 +399,9 @@ fn circular_level_with_dead_ends_allowed_is_refused_and_otherwise_a_cycle() {
 /// it proves the paper recipe's optimum, and the rows are in its model.
 #[test]
 fn strong_level_rows_keep_the_paper_optimum() {
-    let circular = STRIP.replace("level = \"linear\"", "level = \"circular\"").replace("points = [[0, 2], [8, 2]]", "points = [[4, 3]]");
+    let circular = STRIP
+        .replace("level = \"linear\"", "level = \"circular\"")
+        .replace("points = [[0, 2], [8, 2]]", "points = [[4, 3]]");
     for spec in [STRIP.to_string(), circular] {
         let mut objs = Vec::new();
         for recipe in ["paper", "strong"] {
@@ -382,7 +409,13 @@ fn strong_level_rows_keep_the_paper_optimum() {
             let nm = pipeline::build(&p);
             let enter_rows = nm.model.rows().filter(|r| r.name.starts_with("levelenter_")).count();
             assert_eq!(enter_rows > 0, recipe == "strong", "{recipe}: {enter_rows} levelenter rows");
-            let r = pipeline::solve_built(&p, &nm, SolverKind::Highs, &SolveOptions { time_limit: Some(60.0), ..Default::default() }).unwrap();
+            let r = pipeline::solve_built(
+                &p,
+                &nm,
+                SolverKind::Highs,
+                &SolveOptions { time_limit: Some(60.0), ..Default::default() },
+            )
+            .unwrap();
             assert_eq!(r.solve.termination, Termination::Optimal, "{recipe} on {}", p.spec.name);
             assert!(r.validity.valid, "{recipe} on {}: {:?}", p.spec.name, r.validity.design_violations);
             objs.push(r.solve.objective.unwrap());
@@ -400,16 +433,34 @@ fn picture_marks_room_types_and_lists_what_is_drawn() {
         r#"templates = [{ name = "office", shape = "rect 2x2" }, { name = "lab", shape = "rect 2x1", exact = 2 }, { name = "hall", shape = "rect 3x3", max = 0 }]"#,
     ));
     let nm = pipeline::build(&p);
-    let r = pipeline::solve_built(&p, &nm, SolverKind::default_kind().unwrap(), &SolveOptions { time_limit: Some(60.0), ..Default::default() }).unwrap();
+    let r = pipeline::solve_built(
+        &p,
+        &nm,
+        SolverKind::default_kind().unwrap(),
+        &SolveOptions { time_limit: Some(60.0), ..Default::default() },
+    )
+    .unwrap();
     let net = r.network.unwrap();
     let placements = &nm.placements.as_ref().unwrap().placements;
-    let svg = netspec::render::svg(&p, &net, None, Some(placements), &netspec::render::Caption { name: "a \"quoted\" <plan>".into(), ..Default::default() });
+    let svg = netspec::render::svg(
+        &p,
+        &net,
+        None,
+        Some(placements),
+        &netspec::render::Caption { name: "a \"quoted\" <plan>".into(), ..Default::default() },
+    );
     assert_eq!(svg.matches(r#"class="room-type""#).count(), 5, "{svg}");
     let letter = |l: &str| svg.matches(&format!(">{l}</text>")).count();
     // Three offices (A) and two labs (B), each letter once more in the legend; no hall (C).
     assert_eq!((letter("A"), letter("B"), letter("C")), (4, 3, 0), "{svg}");
     assert!(svg.contains(">office</text>") && svg.contains(">lab</text>") && !svg.contains(">hall</text>"), "{svg}");
-    assert!(svg.contains(">sink</text>") && !svg.contains("p2p sample") && !svg.contains(">obstacle<") && !svg.contains("forced / route"), "{svg}");
+    assert!(
+        svg.contains(">sink</text>")
+            && !svg.contains("p2p sample")
+            && !svg.contains(">obstacle<")
+            && !svg.contains("forced / route"),
+        "{svg}"
+    );
     assert!(svg.contains("a &quot;quoted&quot; &lt;plan&gt;"), "{svg}");
     netspec::render::png(&svg).unwrap();
 }
@@ -466,12 +517,26 @@ templates = [{ name = "block", shape = "rect 2x2" }, { name = "hall", shape = "r
         assert!(groups > 0, "{}", p.spec.name);
         let bound = |f: &formulations::Formulation, cuts: bool| {
             let mut sep = if cuts { f.separator() } else { None };
-            let b = netspec::solvers::lazy::lp_bound(highs.as_ref(), &f.model, sep.as_mut().map(|s| s as &mut dyn netspec::solvers::Separator), &one_thread).unwrap();
-            if cuts { b.with_cuts.unwrap() } else { b.plain.unwrap() }
+            let b = netspec::solvers::lazy::lp_bound(
+                highs.as_ref(),
+                &f.model,
+                sep.as_mut().map(|s| s as &mut dyn netspec::solvers::Separator),
+                &one_thread,
+            )
+            .unwrap();
+            if cuts {
+                b.with_cuts.unwrap()
+            } else {
+                b.plain.unwrap()
+            }
         };
         let (b_without, b_with, b_cuts) = (bound(&without, false), bound(&with, false), bound(&with, true));
         // Floor plan: 1.43, 2, 3 (the optimum); game level: 9.20, 10, 10.875.
-        assert!(b_with > b_without + 0.5 && b_cuts > b_with + 0.5, "{}: LP without {b_without}, with {b_with}, after cuts {b_cuts}", p.spec.name);
+        assert!(
+            b_with > b_without + 0.5 && b_cuts > b_with + 0.5,
+            "{}: LP without {b_without}, with {b_with}, after cuts {b_cuts}",
+            p.spec.name
+        );
         let mut optima = Vec::new();
         for (f, kind) in [(&with, SolverKind::Highs), (&without, SolverKind::Highs), (&with, SolverKind::Microlp)] {
             let r = pipeline::solve_built(&p, f, kind, &one_thread).unwrap();

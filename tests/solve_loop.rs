@@ -75,7 +75,9 @@ fn objective_split_proves_the_zero_star_optimum_on_every_backend() {
         }
     }
     // Switched off in the spec, the strong recipe solves in one phase to the same optimum.
-    let off = problem(&ZERO_STAR.replace("formulation = \"tight\"", "[formulation]\nrecipe = \"strong\"\nsplit_objective = false"));
+    let off = problem(
+        &ZERO_STAR.replace("formulation = \"tight\"", "[formulation]\nrecipe = \"strong\"\nsplit_objective = false"),
+    );
     let f = pipeline::build(&off);
     assert_eq!(f.recipe.label, "strong(split_objective=false)");
     let r = pipeline::solve_from(&off, &f, SolverKind::Highs, &o, &pipeline::default_start(o.time_limit)).unwrap();
@@ -176,7 +178,8 @@ fn two_separate_squares_are_infeasible_on_every_backend() {
         let p = netspec::spec::Spec::load(&spec).unwrap().resolve(dir.path()).unwrap();
         let nm = pipeline::build(&p);
         for k in crate::network::backends(true) {
-            let r = pipeline::solve_built(&p, &nm, k, &SolveOptions { time_limit: Some(60.0), ..Default::default() }).unwrap();
+            let r = pipeline::solve_built(&p, &nm, k, &SolveOptions { time_limit: Some(60.0), ..Default::default() })
+                .unwrap();
             assert_eq!(r.solve.termination, Termination::Infeasible, "{k} {recipe}: {}", r.solve.status_line());
             assert!(!r.design_found, "{k} {recipe}");
         }
@@ -199,7 +202,8 @@ fn status_line_says_why_and_whether() {
     // No start and no time: nothing to show.
     let without = run(&[fig2b.to_str().unwrap(), "--time-limit", "0", "--no-start"]);
     assert!(without.lines().any(|l| l.starts_with("status     limit(time), no design")), "{without}");
-    let v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(dir.path().join("o/result.json")).unwrap()).unwrap();
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("o/result.json")).unwrap()).unwrap();
     assert_eq!(v["design_found"], false);
 }
 
@@ -249,7 +253,8 @@ fn interrupt_stops_every_backend_and_keeps_the_incumbent() {
         // An interrupt made before the solve returns at once, without a solution.
         let done = Interrupt::new();
         done.trigger();
-        let r = k.instance().unwrap().solve(&model, &SolveOptions { interrupt: Some(done), ..Default::default() }).unwrap();
+        let r =
+            k.instance().unwrap().solve(&model, &SolveOptions { interrupt: Some(done), ..Default::default() }).unwrap();
         assert_eq!(r.termination, Termination::Limit(LimitKind::Interrupt), "{k}");
     }
 }
@@ -261,13 +266,18 @@ fn mip_starts_are_checked_before_use() {
     let model = models::knapsack();
     for k in SolverKind::compiled().into_iter().filter(|k| k.instance().unwrap().capabilities().mip_start) {
         let bad = vec![1.0; model.num_vars()]; // over capacity
-        let r = k.instance().unwrap().solve(&model, &SolveOptions { mip_start: Some(bad), ..Default::default() }).unwrap();
+        let r =
+            k.instance().unwrap().solve(&model, &SolveOptions { mip_start: Some(bad), ..Default::default() }).unwrap();
         let st = r.mip_start.clone().unwrap();
-        assert!(!st.accepted && st.violations == 1 && st.first_violation.as_deref().unwrap().contains("cap"), "{k}: {st:?}");
+        assert!(
+            !st.accepted && st.violations == 1 && st.first_violation.as_deref().unwrap().contains("cap"),
+            "{k}: {st:?}"
+        );
         assert_eq!(r.termination, Termination::Optimal, "{k}");
         let mut good = vec![0.0; model.num_vars()];
         good[0] = 1.0;
-        let r = k.instance().unwrap().solve(&model, &SolveOptions { mip_start: Some(good), ..Default::default() }).unwrap();
+        let r =
+            k.instance().unwrap().solve(&model, &SolveOptions { mip_start: Some(good), ..Default::default() }).unwrap();
         assert!(r.mip_start.unwrap().accepted, "{k}");
     }
 }
@@ -283,21 +293,41 @@ fn raw_parameters_reach_the_backend_and_unknown_ones_are_refused() {
     for (k, name, value) in cases.into_iter().filter(|(k, ..)| k.is_compiled()) {
         let ok = RawParam { solver: k, name: name.into(), value: value.into() };
         // Parameters of another backend are not this one's: a list can serve several.
-        let other = RawParam { solver: if k == SolverKind::Highs { SolverKind::Scip } else { SolverKind::Highs }, name: "whatever".into(), value: "1".into() };
-        let r = k.instance().unwrap().solve(&model, &SolveOptions { params: vec![ok, other], ..Default::default() }).unwrap();
+        let other = RawParam {
+            solver: if k == SolverKind::Highs { SolverKind::Scip } else { SolverKind::Highs },
+            name: "whatever".into(),
+            value: "1".into(),
+        };
+        let r = k
+            .instance()
+            .unwrap()
+            .solve(&model, &SolveOptions { params: vec![ok, other], ..Default::default() })
+            .unwrap();
         assert_eq!(r.termination, Termination::Optimal, "{k}");
         let bad = RawParam { solver: k, name: "no_such_parameter".into(), value: "1".into() };
-        let e = k.instance().unwrap().solve(&model, &SolveOptions { params: vec![bad], ..Default::default() }).unwrap_err();
-        assert!(matches!(&e.kind, SolverErrorKind::Param { name, .. } if name == &format!("{k}.no_such_parameter")), "{k}: {e}");
+        let e =
+            k.instance().unwrap().solve(&model, &SolveOptions { params: vec![bad], ..Default::default() }).unwrap_err();
+        assert!(
+            matches!(&e.kind, SolverErrorKind::Param { name, .. } if name == &format!("{k}.no_such_parameter")),
+            "{k}: {e}"
+        );
     }
     if SolverKind::Cbc.is_compiled() {
         let bad = RawParam { solver: SolverKind::Cbc, name: "cuts".into(), value: "maybe".into() };
-        let e = SolverKind::Cbc.instance().unwrap().solve(&model, &SolveOptions { params: vec![bad], ..Default::default() }).unwrap_err();
+        let e = SolverKind::Cbc
+            .instance()
+            .unwrap()
+            .solve(&model, &SolveOptions { params: vec![bad], ..Default::default() })
+            .unwrap_err();
         assert!(matches!(e.kind, SolverErrorKind::Param { .. }), "{e}");
     }
     let micro = RawParam { solver: SolverKind::Microlp, name: "x".into(), value: "1".into() };
     if SolverKind::Microlp.is_compiled() {
-        let e = SolverKind::Microlp.instance().unwrap().solve(&model, &SolveOptions { params: vec![micro], ..Default::default() }).unwrap_err();
+        let e = SolverKind::Microlp
+            .instance()
+            .unwrap()
+            .solve(&model, &SolveOptions { params: vec![micro], ..Default::default() })
+            .unwrap_err();
         assert!(matches!(e.kind, SolverErrorKind::Unsupported { option: "params", .. }), "{e}");
     }
 }
@@ -352,7 +382,11 @@ fn option_errors_name_the_field() {
     for k in ["highs", "cbc", "scip", "microlp"] {
         let out = netspec().arg("solve-file").arg(&lp).args(["--time-limit", "inf", "--solver", k]).output().unwrap();
         let stdout = String::from_utf8_lossy(&out.stdout);
-        assert!(out.status.success() && stdout.contains("status     optimal"), "{k}: {stdout}{}", String::from_utf8_lossy(&out.stderr));
+        assert!(
+            out.status.success() && stdout.contains("status     optimal"),
+            "{k}: {stdout}{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
     }
     let out = netspec().arg("solve-file").arg(&lp).args(["--param", "highs.no_such=1"]).output().unwrap();
     let stderr = String::from_utf8_lossy(&out.stderr);
@@ -410,7 +444,8 @@ fn interrupted_solve_writes_the_incumbent() {
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert_eq!(out.status.code(), Some(130), "{stdout}{}", String::from_utf8_lossy(&out.stderr));
     assert!(stdout.contains("status     interrupted, design found ("), "{stdout}");
-    let r: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(dir.path().join("result.json")).unwrap()).unwrap();
+    let r: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("result.json")).unwrap()).unwrap();
     assert_eq!(r["solve"]["termination"]["reason"], "limit");
     assert_eq!(r["solve"]["termination"]["detail"], "interrupt");
     assert_eq!(r["design_found"], true);
@@ -427,7 +462,14 @@ fn interrupted_solve_file_keeps_the_incumbent() {
     let lp = dir.path().join("ms.lp");
     netspec::io::write_model_file(&model, &lp).unwrap();
     let json = dir.path().join("r.json");
-    let child = netspec().arg("solve-file").arg(&lp).args(["--solver", "cbc", "--json"]).arg(&json).stdout(Stdio::piped()).spawn().unwrap();
+    let child = netspec()
+        .arg("solve-file")
+        .arg(&lp)
+        .args(["--solver", "cbc", "--json"])
+        .arg(&json)
+        .stdout(Stdio::piped())
+        .spawn()
+        .unwrap();
     std::thread::sleep(Duration::from_secs(2));
     sigint(&child);
     let out = wait(child, 20);
@@ -458,7 +500,8 @@ fn interrupted_compare_keeps_its_records() {
     let out = wait(child, 30);
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert_eq!(out.status.code(), Some(130), "{stdout}{}", String::from_utf8_lossy(&out.stderr));
-    let all: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(dir.path().join("results.json")).unwrap()).unwrap();
+    let all: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("results.json")).unwrap()).unwrap();
     let records = all["records"].as_array().unwrap();
     assert_eq!(records.len(), 1, "no run after the interrupt: {records:?}");
     assert_eq!(records[0]["status"], "interrupted");
@@ -487,7 +530,8 @@ fn interrupted_city_keeps_finished_regions() {
     sigint(&child);
     let o = wait(child, 60);
     assert_eq!(o.status.code(), Some(130), "{}", String::from_utf8_lossy(&o.stderr));
-    let r: netspec::urban::CityResult = serde_json::from_str(&std::fs::read_to_string(out.join("city.json")).unwrap()).unwrap();
+    let r: netspec::urban::CityResult =
+        serde_json::from_str(&std::fs::read_to_string(out.join("city.json")).unwrap()).unwrap();
     assert!(r.regions[0].levels.iter().all(|l| l.state == "solved"), "{:?}", r.regions[0].levels);
     for l in r.regions.iter().flat_map(|r| &r.levels) {
         assert!(l.state != "skipped" || l.message.as_deref() == Some("interrupted"), "{l:?}");

@@ -25,7 +25,13 @@ fn tiny_design(extra: &str) -> DesignResult {
     let text = std::fs::read_to_string(fixture("specs/tiny_network.toml")).unwrap() + extra;
     let p = Spec::from_toml(&text).unwrap().resolve(Path::new(".")).unwrap();
     let nm = pipeline::build(&p);
-    let r = pipeline::solve_built(&p, &nm, SolverKind::default_kind().unwrap(), &SolveOptions { time_limit: Some(60.0), ..Default::default() }).unwrap();
+    let r = pipeline::solve_built(
+        &p,
+        &nm,
+        SolverKind::default_kind().unwrap(),
+        &SolveOptions { time_limit: Some(60.0), ..Default::default() },
+    )
+    .unwrap();
     assert!(r.validity.valid, "{:?}", r.solve.termination);
     r
 }
@@ -57,7 +63,12 @@ fn attr_values(path: &Path, tag: &str, name: &str) -> Vec<String> {
 #[test]
 fn tiny_design_through_netconvert_and_sumo() {
     let res = tiny_design("");
-    let net = network::from_design(&res, Path::new("tiny/result.json"), &LoadOptions { metres_per_unit: Some(50.0), level: None }).unwrap();
+    let net = network::from_design(
+        &res,
+        Path::new("tiny/result.json"),
+        &LoadOptions { metres_per_unit: Some(50.0), level: None },
+    )
+    .unwrap();
     let dir = tempfile::tempdir().unwrap();
     let settings = DemandSettings { duration: 600.0, through_per_hour: 120.0, local_per_hour: 240.0, seed: 3 };
     let r = evaluate(&net, &settings, &sumo(), dir.path()).unwrap_or_else(|e| panic!("{e}"));
@@ -77,15 +88,18 @@ fn tiny_design_through_netconvert_and_sumo() {
     // The travel times are the tripinfo file's durations, class by class.
     let tripinfo = dir.path().join("sumo/tripinfo.xml");
     let ids = attr_values(&tripinfo, "tripinfo", "id");
-    let durations: Vec<f64> = attr_values(&tripinfo, "tripinfo", "duration").iter().map(|d| d.parse().unwrap()).collect();
-    let lengths: Vec<f64> = attr_values(&tripinfo, "tripinfo", "routeLength").iter().map(|d| d.parse().unwrap()).collect();
+    let durations: Vec<f64> =
+        attr_values(&tripinfo, "tripinfo", "duration").iter().map(|d| d.parse().unwrap()).collect();
+    let lengths: Vec<f64> =
+        attr_values(&tripinfo, "tripinfo", "routeLength").iter().map(|d| d.parse().unwrap()).collect();
     assert_eq!(ids.len() as u64, v.arrived);
     let mut from_report: Vec<f64> = r.travel_times.values().flatten().copied().collect();
     let mut from_file = durations.clone();
     from_report.sort_by(f64::total_cmp);
     from_file.sort_by(f64::total_cmp);
     assert_eq!(from_report, from_file);
-    let through: Vec<f64> = ids.iter().zip(&durations).filter(|(id, _)| id.starts_with("through")).map(|(_, d)| *d).collect();
+    let through: Vec<f64> =
+        ids.iter().zip(&durations).filter(|(id, _)| id.starts_with("through")).map(|(_, d)| *d).collect();
     let mut rt = r.travel_times["through"].clone();
     rt.sort_by(f64::total_cmp);
     let mut ft = through.clone();
@@ -130,7 +144,12 @@ fn elements(path: &Path, tag: &str) -> BTreeMap<String, BTreeMap<String, String>
 #[test]
 fn solve_export_is_exactly_the_design() {
     let res = tiny_design("");
-    let net = network::from_design(&res, Path::new("result.json"), &LoadOptions { metres_per_unit: Some(10.0), level: Some(2) }).unwrap();
+    let net = network::from_design(
+        &res,
+        Path::new("result.json"),
+        &LoadOptions { metres_per_unit: Some(10.0), level: Some(2) },
+    )
+    .unwrap();
     let dir = tempfile::tempdir().unwrap();
     let files = export::write_plain(&net, dir.path(), "t").unwrap();
     let nodes = elements(&files.nodes, "node");
@@ -148,7 +167,10 @@ fn solve_export_is_exactly_the_design() {
         let (a, b) = res.mesh.edge_vertices(e);
         for (id, from, to) in [(format!("e{}", e.0), a.0, b.0), (format!("-e{}", e.0), b.0, a.0)] {
             let x = &edges[&id];
-            assert_eq!((x["from"].as_str(), x["to"].as_str(), x["type"].as_str()), (format!("n{from}").as_str(), format!("n{to}").as_str(), "L2"));
+            assert_eq!(
+                (x["from"].as_str(), x["to"].as_str(), x["type"].as_str()),
+                (format!("n{from}").as_str(), format!("n{to}").as_str(), "L2")
+            );
         }
     }
     // Entrances are the sinks.
@@ -163,7 +185,17 @@ fn solve_export_is_exactly_the_design() {
 fn city_export_is_exactly_the_street_graph() {
     let spec = CitySpec::from_toml(&std::fs::read_to_string(fixture("city/two-regions.toml")).unwrap()).unwrap();
     let out = tempfile::tempdir().unwrap();
-    let opts = CityRunOptions { solver: SolverKind::default_kind().unwrap(), time_limit: Some(60.0), threads: 2, threads_per_solve: 1, gap: Some(0.0), seed: None, resume: true, observer: None, interrupt: None };
+    let opts = CityRunOptions {
+        solver: SolverKind::default_kind().unwrap(),
+        time_limit: Some(60.0),
+        threads: 2,
+        threads_per_solve: 1,
+        gap: Some(0.0),
+        seed: None,
+        resume: true,
+        observer: None,
+        interrupt: None,
+    };
     let city = run_city(&spec, out.path(), &opts).unwrap();
     assert!(city.complete && city.valid);
     // The design graph, from the run in memory.
@@ -182,7 +214,10 @@ fn city_export_is_exactly_the_street_graph() {
         per_level[g.level as usize] += 1;
         for (id, from, to) in [(format!("e{k}"), g.a, g.b), (format!("-e{k}"), g.b, g.a)] {
             let x = &edges[&id];
-            assert_eq!((x["from"].clone(), x["to"].clone(), x["type"].clone()), (format!("n{from}"), format!("n{to}"), format!("L{}", g.level)));
+            assert_eq!(
+                (x["from"].clone(), x["to"].clone(), x["type"].clone()),
+                (format!("n{from}"), format!("n{to}"), format!("L{}", g.level))
+            );
             assert_eq!(parse_edge_id(&id), Some((k as u32, !id.starts_with('-'))));
         }
     }
@@ -201,7 +236,10 @@ fn city_export_is_exactly_the_street_graph() {
     for (k, n) in net.nodes.iter().enumerate().filter(|(_, n)| n.entrance) {
         assert!(net.edges.iter().any(|e| e.level == 1 && (e.a == k || e.b == k)), "{n:?}");
         let p = graph.positions[n.id as usize];
-        assert!(p[0].min(p[1]).abs() < 1e-9 || (p[0] - 8.0).abs() < 1e-9 || (p[1] - 4.0).abs() < 1e-9, "{n:?} is not on the domain boundary");
+        assert!(
+            p[0].min(p[1]).abs() < 1e-9 || (p[0] - 8.0).abs() < 1e-9 || (p[1] - 4.0).abs() < 1e-9,
+            "{n:?} is not on the domain boundary"
+        );
     }
     // Shapes start and end at their nodes.
     for e in &net.edges {
@@ -241,7 +279,9 @@ fn demand_is_seeded_and_placed() {
     assert!((through.len() as f64 - 200.0).abs() < 4.0 * 200f64.sqrt(), "{}", through.len());
     assert!((local as f64 - 400.0).abs() < 4.0 * 400f64.sqrt(), "{local}");
     assert!(a.windows(2).all(|w| w[0].depart <= w[1].depart) && a.iter().all(|t| (0.0..3600.0).contains(&t.depart)));
-    let on_boundary = |p: [f64; 2]| p[0].abs() < 1e-9 || p[1].abs() < 1e-9 || (p[0] - 400.0).abs() < 1e-9 || (p[1] - 400.0).abs() < 1e-9;
+    let on_boundary = |p: [f64; 2]| {
+        p[0].abs() < 1e-9 || p[1].abs() < 1e-9 || (p[0] - 400.0).abs() < 1e-9 || (p[1] - 400.0).abs() < 1e-9
+    };
     for t in &through {
         assert!(on_boundary(t.from) && on_boundary(t.to), "{t:?}");
         // 30–70 % of the perimeter apart along the boundary: at least 480 m of boundary, so
@@ -290,7 +330,13 @@ fn bad_input_names_the_file_and_the_cause() {
     let edg = std::fs::read_to_string(&files.edges).unwrap().replacen("from=\"n", "from=\"nowhere", 1);
     std::fs::write(&files.edges, edg).unwrap();
     let e = sumo().netconvert(&files, &dir.path().join("bad.net.xml")).unwrap_err().to_string();
-    assert!(e.contains(&files.edges.display().to_string()) && e.contains("`netconvert` failed") && e.contains("nowhere") && e.contains("bad.net.log"), "{e}");
+    assert!(
+        e.contains(&files.edges.display().to_string())
+            && e.contains("`netconvert` failed")
+            && e.contains("nowhere")
+            && e.contains("bad.net.log"),
+        "{e}"
+    );
 
     // A SUMO_HOME given by name must hold SUMO.
     let e = Sumo::locate(Some(&dir.path().join("not-sumo"))).unwrap_err().to_string();
@@ -310,7 +356,10 @@ fn bad_input_names_the_file_and_the_cause() {
         .unwrap();
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(1), "{stderr}");
-    assert!(stderr.contains("SUMO not found") && stderr.contains("scripts/setup.sh") && stderr.contains("no-sumo"), "{stderr}");
+    assert!(
+        stderr.contains("SUMO not found") && stderr.contains("scripts/setup.sh") && stderr.contains("no-sumo"),
+        "{stderr}"
+    );
 }
 
 /// `netspec traffic A B`: two designs of one mesh under the same demand, a comparison table and
@@ -326,8 +375,10 @@ fn cli_compares_designs_and_solve_writes_geojson() {
     }
     // GeoJSON: the chains' segments are exactly the active edges (in WGS 84, one model unit a
     // metre from the default origin, as the city writer projects them).
-    let res: DesignResult = serde_json::from_str(&std::fs::read_to_string(dir.path().join("short/result.json")).unwrap()).unwrap();
-    let geo: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(dir.path().join("short/network.geojson")).unwrap()).unwrap();
+    let res: DesignResult =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("short/result.json")).unwrap()).unwrap();
+    let geo: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("short/network.geojson")).unwrap()).unwrap();
     let city: netspec::urban::CitySpec = serde_json::from_value(serde_json::json!({
         "name": "x", "metres_per_unit": 1.0, "domain": { "outer": [] }, "mesh": { "spacing": 1.0 }, "levels": {},
     }))
@@ -361,7 +412,14 @@ fn cli_compares_designs_and_solve_writes_geojson() {
     assert!(out.status.success(), "{stdout}\n{}", String::from_utf8_lossy(&out.stderr));
     let md = std::fs::read_to_string(out_dir.join("comparison.md")).unwrap();
     assert!(md.contains("| short |") && md.contains("| direct |") && md.contains("the same trips"), "{md}");
-    for f in ["comparison.svg", "comparison.png", "comparison.json", "short/traffic.json", "short/volume.png", "direct/traveltime.png"] {
+    for f in [
+        "comparison.svg",
+        "comparison.png",
+        "comparison.json",
+        "short/traffic.json",
+        "short/volume.png",
+        "direct/traveltime.png",
+    ] {
         assert!(out_dir.join(f).is_file(), "{f}");
     }
 }

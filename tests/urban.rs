@@ -16,7 +16,17 @@ fn fixture() -> PathBuf {
 }
 
 fn options(kind: SolverKind) -> CityRunOptions {
-    CityRunOptions { solver: kind, time_limit: Some(60.0), threads: 2, threads_per_solve: 1, gap: Some(0.0), seed: None, resume: true, observer: None, interrupt: None }
+    CityRunOptions {
+        solver: kind,
+        time_limit: Some(60.0),
+        threads: 2,
+        threads_per_solve: 1,
+        gap: Some(0.0),
+        seed: None,
+        resume: true,
+        observer: None,
+        interrupt: None,
+    }
 }
 
 fn run(text: &str, kind: SolverKind, out: &Path) -> CityResult {
@@ -70,7 +80,13 @@ fn two_region_city_on_every_backend() {
             assert!(reg.levels.iter().all(|l| l.termination.as_deref() == Some("optimal")), "{kind}: {:?}", reg.levels);
             check_carried_over(dir.path(), reg);
         }
-        let objs: Vec<_> = r.regions.iter().flat_map(|g| g.levels.iter().map(|l| (g.name.clone(), l.level, l.objective.map(|o| (o * 1e6).round() / 1e6)))).collect();
+        let objs: Vec<_> = r
+            .regions
+            .iter()
+            .flat_map(|g| {
+                g.levels.iter().map(|l| (g.name.clone(), l.level, l.objective.map(|o| (o * 1e6).round() / 1e6)))
+            })
+            .collect();
         match &first {
             None => {
                 insta::assert_yaml_snapshot!("city_two_regions", snapshot(&r));
@@ -91,13 +107,19 @@ fn check_carried_over(out: &Path, reg: &netspec::urban::RegionOutcome) {
     let roads = reg.roads.as_ref().unwrap();
     let mesh: &Mesh = &roads.mesh;
     assert_eq!(mesh.num_edges(), problem.mesh.num_edges());
-    let result: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(l3.join("result.json")).unwrap()).unwrap();
+    let result: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(l3.join("result.json")).unwrap()).unwrap();
     let active: Vec<[u32; 2]> = serde_json::from_value(result["active_edges"].clone()).unwrap();
     let mut level2 = 0;
     for e in mesh.edges() {
         if roads.edge_level[e.index()] == 2 {
             level2 += 1;
-            assert_eq!(problem.roles[e.index()], EdgeRole::Existing, "{}: level-2 edge {e:?} is not existing at level 3", reg.name);
+            assert_eq!(
+                problem.roles[e.index()],
+                EdgeRole::Existing,
+                "{}: level-2 edge {e:?} is not existing at level 3",
+                reg.name
+            );
             let (a, b) = mesh.edge_vertices(e);
             assert!(active.contains(&[a.0, b.0]), "{}: level-2 edge {a:?}-{b:?} inactive at level 3", reg.name);
             assert!(problem.is_sink[a.index()] && problem.is_sink[b.index()]);
@@ -105,7 +127,8 @@ fn check_carried_over(out: &Path, reg: &netspec::urban::RegionOutcome) {
     }
     assert!(level2 > 0, "{}: level 2 built no road", reg.name);
     // Level 2's own network passed every check.
-    let l2: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(dir.join("L2/result.json")).unwrap()).unwrap();
+    let l2: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("L2/result.json")).unwrap()).unwrap();
     assert_eq!(l2["validity"]["valid"], serde_json::json!(true));
 }
 
@@ -140,7 +163,8 @@ fn outputs_and_metrics() {
     let dir = tempfile::tempdir().unwrap();
     let r = run(&text, SolverKind::default_kind().unwrap(), dir.path());
     assert!(r.complete && r.valid, "{:#?}", r.regions);
-    let geo: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(dir.path().join("streets.geojson")).unwrap()).unwrap();
+    let geo: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("streets.geojson")).unwrap()).unwrap();
     assert_eq!(geo["type"], "FeatureCollection");
     // WGS 84 around the default origin (0°, 0°): the 8 × 4 units at 100 m span 800 m east and
     // 400 m north, about 0.0072° and 0.0036°.
@@ -148,7 +172,9 @@ fn outputs_and_metrics() {
     assert_eq!(geo["properties"]["geo_origin_is_default"], serde_json::json!(true));
     let mut points = Vec::new();
     collect_points(&geo["features"], &mut points);
-    let (lo, hi) = points.iter().fold(([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]), |(lo, hi), p| ([lo[0].min(p[0]), lo[1].min(p[1])], [hi[0].max(p[0]), hi[1].max(p[1])]));
+    let (lo, hi) = points.iter().fold(([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]), |(lo, hi), p| {
+        ([lo[0].min(p[0]), lo[1].min(p[1])], [hi[0].max(p[0]), hi[1].max(p[1])])
+    });
     assert!(lo[0].abs() < 1e-12 && lo[1].abs() < 1e-12, "{lo:?}");
     assert!((hi[0] - 800.0 / 111_320.0).abs() < 1e-9 && (hi[1] - 400.0 / 110_540.0).abs() < 1e-9, "{hi:?}");
     let features = geo["features"].as_array().unwrap();
@@ -180,7 +206,9 @@ fn outputs_and_metrics() {
 
 fn collect_points(v: &serde_json::Value, out: &mut Vec<[f64; 2]>) {
     match v {
-        serde_json::Value::Array(a) if a.len() == 2 && a.iter().all(|x| x.is_f64()) => out.push([a[0].as_f64().unwrap(), a[1].as_f64().unwrap()]),
+        serde_json::Value::Array(a) if a.len() == 2 && a.iter().all(|x| x.is_f64()) => {
+            out.push([a[0].as_f64().unwrap(), a[1].as_f64().unwrap()])
+        }
         serde_json::Value::Array(a) => a.iter().for_each(|x| collect_points(x, out)),
         serde_json::Value::Object(o) => {
             if let Some(g) = o.get("geometry") {
@@ -196,7 +224,9 @@ fn collect_points(v: &serde_json::Value, out: &mut Vec<[f64; 2]>) {
 /// With `geo_origin`, points are degrees around it; the scale follows the latitude.
 #[test]
 fn wgs84_around_a_given_origin() {
-    let text = std::fs::read_to_string(fixture()).unwrap().replace("metres_per_unit = 100", "metres_per_unit = 100\ngeo_origin = [4.35, 50.85]");
+    let text = std::fs::read_to_string(fixture())
+        .unwrap()
+        .replace("metres_per_unit = 100", "metres_per_unit = 100\ngeo_origin = [4.35, 50.85]");
     let spec = CitySpec::from_toml(&text).unwrap();
     assert_eq!(spec.to_wgs84([0.0, 0.0]), [4.35, 50.85]);
     let [lon, lat] = spec.to_wgs84([8.0, 4.0]);
@@ -236,10 +266,14 @@ fn resume_after_kill() {
     child.wait().unwrap();
     let second_done_before = out.join("regions/01-east/L3/state.json").exists();
     let stamp = |p: &Path| std::fs::metadata(p).unwrap().modified().unwrap();
-    let kept = ["L2/state.json", "L2/result.json", "L3/state.json", "L3/result.json"].map(|f| out.join("regions/00-region-0").join(f));
+    let kept = ["L2/state.json", "L2/result.json", "L3/state.json", "L3/result.json"]
+        .map(|f| out.join("regions/00-region-0").join(f));
     let before: Vec<_> = kept.iter().map(|p| stamp(p)).collect();
 
-    let o = Command::new(exe).args(["city", spec.to_str().unwrap(), "--threads", "1", "--out", out.to_str().unwrap()]).output().unwrap();
+    let o = Command::new(exe)
+        .args(["city", spec.to_str().unwrap(), "--threads", "1", "--out", out.to_str().unwrap()])
+        .output()
+        .unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let after: Vec<_> = kept.iter().map(|p| stamp(p)).collect();
     assert_eq!(before, after, "region 0's files were rewritten");
@@ -258,10 +292,20 @@ fn bad_city_specs() {
     let text = std::fs::read_to_string(fixture()).unwrap();
     let bad = dir.path().join("bad.toml");
     std::fs::write(&bad, text.replace("at = [6, 2]", "at = [60, 2]")).unwrap();
-    let o = Command::new(env!("CARGO_BIN_EXE_netspec")).args(["city", bad.to_str().unwrap(), "--out", dir.path().to_str().unwrap()]).output().unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_netspec"))
+        .args(["city", bad.to_str().unwrap(), "--out", dir.path().to_str().unwrap()])
+        .output()
+        .unwrap();
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(!o.status.success() && err.contains("bad.toml") && err.contains("region[0].at"), "{err}");
-    std::fs::write(&bad, text.replace("coverage = { range = 2 }\nweights = { length = 1 }", "coverage = { range = 2, far = 2 }\nweights = { length = 1 }")).unwrap();
+    std::fs::write(
+        &bad,
+        text.replace(
+            "coverage = { range = 2 }\nweights = { length = 1 }",
+            "coverage = { range = 2, far = 2 }\nweights = { length = 1 }",
+        ),
+    )
+    .unwrap();
     let o = Command::new(env!("CARGO_BIN_EXE_netspec")).args(["city", bad.to_str().unwrap()]).output().unwrap();
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(!o.status.success() && err.contains("levels.3") && err.contains("far"), "{err}");

@@ -43,7 +43,11 @@ pub fn run_city(path: &Path, args: CityArgs) -> Result<ExitCode> {
             "time_limit" => ("--time-limit", "time_limit"),
             _ => ("--gap", "solver.gap"),
         };
-        let from = if e.option == "rel_gap" && args.gap.is_none() { format!("{}: {field}", path.display()) } else { flag.to_string() };
+        let from = if e.option == "rel_gap" && args.gap.is_none() {
+            format!("{}: {field}", path.display())
+        } else {
+            flag.to_string()
+        };
         anyhow::anyhow!("{from} {}", e.reason)
     })?;
     let interrupt = crate::cli::interrupt::install()?;
@@ -82,11 +86,19 @@ pub fn run_city(path: &Path, args: CityArgs) -> Result<ExitCode> {
         let bars = &handles;
         match e {
             CityEvent::LevelStarted { region, level, time_limit } => {
-                bars[*region].set_message(format!("L{level} solving{}", time_limit.map_or(String::new(), |t| format!(" (limit {t} s)"))));
+                bars[*region].set_message(format!(
+                    "L{level} solving{}",
+                    time_limit.map_or(String::new(), |t| format!(" (limit {t} s)"))
+                ));
             }
             CityEvent::LevelProgress { region, level, progress } => {
                 let f = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.2}"));
-                bars[*region].set_message(format!("L{level} {:.0} s incumbent {} bound {}", progress.elapsed, f(progress.primal), f(progress.dual)));
+                bars[*region].set_message(format!(
+                    "L{level} {:.0} s incumbent {} bound {}",
+                    progress.elapsed,
+                    f(progress.primal),
+                    f(progress.dual)
+                ));
             }
             CityEvent::LevelDone { region, outcome } => {
                 bars[*region].inc(1);
@@ -125,7 +137,10 @@ pub fn run_city(path: &Path, args: CityArgs) -> Result<ExitCode> {
     println!("levels     {}", urban::city::levels_summary(&result.regions));
     let m = &result.metrics;
     println!("metrics    {} ({} m per unit)", m.summary(), spec.metres_per_unit);
-    println!("smoothing  {:?}: {} snakes, energy {:.4} → {:.4}", result.smoothing.method, result.smoothing.snakes, result.smoothing.energy_before, result.smoothing.energy_after);
+    println!(
+        "smoothing  {:?}: {} snakes, energy {:.4} → {:.4}",
+        result.smoothing.method, result.smoothing.snakes, result.smoothing.energy_before, result.smoothing.energy_after
+    );
     println!("wrote      {}/city.json, streets.geojson, city.svg, city.png, regions/", out.display());
     Ok(if !result.valid {
         ExitCode::from(EXIT_INVALID)

@@ -1,14 +1,14 @@
 //! `netspec solve SPEC`: the design command.
 
 use crate::SolveArgs;
-use netspec::solvers::{InvalidOption, LimitKind, SolveOptions, Termination};
 use anyhow::{Context, Result};
 use indicatif::{ProgressBar, ProgressStyle};
+use netspec::explain::{ExplainOptions, Explanation};
 use netspec::heuristics::run::Method;
 use netspec::pipeline::{self, DesignResult};
 use netspec::render::{self, Caption};
-use netspec::explain::{ExplainOptions, Explanation};
 use netspec::solvers::SolverKind;
+use netspec::solvers::{InvalidOption, LimitKind, SolveOptions, Termination};
 use netspec::spec::{RecipeName, Spec};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -29,7 +29,11 @@ pub enum StartArg {
 
 /// Reads `--start FILE`: the network of an earlier `result.json` (its mesh must be this spec's),
 /// or a `.sol` point of this model, decoded.
-fn start_design(file: &Path, problem: &netspec::spec::Problem, nm: &netspec::formulations::Formulation) -> Result<netspec::design::Network> {
+fn start_design(
+    file: &Path,
+    problem: &netspec::spec::Problem,
+    nm: &netspec::formulations::Formulation,
+) -> Result<netspec::design::Network> {
     let is_sol = file.extension().is_some_and(|e| e.eq_ignore_ascii_case("sol"));
     if is_sol {
         let sol = netspec::io::sol::read(&nm.model, file)?;
@@ -41,11 +45,13 @@ fn start_design(file: &Path, problem: &netspec::spec::Problem, nm: &netspec::for
         network: Option<netspec::design::Network>,
     }
     let text = std::fs::read_to_string(file).with_context(|| format!("reading the start {}", file.display()))?;
-    let view: View = serde_json::from_str(&text).with_context(|| format!("{}: not a netspec result.json", file.display()))?;
+    let view: View =
+        serde_json::from_str(&text).with_context(|| format!("{}: not a netspec result.json", file.display()))?;
     if view.schema.as_deref() != Some("netspec.design") {
         anyhow::bail!("{}: not a netspec result.json (no `\"schema\": \"netspec.design\"`)", file.display());
     }
-    let net = view.network.with_context(|| format!("{}: the result has no network (`network` is null)", file.display()))?;
+    let net =
+        view.network.with_context(|| format!("{}: the result has no network (`network` is null)", file.display()))?;
     if net.active.len() != problem.mesh.num_edges() {
         anyhow::bail!(
             "{}: the start's network has {} edges, this spec's mesh {} — is it a result of another spec?",
@@ -97,7 +103,12 @@ pub fn solve_spec(
     }
     if let Some(ps) = &nm.path_sets {
         let truncated = ps.pairs.iter().filter(|p| p.truncated).count();
-        println!("paths      {} pairs, {} paths enumerated in {:.3} s ({truncated} pairs truncated)", ps.pairs.len(), ps.total_paths, ps.seconds);
+        println!(
+            "paths      {} pairs, {} paths enumerated in {:.3} s ({truncated} pairs truncated)",
+            ps.pairs.len(),
+            ps.total_paths,
+            ps.seconds
+        );
     }
     if let Some(file) = &export {
         if nm.is_complete() {
@@ -119,9 +130,21 @@ pub fn solve_spec(
         let kind = args.solver()?;
         let solver = kind.instance()?;
         let mut sep = nm.separator();
-        let b = netspec::solvers::lazy::lp_bound(solver.as_ref(), &nm.model, sep.as_mut().map(|s| s as &mut dyn netspec::solvers::Separator), &args.options()?)?;
+        let b = netspec::solvers::lazy::lp_bound(
+            solver.as_ref(),
+            &nm.model,
+            sep.as_mut().map(|s| s as &mut dyn netspec::solvers::Separator),
+            &args.options()?,
+        )?;
         let f = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.6}"));
-        println!("LP bound   {} as written, {} after {} cut rounds ({} rows), {:.2} s with {kind}", f(b.plain), f(b.with_cuts), b.rounds, b.rows, b.seconds);
+        println!(
+            "LP bound   {} as written, {} after {} cut rounds ({} rows), {:.2} s with {kind}",
+            f(b.plain),
+            f(b.with_cuts),
+            b.rounds,
+            b.rows,
+            b.seconds
+        );
         if let (Some(sol), Some(x)) = (&args.sol, &b.point) {
             let header = format!("LP relaxation after {} cut rounds ({kind})", b.rounds);
             netspec::io::sol::write(&nm.model, x, b.with_cuts, &header, sol)?;
@@ -133,7 +156,9 @@ pub fn solve_spec(
     }
     // Command line over spec over default.
     let kind = match (args.solver, spec.solver.name) {
-        (Some(Method::Search(m)), _) => return crate::cli::search::solve_search(&problem, &nm, m, args, spec.solver.time_limit, out),
+        (Some(Method::Search(m)), _) => {
+            return crate::cli::search::solve_search(&problem, &nm, m, args, spec.solver.time_limit, out)
+        }
         (Some(Method::Milp(k)), _) | (None, Some(k)) => k,
         (None, None) => SolverKind::default_kind().context("no backend compiled in")?,
     };
@@ -150,11 +175,15 @@ pub fn solve_spec(
     let from = match start {
         StartArg::Nothing => pipeline::StartFrom::Nothing,
         StartArg::Heuristic => pipeline::default_start(options.finite_time_limit()),
-        StartArg::File(file) => pipeline::StartFrom::Design { network: start_design(&file, &problem, &nm)?, source: file.display().to_string() },
+        StartArg::File(file) => pipeline::StartFrom::Design {
+            network: start_design(&file, &problem, &nm)?,
+            source: file.display().to_string(),
+        },
     };
     // Prepare the start first, so the progress line can show it while the solver runs.
     let from = match kind.instance()?.capabilities().mip_start {
-        true => match pipeline::start_for(&problem, &nm, &from, options.seed.unwrap_or(0), options.heuristic_threads()) {
+        true => match pipeline::start_for(&problem, &nm, &from, options.seed.unwrap_or(0), options.heuristic_threads())
+        {
             Some((point, report)) => pipeline::StartFrom::Prepared { point, report },
             None => from,
         },
@@ -168,16 +197,19 @@ pub fn solve_spec(
         _ => "no start".to_string(),
     };
     let bar = ProgressBar::new_spinner();
-    bar.set_style(ProgressStyle::with_template("{spinner} solving with {prefix} {elapsed} {msg}").expect("static template"));
+    bar.set_style(
+        ProgressStyle::with_template("{spinner} solving with {prefix} {elapsed} {msg}").expect("static template"),
+    );
     bar.set_prefix(format!("{kind}{}", options.time_limit.map_or(String::new(), |t| format!(" (limit {t} s)"))));
     bar.enable_steady_tick(Duration::from_millis(200));
     bar.set_message(start_note.clone());
     if kind.instance()?.capabilities().reports_progress {
         let b = bar.clone();
-        options.progress = Some(netspec::solvers::ProgressSink(std::sync::Arc::new(move |p: netspec::solvers::Progress| {
-            let f = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.4}"));
-            b.set_message(format!("{start_note}, incumbent {} bound {} nodes {}", f(p.primal), f(p.dual), p.nodes));
-        })));
+        options.progress =
+            Some(netspec::solvers::ProgressSink(std::sync::Arc::new(move |p: netspec::solvers::Progress| {
+                let f = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.4}"));
+                b.set_message(format!("{start_note}, incumbent {} bound {} nodes {}", f(p.primal), f(p.dual), p.nodes));
+            })));
     }
     let res = pipeline::solve_from(&problem, &nm, kind, &options, &from);
     bar.finish_and_clear();
@@ -191,9 +223,18 @@ pub fn solve_spec(
     let explanation = match explain {
         Some(budget) if res.solve.termination == Termination::Infeasible => {
             let bar = ProgressBar::new_spinner();
-            bar.set_style(ProgressStyle::with_template("{spinner} explaining: which requirements conflict? {elapsed}").expect("static template"));
+            bar.set_style(
+                ProgressStyle::with_template("{spinner} explaining: which requirements conflict? {elapsed}")
+                    .expect("static template"),
+            );
             bar.enable_steady_tick(Duration::from_millis(200));
-            let opts = ExplainOptions { time_budget: budget, check_time_limit: budget.min(5.0), threads: options.threads, known_infeasible: true, ..ExplainOptions::default() };
+            let opts = ExplainOptions {
+                time_budget: budget,
+                check_time_limit: budget.min(5.0),
+                threads: options.threads,
+                known_infeasible: true,
+                ..ExplainOptions::default()
+            };
             let e = netspec::explain::explain(&problem, kind, &opts);
             bar.finish_and_clear();
             for (i, line) in e.lines().iter().enumerate() {
@@ -216,9 +257,14 @@ pub fn solve_spec(
         infeasibility: Option<&'a Explanation>,
     }
     let written = Written { result: &res, infeasibility: explanation.as_ref() };
-    std::fs::write(&json, serde_json::to_string_pretty(&written)? + "\n").with_context(|| format!("writing {}", json.display()))?;
+    std::fs::write(&json, serde_json::to_string_pretty(&written)? + "\n")
+        .with_context(|| format!("writing {}", json.display()))?;
     let caption = Caption {
-        name: if spec.description.is_empty() { spec.name.clone() } else { format!("{} — {}", spec.name, spec.description) },
+        name: if spec.description.is_empty() {
+            spec.name.clone()
+        } else {
+            format!("{} — {}", spec.name, spec.description)
+        },
         solver: format!("{} {}", res.solve.solver, res.solve.solver_version),
         status: res.solve.termination.label(),
         objective: res.solve.objective,
@@ -234,7 +280,11 @@ pub fn solve_spec(
         std::fs::write(&png_path, render::png(&svg)?).with_context(|| format!("writing {}", png_path.display()))?;
         println!("picture    {} (and .svg)", png_path.display());
         let geo = dir.join("network.geojson");
-        std::fs::write(&geo, netspec::traffic::export::design_geojson(&res, netspec::traffic::network::DEFAULT_SOLVE_LEVEL)).with_context(|| format!("writing {}", geo.display()))?;
+        std::fs::write(
+            &geo,
+            netspec::traffic::export::design_geojson(&res, netspec::traffic::network::DEFAULT_SOLVE_LEVEL),
+        )
+        .with_context(|| format!("writing {}", geo.display()))?;
         println!("geojson    {} (WGS 84, one model unit a metre from the default origin)", geo.display());
     } else if let Some(e) = explanation.as_ref().filter(|e| !e.conflicts.is_empty()) {
         let svg = render::network::conflict_svg(&problem, e, &caption);
@@ -262,7 +312,13 @@ pub fn solve_spec(
 /// Checks the spec's `[solver]` values, naming the field (`solver.gap`) and the file.
 fn check_spec_options(path: &Path, spec: &Spec) -> Result<()> {
     let s = &spec.solver;
-    let o = SolveOptions { time_limit: s.time_limit, rel_gap: s.gap, abs_gap: s.abs_gap, threads: s.threads, ..Default::default() };
+    let o = SolveOptions {
+        time_limit: s.time_limit,
+        rel_gap: s.gap,
+        abs_gap: s.abs_gap,
+        threads: s.threads,
+        ..Default::default()
+    };
     o.validate().map_err(|e: InvalidOption| {
         let field = match e.option {
             "rel_gap" => "gap",
@@ -327,7 +383,10 @@ fn print_summary(r: &DesignResult) {
             "network    {} edges, length {:.2}, {} dead-ends, {} 3-way + {} 4-way junctions, {} T, {} too-close, {} zig-zags",
             m.edges, m.length, m.dead_ends, m.junctions_3way, m.junctions_4way, m.t_junctions, m.too_close, m.zigzags
         );
-        println!("travel     mean {:.3}, max {:.3} to the nearest sink; coverage slack {}", m.mean_travel, m.max_travel, m.coverage_slack);
+        println!(
+            "travel     mean {:.3}, max {:.3} to the nearest sink; coverage slack {}",
+            m.mean_travel, m.max_travel, m.coverage_slack
+        );
     }
     if let Some(o) = &r.objective {
         println!(
@@ -340,7 +399,9 @@ fn print_summary(r: &DesignResult) {
         let secs = st.seconds.map_or(String::new(), |t| format!(" in {t:.2} s"));
         let verdict = match (&st.reason, st.accepted) {
             (Some(why), _) => format!("refused: {why}"),
-            (None, true) if st.returned => "accepted; the solver found nothing better, so it is the design returned".to_string(),
+            (None, true) if st.returned => {
+                "accepted; the solver found nothing better, so it is the design returned".to_string()
+            }
             (None, true) => "accepted".to_string(),
             (None, false) => "not used".to_string(),
         };
@@ -365,7 +426,13 @@ fn print_summary(r: &DesignResult) {
     if let Some(s) = &r.split {
         let num = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.6}"));
         let phase2 = s.phase2.as_ref().map_or("did not run".to_string(), |p| {
-            format!("{}, objective {}, bound {}, {:.2} s", p.termination, num(p.objective), num(p.dual_bound), p.wall_time)
+            format!(
+                "{}, objective {}, bound {}, {:.2} s",
+                p.termination,
+                num(p.objective),
+                num(p.dual_bound),
+                p.wall_time
+            )
         });
         println!(
             "split      lattice {}: phase 1 (min the large terms) {}, {} ≥ bound {}, {:.2} s; phase 2 {phase2}",
@@ -378,7 +445,9 @@ fn print_summary(r: &DesignResult) {
     }
     if let Some(l) = &r.lattice {
         let offset = if l.lattice.offset == 0.0 { String::new() } else { format!("{} + ", l.lattice.offset) };
-        let bound = l.solver_bound.map_or("no bound to round".to_string(), |b| format!("the backend's bound {b:.6} rounded up to it"));
+        let bound = l
+            .solver_bound
+            .map_or("no bound to round".to_string(), |b| format!("the backend's bound {b:.6} rounded up to it"));
         println!("lattice    every design's objective is on {offset}{}·ℤ: {bound} (`objective_lattice = false` in [formulation] turns this off)", l.lattice.step);
     }
     if !r.solver_hints.is_empty() {

@@ -15,7 +15,9 @@ pub fn install() -> Result<Interrupt> {
     let presses = AtomicUsize::new(0);
     ctrlc::set_handler(move || {
         if presses.fetch_add(1, Ordering::SeqCst) == 0 {
-            eprintln!("\ninterrupt: stopping the solver and keeping its best design (press Ctrl-C again to quit at once)");
+            eprintln!(
+                "\ninterrupt: stopping the solver and keeping its best design (press Ctrl-C again to quit at once)"
+            );
             handle.trigger();
         } else {
             eprintln!("\ninterrupt: quitting");

@@ -25,7 +25,11 @@ pub fn solve_search(
     spec_limit: Option<f64>,
     out: Option<PathBuf>,
 ) -> Result<ExitCode> {
-    for (set, name) in [(args.gap.is_some(), "--gap"), (args.abs_gap.is_some(), "--abs-gap"), (args.node_limit.is_some(), "--node-limit")] {
+    for (set, name) in [
+        (args.gap.is_some(), "--gap"),
+        (args.abs_gap.is_some(), "--abs-gap"),
+        (args.node_limit.is_some(), "--node-limit"),
+    ] {
         if set {
             bail!("option `{name}` is not supported by the {} search: it has no bound and no nodes", method.name());
         }
@@ -45,7 +49,9 @@ pub fn solve_search(
     };
     let thread_note = match (threads, asked) {
         (1, 1) => "one thread".to_string(),
-        (1, _) => format!("one thread: the {} search does not run in parallel, --threads {asked} not honoured", method.name()),
+        (1, _) => {
+            format!("one thread: the {} search does not run in parallel, --threads {asked} not honoured", method.name())
+        }
         (t, _) => format!("{t} independent searches, one per thread"),
     };
     println!("search     {} (limit {limit} s, seed {seed}, {thread_note})", method.name());
@@ -55,10 +61,15 @@ pub fn solve_search(
     let dir = out.unwrap_or_else(|| PathBuf::from("out").join(&spec.name));
     std::fs::create_dir_all(&dir).with_context(|| format!("creating {}", dir.display()))?;
     let json = dir.join("result.json");
-    std::fs::write(&json, serde_json::to_string_pretty(&res)? + "\n").with_context(|| format!("writing {}", json.display()))?;
+    std::fs::write(&json, serde_json::to_string_pretty(&res)? + "\n")
+        .with_context(|| format!("writing {}", json.display()))?;
     if let Some(net) = &res.network {
         let caption = Caption {
-            name: if spec.description.is_empty() { spec.name.clone() } else { format!("{} — {}", spec.name, spec.description) },
+            name: if spec.description.is_empty() {
+                spec.name.clone()
+            } else {
+                format!("{} — {}", spec.name, spec.description)
+            },
             solver: format!("netspec {} {}", method.name(), res.solve.solver_version),
             status: res.solve.termination.label(),
             objective: res.solve.objective,
@@ -89,7 +100,10 @@ fn verdict(r: &SearchResult) -> String {
 fn print_summary(r: &SearchResult) {
     let s = &r.solve;
     let num = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.6}"));
-    println!("status     {}", if r.network.is_some() { s.termination.label() } else { format!("{} (no design)", s.termination.label()) });
+    println!(
+        "status     {}",
+        if r.network.is_some() { s.termination.label() } else { format!("{} (no design)", s.termination.label()) }
+    );
     if let Some(why) = &s.infeasible_because {
         println!("reason     {why}");
     }

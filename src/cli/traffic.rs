@@ -35,9 +35,18 @@ fn write_picture(dir: &Path, stem: &str, svg: &str) -> Result<()> {
 
 pub fn run_traffic(args: TrafficArgs) -> Result<ExitCode> {
     let sumo = Sumo::locate(args.sumo_home.as_deref())?;
-    let note = if sumo.version == traffic::sumo::SETUP_SUMO_VERSION { String::new() } else { format!(", not the {} scripts/setup.sh installs", traffic::sumo::SETUP_SUMO_VERSION) };
+    let note = if sumo.version == traffic::sumo::SETUP_SUMO_VERSION {
+        String::new()
+    } else {
+        format!(", not the {} scripts/setup.sh installs", traffic::sumo::SETUP_SUMO_VERSION)
+    };
     println!("sumo       {} ({}{note})", sumo.version, sumo.bin.display());
-    let mut labels: Vec<String> = args.designs.iter().enumerate().map(|(i, p)| args.labels.get(i).cloned().unwrap_or_else(|| default_label(p))).collect();
+    let mut labels: Vec<String> = args
+        .designs
+        .iter()
+        .enumerate()
+        .map(|(i, p)| args.labels.get(i).cloned().unwrap_or_else(|| default_label(p)))
+        .collect();
     // Distinct labels (they name the output directories).
     let mut seen = BTreeSet::new();
     for (i, l) in labels.iter_mut().enumerate() {
@@ -53,7 +62,8 @@ pub fn run_traffic(args: TrafficArgs) -> Result<ExitCode> {
         let load = t0.elapsed().as_secs_f64();
         let dir = if args.designs.len() == 1 { args.out.clone() } else { args.out.join(label) };
         std::fs::create_dir_all(&dir).with_context(|| format!("creating {}", dir.display()))?;
-        let mut rep = traffic::evaluate(&net, &args.demand, &sumo, &dir).with_context(|| format!("evaluating {}", path.display()))?;
+        let mut rep = traffic::evaluate(&net, &args.demand, &sumo, &dir)
+            .with_context(|| format!("evaluating {}", path.display()))?;
         rep.timings.load = load;
         rep.timings.total += load;
         rep.write(&dir)?;
@@ -68,11 +78,18 @@ pub fn run_traffic(args: TrafficArgs) -> Result<ExitCode> {
         let rows: Vec<(String, &TrafficReport)> = reports.iter().map(|(l, r)| (l.clone(), r)).collect();
         let md = report::comparison_markdown(&rows);
         let md_path = args.out.join("comparison.md");
-        std::fs::write(&md_path, format!("# Traffic comparison\n\nCommand: `{}`\n\n![comparison](comparison.png)\n\n{md}", std::env::args().collect::<Vec<_>>().join(" ")))
-            .with_context(|| format!("writing {}", md_path.display()))?;
+        std::fs::write(
+            &md_path,
+            format!(
+                "# Traffic comparison\n\nCommand: `{}`\n\n![comparison](comparison.png)\n\n{md}",
+                std::env::args().collect::<Vec<_>>().join(" ")
+            ),
+        )
+        .with_context(|| format!("writing {}", md_path.display()))?;
         let json = serde_json::json!({ "designs": reports.iter().map(|(l, r)| serde_json::json!({ "label": l, "report": r })).collect::<Vec<_>>() });
         let json_path = args.out.join("comparison.json");
-        std::fs::write(&json_path, serde_json::to_string_pretty(&json)? + "\n").with_context(|| format!("writing {}", json_path.display()))?;
+        std::fs::write(&json_path, serde_json::to_string_pretty(&json)? + "\n")
+            .with_context(|| format!("writing {}", json_path.display()))?;
         write_picture(&args.out, "comparison", &pictures::comparison_svg(&rows))?;
         println!();
         print!("{md}");

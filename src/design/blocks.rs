@@ -3,8 +3,8 @@
 //! classified as a tree, a cycle or a path to check against the requested level type.
 
 use super::Network;
-use crate::rules::placements::Placement;
 use crate::mesh::VertexId;
+use crate::rules::placements::Placement;
 use crate::spec::Problem;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeSet;

@@ -3,10 +3,10 @@
 
 use super::validate::degrees;
 use super::Network;
-use crate::rules::{t_configs, too_close_configs, zigzag_configs};
 use crate::mesh::{Mesh, VertexId};
-use crate::spec::{CoverageModel, Problem};
+use crate::rules::{t_configs, too_close_configs, zigzag_configs};
 use crate::spec::OrdF64;
+use crate::spec::{CoverageModel, Problem};
 use serde::{Deserialize, Serialize};
 use std::cmp::Reverse;
 use std::collections::{BinaryHeap, VecDeque};
@@ -96,8 +96,17 @@ impl Metrics {
                         }
                     }
                 }
-                let worst = mesh.vertices().filter(|v| !p.is_obstacle_vertex[v.index()]).map(|v| d[v.index()]).max().unwrap_or(0);
-                if worst == usize::MAX { f64::NEG_INFINITY } else { p.coverage_range.floor() - worst as f64 }
+                let worst = mesh
+                    .vertices()
+                    .filter(|v| !p.is_obstacle_vertex[v.index()])
+                    .map(|v| d[v.index()])
+                    .max()
+                    .unwrap_or(0);
+                if worst == usize::MAX {
+                    f64::NEG_INFINITY
+                } else {
+                    p.coverage_range.floor() - worst as f64
+                }
             }
             CoverageModel::Euclidean => {
                 let worst = mesh

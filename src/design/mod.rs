@@ -57,4 +57,3 @@ impl Network {
         Network { active, directions: Vec::new(), labels: Vec::new(), rooms: Vec::new() }
     }
 }
-

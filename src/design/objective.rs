@@ -58,7 +58,8 @@ pub fn label_distances(p: &Problem, net: &Network) -> Vec<f64> {
             h[v.index()] = 0.0;
             continue;
         }
-        let next_to_sink = mesh.outgoing(v).iter().any(|&g| net.active[mesh.he_edge(g).index()] && p.is_sink[mesh.he_head(g).index()]);
+        let next_to_sink =
+            mesh.outgoing(v).iter().any(|&g| net.active[mesh.he_edge(g).index()] && p.is_sink[mesh.he_head(g).index()]);
         if next_to_sink {
             h[v.index()] = 0.0;
             heap.push(Reverse((OrdF64(0.0), v.0)));
@@ -121,7 +122,11 @@ impl Objective {
         let too_close = too_close_configs(mesh).iter().filter(|(_, es)| present(es)).count();
         let t_junctions = t_configs(mesh)
             .iter()
-            .filter(|(_, _, e0, o)| !net.active[e0.index()] && designed(p, &[*e0, o[0], o[1], o[2]]) && o.iter().all(|e| net.active[e.index()]))
+            .filter(|(_, _, e0, o)| {
+                !net.active[e0.index()]
+                    && designed(p, &[*e0, o[0], o[1], o[2]])
+                    && o.iter().all(|e| net.active[e.index()])
+            })
             .count();
         let penalty = |w: Weight, n: usize| if let Weight::Penalty(l) = w { l * n as f64 } else { 0.0 };
         let total = p.w_length * length

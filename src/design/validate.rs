@@ -2,9 +2,9 @@
 //! and a set of active edges. It never reads the MILP.
 
 use super::Network;
+use crate::mesh::{EdgeId, Mesh, VertexId};
 use crate::rules::paths::PathSets;
 use crate::rules::{designed, t_configs, too_close_configs, zigzag_configs};
-use crate::mesh::{EdgeId, Mesh, VertexId};
 use crate::spec::{Allow, CoverageModel, Problem, Weight};
 use serde::{Deserialize, Serialize};
 use std::collections::VecDeque;
@@ -111,7 +111,9 @@ impl std::fmt::Display for Violation {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         let ids = |es: &[EdgeId]| es.iter().map(|e| format!("e{}", e.0)).collect::<Vec<_>>().join(",");
         match self {
-            Violation::Island { edges } => write!(f, "island: {} active edges with no sink ({})", edges.len(), ids(edges)),
+            Violation::Island { edges } => {
+                write!(f, "island: {} active edges with no sink ({})", edges.len(), ids(edges))
+            }
             Violation::Uncovered { vertex } => write!(f, "vertex v{} is not covered", vertex.0),
             Violation::DeadEnd { vertex } => write!(f, "dead-end at v{}", vertex.0),
             Violation::Branch { vertex, degree } => write!(f, "branch of degree {degree} at v{}", vertex.0),
@@ -122,11 +124,17 @@ impl std::fmt::Display for Violation {
             Violation::ForcedInactive { edge } => write!(f, "forced edge e{} is inactive", edge.0),
             Violation::ForcedVertexInactive { vertex } => write!(f, "forced vertex v{} is inactive", vertex.0),
             Violation::ThroughRoute { route, detail } => write!(f, "through route {route}: {detail}"),
-            Violation::PointToPoint { parts } => write!(f, "parts {} and {}: no enumerated path is fully active", parts.0, parts.1),
+            Violation::PointToPoint { parts } => {
+                write!(f, "parts {} and {}: no enumerated path is fully active", parts.0, parts.1)
+            }
             Violation::Cover { face, rooms } => write!(f, "face f{} is covered by {rooms} rooms", face.0),
             Violation::Room { placement, detail } => write!(f, "room {placement}: {detail}"),
-            Violation::LevelShape { level, shape } => write!(f, "a {level:?} level needs a matching block graph, found {shape:?}"),
-            Violation::RoomCount { template, count } => write!(f, "template {template}: {count} rooms, outside its bounds"),
+            Violation::LevelShape { level, shape } => {
+                write!(f, "a {level:?} level needs a matching block graph, found {shape:?}")
+            }
+            Violation::RoomCount { template, count } => {
+                write!(f, "template {template}: {count} rooms, outside its bounds")
+            }
         }
     }
 }
@@ -189,7 +197,8 @@ pub fn validate(p: &Problem, net: &Network, paths: Option<&PathSets>) -> Vec<Vio
     }
     for c in 0..ncomp {
         if !has_sink[c] {
-            let edges = net.active_edges().into_iter().filter(|&e| comp[mesh.edge_vertices(e).0.index()] == c).collect();
+            let edges =
+                net.active_edges().into_iter().filter(|&e| comp[mesh.edge_vertices(e).0.index()] == c).collect();
             out.push(Violation::Island { edges });
         }
     }
@@ -216,7 +225,8 @@ pub fn validate(p: &Problem, net: &Network, paths: Option<&PathSets>) -> Vec<Vio
             d.iter().map(|&h| r.is_infinite() || (h != usize::MAX && h as f64 <= r.floor())).collect()
         }
         CoverageModel::Euclidean => {
-            let act: Vec<[f64; 2]> = mesh.vertices().filter(|v| active_vertex[v.index()]).map(|v| mesh.position(v)).collect();
+            let act: Vec<[f64; 2]> =
+                mesh.vertices().filter(|v| active_vertex[v.index()]).map(|v| mesh.position(v)).collect();
             mesh.vertices()
                 .map(|v| {
                     let pv = mesh.position(v);
@@ -264,7 +274,10 @@ pub fn validate(p: &Problem, net: &Network, paths: Option<&PathSets>) -> Vec<Vio
     }
     if p.w_t_junction == Weight::Forbid {
         for (_, v, e0, others) in t_configs(mesh) {
-            if !net.active[e0.index()] && designed(p, &[e0, others[0], others[1], others[2]]) && others.iter().all(|e| net.active[e.index()]) {
+            if !net.active[e0.index()]
+                && designed(p, &[e0, others[0], others[1], others[2]])
+                && others.iter().all(|e| net.active[e.index()])
+            {
                 out.push(Violation::TJunction { vertex: v });
             }
         }
@@ -290,12 +303,18 @@ pub fn validate(p: &Problem, net: &Network, paths: Option<&PathSets>) -> Vec<Vio
         for w in route.windows(2) {
             let e = mesh.he_edge(mesh.half_edge_between(w[0], w[1]).expect("route on mesh edges"));
             if !net.active[e.index()] {
-                out.push(Violation::ThroughRoute { route: r, detail: format!("edge v{}–v{} inactive", w[0].0, w[1].0) });
+                out.push(Violation::ThroughRoute {
+                    route: r,
+                    detail: format!("edge v{}–v{} inactive", w[0].0, w[1].0),
+                });
             }
         }
         for &v in &route[1..route.len() - 1] {
             if deg[v.index()] != 2 {
-                out.push(Violation::ThroughRoute { route: r, detail: format!("inner vertex v{} has degree {}", v.0, deg[v.index()]) });
+                out.push(Violation::ThroughRoute {
+                    route: r,
+                    detail: format!("inner vertex v{} has degree {}", v.0, deg[v.index()]),
+                });
             }
         }
     }
@@ -313,7 +332,12 @@ pub fn validate(p: &Problem, net: &Network, paths: Option<&PathSets>) -> Vec<Vio
 
 /// FORMULATION §6 item 6: exact cover, the mode's inner/boundary edge rules, room counts.
 /// `chosen` are indices into `placements`.
-pub fn validate_rooms(p: &Problem, net: &Network, placements: &[crate::rules::placements::Placement], chosen: &[usize]) -> Vec<Violation> {
+pub fn validate_rooms(
+    p: &Problem,
+    net: &Network,
+    placements: &[crate::rules::placements::Placement],
+    chosen: &[usize],
+) -> Vec<Violation> {
     let Some(rooms) = &p.rooms else { return Vec::new() };
     let mesh = &p.mesh;
     let mut out = Vec::new();
@@ -330,7 +354,10 @@ pub fn validate_rooms(p: &Problem, net: &Network, placements: &[crate::rules::pl
         match rooms.mode {
             crate::spec::RoomMode::Floorplan => {
                 if inner_active > 0 {
-                    out.push(Violation::Room { placement: k, detail: format!("{inner_active} corridor edges inside the room") });
+                    out.push(Violation::Room {
+                        placement: k,
+                        detail: format!("{inner_active} corridor edges inside the room"),
+                    });
                 }
                 if bnd_active == 0 {
                     out.push(Violation::Room { placement: k, detail: "no corridor along the room".into() });
@@ -341,14 +368,21 @@ pub fn validate_rooms(p: &Problem, net: &Network, placements: &[crate::rules::pl
                     out.push(Violation::Room { placement: k, detail: "the block is not traversed".into() });
                 }
                 if bnd_active > 0 {
-                    out.push(Violation::Room { placement: k, detail: format!("{bnd_active} edges run along the block's boundary") });
+                    out.push(Violation::Room {
+                        placement: k,
+                        detail: format!("{bnd_active} edges run along the block's boundary"),
+                    });
                 }
             }
         }
     }
     for f in mesh.faces() {
         let c = cover[f.index()];
-        if p.is_obstacle_face[f.index()] { if c != 0 { out.push(Violation::Cover { face: f, rooms: c }); } } else if c != 1 {
+        if p.is_obstacle_face[f.index()] {
+            if c != 0 {
+                out.push(Violation::Cover { face: f, rooms: c });
+            }
+        } else if c != 1 {
             out.push(Violation::Cover { face: f, rooms: c });
         }
     }

@@ -120,7 +120,9 @@ pub fn build_with(p: &Problem, recipe: &Recipe) -> Formulation {
     // With served faces, a tiling's faces give cover groups (their serving edges' ends), whose
     // cutsets are separated as cuts beside the compact flow.
     let room_groups = match (&p.rooms, &placements) {
-        (Some(rooms), Some(report)) if recipe.served_faces => Some(fam(&mut c, "served faces", |c| families::rooms::served_faces(c, rooms.mode, report))),
+        (Some(rooms), Some(report)) if recipe.served_faces => {
+            Some(fam(&mut c, "served faces", |c| families::rooms::served_faces(c, rooms.mode, report)))
+        }
         _ => None,
     };
     if !p.forced_vertices.is_empty() || !p.through_routes.is_empty() || !p.forced_edges.is_empty() {
@@ -148,7 +150,18 @@ pub fn build_with(p: &Problem, recipe: &Recipe) -> Formulation {
     let Ctx { em, vars, plan, .. } = c;
     let objective_lattice = objective_lattice(&em.model, &vars);
     let symmetry_order = plan.symmetry_order;
-    Formulation { recipe: recipe.clone(), model: em.model, vars, families: em.families, big_m, path_sets, placements, cutsets, objective_lattice, symmetry_order }
+    Formulation {
+        recipe: recipe.clone(),
+        model: em.model,
+        vars,
+        families: em.families,
+        big_m,
+        path_sets,
+        placements,
+        cutsets,
+        objective_lattice,
+        symmetry_order,
+    }
 }
 
 /// The objective's lattice ([`crate::solvers::lattice`]). Besides integer variables, the
@@ -160,7 +173,8 @@ pub fn build_with(p: &Problem, recipe: &Recipe) -> Formulation {
 fn objective_lattice(model: &Model, vars: &VarMap) -> Option<ObjectiveLattice> {
     let mut certified = vec![false; model.num_vars()];
     let flows = vars.distance_flow.iter().chain(&vars.travel_flow).chain(&vars.connect_flow).flatten();
-    let indicators = vars.local_configs.iter().filter_map(|c| c.indicator).chain(vars.t_configs.iter().filter_map(|t| t.indicator));
+    let indicators =
+        vars.local_configs.iter().filter_map(|c| c.indicator).chain(vars.t_configs.iter().filter_map(|t| t.indicator));
     for v in flows.copied().chain(indicators) {
         certified[v.index()] = true;
     }
@@ -183,7 +197,11 @@ impl Formulation {
     /// ([`Recipe::solver_hints`]) and, where the recipe kept the model symmetric for a symmetric
     /// problem ([`Recipe::symmetric_flow`]), `presolve=off` on HiGHS (its presolve's reductions
     /// break the symmetry before HiGHS looks for it).
-    pub fn solver_hints(&self, kind: crate::solvers::SolverKind, threads: Option<u32>) -> Vec<crate::solvers::RawParam> {
+    pub fn solver_hints(
+        &self,
+        kind: crate::solvers::SolverKind,
+        threads: Option<u32>,
+    ) -> Vec<crate::solvers::RawParam> {
         let mut hints = self.recipe.solver_hints(kind, threads);
         if kind == crate::solvers::SolverKind::Highs && self.symmetry_order.is_some() {
             hints.push(crate::solvers::RawParam { solver: kind, name: "presolve".into(), value: "off".into() });

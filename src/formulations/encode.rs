@@ -118,7 +118,9 @@ impl Formulation {
             let mut supply = vec![0.0f64; mesh.num_vertices()];
             for e in mesh.edges() {
                 for g in mesh.edge_half_edges(e) {
-                    if self.vars.half_edge[g.index()].is_some_and(|v| x[v.index()] > 0.5) && !p.is_sink[mesh.he_head(g).index()] {
+                    if self.vars.half_edge[g.index()].is_some_and(|v| x[v.index()] > 0.5)
+                        && !p.is_sink[mesh.he_head(g).index()]
+                    {
                         supply[mesh.he_head(g).index()] += 1.0;
                     }
                 }
@@ -128,7 +130,10 @@ impl Formulation {
         // Travel and connectivity flows: every active non-sink vertex supplies a unit along a
         // shortest-path tree (true distances).
         let parents = self.vars.parent.iter().any(Option::is_some);
-        if parents || self.vars.travel_flow.iter().any(Option::is_some) || self.vars.connect_flow.iter().any(Option::is_some) {
+        if parents
+            || self.vars.travel_flow.iter().any(Option::is_some)
+            || self.vars.connect_flow.iter().any(Option::is_some)
+        {
             let d = travel_distances(mesh, net, &p.is_sink);
             let mut tree: Vec<Option<HalfEdgeId>> = vec![None; mesh.num_vertices()];
             for v in mesh.vertices() {
@@ -138,12 +143,10 @@ impl Formulation {
                 if !d[v.index()].is_finite() {
                     return Err(EncodeError::Unreachable(v.0));
                 }
-                tree[v.index()] = mesh
-                    .outgoing(v)
-                    .iter()
-                    .copied()
-                    .filter(|&g| on(mesh.he_edge(g)))
-                    .min_by(|&a, &b| (mesh.he_length(a) + d[mesh.he_head(a).index()]).total_cmp(&(mesh.he_length(b) + d[mesh.he_head(b).index()])));
+                tree[v.index()] = mesh.outgoing(v).iter().copied().filter(|&g| on(mesh.he_edge(g))).min_by(|&a, &b| {
+                    (mesh.he_length(a) + d[mesh.he_head(a).index()])
+                        .total_cmp(&(mesh.he_length(b) + d[mesh.he_head(b).index()]))
+                });
             }
             // Parent arcs: each active non-sink vertex owns the edge to its parent in the tree.
             for g in tree.iter().flatten() {
@@ -151,7 +154,10 @@ impl Formulation {
             }
             for flow in [&self.vars.travel_flow, &self.vars.connect_flow] {
                 if flow.iter().any(Option::is_some) {
-                    let mut supply: Vec<f64> = mesh.vertices().map(|v| if !p.is_sink[v.index()] && degree[v.index()] > 0 { 1.0 } else { 0.0 }).collect();
+                    let mut supply: Vec<f64> = mesh
+                        .vertices()
+                        .map(|v| if !p.is_sink[v.index()] && degree[v.index()] > 0 { 1.0 } else { 0.0 })
+                        .collect();
                     route(p, &mut x, flow, &mut supply, &tree, &d);
                 }
             }
@@ -193,7 +199,14 @@ impl Formulation {
 /// Sends every vertex's supply along `step` to a sink, accumulating the flow on each arc;
 /// vertices are processed from the farthest (largest `dist`) in, so each arc's flow is final
 /// when it is set.
-fn route(p: &Problem, x: &mut [f64], flow: &[Option<crate::milp::VarId>], supply: &mut [f64], step: &[Option<HalfEdgeId>], dist: &[f64]) {
+fn route(
+    p: &Problem,
+    x: &mut [f64],
+    flow: &[Option<crate::milp::VarId>],
+    supply: &mut [f64],
+    step: &[Option<HalfEdgeId>],
+    dist: &[f64],
+) {
     let mesh = &p.mesh;
     let mut order: Vec<VertexId> = mesh.vertices().filter(|v| step[v.index()].is_some()).collect();
     order.sort_by(|a, b| dist[b.index()].total_cmp(&dist[a.index()]).then(a.cmp(b)));

@@ -1,7 +1,9 @@
 //! Recipes: which family writes each part of the network IP.
 
 use crate::solvers::{RawParam, SolverKind};
-use crate::spec::{BigMForm, ConnectivityForm, CoverageForm, DeadEndForm, DistanceForm, FormulationSpec, PathForm, Problem, RecipeName};
+use crate::spec::{
+    BigMForm, ConnectivityForm, CoverageForm, DeadEndForm, DistanceForm, FormulationSpec, PathForm, Problem, RecipeName,
+};
 use serde::{Deserialize, Serialize};
 
 /// A recipe resolved into one choice per part (docs/spec.md "Formulations").
@@ -96,9 +98,33 @@ impl Recipe {
     pub fn named(name: RecipeName) -> Recipe {
         use ConnectivityForm as C;
         let (connectivity, distance, coverage, dead_ends, paths, big_m, label_bounds) = match name {
-            RecipeName::Paper => (C::Labels, DistanceForm::Labels, CoverageForm::Aggregated, DeadEndForm::Nu, PathForm::Paper, BigMForm::Paper, false),
-            RecipeName::Tight => (C::Labels, DistanceForm::Labels, CoverageForm::Strong, DeadEndForm::Degree, PathForm::Tight, BigMForm::Tight, true),
-            RecipeName::Strong => (C::Cutset, DistanceForm::Flow, CoverageForm::Strong, DeadEndForm::Degree, PathForm::Select, BigMForm::Tight, true),
+            RecipeName::Paper => (
+                C::Labels,
+                DistanceForm::Labels,
+                CoverageForm::Aggregated,
+                DeadEndForm::Nu,
+                PathForm::Paper,
+                BigMForm::Paper,
+                false,
+            ),
+            RecipeName::Tight => (
+                C::Labels,
+                DistanceForm::Labels,
+                CoverageForm::Strong,
+                DeadEndForm::Degree,
+                PathForm::Tight,
+                BigMForm::Tight,
+                true,
+            ),
+            RecipeName::Strong => (
+                C::Cutset,
+                DistanceForm::Flow,
+                CoverageForm::Strong,
+                DeadEndForm::Degree,
+                PathForm::Select,
+                BigMForm::Tight,
+                true,
+            ),
         };
         let rooms_connectivity = (name == RecipeName::Strong).then_some(C::Flow);
         let split_objective = name == RecipeName::Strong;
@@ -111,7 +137,27 @@ impl Recipe {
         let symmetric_flow = name == RecipeName::Strong;
         // Opt-in: measured, it raised every tiling row's bound but cost designs (docs/benchmarks.md).
         let served_faces = false;
-        Recipe { name, label: name.name().to_string(), connectivity, rooms_connectivity, distance, coverage, dead_ends, paths, big_m, label_bounds, split_objective, solver_tuning, continuous_indicators, objective_lattice, out_arcs, directed_cutsets, served_faces, parallel_search, symmetric_flow }
+        Recipe {
+            name,
+            label: name.name().to_string(),
+            connectivity,
+            rooms_connectivity,
+            distance,
+            coverage,
+            dead_ends,
+            paths,
+            big_m,
+            label_bounds,
+            split_objective,
+            solver_tuning,
+            continuous_indicators,
+            objective_lattice,
+            out_arcs,
+            directed_cutsets,
+            served_faces,
+            parallel_search,
+            symmetric_flow,
+        }
     }
 
     /// The recipe a spec asks for, with its overrides.
@@ -204,7 +250,8 @@ impl Recipe {
         .then(|| crate::spec::symmetries(p).len() + 1)
         .filter(|&order| order >= SYMMETRIC_FLOW_MIN_ORDER);
         let connectivity_form = if symmetry_order.is_some() { ConnectivityForm::Flow } else { connectivity_form };
-        let labels = distance == Some(DistanceForm::Labels) || (distance.is_none() && connectivity_form == ConnectivityForm::Labels);
+        let labels = distance == Some(DistanceForm::Labels)
+            || (distance.is_none() && connectivity_form == ConnectivityForm::Labels);
         // A labels or distance-flow family already ties every active edge to a sink; a second
         // connectivity family is added only when asked for explicitly (as a strengthening).
         let connectivity = match (connectivity_form, labels, distance) {
@@ -212,7 +259,13 @@ impl Recipe {
             (ConnectivityForm::Flow, _, Some(DistanceForm::Flow)) => None,
             (c, _, _) => Some(c),
         };
-        Plan { labels, distance_flow: distance == Some(DistanceForm::Flow), connectivity, travel_flow: p.w_travel > 0.0, symmetry_order }
+        Plan {
+            labels,
+            distance_flow: distance == Some(DistanceForm::Flow),
+            connectivity,
+            travel_flow: p.w_travel > 0.0,
+            symmetry_order,
+        }
     }
 }
 

@@ -148,7 +148,18 @@ struct Split {
 }
 
 fn parts(c: &Counts) -> [i64; 10] {
-    [c.uncovered, c.dead_ends, c.branches, c.configs, c.tjunctions, c.routes, c.forced_vertices, c.forced_edges, c.pairs, c.groups]
+    [
+        c.uncovered,
+        c.dead_ends,
+        c.branches,
+        c.configs,
+        c.tjunctions,
+        c.routes,
+        c.forced_vertices,
+        c.forced_edges,
+        c.pairs,
+        c.groups,
+    ]
 }
 
 impl Split {
@@ -167,7 +178,13 @@ impl Split {
 /// Whether the state after `op` (already applied) is feasible — hard rules hold, the soft
 /// count (by `soft_of`, `None` when a hard rule breaks) is at most `limit`, no island — and if
 /// so its (soft count, objective).
-pub(crate) fn judge(r: &Rules, s: &mut State, op: &Operation, limit: i64, soft_of: &dyn Fn(&Counts) -> Option<i64>) -> Option<(i64, f64)> {
+pub(crate) fn judge(
+    r: &Rules,
+    s: &mut State,
+    op: &Operation,
+    limit: i64,
+    soft_of: &dyn Fn(&Counts) -> Option<i64>,
+) -> Option<(i64, f64)> {
     let soft = soft_of(&s.counts)?;
     if soft > limit {
         return None;
@@ -223,19 +240,20 @@ pub(crate) fn pass(
     let mut best: Option<(State, f64)> = None;
     let mut temperature = opts.t0;
     let mut steps = 0u64;
-    let record = |s: &State, soft: i64, best: &mut Option<(State, f64)>, trace: &mut Vec<TracePoint>, global_best: &mut f64| {
-        if soft != 0 || !s.islands(r).is_empty() || !r.shape_ok(s) {
-            return;
-        }
-        let obj = s.objective(r);
-        if best.as_ref().is_none_or(|(_, b)| obj < *b - 1e-9) {
-            *best = Some((s.clone(), obj));
-        }
-        if obj < *global_best - 1e-9 {
-            *global_best = obj;
-            trace.push(TracePoint { seconds: t_start.elapsed().as_secs_f64(), objective: obj });
-        }
-    };
+    let record =
+        |s: &State, soft: i64, best: &mut Option<(State, f64)>, trace: &mut Vec<TracePoint>, global_best: &mut f64| {
+            if soft != 0 || !s.islands(r).is_empty() || !r.shape_ok(s) {
+                return;
+            }
+            let obj = s.objective(r);
+            if best.as_ref().is_none_or(|(_, b)| obj < *b - 1e-9) {
+                *best = Some((s.clone(), obj));
+            }
+            if obj < *global_best - 1e-9 {
+                *global_best = obj;
+                trace.push(TracePoint { seconds: t_start.elapsed().as_secs_f64(), objective: obj });
+            }
+        };
     record(&s, soft, &mut best, trace, global_best);
     let mut exhausted = false;
     while Instant::now() < deadline {

@@ -230,7 +230,8 @@ impl<'r, 'a> Builder<'r, 'a> {
 
     /// Switches on a path; returns the edges it switched.
     fn take(&mut self, path: &[HalfEdgeId]) -> Vec<EdgeId> {
-        let edges: Vec<EdgeId> = path.iter().map(|&h| self.r.mesh.he_edge(h)).filter(|e| !self.s.active[e.index()]).collect();
+        let edges: Vec<EdgeId> =
+            path.iter().map(|&h| self.r.mesh.he_edge(h)).filter(|e| !self.s.active[e.index()]).collect();
         apply(self.r, &mut self.s, path);
         edges
     }
@@ -419,7 +420,10 @@ impl<'r, 'a> Builder<'r, 'a> {
     /// further path could extend (a non-sink with one usable edge, dead-ends forbidden).
     fn needs_way_on(&self, w: VertexId) -> bool {
         let r = self.r;
-        r.dead_end_forbid && !r.is_sink(w) && self.s.deg[w.index()] == 0 && r.mesh.incident_edges(w).filter(|e| r.allowed[e.index()]).count() < 2
+        r.dead_end_forbid
+            && !r.is_sink(w)
+            && self.s.deg[w.index()] == 0
+            && r.mesh.incident_edges(w).filter(|e| r.allowed[e.index()]).count() < 2
     }
 
     fn needs_extension(&self, v: VertexId) -> bool {
@@ -481,7 +485,12 @@ impl<'r, 'a> Builder<'r, 'a> {
         let coverers: Vec<usize> = r
             .mesh
             .vertices()
-            .map(|v| r.balls[v.index()].iter().filter(|&&w| !self.needs_way_on(w) && r.mesh.incident_edges(w).any(|e| r.allowed[e.index()])).count())
+            .map(|v| {
+                r.balls[v.index()]
+                    .iter()
+                    .filter(|&&w| !self.needs_way_on(w) && r.mesh.incident_edges(w).any(|e| r.allowed[e.index()]))
+                    .count()
+            })
             .collect();
         while self.s.counts.uncovered > 0 && !self.out_of_time() {
             let hops = self.hops_from_network();
@@ -533,7 +542,10 @@ impl<'r, 'a> Builder<'r, 'a> {
             if tried >= 6 || self.out_of_time() {
                 break;
             }
-            if self.s.deg[t.index()] > 0 || self.needs_way_on(t) || r.mesh.incident_edges(t).all(|e| !r.allowed[e.index()]) {
+            if self.s.deg[t.index()] > 0
+                || self.needs_way_on(t)
+                || r.mesh.incident_edges(t).all(|e| !r.allowed[e.index()])
+            {
                 continue;
             }
             tried += 1;
@@ -610,7 +622,11 @@ impl<'r, 'a> Builder<'r, 'a> {
             chain.push(e);
             from = Some(e);
             x = r.mesh.he_head(h);
-            if self.s.deg[x.index()] != 2 || r.is_sink(x) || r.forced_vertex[x.index()] || chain.len() > r.mesh.num_edges() {
+            if self.s.deg[x.index()] != 2
+                || r.is_sink(x)
+                || r.forced_vertex[x.index()]
+                || chain.len() > r.mesh.num_edges()
+            {
                 break;
             }
         }
@@ -622,8 +638,10 @@ impl<'r, 'a> Builder<'r, 'a> {
             self.s.toggle(r, e);
         }
         let after = self.s.counts;
-        let worse =
-            after.uncovered > before.uncovered || after.groups > before.groups || after.forced_vertices > before.forced_vertices || after.pairs > before.pairs;
+        let worse = after.uncovered > before.uncovered
+            || after.groups > before.groups
+            || after.forced_vertices > before.forced_vertices
+            || after.pairs > before.pairs;
         if worse {
             for &e in &chain {
                 self.s.toggle(r, e);
@@ -657,7 +675,8 @@ impl<'r, 'a> Builder<'r, 'a> {
         for v in r.mesh.vertices() {
             let d = self.s.deg[v.index()];
             if (r.branch_forbid && d >= 3) || (r.route_inner[v.index()] && d > 2) {
-                let free: Vec<EdgeId> = self.s.active_out(r.mesh, v).map(|h| r.mesh.he_edge(h)).filter(|&e| r.free(e)).collect();
+                let free: Vec<EdgeId> =
+                    self.s.active_out(r.mesh, v).map(|h| r.mesh.he_edge(h)).filter(|&e| r.free(e)).collect();
                 if !free.is_empty() {
                     drop.push(free[self.rng.below(free.len())]);
                 }

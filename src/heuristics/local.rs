@@ -220,7 +220,8 @@ impl<'r, 'a> LocalSearch<'r, 'a> {
                 }
             }
             if self.b.r.needs_paths() {
-                let mut free: Vec<EdgeId> = self.b.r.mesh.edges().filter(|&e| self.b.r.free(e) && !self.b.s.active[e.index()]).collect();
+                let mut free: Vec<EdgeId> =
+                    self.b.r.mesh.edges().filter(|&e| self.b.r.free(e) && !self.b.s.active[e.index()]).collect();
                 self.b.rng.shuffle(&mut free);
                 for e in free {
                     if Instant::now() >= deadline {

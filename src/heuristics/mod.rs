@@ -73,7 +73,9 @@ impl OwnedInputs {
     pub fn enumerate(p: &Problem) -> OwnedInputs {
         OwnedInputs {
             paths: p.p2p.is_some().then(|| enumerate_path_sets(p)),
-            placements: p.rooms.as_ref().map(|r| enumerate_placements(&p.mesh, &r.templates, &p.is_obstacle_face, r.max_placements, PLACEMENT_TIME_CAP)),
+            placements: p.rooms.as_ref().map(|r| {
+                enumerate_placements(&p.mesh, &r.templates, &p.is_obstacle_face, r.max_placements, PLACEMENT_TIME_CAP)
+            }),
         }
     }
 
@@ -109,7 +111,15 @@ pub struct Options {
 
 impl Default for Options {
     fn default() -> Self {
-        Options { time_limit: 10.0, seed: 0, max_constructions: None, max_designs: None, local_search: true, first_design_limit: None, threads: 1 }
+        Options {
+            time_limit: 10.0,
+            seed: 0,
+            max_constructions: None,
+            max_designs: None,
+            local_search: true,
+            first_design_limit: None,
+            threads: 1,
+        }
     }
 }
 
@@ -201,7 +211,9 @@ pub fn obvious_infeasibility(p: &Problem) -> Option<String> {
         || !p.forced_edges.is_empty()
         || !p.forced_vertices.is_empty()
         || !p.through_routes.is_empty();
-    let sink_usable = mesh.vertices().any(|v| p.is_sink[v.index()] && mesh.incident_edges(v).any(|e| p.roles[e.index()] != crate::spec::EdgeRole::Excluded));
+    let sink_usable = mesh.vertices().any(|v| {
+        p.is_sink[v.index()] && mesh.incident_edges(v).any(|e| p.roles[e.index()] != crate::spec::EdgeRole::Excluded)
+    });
     (nonempty && !sink_usable).then(|| {
         let sinks: Vec<String> = mesh.vertices().filter(|v| p.is_sink[v.index()]).map(|v| format!("v{}", v.0)).collect();
         format!("no sink ({}) has an edge that is not a wall or an obstacle, yet the design cannot be empty: nothing could reach a sink", sinks.join(", "))
@@ -222,7 +234,15 @@ impl Outcome {
     }
 
     fn none(stop: Stop, stats: SearchStats, t0: Instant) -> Outcome {
-        Outcome { network: None, objective: None, trace: Vec::new(), stop, infeasible: None, stats, seconds: t0.elapsed().as_secs_f64() }
+        Outcome {
+            network: None,
+            objective: None,
+            trace: Vec::new(),
+            stop,
+            infeasible: None,
+            stats,
+            seconds: t0.elapsed().as_secs_f64(),
+        }
     }
 }
 
@@ -292,7 +312,8 @@ pub fn heuristic(p: &Problem, inputs: &Inputs, opts: &Options) -> Outcome {
     }
     let outcomes: Vec<Outcome> = std::thread::scope(|scope| {
         let found = &found;
-        let workers: Vec<_> = (0..opts.threads).map(|k| scope.spawn(move || search(p, inputs, opts, k, found, t0))).collect();
+        let workers: Vec<_> =
+            (0..opts.threads).map(|k| scope.spawn(move || search(p, inputs, opts, k, found, t0))).collect();
         workers.into_iter().map(|w| w.join().expect("a heuristic search thread panicked")).collect()
     });
     merge_outcomes(outcomes, t0)
@@ -328,7 +349,8 @@ fn merge_outcomes(outcomes: Vec<Outcome>, t0: Instant) -> Outcome {
 fn search(p: &Problem, inputs: &Inputs, opts: &Options, worker: usize, found: &AtomicBool, t0: Instant) -> Outcome {
     let deadline = t0 + Duration::from_secs_f64(opts.time_limit.max(0.0));
     // Without a design yet, constructions may go on until this later deadline.
-    let first_deadline = t0 + Duration::from_secs_f64(opts.time_limit.max(opts.first_design_limit.unwrap_or(0.0)).max(0.0));
+    let first_deadline =
+        t0 + Duration::from_secs_f64(opts.time_limit.max(opts.first_design_limit.unwrap_or(0.0)).max(0.0));
     // Search k > 0 draws from its own seed, and its first construction is noisy too (the
     // noise-free one is search 0's).
     let seed = if worker == 0 { opts.seed } else { opts.seed ^ (worker as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15) };
@@ -345,7 +367,9 @@ fn search(p: &Problem, inputs: &Inputs, opts: &Options, worker: usize, found: &A
         if Instant::now() >= limit {
             break;
         }
-        if opts.max_constructions.is_some_and(|m| stats.constructions as usize >= m) || opts.max_designs.is_some_and(|m| stats.constructed as usize >= m) {
+        if opts.max_constructions.is_some_and(|m| stats.constructions as usize >= m)
+            || opts.max_designs.is_some_and(|m| stats.constructed as usize >= m)
+        {
             stop = Stop::Exhausted;
             break;
         }
@@ -366,7 +390,8 @@ fn search(p: &Problem, inputs: &Inputs, opts: &Options, worker: usize, found: &A
             // When each improvement was reached (the search keeps every rule as it goes; the
             // design it ends with is validated by `offer_reached`).
             let mut reached = Vec::new();
-            let (s, _, ls_stats) = ls.run(slice, |obj| reached.push(TracePoint { seconds: t0.elapsed().as_secs_f64(), objective: obj }));
+            let (s, _, ls_stats) =
+                ls.run(slice, |obj| reached.push(TracePoint { seconds: t0.elapsed().as_secs_f64(), objective: obj }));
             stats.moves_tried += ls_stats.tried;
             stats.moves_accepted += ls_stats.accepted;
             stats.kicks += ls_stats.kicks;
@@ -383,7 +408,9 @@ fn search(p: &Problem, inputs: &Inputs, opts: &Options, worker: usize, found: &A
                 }
             }
             (None, Some(placements)) => {
-                if let Some((rules, s)) = rooms::construct(p, placements, inputs.paths, &mut sub, noise, limit, stats.constructions - 1) {
+                if let Some((rules, s)) =
+                    rooms::construct(p, placements, inputs.paths, &mut sub, noise, limit, stats.constructions - 1)
+                {
                     polish(&rules, s, &mut sub, &mut best, &mut stats);
                 }
             }
@@ -424,8 +451,8 @@ pub fn anneal(p: &Problem, inputs: &Inputs, opts: &AnnealOptions) -> Outcome {
         let tiling_deadline = t0 + Duration::from_secs_f64(opts.time_limit * 0.2);
         let mut found = None;
         while found.is_none() && Instant::now() < tiling_deadline {
-            found =
-                rooms::construct(p, placements, inputs.paths, &mut rng, 0.0, tiling_deadline, stats.constructions).map(|(r, _)| r.tiling.expect("tiled").rooms);
+            found = rooms::construct(p, placements, inputs.paths, &mut rng, 0.0, tiling_deadline, stats.constructions)
+                .map(|(r, _)| r.tiling.expect("tiled").rooms);
             stats.constructions += 1;
         }
         let Some(rooms) = found else {
@@ -447,7 +474,8 @@ pub fn anneal(p: &Problem, inputs: &Inputs, opts: &AnnealOptions) -> Outcome {
         }
         let share = deadline.saturating_duration_since(now) / (passes - k) as u32;
         let pass_deadline = now + share;
-        let res = anneal::pass(&rules, opts, opts.seed.wrapping_add(k as u64), pass_deadline, t0, &mut trace, &mut global);
+        let res =
+            anneal::pass(&rules, opts, opts.seed.wrapping_add(k as u64), pass_deadline, t0, &mut trace, &mut global);
         stats.passes += 1;
         stats.steps += res.steps;
         all_exhausted &= res.exhausted;
@@ -491,8 +519,16 @@ pub fn repair_within(p: &Problem, inputs: &Inputs, net: &Network, budget: f64) -
             if net.rooms.iter().any(|&k| k >= pl.len()) {
                 return None;
             }
-            let tiling_only = design::validate_rooms(p, &Network { active: vec![false; p.mesh.num_edges()], ..net.clone() }, pl, &net.rooms);
-            if tiling_only.iter().any(|v| matches!(v, design::Violation::Cover { .. } | design::Violation::RoomCount { .. })) {
+            let tiling_only = design::validate_rooms(
+                p,
+                &Network { active: vec![false; p.mesh.num_edges()], ..net.clone() },
+                pl,
+                &net.rooms,
+            );
+            if tiling_only
+                .iter()
+                .any(|v| matches!(v, design::Violation::Cover { .. } | design::Violation::RoomCount { .. }))
+            {
                 return None;
             }
             Some(Tiling { rooms: net.rooms.clone() })
@@ -524,6 +560,24 @@ pub fn start(p: &Problem, inputs: &Inputs, budget: f64, seed: u64) -> Option<Net
 /// seconds to find one (a hard instance's first design is worth more than the solver's first
 /// seconds; once one is found the search stops at `budget`), with `threads` searches side by side
 /// ([`Options::threads`]).
-pub fn start_within(p: &Problem, inputs: &Inputs, budget: f64, first_design_budget: f64, seed: u64, threads: usize) -> Option<Network> {
-    heuristic(p, inputs, &Options { time_limit: budget, seed, first_design_limit: Some(first_design_budget), threads, ..Options::default() }).network
+pub fn start_within(
+    p: &Problem,
+    inputs: &Inputs,
+    budget: f64,
+    first_design_budget: f64,
+    seed: u64,
+    threads: usize,
+) -> Option<Network> {
+    heuristic(
+        p,
+        inputs,
+        &Options {
+            time_limit: budget,
+            seed,
+            first_design_limit: Some(first_design_budget),
+            threads,
+            ..Options::default()
+        },
+    )
+    .network
 }

@@ -58,7 +58,13 @@ const NONE: u32 = u32::MAX;
 impl PathSearch {
     /// Buffers for a mesh with `nv` vertices.
     pub fn new(nv: usize) -> PathSearch {
-        PathSearch { dist: vec![f64::INFINITY; nv], pred: vec![NONE; nv], done: vec![false; nv], touched: Vec::new(), is_source: vec![false; nv] }
+        PathSearch {
+            dist: vec![f64::INFINITY; nv],
+            pred: vec![NONE; nv],
+            done: vec![false; nv],
+            touched: Vec::new(),
+            is_source: vec![false; nv],
+        }
     }
 
     fn reset(&mut self) {

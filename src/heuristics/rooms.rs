@@ -55,7 +55,9 @@ fn musts(p: &Problem) -> (Vec<EdgeId>, Vec<VertexId>) {
     }
     for &v in &vertices {
         let usable: Vec<EdgeId> = mesh.incident_edges(v).filter(|e| p.roles[e.index()] != EdgeRole::Excluded).collect();
-        if usable.len() == 1 || (usable.len() == 2 && p.dead_ends == crate::spec::Allow::Forbid && !p.is_sink[v.index()]) {
+        if usable.len() == 1
+            || (usable.len() == 2 && p.dead_ends == crate::spec::Allow::Forbid && !p.is_sink[v.index()])
+        {
             edges.extend(usable);
         }
     }
@@ -114,7 +116,13 @@ pub(crate) fn tiling_problem<'a>(p: &Problem, placements: &'a [Placement]) -> Ti
             })
             .collect()
     });
-    TilingProblem { placements, usable, cover: mesh.faces().map(|f| !p.is_obstacle_face[f.index()]).collect(), counts: rooms.counts.clone(), portals }
+    TilingProblem {
+        placements,
+        usable,
+        cover: mesh.faces().map(|f| !p.is_obstacle_face[f.index()]).collect(),
+        counts: rooms.counts.clone(),
+        portals,
+    }
 }
 
 /// One attempt: a seeded tiling and its network. `None` when this seed found no tiling or no
@@ -149,7 +157,9 @@ pub(crate) fn construct<'a>(
         let touch = attempt % 8 < 4;
         let active = corridors_first(p, paths, range, rng, noise, deadline)?;
         for (k, pl) in placements.iter().enumerate() {
-            tp.usable[k] = tp.usable[k] && !pl.inner_edges.iter().any(|e| active[e.index()]) && (!touch || pl.boundary_edges.iter().any(|e| active[e.index()]));
+            tp.usable[k] = tp.usable[k]
+                && !pl.inner_edges.iter().any(|e| active[e.index()])
+                && (!touch || pl.boundary_edges.iter().any(|e| active[e.index()]));
         }
         corridors = Some(active);
     }
@@ -158,7 +168,9 @@ pub(crate) fn construct<'a>(
     if rooms_spec.mode == RoomMode::Floorplan && corridors.is_none() && p.dead_ends == crate::spec::Allow::Forbid {
         rooms = retile(p, &tp, rooms, rng, deadline, &|rs: &[usize]| doomed(p, &tp, rs))?;
     }
-    if let (RoomMode::Game, Some(level @ (LevelType::Circular | LevelType::Linear))) = (rooms_spec.mode, rooms_spec.level) {
+    if let (RoomMode::Game, Some(level @ (LevelType::Circular | LevelType::Linear))) =
+        (rooms_spec.mode, rooms_spec.level)
+    {
         rooms = retile(p, &tp, rooms, rng, deadline, &|rs: &[usize]| doomed_blocks(p, &tp, rs, level))?;
     }
     let rules = Rules::new(p, paths, Some(placements), Some(Tiling { rooms }));
@@ -194,7 +206,12 @@ fn doomed_blocks(p: &Problem, tp: &TilingProblem, rooms: &[usize], level: LevelT
     let rules = Rules::new(p, None, Some(tp.placements), Some(Tiling { rooms: rooms.to_vec() }));
     let blocks = Blocks::new(&rules, tp.placements);
     let ends: Vec<usize> = match level {
-        LevelType::Linear => p.mesh.vertices().filter(|v| p.is_sink[v.index()]).flat_map(|v| blocks.portal_of[v.index()].clone()).collect(),
+        LevelType::Linear => p
+            .mesh
+            .vertices()
+            .filter(|v| p.is_sink[v.index()])
+            .flat_map(|v| blocks.portal_of[v.index()].clone())
+            .collect(),
         _ => Vec::new(),
     };
     let neighbours = |b: usize| -> Vec<usize> {
@@ -202,11 +219,14 @@ fn doomed_blocks(p: &Problem, tp: &TilingProblem, rooms: &[usize], level: LevelT
         ns.dedup();
         ns
     };
-    let mut out: Vec<usize> = (0..rooms.len()).filter(|&b| neighbours(b).len() < if ends.contains(&b) { 1 } else { 2 }).collect();
+    let mut out: Vec<usize> =
+        (0..rooms.len()).filter(|&b| neighbours(b).len() < if ends.contains(&b) { 1 } else { 2 }).collect();
     // A block whose only two neighbours include an end of the path must come right after
     // (before) that end: an end has room for one such block.
     for &e in &ends {
-        let forced: Vec<usize> = (0..rooms.len()).filter(|&b| !ends.contains(&b) && neighbours(b).len() == 2 && neighbours(b).contains(&e)).collect();
+        let forced: Vec<usize> = (0..rooms.len())
+            .filter(|&b| !ends.contains(&b) && neighbours(b).len() == 2 && neighbours(b).contains(&e))
+            .collect();
         if forced.len() > 1 {
             out.extend(forced);
         }
@@ -220,7 +240,10 @@ fn doomed_blocks(p: &Problem, tp: &TilingProblem, rooms: &[usize], level: LevelT
 fn one_wide(mesh: &crate::mesh::Mesh, pl: &Placement) -> bool {
     pl.faces.iter().any(|&f| {
         let es = mesh.face_edges(f);
-        es.len() == 4 && (0..2).any(|k| pl.boundary_edges.binary_search(&es[k]).is_ok() && pl.boundary_edges.binary_search(&es[k + 2]).is_ok())
+        es.len() == 4
+            && (0..2).any(|k| {
+                pl.boundary_edges.binary_search(&es[k]).is_ok() && pl.boundary_edges.binary_search(&es[k + 2]).is_ok()
+            })
     })
 }
 
@@ -249,7 +272,8 @@ fn doomed(p: &Problem, tp: &TilingProblem, rooms: &[usize]) -> Vec<usize> {
         let (a, b) = mesh.edge_vertices(*e);
         reach[a.index()] && reach[b.index()]
     };
-    let mut out: Vec<usize> = tiling.groups.iter().enumerate().filter(|(_, g)| !g.iter().any(edge_reached)).map(|(i, _)| rooms[i]).collect();
+    let mut out: Vec<usize> =
+        tiling.groups.iter().enumerate().filter(|(_, g)| !g.iter().any(edge_reached)).map(|(i, _)| rooms[i]).collect();
     for &v in &p.forced_vertices {
         let usable = mesh.incident_edges(v).filter(|e| tiling.allowed[e.index()] && edge_reached(e)).count();
         if usable < if p.is_sink[v.index()] { 1 } else { 2 } {
@@ -308,7 +332,8 @@ fn retile(
             }
             frontier = next;
         }
-        let (freed, kept): (Vec<usize>, Vec<usize>) = rooms.iter().partition(|&&k| tp.placements[k].faces.iter().any(|f| near[f.index()]));
+        let (freed, kept): (Vec<usize>, Vec<usize>) =
+            rooms.iter().partition(|&&k| tp.placements[k].faces.iter().any(|f| near[f.index()]));
         let mut cover = vec![false; nf];
         for &k in &freed {
             for f in &tp.placements[k].faces {
@@ -319,8 +344,18 @@ fn retile(
         for &k in &kept {
             kept_count[tp.placements[k].template] += 1;
         }
-        let counts = tp.counts.iter().zip(&kept_count).map(|(&(lo, hi), &c)| (lo.map(|lo| lo.saturating_sub(c)), hi.map(|hi| hi.saturating_sub(c)))).collect();
-        let usable = tp.usable.iter().zip(tp.placements).map(|(&u, pl)| u && pl.faces.iter().all(|f| cover[f.index()])).collect();
+        let counts = tp
+            .counts
+            .iter()
+            .zip(&kept_count)
+            .map(|(&(lo, hi), &c)| (lo.map(|lo| lo.saturating_sub(c)), hi.map(|hi| hi.saturating_sub(c))))
+            .collect();
+        let usable = tp
+            .usable
+            .iter()
+            .zip(tp.placements)
+            .map(|(&u, pl)| u && pl.faces.iter().all(|f| cover[f.index()]))
+            .collect();
         let sub = TilingProblem { placements: tp.placements, usable, cover, counts, portals: None };
         let Some(new) = tile(&sub, rng.next_u64(), 20_000) else { continue };
         let mut candidate = kept;
@@ -338,7 +373,14 @@ fn retile(
 /// A floor plan's corridors before its rooms: the network of the same spec without rooms and
 /// with hop coverage `range` (every vertex within `range` edges of a corridor, so every face is
 /// near one), built by the construction's rule steps.
-fn corridors_first(p: &Problem, paths: Option<&PathSets>, range: f64, rng: &mut Rng, noise: f64, deadline: Instant) -> Option<Vec<bool>> {
+fn corridors_first(
+    p: &Problem,
+    paths: Option<&PathSets>,
+    range: f64,
+    rng: &mut Rng,
+    noise: f64,
+    deadline: Instant,
+) -> Option<Vec<bool>> {
     let mut q = p.clone();
     q.rooms = None;
     q.coverage_range = range;
@@ -386,7 +428,8 @@ impl Blocks {
             let bs = &portal_of[v.index()];
             for i in 0..bs.len() {
                 for j in 0..bs.len() {
-                    if i != j && boundary[bs[i]].binary_search(&v).is_ok() && boundary[bs[j]].binary_search(&v).is_ok() {
+                    if i != j && boundary[bs[i]].binary_search(&v).is_ok() && boundary[bs[j]].binary_search(&v).is_ok()
+                    {
                         adj[bs[i]].push((bs[j], v));
                     }
                 }
@@ -591,10 +634,15 @@ impl Ham<'_, '_, '_> {
         match self.closing {
             Some(sink) => {
                 let first_exit = self.first_exit.expect("the first block was left");
-                let portals: Vec<VertexId> =
-                    self.blocks.adj[x].iter().filter(|&&(y, q)| y == self.start && !self.used.get(&q).copied().unwrap_or(false)).map(|&(_, q)| q).collect();
+                let portals: Vec<VertexId> = self.blocks.adj[x]
+                    .iter()
+                    .filter(|&&(y, q)| y == self.start && !self.used.get(&q).copied().unwrap_or(false))
+                    .map(|&(_, q)| q)
+                    .collect();
                 for q in portals {
-                    if self.routes.get(x, e, q, None).is_some() && self.routes.get(self.start, q, first_exit, Some(sink)).is_some() {
+                    if self.routes.get(x, e, q, None).is_some()
+                        && self.routes.get(self.start, q, first_exit, Some(sink)).is_some()
+                    {
                         self.order.push((self.start, Some(q)));
                         return true;
                     }
@@ -614,7 +662,14 @@ fn traverse(r: &Rules, placements: &[Placement], rng: &mut Rng, deadline: Instan
     let n = blocks.adj.len();
     let sinks: Vec<VertexId> = r.mesh.vertices().filter(|v| p.is_sink[v.index()]).collect();
     let block_with = |v: VertexId| -> Vec<usize> { blocks.portal_of[v.index()].clone() };
-    let mut routes = Routes { r, blocks: &blocks, scratch: State::new(r), ps: PathSearch::new(r.mesh.num_vertices()), rng: rng.fork(), cache: HashMap::new() };
+    let mut routes = Routes {
+        r,
+        blocks: &blocks,
+        scratch: State::new(r),
+        ps: PathSearch::new(r.mesh.num_vertices()),
+        rng: rng.fork(),
+        cache: HashMap::new(),
+    };
     // Start, end and how the walk closes.
     let (start, start_entry, end, end_exit, closing) = match level {
         LevelType::Linear => {

@@ -12,7 +12,9 @@ use crate::formulations::expr::FamilyStats;
 use crate::formulations::Formulation;
 use crate::mesh::Mesh;
 use crate::milp::ModelStats;
-use crate::pipeline::{active_edge_pairs, design_point, design_violations, rooms_result, RoomsResult, Validity, DESIGN_SCHEMA_VERSION};
+use crate::pipeline::{
+    active_edge_pairs, design_point, design_violations, rooms_result, RoomsResult, Validity, DESIGN_SCHEMA_VERSION,
+};
 use crate::rules::paths::PathSets;
 use crate::solvers::{LimitKind, SolverKind, Termination};
 use crate::spec::{Problem, Spec};
@@ -168,19 +170,44 @@ pub struct SearchResult {
 /// Runs a search on a built formulation (its path sets and placements are the ones the design
 /// uses) and checks its design like a solver's. The heuristic runs `threads` searches side by
 /// side ([`Options::threads`]); the stochastic search always runs on one thread.
-pub fn run_search(p: &Problem, f: &Formulation, method: SearchMethod, time_limit: f64, seed: u64, threads: usize) -> SearchResult {
+pub fn run_search(
+    p: &Problem,
+    f: &Formulation,
+    method: SearchMethod,
+    time_limit: f64,
+    seed: u64,
+    threads: usize,
+) -> SearchResult {
     let t0 = Instant::now();
-    let inputs = Inputs { paths: f.path_sets.as_ref(), placements: f.placements.as_ref().map(|r| r.placements.as_slice()) };
+    let inputs =
+        Inputs { paths: f.path_sets.as_ref(), placements: f.placements.as_ref().map(|r| r.placements.as_slice()) };
     let outcome = match method {
-        SearchMethod::Heuristic => super::heuristic(p, &inputs, &Options { time_limit, seed, threads, ..Options::default() }),
-        SearchMethod::Anneal => super::anneal(p, &inputs, &AnnealOptions { time_limit, seed, ..AnnealOptions::default() }),
+        SearchMethod::Heuristic => {
+            super::heuristic(p, &inputs, &Options { time_limit, seed, threads, ..Options::default() })
+        }
+        SearchMethod::Anneal => {
+            super::anneal(p, &inputs, &AnnealOptions { time_limit, seed, ..AnnealOptions::default() })
+        }
     };
     record(p, f, method, seed, outcome, t0)
 }
 
 /// The record of a search's outcome, with the independent checks.
-pub fn record(p: &Problem, f: &Formulation, method: SearchMethod, seed: u64, outcome: Outcome, t0: Instant) -> SearchResult {
-    let mut validity = Validity { valid: false, design_violations: Vec::new(), milp_check: None, objective_recomputed: None, objective_agrees: None };
+pub fn record(
+    p: &Problem,
+    f: &Formulation,
+    method: SearchMethod,
+    seed: u64,
+    outcome: Outcome,
+    t0: Instant,
+) -> SearchResult {
+    let mut validity = Validity {
+        valid: false,
+        design_violations: Vec::new(),
+        milp_check: None,
+        objective_recomputed: None,
+        objective_agrees: None,
+    };
     let (mut metrics, mut objective) = (None, None);
     if let Some(net) = &outcome.network {
         validity.design_violations = design_violations(p, f, net);

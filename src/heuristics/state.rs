@@ -84,7 +84,12 @@ pub(crate) struct Rules<'a> {
 
 impl<'a> Rules<'a> {
     /// Precomputes the rules of `p` (with `tiling` of `placements` when it has rooms).
-    pub fn new(p: &'a Problem, paths: Option<&PathSets>, placements: Option<&'a [Placement]>, tiling: Option<Tiling>) -> Rules<'a> {
+    pub fn new(
+        p: &'a Problem,
+        paths: Option<&PathSets>,
+        placements: Option<&'a [Placement]>,
+        tiling: Option<Tiling>,
+    ) -> Rules<'a> {
         Rules::build(p, paths, placements, tiling, false)
     }
 
@@ -94,8 +99,11 @@ impl<'a> Rules<'a> {
     /// no cover (the room it ends up in reaches a corridor instead).
     pub fn corridors(p: &'a Problem, paths: Option<&PathSets>) -> Rules<'a> {
         let mut r = Rules::build(p, paths, None, None, true);
-        let usable: Vec<bool> =
-            r.mesh.vertices().map(|v| r.p.is_sink[v.index()] || r.mesh.incident_edges(v).filter(|e| r.allowed[e.index()]).count() >= 2).collect();
+        let usable: Vec<bool> = r
+            .mesh
+            .vertices()
+            .map(|v| r.p.is_sink[v.index()] || r.mesh.incident_edges(v).filter(|e| r.allowed[e.index()]).count() >= 2)
+            .collect();
         for v in r.mesh.vertices() {
             if r.needs_cover[v.index()] && !r.balls[v.index()].iter().any(|w| usable[w.index()]) {
                 r.needs_cover[v.index()] = false;
@@ -104,7 +112,13 @@ impl<'a> Rules<'a> {
         r
     }
 
-    fn build(p: &'a Problem, paths: Option<&PathSets>, placements: Option<&'a [Placement]>, tiling: Option<Tiling>, off_walls: bool) -> Rules<'a> {
+    fn build(
+        p: &'a Problem,
+        paths: Option<&PathSets>,
+        placements: Option<&'a [Placement]>,
+        tiling: Option<Tiling>,
+        off_walls: bool,
+    ) -> Rules<'a> {
         let mesh = &p.mesh;
         let (nv, ne) = (mesh.num_vertices(), mesh.num_edges());
         let mut allowed: Vec<bool> = p.roles.iter().map(|r| *r != EdgeRole::Excluded).collect();
@@ -174,7 +188,10 @@ impl<'a> Rules<'a> {
                 edge_groups[e.index()].push(g as u32);
             }
         }
-        let cost_len = mesh.edges().map(|e| if p.roles[e.index()] == EdgeRole::Candidate { mesh.edge_length(e) } else { 0.0 }).collect();
+        let cost_len = mesh
+            .edges()
+            .map(|e| if p.roles[e.index()] == EdgeRole::Candidate { mesh.edge_length(e) } else { 0.0 })
+            .collect();
         let coverage = p.rooms.is_none();
         let needs_cover: Vec<bool> = mesh.vertices().map(|v| coverage && !p.is_obstacle_vertex[v.index()]).collect();
         let balls = if coverage { mesh.vertices().map(|v| cover_set(p, v)).collect() } else { Vec::new() };
@@ -202,7 +219,13 @@ impl<'a> Rules<'a> {
         if p.w_t_junction != Weight::Off {
             for (_, v, e0, others) in t_configs(mesh) {
                 if designed(p, &[e0, others[0], others[1], others[2]]) && others.iter().all(|e| allowed[e.index()]) {
-                    tconfigs.push(TConfig { vertex: v, e0, others, forbid: p.w_t_junction == Weight::Forbid, weight: p.w_t_junction.value() });
+                    tconfigs.push(TConfig {
+                        vertex: v,
+                        e0,
+                        others,
+                        forbid: p.w_t_junction == Weight::Forbid,
+                        weight: p.w_t_junction.value(),
+                    });
                 }
             }
         }
@@ -293,7 +316,8 @@ impl<'a> Rules<'a> {
 /// the usable edges of every non-sink vertex with fewer than two (fixed edges are never
 /// dropped). What is dropped could only ever lead into a dead-end.
 fn peel(p: &Problem, mesh: &Mesh, allowed: &mut [bool], fixed: &[bool]) {
-    let mut deg: Vec<u32> = mesh.vertices().map(|v| mesh.incident_edges(v).filter(|e| allowed[e.index()]).count() as u32).collect();
+    let mut deg: Vec<u32> =
+        mesh.vertices().map(|v| mesh.incident_edges(v).filter(|e| allowed[e.index()]).count() as u32).collect();
     let mut stack: Vec<VertexId> = mesh.vertices().filter(|v| !p.is_sink[v.index()] && deg[v.index()] == 1).collect();
     while let Some(v) = stack.pop() {
         if deg[v.index()] != 1 {
@@ -641,7 +665,12 @@ impl State {
 
     /// The design this state stands for (rooms from the tiling).
     pub fn network(&self, r: &Rules) -> Network {
-        Network { active: self.active.clone(), directions: Vec::new(), labels: Vec::new(), rooms: r.tiling.as_ref().map_or(Vec::new(), |t| t.rooms.clone()) }
+        Network {
+            active: self.active.clone(),
+            directions: Vec::new(),
+            labels: Vec::new(),
+            rooms: r.tiling.as_ref().map_or(Vec::new(), |t| t.rooms.clone()),
+        }
     }
 
     /// The objective (15) of this state, computed as [`crate::design::Objective::of`] computes it
@@ -650,7 +679,8 @@ impl State {
         let p = r.p;
         let mut total = p.w_length * self.length + self.penalty;
         if r.needs_paths() {
-            let net = Network { active: self.active.clone(), directions: Vec::new(), labels: Vec::new(), rooms: Vec::new() };
+            let net =
+                Network { active: self.active.clone(), directions: Vec::new(), labels: Vec::new(), rooms: Vec::new() };
             let mesh = r.mesh;
             if p.w_distance > 0.0 {
                 let h = label_distances(p, &net);
@@ -670,8 +700,11 @@ impl State {
             }
             if p.w_travel > 0.0 {
                 let d = travel_distances(mesh, &net, &p.is_sink);
-                let travel: f64 =
-                    mesh.vertices().filter(|v| self.deg[v.index()] > 0 && !p.is_sink[v.index()] && d[v.index()].is_finite()).map(|v| d[v.index()]).sum();
+                let travel: f64 = mesh
+                    .vertices()
+                    .filter(|v| self.deg[v.index()] > 0 && !p.is_sink[v.index()] && d[v.index()].is_finite())
+                    .map(|v| d[v.index()])
+                    .sum();
                 total += p.w_travel * travel;
             }
         }

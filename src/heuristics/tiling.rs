@@ -137,7 +137,8 @@ impl Search {
 
     /// Whether the templates below their minimum still fit in the faces left.
     fn mins_fit(&self) -> bool {
-        let need: usize = (0..self.min.len()).map(|t| (self.min[t].saturating_sub(self.count[t])) as usize * self.area[t]).sum();
+        let need: usize =
+            (0..self.min.len()).map(|t| (self.min[t].saturating_sub(self.count[t])) as usize * self.area[t]).sum();
         need <= self.dlx.open
     }
 }
@@ -169,7 +170,8 @@ pub(crate) fn tile(tp: &TilingProblem, seed: u64, node_limit: u64) -> Option<Vec
         rows.push(k);
     }
     // Large rooms first, in random order among rooms of one size.
-    let mut keyed: Vec<(f64, usize)> = rows.iter().map(|&k| (-(tp.placements[k].faces.len() as f64) - rng.unit(), k)).collect();
+    let mut keyed: Vec<(f64, usize)> =
+        rows.iter().map(|&k| (-(tp.placements[k].faces.len() as f64) - rng.unit(), k)).collect();
     keyed.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
     let rows: Vec<usize> = keyed.into_iter().map(|(_, k)| k).collect();
 
@@ -274,7 +276,8 @@ impl Search {
             return Some(ok);
         }
         if let Some(t) = (0..self.min.len()).find(|&t| self.count[t] < self.min[t]) {
-            let mut rows: Vec<usize> = self.rows_of_template[t].iter().copied().filter(|&row| self.row_alive(row)).collect();
+            let mut rows: Vec<usize> =
+                self.rows_of_template[t].iter().copied().filter(|&row| self.row_alive(row)).collect();
             self.rng.shuffle(&mut rows);
             for row in rows {
                 let h = self.dlx.row_head[row];
@@ -327,8 +330,10 @@ impl Search {
         if !self.portal_count.is_empty() {
             // Rows sharing more portals with the blocks placed first (a stable sort keeps the
             // seeded order among equals).
-            let score = |row: usize| self.row_portals[row].iter().filter(|&&v| self.portal_count[v as usize] > 0).count();
-            let mut keyed: Vec<(usize, usize)> = nodes.iter().map(|&i| (usize::MAX - score(self.dlx.row[i]), i)).collect();
+            let score =
+                |row: usize| self.row_portals[row].iter().filter(|&&v| self.portal_count[v as usize] > 0).count();
+            let mut keyed: Vec<(usize, usize)> =
+                nodes.iter().map(|&i| (usize::MAX - score(self.dlx.row[i]), i)).collect();
             keyed.sort_by_key(|k| k.0);
             nodes = keyed.into_iter().map(|k| k.1).collect();
         }

@@ -87,7 +87,10 @@ fn read_text(path: &Path) -> std::io::Result<String> {
         return std::fs::read_to_string(path);
     }
     let mut text = String::new();
-    std::io::Read::read_to_string(&mut flate2::read::MultiGzDecoder::new(std::io::BufReader::new(std::fs::File::open(path)?)), &mut text)?;
+    std::io::Read::read_to_string(
+        &mut flate2::read::MultiGzDecoder::new(std::io::BufReader::new(std::fs::File::open(path)?)),
+        &mut text,
+    )?;
     Ok(text)
 }
 
@@ -151,7 +154,9 @@ pub fn write_model_file_with_comments(model: &Model, path: &Path, comments: &[St
     let file = std::fs::File::create(path).map_err(|e| file_err(path, e))?;
     let w = std::io::BufWriter::with_capacity(1 << 20, file);
     let write = |mut w: &mut dyn std::io::Write| match format {
-        Format::Mps => mps::write(model, &mut w, &mps::WriteOptions { comments: comments.to_vec(), ..Default::default() }),
+        Format::Mps => {
+            mps::write(model, &mut w, &mps::WriteOptions { comments: comments.to_vec(), ..Default::default() })
+        }
         Format::Lp => lp::write(model, &mut w, &lp::WriteOptions { comments: comments.to_vec(), ..Default::default() }),
     };
     let map = if is_gzip(path) {

@@ -108,7 +108,10 @@ pub fn read(model: &Model, path: &Path) -> Result<SolutionFile, SolError> {
 /// one of the header words (`objective value: 1.5`, HiGHS's `Objective 12.5`, `Columns 3`).
 fn looks_like_header(name: &str, value: &str, known: bool) -> bool {
     let word = name.trim_end_matches(':').to_ascii_lowercase();
-    value.parse::<f64>().is_err() || (!known && (name.ends_with(':') || ["objective", "columns", "rows", "model", "solution", "t"].contains(&word.as_str())))
+    value.parse::<f64>().is_err()
+        || (!known
+            && (name.ends_with(':')
+                || ["objective", "columns", "rows", "model", "solution", "t"].contains(&word.as_str())))
 }
 
 /// Parses the text of a solution file for `model`.
@@ -135,13 +138,18 @@ pub fn parse(model: &Model, text: &str) -> Result<SolutionFile, SolErrorKind> {
         let Some(&var) = index.get(name) else {
             return Err(SolErrorKind::UnknownVariable { line: line_no, name: name.to_string() });
         };
-        let v: f64 = value.parse().ok().filter(|v: &f64| v.is_finite()).ok_or_else(|| SolErrorKind::BadValue { line: line_no, text: value.to_string() })?;
+        let v: f64 = value
+            .parse()
+            .ok()
+            .filter(|v: &f64| v.is_finite())
+            .ok_or_else(|| SolErrorKind::BadValue { line: line_no, text: value.to_string() })?;
         if values[var.index()].replace(v).is_some() {
             return Err(SolErrorKind::Duplicate { line: line_no, name: name.to_string() });
         }
         in_pairs = true;
     }
-    let missing = model.vars().iter().zip(&values).filter(|(_, v)| v.is_none()).map(|(var, _)| var.name.clone()).collect();
+    let missing =
+        model.vars().iter().zip(&values).filter(|(_, v)| v.is_none()).map(|(var, _)| var.name.clone()).collect();
     Ok(SolutionFile { values: values.into_iter().map(|v| v.unwrap_or(0.0)).collect(), missing })
 }
 
@@ -164,7 +172,10 @@ mod tests {
         let p = dir.path().join("a.sol");
         write(&m, &[1.0, 0.1 + 0.2, 3.0], Some(1.15), "test, optimal", &p).unwrap();
         let text = std::fs::read_to_string(&p).unwrap();
-        assert_eq!(text, "# netspec solution: test, optimal\n# Objective value = 1.15\nx 1\ny 0.30000000000000004\nz 3\n");
+        assert_eq!(
+            text,
+            "# netspec solution: test, optimal\n# Objective value = 1.15\nx 1\ny 0.30000000000000004\nz 3\n"
+        );
         let back = read(&m, &p).unwrap();
         assert_eq!(back, SolutionFile { values: vec![1.0, 0.1 + 0.2, 3.0], missing: vec![] });
     }

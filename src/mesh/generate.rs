@@ -20,14 +20,8 @@ const MAX_CLIP_CELLS: usize = 1 << 26;
 ///
 /// If `w` or `h` is 0, or `spacing` is not finite and positive.
 pub fn grid(w: usize, h: usize, spacing: f64) -> Mesh {
-    assert!(
-        w > 0 && h > 0,
-        "grid: w and h must be positive (got {w} × {h})"
-    );
-    assert!(
-        spacing.is_finite() && spacing > 0.0,
-        "grid: spacing must be finite and positive (got {spacing})"
-    );
+    assert!(w > 0 && h > 0, "grid: w and h must be positive (got {w} × {h})");
+    assert!(spacing.is_finite() && spacing > 0.0, "grid: spacing must be finite and positive (got {spacing})");
     let mut positions = Vec::with_capacity((w + 1) * (h + 1));
     for row in 0..=h {
         for col in 0..=w {
@@ -38,12 +32,7 @@ pub fn grid(w: usize, h: usize, spacing: f64) -> Mesh {
     let mut faces = Vec::with_capacity(w * h);
     for row in 0..h {
         for col in 0..w {
-            faces.push(vec![
-                id(row, col),
-                id(row, col + 1),
-                id(row + 1, col + 1),
-                id(row + 1, col),
-            ]);
+            faces.push(vec![id(row, col), id(row, col + 1), id(row + 1, col + 1), id(row + 1, col)]);
         }
     }
     Mesh::from_polygons(positions, faces).expect("a regular grid is a valid mesh")
@@ -67,11 +56,7 @@ pub fn grid(w: usize, h: usize, spacing: f64) -> Mesh {
 /// Errors: [`MeshError::InvalidInput`] for a non-positive or non-finite spacing, a polygon with
 /// fewer than 3 points or non-finite coordinates; [`MeshError::TooLarge`] if the grid would have
 /// more than 2^26 cells; [`MeshError::Empty`] if no cell remains.
-pub fn clipped_grid(
-    outer: &[[f64; 2]],
-    holes: &[Vec<[f64; 2]>],
-    spacing: f64,
-) -> Result<Mesh, MeshError> {
+pub fn clipped_grid(outer: &[[f64; 2]], holes: &[Vec<[f64; 2]>], spacing: f64) -> Result<Mesh, MeshError> {
     clipped_grid_impl(outer, holes, spacing, None)
 }
 
@@ -96,22 +81,14 @@ fn clipped_grid_impl(
 ) -> Result<Mesh, MeshError> {
     let invalid = |reason: String| Err(MeshError::InvalidInput { reason });
     if !(spacing.is_finite() && spacing > 0.0) {
-        return invalid(format!(
-            "spacing must be finite and positive (got {spacing})"
-        ));
+        return invalid(format!("spacing must be finite and positive (got {spacing})"));
     }
     if outer.len() < 3 {
-        return invalid(format!(
-            "the outer polygon has {} points (need at least 3)",
-            outer.len()
-        ));
+        return invalid(format!("the outer polygon has {} points (need at least 3)", outer.len()));
     }
     for (k, hole) in holes.iter().enumerate() {
         if hole.len() < 3 {
-            return invalid(format!(
-                "hole {k} has {} points (need at least 3)",
-                hole.len()
-            ));
+            return invalid(format!("hole {k} has {} points (need at least 3)", hole.len()));
         }
     }
     let finite = |p: &[f64; 2]| p[0].is_finite() && p[1].is_finite();
@@ -147,12 +124,9 @@ fn clipped_grid_impl(
     let mut keep = vec![false; nx * ny];
     for j in 0..ny {
         for i in 0..nx {
-            let c = [
-                lo[0] + (i as f64 + 0.5) * spacing,
-                lo[1] + (j as f64 + 0.5) * spacing,
-            ];
-            keep[j * nx + i] = geom::point_in_polygon(c, outer)
-                && !holes.iter().any(|hole| geom::point_in_polygon(c, hole));
+            let c = [lo[0] + (i as f64 + 0.5) * spacing, lo[1] + (j as f64 + 0.5) * spacing];
+            keep[j * nx + i] =
+                geom::point_in_polygon(c, outer) && !holes.iter().any(|hole| geom::point_in_polygon(c, hole));
         }
     }
     remove_diagonal_contacts(&mut keep, nx, ny);
@@ -188,9 +162,7 @@ fn clipped_grid_impl(
         }
     }
     if faces.is_empty() {
-        return Err(MeshError::Empty {
-            reason: "no grid cell centre lies inside the polygon".into(),
-        });
+        return Err(MeshError::Empty { reason: "no grid cell centre lies inside the polygon".into() });
     }
     Mesh::from_polygons(positions, faces)
 }
@@ -199,18 +171,11 @@ fn clipped_grid_impl(
 fn remove_diagonal_contacts(keep: &mut [bool], nx: usize, ny: usize) {
     let nvx = nx + 1;
     let cell = |keep: &[bool], i: isize, j: isize| -> bool {
-        i >= 0
-            && j >= 0
-            && (i as usize) < nx
-            && (j as usize) < ny
-            && keep[j as usize * nx + i as usize]
+        i >= 0 && j >= 0 && (i as usize) < nx && (j as usize) < ny && keep[j as usize * nx + i as usize]
     };
     let kept_neighbours = |keep: &[bool], c: usize| -> usize {
         let (i, j) = ((c % nx) as isize, (c / nx) as isize);
-        [(-1, 0), (1, 0), (0, -1), (0, 1)]
-            .iter()
-            .filter(|(di, dj)| cell(keep, i + di, j + dj))
-            .count()
+        [(-1, 0), (1, 0), (0, -1), (0, 1)].iter().filter(|(di, dj)| cell(keep, i + di, j + dj)).count()
     };
     let mut queued = vec![true; nvx * (ny + 1)];
     let mut queue: VecDeque<usize> = (0..nvx * (ny + 1)).collect();
@@ -233,11 +198,7 @@ fn remove_diagonal_contacts(keep: &mut [bool], nx: usize, ny: usize) {
         let ca = a.1 as usize * nx + a.0 as usize;
         let cb = b.1 as usize * nx + b.0 as usize;
         let (na, nb) = (kept_neighbours(keep, ca), kept_neighbours(keep, cb));
-        let victim = if na < nb || (na == nb && ca > cb) {
-            ca
-        } else {
-            cb
-        };
+        let victim = if na < nb || (na == nb && ca > cb) { ca } else { cb };
         keep[victim] = false;
         let (vi, vj) = (victim % nx, victim / nx);
         for (di, dj) in [(0, 0), (1, 0), (1, 1), (0, 1)] {
@@ -290,10 +251,7 @@ pub fn jitter(mesh: &Mesh, amount: f64, seed: u64) -> Mesh {
         if mesh.is_boundary_vertex(v) {
             continue;
         }
-        let shortest = mesh
-            .incident_edges(v)
-            .map(|e| mesh.edge_length(e))
-            .fold(f64::INFINITY, f64::min);
+        let shortest = mesh.incident_edges(v).map(|e| mesh.edge_length(e)).fold(f64::INFINITY, f64::min);
         let r = amount * shortest;
         let offset = [rng.symmetric() * r, rng.symmetric() * r];
         let origin = pos[v.index()];
@@ -325,11 +283,7 @@ fn move_is_valid(mesh: &Mesh, v: VertexId, pos: &[[f64; 2]], pts: &mut Vec<[f64;
     for f in mesh.vertex_faces(v) {
         pts.clear();
         pts.extend(mesh.face_vertices(f).iter().map(|u| pos[u.index()]));
-        if mesh
-            .face_vertices(f)
-            .iter()
-            .any(|&u| u != v && geom::dist(pos[u.index()], p) <= 1e-9)
-        {
+        if mesh.face_vertices(f).iter().any(|&u| u != v && geom::dist(pos[u.index()], p) <= 1e-9) {
             return false;
         }
         if geom::is_area_degenerate(pts) || geom::signed_area(pts) <= 0.0 || !geom::is_simple(pts) {
@@ -348,47 +302,28 @@ mod tests {
 
     fn has_diagonal_contact(m: &Mesh) -> bool {
         // In a valid mesh this cannot happen (NonManifoldVertex), but check the fan directly.
-        m.vertices().any(|v| {
-            m.vertex_faces(v).count() + usize::from(m.is_boundary_vertex(v)) != m.valence(v)
-        })
+        m.vertices().any(|v| m.vertex_faces(v).count() + usize::from(m.is_boundary_vertex(v)) != m.valence(v))
     }
 
     #[test]
     fn grid_12x12_counts_and_one_rings() {
         let m = grid(12, 12, 1.0);
-        assert_eq!(
-            (
-                m.num_vertices(),
-                m.num_edges(),
-                m.num_faces(),
-                m.num_half_edges()
-            ),
-            (169, 312, 144, 624)
-        );
+        assert_eq!((m.num_vertices(), m.num_edges(), m.num_faces(), m.num_half_edges()), (169, 312, 144, 624));
         assert_eq!(m.boundary_vertices().len(), 48);
         assert_eq!(m.boundary_edges().len(), 48);
         for v in m.vertices() {
             let (row, col) = (v.index() / 13, v.index() % 13);
             assert_eq!(m.position(v), [col as f64, row as f64]);
-            let on_side = [row == 0, row == 12, col == 0, col == 12]
-                .iter()
-                .filter(|&&b| b)
-                .count();
+            let on_side = [row == 0, row == 12, col == 0, col == 12].iter().filter(|&&b| b).count();
             let expected = [4, 3, 2][on_side];
             assert_eq!(m.valence(v), expected, "valence of {v}");
             assert_eq!(m.is_boundary_vertex(v), on_side > 0);
         }
         check_invariants(&m);
         // Corner 0: boundary one-ring starts after the gap: first east (1), then north (13).
-        assert_eq!(
-            m.neighbors(VertexId(0)).collect::<Vec<_>>(),
-            vec![VertexId(1), VertexId(13)]
-        );
+        assert_eq!(m.neighbors(VertexId(0)).collect::<Vec<_>>(), vec![VertexId(1), VertexId(13)]);
         // Bottom side vertex 5: east, north, west.
-        assert_eq!(
-            m.neighbors(VertexId(5)).collect::<Vec<_>>(),
-            vec![VertexId(6), VertexId(18), VertexId(4)]
-        );
+        assert_eq!(m.neighbors(VertexId(5)).collect::<Vec<_>>(), vec![VertexId(6), VertexId(18), VertexId(4)]);
         // Quads: edges i and i+2 are parallel.
         for f in m.faces() {
             let es = m.face_edges(f);
@@ -413,15 +348,8 @@ mod tests {
     fn grid_edge_numbering_is_first_appearance() {
         let m = grid(2, 1, 1.0);
         // Face 0 = [0, 1, 4, 3]; face 1 = [1, 2, 5, 4].
-        let ev: Vec<_> = m
-            .edges()
-            .map(|e| m.edge_vertices(e))
-            .map(|(a, b)| (a.0, b.0))
-            .collect();
-        assert_eq!(
-            ev,
-            vec![(0, 1), (1, 4), (4, 3), (3, 0), (1, 2), (2, 5), (5, 4)]
-        );
+        let ev: Vec<_> = m.edges().map(|e| m.edge_vertices(e)).map(|(a, b)| (a.0, b.0)).collect();
+        assert_eq!(ev, vec![(0, 1), (1, 4), (4, 3), (3, 0), (1, 2), (2, 5), (5, 4)]);
         assert_eq!(m.edge_faces(EdgeId(1)), [Some(FaceId(0)), Some(FaceId(1))]);
     }
 
@@ -446,14 +374,7 @@ mod tests {
     }
 
     fn l_shape() -> Vec<[f64; 2]> {
-        vec![
-            [0.0, 0.0],
-            [6.0, 0.0],
-            [6.0, 3.0],
-            [3.0, 3.0],
-            [3.0, 6.0],
-            [0.0, 6.0],
-        ]
+        vec![[0.0, 0.0], [6.0, 0.0], [6.0, 3.0], [3.0, 3.0], [3.0, 6.0], [0.0, 6.0]]
     }
 
     #[test]
@@ -463,10 +384,7 @@ mod tests {
         assert_eq!(m.num_faces(), 27);
         assert_eq!(m.num_vertices(), 49 - 9);
         // Euler: V − E + F = 1 for a disk.
-        assert_eq!(
-            m.num_vertices() as i64 - m.num_edges() as i64 + m.num_faces() as i64,
-            1
-        );
+        assert_eq!(m.num_vertices() as i64 - m.num_edges() as i64 + m.num_faces() as i64, 1);
         assert_eq!(m.boundary_edges().len(), 24);
         check_invariants(&m);
         assert!(!has_diagonal_contact(&m));
@@ -483,10 +401,7 @@ mod tests {
         assert_eq!(m.num_faces(), 64 - 4);
         assert_eq!(m.num_vertices(), 81 - 1);
         // Annulus: V − E + F = 0.
-        assert_eq!(
-            m.num_vertices() as i64 - m.num_edges() as i64 + m.num_faces() as i64,
-            0
-        );
+        assert_eq!(m.num_vertices() as i64 - m.num_edges() as i64 + m.num_faces() as i64, 0);
         assert_eq!(m.boundary_vertices().len(), 32 + 8);
         let loops = m.boundary_loops();
         assert_eq!(loops.iter().map(Vec::len).collect::<Vec<_>>(), vec![32, 8]);
@@ -498,16 +413,8 @@ mod tests {
     #[test]
     fn clipped_grid_removes_diagonal_contacts() {
         // Two squares touching at (2, 2), plus a pinch on a diagonal staircase.
-        let outer = vec![
-            [0.0, 0.0],
-            [2.0, 0.0],
-            [2.0, 2.0],
-            [4.0, 2.0],
-            [4.0, 4.0],
-            [2.0, 4.0],
-            [2.0, 2.0],
-            [0.0, 2.0],
-        ];
+        let outer =
+            vec![[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [4.0, 2.0], [4.0, 4.0], [2.0, 4.0], [2.0, 2.0], [0.0, 2.0]];
         let m = clipped_grid(&outer, &[], 1.0).unwrap();
         check_invariants(&m);
         // One cell of the pinch is removed: the (tie) later one, cell (2, 2).
@@ -517,14 +424,7 @@ mod tests {
         assert!(centroids.contains(&[1.5, 1.5]));
         assert!(!centroids.contains(&[2.5, 2.5]));
         // A diagonal staircase of single cells collapses to cells without corner contacts.
-        let stair = vec![
-            [0.0, 0.0],
-            [1.0, 0.0],
-            [4.0, 3.0],
-            [4.0, 4.0],
-            [3.0, 4.0],
-            [0.0, 1.0],
-        ];
+        let stair = vec![[0.0, 0.0], [1.0, 0.0], [4.0, 3.0], [4.0, 4.0], [3.0, 4.0], [0.0, 1.0]];
         let s = clipped_grid(&stair, &[], 0.5).unwrap();
         check_invariants(&s);
     }
@@ -536,8 +436,7 @@ mod tests {
         let n = 64;
         for k in 0..n {
             let t = TAU * k as f64 / n as f64;
-            let r =
-                10.0 + 2.5 * (3.0 * t).sin() + 1.2 * (7.0 * t + 0.4).cos() + 0.6 * (13.0 * t).sin();
+            let r = 10.0 + 2.5 * (3.0 * t).sin() + 1.2 * (7.0 * t + 0.4).cos() + 0.6 * (13.0 * t).sin();
             coast.push([r * t.cos(), r * t.sin()]);
         }
         let lake = vec![[-2.0, -2.0], [1.0, -2.5], [1.5, 1.0], [-1.0, 2.0]];
@@ -556,27 +455,12 @@ mod tests {
     #[test]
     fn clipped_grid_errors() {
         let sq = vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
-        assert!(matches!(
-            clipped_grid(&sq, &[], 0.0),
-            Err(MeshError::InvalidInput { .. })
-        ));
-        assert!(matches!(
-            clipped_grid(&sq[..2], &[], 1.0),
-            Err(MeshError::InvalidInput { .. })
-        ));
-        assert!(matches!(
-            clipped_grid(&sq, std::slice::from_ref(&sq), 0.5),
-            Err(MeshError::Empty { .. })
-        ));
-        assert!(matches!(
-            clipped_grid(&sq, &[], 1e-9),
-            Err(MeshError::TooLarge { .. })
-        ));
+        assert!(matches!(clipped_grid(&sq, &[], 0.0), Err(MeshError::InvalidInput { .. })));
+        assert!(matches!(clipped_grid(&sq[..2], &[], 1.0), Err(MeshError::InvalidInput { .. })));
+        assert!(matches!(clipped_grid(&sq, std::slice::from_ref(&sq), 0.5), Err(MeshError::Empty { .. })));
+        assert!(matches!(clipped_grid(&sq, &[], 1e-9), Err(MeshError::TooLarge { .. })));
         let thin = vec![[0.0, 0.0], [10.0, 0.0], [10.0, 0.1]];
-        assert!(matches!(
-            clipped_grid(&thin, &[], 1.0),
-            Err(MeshError::Empty { .. })
-        ));
+        assert!(matches!(clipped_grid(&thin, &[], 1.0), Err(MeshError::Empty { .. })));
     }
 
     #[test]

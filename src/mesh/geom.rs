@@ -92,9 +92,7 @@ pub(crate) fn centroid(pts: &[P]) -> P {
         }
         [o[0] + cx / (6.0 * a), o[1] + cy / (6.0 * a)]
     } else {
-        let s = pts
-            .iter()
-            .fold([0.0, 0.0], |s, p| [s[0] + p[0], s[1] + p[1]]);
+        let s = pts.iter().fold([0.0, 0.0], |s, p| [s[0] + p[0], s[1] + p[1]]);
         [s[0] / n as f64, s[1] / n as f64]
     }
 }
@@ -105,9 +103,7 @@ pub(crate) fn segments_intersect(p1: P, p2: P, q1: P, q2: P) -> bool {
     let d2 = orient(q1, q2, p2);
     let d3 = orient(p1, p2, q1);
     let d4 = orient(p1, p2, q2);
-    if ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0))
-        && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0))
-    {
+    if ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0)) && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0)) {
         return true;
     }
     (d1 == 0.0 && on_segment(q1, q2, p1))
@@ -118,10 +114,7 @@ pub(crate) fn segments_intersect(p1: P, p2: P, q1: P, q2: P) -> bool {
 
 /// For a point `c` collinear with `a b`: whether it lies on the closed segment.
 fn on_segment(a: P, b: P, c: P) -> bool {
-    c[0] >= a[0].min(b[0])
-        && c[0] <= a[0].max(b[0])
-        && c[1] >= a[1].min(b[1])
-        && c[1] <= a[1].max(b[1])
+    c[0] >= a[0].min(b[0]) && c[0] <= a[0].max(b[0]) && c[1] >= a[1].min(b[1]) && c[1] <= a[1].max(b[1])
 }
 
 /// Whether a closed polygon is simple: no two non-adjacent sides meet, and no corner folds back

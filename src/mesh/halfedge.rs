@@ -56,10 +56,7 @@ impl Mesh {
     /// by reversing every loop while keeping its first vertex (`[a, b, c, d]` becomes
     /// `[a, d, c, b]`). Vertex and face ids are the input indices; edges are numbered in order of
     /// first appearance along the normalised loops. See [`MeshError`] for everything checked.
-    pub fn from_polygons(
-        positions: Vec<[f64; 2]>,
-        faces: Vec<Vec<u32>>,
-    ) -> Result<Mesh, MeshError> {
+    pub fn from_polygons(positions: Vec<[f64; 2]>, faces: Vec<Vec<u32>>) -> Result<Mesh, MeshError> {
         Self::build(positions, faces, true)
     }
 
@@ -77,31 +74,19 @@ impl Mesh {
         let nv = positions.len();
         let nf = faces.len();
         if nf == 0 {
-            return Err(MeshError::Empty {
-                reason: "no faces".into(),
-            });
+            return Err(MeshError::Empty { reason: "no faces".into() });
         }
         let corners: usize = faces.iter().map(Vec::len).sum();
         if nv > MAX_ELEMENTS || nf > MAX_ELEMENTS || corners > MAX_ELEMENTS {
-            return Err(MeshError::TooLarge {
-                reason: format!("{nv} vertices, {nf} faces, {corners} face corners"),
-            });
+            return Err(MeshError::TooLarge { reason: format!("{nv} vertices, {nf} faces, {corners} face corners") });
         }
 
         if check_geometry {
-            if let Some(v) = positions
-                .iter()
-                .position(|p| !(p[0].is_finite() && p[1].is_finite()))
-            {
-                return Err(MeshError::NonFinitePosition {
-                    v: VertexId(v as u32),
-                });
+            if let Some(v) = positions.iter().position(|p| !(p[0].is_finite() && p[1].is_finite())) {
+                return Err(MeshError::NonFinitePosition { v: VertexId(v as u32) });
             }
             if let Some((a, b)) = first_duplicate(&positions) {
-                return Err(MeshError::DuplicateVertex {
-                    a: VertexId(a as u32),
-                    b: VertexId(b as u32),
-                });
+                return Err(MeshError::DuplicateVertex { a: VertexId(a as u32), b: VertexId(b as u32) });
             }
         }
 
@@ -114,10 +99,7 @@ impl Mesh {
                 return Err(MeshError::BadIndex { face, index });
             }
             if lp.len() < 3 {
-                return Err(MeshError::DegenerateFace {
-                    face,
-                    reason: DegenerateReason::TooFewVertices,
-                });
+                return Err(MeshError::DegenerateFace { face, reason: DegenerateReason::TooFewVertices });
             }
             for &i in lp {
                 if seen_in_face[i as usize] == f as u32 {
@@ -131,9 +113,7 @@ impl Mesh {
             }
         }
         if let Some(v) = used.iter().position(|&u| !u) {
-            return Err(MeshError::IsolatedVertex {
-                v: VertexId(v as u32),
-            });
+            return Err(MeshError::IsolatedVertex { v: VertexId(v as u32) });
         }
 
         // Geometric face checks and orientation.
@@ -145,16 +125,10 @@ impl Mesh {
                 pts.extend(lp.iter().map(|&i| positions[i as usize]));
                 let face = FaceId(f as u32);
                 if geom::is_area_degenerate(&pts) {
-                    return Err(MeshError::DegenerateFace {
-                        face,
-                        reason: DegenerateReason::ZeroArea,
-                    });
+                    return Err(MeshError::DegenerateFace { face, reason: DegenerateReason::ZeroArea });
                 }
                 if !geom::is_simple(&pts) {
-                    return Err(MeshError::DegenerateFace {
-                        face,
-                        reason: DegenerateReason::SelfIntersecting,
-                    });
+                    return Err(MeshError::DegenerateFace { face, reason: DegenerateReason::SelfIntersecting });
                 }
                 clockwise[f] = geom::signed_area(&pts) < 0.0;
             }
@@ -164,10 +138,7 @@ impl Mesh {
         // third use comes first in face-walk order.
         let mut groups = CornerGroups::new(&faces, nv);
         if let Some((a, b)) = groups.non_manifold {
-            return Err(MeshError::NonManifoldEdge {
-                a: VertexId(a),
-                b: VertexId(b),
-            });
+            return Err(MeshError::NonManifoldEdge { a: VertexId(a), b: VertexId(b) });
         }
 
         if check_geometry {
@@ -180,13 +151,8 @@ impl Mesh {
             } else if n_cw > 0 {
                 // The minority orientation is wrong; on a tie, the clockwise faces are.
                 let wrong_is_cw = 2 * n_cw <= nf;
-                let f = clockwise
-                    .iter()
-                    .position(|&c| c == wrong_is_cw)
-                    .unwrap_or(0);
-                return Err(MeshError::InconsistentOrientation {
-                    face: FaceId(f as u32),
-                });
+                let f = clockwise.iter().position(|&c| c == wrong_is_cw).unwrap_or(0);
+                return Err(MeshError::InconsistentOrientation { face: FaceId(f as u32) });
             }
         }
 
@@ -259,9 +225,7 @@ impl Mesh {
             let mut starts = ring.iter().filter(|&&h| he_face[twin(h).index()].is_none());
             let first = starts.next().copied();
             if starts.next().is_some() {
-                return Err(MeshError::NonManifoldVertex {
-                    v: VertexId(v as u32),
-                });
+                return Err(MeshError::NonManifoldVertex { v: VertexId(v as u32) });
             }
             boundary_vertex[v] = first.is_some();
             // ring is in increasing id order, so ring[0] is the smallest id.
@@ -271,9 +235,7 @@ impl Mesh {
             loop {
                 out_hes.push(cur);
                 if out_hes.len() - before > ring.len() {
-                    return Err(MeshError::NonManifoldVertex {
-                        v: VertexId(v as u32),
-                    });
+                    return Err(MeshError::NonManifoldVertex { v: VertexId(v as u32) });
                 }
                 // CCW successor: sweep across the face on the left of `cur`.
                 let Some(p) = he_prev[cur.index()] else { break };
@@ -284,9 +246,7 @@ impl Mesh {
                 cur = nxt;
             }
             if out_hes.len() - before != ring.len() {
-                return Err(MeshError::NonManifoldVertex {
-                    v: VertexId(v as u32),
-                });
+                return Err(MeshError::NonManifoldVertex { v: VertexId(v as u32) });
             }
         }
 
@@ -450,10 +410,7 @@ impl Mesh {
 
     /// The half-edge `from → to`, if the two vertices are joined by an edge.
     pub fn half_edge_between(&self, from: VertexId, to: VertexId) -> Option<HalfEdgeId> {
-        self.outgoing(from)
-            .iter()
-            .copied()
-            .find(|&h| self.he_head(h) == to)
+        self.outgoing(from).iter().copied().find(|&h| self.he_head(h) == to)
     }
 
     /// Half-edges leaving `v`, in counter-clockwise angular order. An interior vertex's list
@@ -478,9 +435,7 @@ impl Mesh {
     /// Faces around `v`, counter-clockwise, in the order of [`outgoing`](Self::outgoing)
     /// (`valence − 1` faces at a boundary vertex, `valence` at an interior one).
     pub fn vertex_faces(&self, v: VertexId) -> impl Iterator<Item = FaceId> + '_ {
-        self.outgoing(v)
-            .iter()
-            .filter_map(move |&h| self.he_face(h))
+        self.outgoing(v).iter().filter_map(move |&h| self.he_face(h))
     }
 
     /// Number of edges at `v`.
@@ -500,9 +455,7 @@ impl Mesh {
 
     /// All boundary vertices, in id order.
     pub fn boundary_vertices(&self) -> Vec<VertexId> {
-        self.vertices()
-            .filter(|&v| self.is_boundary_vertex(v))
-            .collect()
+        self.vertices().filter(|&v| self.is_boundary_vertex(v)).collect()
     }
 
     /// All boundary edges, in id order.
@@ -559,10 +512,7 @@ impl Mesh {
     /// A face's edges, in the order of [`face_half_edges`](Self::face_half_edges) (so in a quad,
     /// edges `i` and `i + 2` are opposite).
     pub fn face_edges(&self, f: FaceId) -> Vec<EdgeId> {
-        self.face_half_edges_slice(f)
-            .iter()
-            .map(|&h| self.he_edge(h))
-            .collect()
+        self.face_half_edges_slice(f).iter().map(|&h| self.he_edge(h)).collect()
     }
 
     /// The faces on the two sides of an edge: `[left of 2e, left of 2e + 1]`. The first is always
@@ -577,10 +527,7 @@ impl Mesh {
     }
 
     fn face_points(&self, f: FaceId) -> Vec<[f64; 2]> {
-        self.face_vertices(f)
-            .iter()
-            .map(|&v| self.position(v))
-            .collect()
+        self.face_vertices(f).iter().map(|&v| self.position(v)).collect()
     }
 
     /// Area centroid of a face.
@@ -650,10 +597,7 @@ impl Mesh {
     /// The input form: positions and counter-clockwise face loops (what
     /// [`from_polygons`](Self::from_polygons) takes back to rebuild an equal mesh).
     pub fn to_polygons(&self) -> (Vec<[f64; 2]>, Vec<Vec<u32>>) {
-        let faces = self
-            .faces()
-            .map(|f| self.face_vertices(f).iter().map(|v| v.0).collect())
-            .collect();
+        let faces = self.faces().map(|f| self.face_vertices(f).iter().map(|v| v.0).collect()).collect();
         (self.positions.clone(), faces)
     }
 }
@@ -715,10 +659,7 @@ impl CornerGroups {
                 i = j;
             }
         }
-        CornerGroups {
-            first,
-            non_manifold: worst.map(|(_, a, b)| (a, b)),
-        }
+        CornerGroups { first, non_manifold: worst.map(|(_, a, b)| (a, b)) }
     }
 }
 
@@ -731,13 +672,7 @@ impl std::fmt::Debug for Mesh {
             .field("num_faces", &self.num_faces());
         if self.num_faces() <= 32 {
             d.field("positions", &self.positions);
-            d.field(
-                "faces",
-                &self
-                    .faces()
-                    .map(|f| self.face_vertices(f))
-                    .collect::<Vec<_>>(),
-            );
+            d.field("faces", &self.faces().map(|f| self.face_vertices(f)).collect::<Vec<_>>());
         }
         d.finish_non_exhaustive()
     }
@@ -750,10 +685,7 @@ pub(crate) fn first_duplicate(positions: &[[f64; 2]]) -> Option<(usize, usize)> 
     order.sort_by(|&i, &j| {
         // `+ 0.0` turns −0 into +0, so that the order agrees with `==` on runs of equal x.
         let (p, q) = (positions[i], positions[j]);
-        (p[0] + 0.0)
-            .total_cmp(&(q[0] + 0.0))
-            .then((p[1] + 0.0).total_cmp(&(q[1] + 0.0)))
-            .then(i.cmp(&j))
+        (p[0] + 0.0).total_cmp(&(q[0] + 0.0)).then((p[1] + 0.0).total_cmp(&(q[1] + 0.0))).then(i.cmp(&j))
     });
     // run_end[k]: one past the last sorted position with the same x as sorted position k.
     let n = order.len();

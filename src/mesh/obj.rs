@@ -70,10 +70,7 @@ impl fmt::Display for ObjErrorKind {
             Self::BadIndex(s) => write!(f, "`{s}` is not a vertex index"),
             Self::ZeroIndex => write!(f, "vertex index 0 (OBJ indices start at 1)"),
             Self::MissingVertex { index, vertices } => {
-                write!(
-                    f,
-                    "vertex index {index} refers to a missing vertex ({vertices} available)"
-                )
+                write!(f, "vertex index {index} refers to a missing vertex ({vertices} available)")
             }
             Self::Mesh(e) => write!(f, "invalid mesh (0-based ids): {e}"),
         }
@@ -182,10 +179,7 @@ pub fn from_obj(text: &str) -> Result<Mesh, ObjError> {
                 let mut face = Vec::new();
                 for t in tokens {
                     let first = t.split('/').next().unwrap_or("");
-                    let rest_ok = t
-                        .split('/')
-                        .skip(1)
-                        .all(|s| s.is_empty() || s.parse::<i64>().is_ok());
+                    let rest_ok = t.split('/').skip(1).all(|s| s.is_empty() || s.parse::<i64>().is_ok());
                     let idx: i64 = match first.parse() {
                         Ok(i) if rest_ok && t.split('/').count() <= 3 => i,
                         _ => return err(ObjErrorKind::BadIndex(token(t))),
@@ -195,10 +189,7 @@ pub fn from_obj(text: &str) -> Result<Mesh, ObjError> {
                     } else if idx < 0 {
                         let r = positions.len() as i64 + idx;
                         if r < 0 {
-                            return err(ObjErrorKind::MissingVertex {
-                                index: idx,
-                                vertices: positions.len(),
-                            });
+                            return err(ObjErrorKind::MissingVertex { index: idx, vertices: positions.len() });
                         }
                         r
                     } else {
@@ -225,15 +216,7 @@ pub fn from_obj(text: &str) -> Result<Mesh, ObjError> {
         for &i in face {
             match u32::try_from(i) {
                 Ok(u) if (u as usize) < nv => lp.push(u),
-                _ => {
-                    return Err(ObjError {
-                        line,
-                        kind: ObjErrorKind::MissingVertex {
-                            index: i + 1,
-                            vertices: nv,
-                        },
-                    })
-                }
+                _ => return Err(ObjError { line, kind: ObjErrorKind::MissingVertex { index: i + 1, vertices: nv } }),
             }
         }
         faces.push(lp);
@@ -241,20 +224,12 @@ pub fn from_obj(text: &str) -> Result<Mesh, ObjError> {
 
     Mesh::from_polygons(positions, faces.clone()).map_err(|e| {
         let line = mesh_error_line(&e, &vertex_lines, &face_lines, &faces);
-        ObjError {
-            line,
-            kind: ObjErrorKind::Mesh(e),
-        }
+        ObjError { line, kind: ObjErrorKind::Mesh(e) }
     })
 }
 
 /// The line of the statement a mesh error is about (0 if none).
-fn mesh_error_line(
-    e: &MeshError,
-    vertex_lines: &[usize],
-    face_lines: &[usize],
-    faces: &[Vec<u32>],
-) -> usize {
+fn mesh_error_line(e: &MeshError, vertex_lines: &[usize], face_lines: &[usize], faces: &[Vec<u32>]) -> usize {
     let vline = |v: super::VertexId| vertex_lines.get(v.index()).copied().unwrap_or(0);
     let fline = |f: super::FaceId| face_lines.get(f.index()).copied().unwrap_or(0);
     match e {
@@ -318,10 +293,7 @@ mod tests {
     #[test]
     fn obj_clockwise_input_is_normalised() {
         let m = from_obj("v 0 0\nv 0 1\nv 1 1\nv 1 0\nf 1 2 3 4\n").unwrap();
-        assert_eq!(
-            m.face_vertices(FaceId(0)),
-            &[VertexId(0), VertexId(3), VertexId(2), VertexId(1)]
-        );
+        assert_eq!(m.face_vertices(FaceId(0)), &[VertexId(0), VertexId(3), VertexId(2), VertexId(1)]);
     }
 
     fn err(text: &str) -> ObjError {
@@ -332,32 +304,14 @@ mod tests {
     fn obj_errors_name_the_line() {
         let e = err("v 0 0\nv 1 0\nv 1 1\nf 1 2 4\n");
         assert_eq!(e.line, 4);
-        assert_eq!(
-            e.kind,
-            ObjErrorKind::MissingVertex {
-                index: 4,
-                vertices: 3
-            }
-        );
+        assert_eq!(e.kind, ObjErrorKind::MissingVertex { index: 4, vertices: 3 });
         assert!(e.to_string().starts_with("OBJ line 4:"), "{e}");
 
         let e = err("v 0 0\nv 1 0\nf -1 -2 -3\n");
-        assert_eq!(
-            (e.line, e.kind),
-            (
-                3,
-                ObjErrorKind::MissingVertex {
-                    index: -3,
-                    vertices: 2
-                }
-            )
-        );
+        assert_eq!((e.line, e.kind), (3, ObjErrorKind::MissingVertex { index: -3, vertices: 2 }));
 
         let e = err("# header\nv 0 zero\n");
-        assert_eq!(
-            (e.line, e.kind),
-            (2, ObjErrorKind::NotANumber("zero".into()))
-        );
+        assert_eq!((e.line, e.kind), (2, ObjErrorKind::NotANumber("zero".into())));
 
         let e = err("v 0 0\nv 1 0\nv 1 1\nf 1 2 x\n");
         assert_eq!((e.line, e.kind), (4, ObjErrorKind::BadIndex("x".into())));
@@ -369,46 +323,25 @@ mod tests {
         assert_eq!((e.line, e.kind), (4, ObjErrorKind::TooFewFaceVertices(2)));
 
         let e = err("v 0 0\nv 1 0\nv 1 1\nv 5 5\nf 1 2 3\n");
-        assert_eq!(
-            (e.line, e.kind),
-            (
-                4,
-                ObjErrorKind::Mesh(MeshError::IsolatedVertex { v: VertexId(3) })
-            )
-        );
+        assert_eq!((e.line, e.kind), (4, ObjErrorKind::Mesh(MeshError::IsolatedVertex { v: VertexId(3) })));
 
         let e = err("v 0\n");
         assert_eq!((e.line, e.kind), (1, ObjErrorKind::TooFewCoordinates(1)));
 
         let e = err("v 0 inf\n");
-        assert_eq!(
-            (e.line, e.kind),
-            (1, ObjErrorKind::NonFiniteNumber("inf".into()))
-        );
+        assert_eq!((e.line, e.kind), (1, ObjErrorKind::NonFiniteNumber("inf".into())));
 
         let e = err("vx 0 0\n");
-        assert_eq!(
-            (e.line, e.kind),
-            (1, ObjErrorKind::UnknownStatement("vx".into()))
-        );
+        assert_eq!((e.line, e.kind), (1, ObjErrorKind::UnknownStatement("vx".into())));
 
         let e = err("# nothing\n");
         assert_eq!(e.line, 0);
-        assert!(matches!(
-            e.kind,
-            ObjErrorKind::Mesh(MeshError::Empty { .. })
-        ));
+        assert!(matches!(e.kind, ObjErrorKind::Mesh(MeshError::Empty { .. })));
 
         // Third face on edge (1, 2) (0-based 0–1) is on line 8.
         let e = err("v 0 0\nv 1 0\nv 0.5 1\nv 0.5 -1\nv 0.5 2\nf 1 2 3\nf 2 1 4\nf 1 2 5\n");
         assert_eq!(e.line, 8);
-        assert_eq!(
-            e.kind,
-            ObjErrorKind::Mesh(MeshError::NonManifoldEdge {
-                a: VertexId(0),
-                b: VertexId(1)
-            })
-        );
+        assert_eq!(e.kind, ObjErrorKind::Mesh(MeshError::NonManifoldEdge { a: VertexId(0), b: VertexId(1) }));
         assert!(e.to_string().contains("edge (0, 1)"), "{e}");
 
         let e = err("v 0 0\nv 1 0\nv 0 1\nf 1 2 3/1/1/1\n");

@@ -19,11 +19,8 @@ struct MeshData {
 
 impl Serialize for Mesh {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        MeshRef {
-            vertices: self.positions(),
-            faces: self.faces().map(|f| self.face_vertices(f)).collect(),
-        }
-        .serialize(serializer)
+        MeshRef { vertices: self.positions(), faces: self.faces().map(|f| self.face_vertices(f)).collect() }
+            .serialize(serializer)
     }
 }
 

@@ -61,28 +61,19 @@ pub fn subdivide(mesh: &Mesh) -> Subdivision {
         for i in 0..n {
             let prev = hs[(i + n - 1) % n];
             children.push(FaceId(faces.len() as u32));
-            faces.push(vec![
-                vs[i].0,
-                mid(mesh.he_edge(hs[i])),
-                centre,
-                mid(mesh.he_edge(prev)),
-            ]);
+            faces.push(vec![vs[i].0, mid(mesh.he_edge(hs[i])), centre, mid(mesh.he_edge(prev))]);
         }
         face_children.push(children);
     }
 
-    let fine = Mesh::build(positions, faces, false)
-        .expect("subdivision of a valid mesh is combinatorially valid");
+    let fine = Mesh::build(positions, faces, false).expect("subdivision of a valid mesh is combinatorially valid");
     let edge_children = mesh
         .edges()
         .map(|e| {
             let (a, b) = mesh.edge_vertices(e);
             let m = VertexId(mid(e));
             let child = |x: VertexId, y: VertexId| {
-                fine.he_edge(
-                    fine.half_edge_between(x, y)
-                        .expect("the halves of a subdivided edge exist"),
-                )
+                fine.he_edge(fine.half_edge_between(x, y).expect("the halves of a subdivided edge exist"))
             };
             [child(a, m), child(m, b)]
         })
@@ -91,10 +82,7 @@ pub fn subdivide(mesh: &Mesh) -> Subdivision {
         edge_children,
         vertex_map: mesh.vertices().collect(),
         edge_midpoint: mesh.edges().map(|e| VertexId(mid(e))).collect(),
-        face_center: mesh
-            .faces()
-            .map(|f| VertexId((nv + ne + f.index()) as u32))
-            .collect(),
+        face_center: mesh.faces().map(|f| VertexId((nv + ne + f.index()) as u32)).collect(),
         face_children,
         mesh: fine,
     }
@@ -134,10 +122,7 @@ mod tests {
             let total = s.mesh.edge_length(c0) + s.mesh.edge_length(c1);
             assert!((total - m.edge_length(old)).abs() <= 1e-12 * m.edge_length(old).max(1.0));
             assert_eq!(s.mesh.is_boundary_edge(c0), m.is_boundary_edge(old));
-            assert_eq!(
-                s.mesh.valence(mid),
-                if m.is_boundary_edge(old) { 3 } else { 4 }
-            );
+            assert_eq!(s.mesh.valence(mid), if m.is_boundary_edge(old) { 3 } else { 4 });
         }
         for old in m.faces() {
             let c = s.face_center[old.index()];
@@ -160,25 +145,14 @@ mod tests {
         assert_eq!(s.mesh.num_faces(), 24);
         // Subdividing a grid gives the grid at half the spacing, up to numbering.
         assert_eq!(s.mesh.num_edges(), grid(6, 4, 0.5).num_edges());
-        assert_eq!(
-            s.mesh.boundary_vertices().len(),
-            grid(6, 4, 0.5).boundary_vertices().len()
-        );
+        assert_eq!(s.mesh.boundary_vertices().len(), grid(6, 4, 0.5).boundary_vertices().len());
     }
 
     #[test]
     fn subdivide_triangle_and_pentagon() {
         // A pentagon with a triangle on its top-right side and a quad below.
-        let positions = vec![
-            [0.0, 0.0],
-            [2.0, 0.0],
-            [2.6, 1.6],
-            [1.0, 2.6],
-            [-0.6, 1.6],
-            [3.4, 3.0],
-            [0.0, -1.5],
-            [2.0, -1.5],
-        ];
+        let positions =
+            vec![[0.0, 0.0], [2.0, 0.0], [2.6, 1.6], [1.0, 2.6], [-0.6, 1.6], [3.4, 3.0], [0.0, -1.5], [2.0, -1.5]];
         let faces = vec![vec![0, 1, 2, 3, 4], vec![2, 5, 3], vec![0, 6, 7, 1]];
         let m = Mesh::from_polygons(positions, faces).unwrap();
         let s = check(&m);
@@ -191,14 +165,7 @@ mod tests {
 
     #[test]
     fn subdivide_clipped_and_jittered() {
-        let outer = vec![
-            [0.0, 0.0],
-            [6.0, 0.0],
-            [6.0, 3.0],
-            [3.0, 3.0],
-            [3.0, 6.0],
-            [0.0, 6.0],
-        ];
+        let outer = vec![[0.0, 0.0], [6.0, 0.0], [6.0, 3.0], [3.0, 3.0], [3.0, 6.0], [0.0, 6.0]];
         check(&jitter(&clipped_grid(&outer, &[], 1.0).unwrap(), 0.3, 5));
     }
 }

@@ -34,14 +34,8 @@ pub(crate) fn check_invariants(m: &Mesh) {
         let out = m.outgoing(v);
         assert_eq!(out.len(), m.valence(v));
         assert!(out.iter().all(|&h| m.he_tail(h) == v));
-        assert_eq!(
-            m.neighbors(v).collect::<Vec<_>>(),
-            out.iter().map(|&h| m.he_head(h)).collect::<Vec<_>>()
-        );
-        assert_eq!(
-            m.incident_edges(v).collect::<Vec<_>>(),
-            out.iter().map(|&h| m.he_edge(h)).collect::<Vec<_>>()
-        );
+        assert_eq!(m.neighbors(v).collect::<Vec<_>>(), out.iter().map(|&h| m.he_head(h)).collect::<Vec<_>>());
+        assert_eq!(m.incident_edges(v).collect::<Vec<_>>(), out.iter().map(|&h| m.he_edge(h)).collect::<Vec<_>>());
         // CCW: angles relative to the first direction increase strictly within one turn.
         let a0 = angle(m, out[0]);
         let mut last = -1.0;
@@ -68,10 +62,7 @@ pub(crate) fn check_invariants(m: &Mesh) {
             }
         }
         // Every face containing v appears exactly once in its single fan.
-        let mut containing: Vec<FaceId> = m
-            .faces()
-            .filter(|&f| m.face_vertices(f).contains(&v))
-            .collect();
+        let mut containing: Vec<FaceId> = m.faces().filter(|&f| m.face_vertices(f).contains(&v)).collect();
         let mut fan: Vec<FaceId> = m.vertex_faces(v).collect();
         containing.sort();
         fan.sort();
@@ -81,10 +72,7 @@ pub(crate) fn check_invariants(m: &Mesh) {
         let vs = m.face_vertices(f);
         let hs = m.face_half_edges(f);
         assert_eq!(vs.len(), hs.len());
-        assert_eq!(
-            m.face_edges(f),
-            hs.iter().map(|&h| m.he_edge(h)).collect::<Vec<_>>()
-        );
+        assert_eq!(m.face_edges(f), hs.iter().map(|&h| m.he_edge(h)).collect::<Vec<_>>());
         for i in 0..vs.len() {
             assert_eq!(m.he_tail(hs[i]), vs[i]);
             assert_eq!(m.he_head(hs[i]), vs[(i + 1) % vs.len()]);
@@ -111,14 +99,7 @@ fn square_pair() -> Vec<[f64; 2]> {
     // 3 — 4 — 5
     // |   |   |
     // 0 — 1 — 2
-    vec![
-        [0.0, 0.0],
-        [1.0, 0.0],
-        [2.0, 0.0],
-        [0.0, 1.0],
-        [1.0, 1.0],
-        [2.0, 1.0],
-    ]
+    vec![[0.0, 0.0], [1.0, 0.0], [2.0, 0.0], [0.0, 1.0], [1.0, 1.0], [2.0, 1.0]]
 }
 
 fn build(p: Vec<[f64; 2]>, f: &[&[u32]]) -> Result<Mesh, MeshError> {
@@ -136,14 +117,7 @@ fn clockwise_input_is_normalised() {
 #[test]
 fn mixed_polygon_sizes_and_straight_corners() {
     // A pentagon whose corner 1 is straight (a hanging vertex shared with two triangles below).
-    let p = vec![
-        [0.0, 0.0],
-        [1.0, 0.0],
-        [2.0, 0.0],
-        [2.0, 1.0],
-        [0.0, 1.0],
-        [1.0, -1.0],
-    ];
+    let p = vec![[0.0, 0.0], [1.0, 0.0], [2.0, 0.0], [2.0, 1.0], [0.0, 1.0], [1.0, -1.0]];
     let m = build(p, &[&[0, 1, 2, 3, 4], &[0, 5, 1], &[1, 5, 2]]).unwrap();
     check_invariants(&m);
     assert_eq!(m.valence(VertexId(1)), 3);
@@ -155,13 +129,7 @@ fn error_non_manifold_edge() {
     // Three triangles on edge 0–1.
     let p = vec![[0.0, 0.0], [1.0, 0.0], [0.5, 1.0], [0.5, -1.0], [0.5, 2.0]];
     let e = build(p, &[&[0, 1, 2], &[1, 0, 3], &[0, 1, 4]]).unwrap_err();
-    assert_eq!(
-        e,
-        MeshError::NonManifoldEdge {
-            a: VertexId(0),
-            b: VertexId(1)
-        }
-    );
+    assert_eq!(e, MeshError::NonManifoldEdge { a: VertexId(0), b: VertexId(1) });
     assert_eq!(e.to_string(), "edge (0, 1) is used by more than two faces");
 }
 
@@ -170,13 +138,7 @@ fn error_duplicate_vertex() {
     let mut p = square_pair();
     p.push([1.0, 1.0 + 1e-13]);
     let e = build(p, &[&[0, 1, 4, 3], &[1, 2, 5, 6]]).unwrap_err();
-    assert_eq!(
-        e,
-        MeshError::DuplicateVertex {
-            a: VertexId(4),
-            b: VertexId(6)
-        }
-    );
+    assert_eq!(e, MeshError::DuplicateVertex { a: VertexId(4), b: VertexId(6) });
     assert!(e.to_string().contains("4") && e.to_string().contains("6"));
 }
 
@@ -186,45 +148,24 @@ fn error_degenerate_faces() {
         Err(MeshError::DegenerateFace { face, reason }) => (face, reason),
         other => panic!("{other:?}"),
     };
-    assert_eq!(
-        deg(&[&[0, 1, 4, 3], &[1, 2]]),
-        (FaceId(1), DegenerateReason::TooFewVertices)
-    );
-    assert_eq!(
-        deg(&[&[0, 1, 4, 1, 3]]),
-        (FaceId(0), DegenerateReason::RepeatedVertex(VertexId(1)))
-    );
+    assert_eq!(deg(&[&[0, 1, 4, 3], &[1, 2]]), (FaceId(1), DegenerateReason::TooFewVertices));
+    assert_eq!(deg(&[&[0, 1, 4, 1, 3]]), (FaceId(0), DegenerateReason::RepeatedVertex(VertexId(1))));
     // Collinear triangle: zero area.
     let p = vec![[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]];
     assert!(matches!(
         build(p, &[&[0, 1, 2]]),
-        Err(MeshError::DegenerateFace {
-            reason: DegenerateReason::ZeroArea,
-            ..
-        })
+        Err(MeshError::DegenerateFace { reason: DegenerateReason::ZeroArea, .. })
     ));
     // Bow tie.
-    assert_eq!(
-        deg(&[&[0, 1, 3, 5], &[1, 2, 5, 4]]),
-        (FaceId(0), DegenerateReason::SelfIntersecting)
-    );
+    assert_eq!(deg(&[&[0, 1, 3, 5], &[1, 2, 5, 4]]), (FaceId(0), DegenerateReason::SelfIntersecting));
     // Near-zero area (sliver).
     let p = vec![[0.0, 0.0], [1.0, 0.0], [0.5, 1e-14]];
     assert!(matches!(
         build(p, &[&[0, 1, 2]]),
-        Err(MeshError::DegenerateFace {
-            reason: DegenerateReason::ZeroArea,
-            ..
-        })
+        Err(MeshError::DegenerateFace { reason: DegenerateReason::ZeroArea, .. })
     ));
-    let e = MeshError::DegenerateFace {
-        face: FaceId(7),
-        reason: DegenerateReason::RepeatedVertex(VertexId(3)),
-    };
-    assert_eq!(
-        e.to_string(),
-        "face 7 is degenerate: vertex 3 appears twice"
-    );
+    let e = MeshError::DegenerateFace { face: FaceId(7), reason: DegenerateReason::RepeatedVertex(VertexId(3)) };
+    assert_eq!(e.to_string(), "face 7 is degenerate: vertex 3 appears twice");
 }
 
 #[test]
@@ -232,16 +173,7 @@ fn error_inconsistent_orientation() {
     let e = build(square_pair(), &[&[0, 1, 4, 3], &[1, 4, 5, 2]]).unwrap_err();
     assert_eq!(e, MeshError::InconsistentOrientation { face: FaceId(1) });
     // The minority is blamed, whichever face comes first.
-    let p = vec![
-        [0.0, 0.0],
-        [1.0, 0.0],
-        [2.0, 0.0],
-        [3.0, 0.0],
-        [0.0, 1.0],
-        [1.0, 1.0],
-        [2.0, 1.0],
-        [3.0, 1.0],
-    ];
+    let p = vec![[0.0, 0.0], [1.0, 0.0], [2.0, 0.0], [3.0, 0.0], [0.0, 1.0], [1.0, 1.0], [2.0, 1.0], [3.0, 1.0]];
     let e = build(p, &[&[0, 4, 5, 1], &[1, 2, 6, 5], &[2, 3, 7, 6]]).unwrap_err();
     assert_eq!(e, MeshError::InconsistentOrientation { face: FaceId(0) });
     // Two CCW faces on the same side of an edge (overlap) use it in the same direction.
@@ -262,39 +194,19 @@ fn error_isolated_vertex() {
 #[test]
 fn error_bad_index_non_finite_empty() {
     let e = build(square_pair(), &[&[0, 1, 4, 3], &[1, 2, 9, 4]]).unwrap_err();
-    assert_eq!(
-        e,
-        MeshError::BadIndex {
-            face: FaceId(1),
-            index: 9
-        }
-    );
+    assert_eq!(e, MeshError::BadIndex { face: FaceId(1), index: 9 });
     assert!(e.to_string().contains("face 1") && e.to_string().contains("9"));
     let mut p = square_pair();
     p[2] = [f64::NAN, 0.0];
-    assert_eq!(
-        build(p, &[&[0, 1, 4, 3]]).unwrap_err(),
-        MeshError::NonFinitePosition { v: VertexId(2) }
-    );
-    assert!(matches!(
-        build(square_pair(), &[]),
-        Err(MeshError::Empty { .. })
-    ));
+    assert_eq!(build(p, &[&[0, 1, 4, 3]]).unwrap_err(), MeshError::NonFinitePosition { v: VertexId(2) });
+    assert!(matches!(build(square_pair(), &[]), Err(MeshError::Empty { .. })));
     assert!(matches!(build(vec![], &[]), Err(MeshError::Empty { .. })));
 }
 
 #[test]
 fn error_non_manifold_vertex() {
     // Two squares touching only at vertex 2.
-    let p = vec![
-        [0.0, 0.0],
-        [1.0, 0.0],
-        [1.0, 1.0],
-        [0.0, 1.0],
-        [2.0, 1.0],
-        [2.0, 2.0],
-        [1.0, 2.0],
-    ];
+    let p = vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0], [2.0, 1.0], [2.0, 2.0], [1.0, 2.0]];
     let e = build(p, &[&[0, 1, 2, 3], &[2, 4, 5, 6]]).unwrap_err();
     assert_eq!(e, MeshError::NonManifoldVertex { v: VertexId(2) });
     assert!(e.to_string().contains("vertex 2"));
@@ -317,11 +229,7 @@ fn error_overlapping_faces() {
 
 #[test]
 fn json_round_trip_and_validation() {
-    let m = jitter(
-        &clipped_grid(&[[0.0, 0.0], [5.0, 0.0], [5.0, 3.0], [0.0, 4.0]], &[], 0.5).unwrap(),
-        0.2,
-        3,
-    );
+    let m = jitter(&clipped_grid(&[[0.0, 0.0], [5.0, 0.0], [5.0, 3.0], [0.0, 4.0]], &[], 0.5).unwrap(), 0.2, 3);
     let text = serde_json::to_string(&m).unwrap();
     let back: Mesh = serde_json::from_str(&text).unwrap();
     // serde_json parses floats exactly only with its `float_roundtrip` feature; without it the
@@ -331,21 +239,14 @@ fn json_round_trip_and_validation() {
     assert_eq!(f0, f1);
     for (a, b) in p0.iter().zip(&p1) {
         for k in 0..2 {
-            assert!(
-                (a[k] - b[k]).abs() <= 4.0 * f64::EPSILON * a[k].abs().max(1.0),
-                "{a:?} vs {b:?}"
-            );
+            assert!((a[k] - b[k]).abs() <= 4.0 * f64::EPSILON * a[k].abs().max(1.0), "{a:?} vs {b:?}");
         }
     }
     // Exactly representable coordinates round-trip exactly.
     let g = clipped_grid(&[[0.0, 0.0], [5.0, 0.0], [5.0, 3.0], [0.0, 4.0]], &[], 0.25).unwrap();
-    assert_eq!(
-        serde_json::from_str::<Mesh>(&serde_json::to_string(&g).unwrap()).unwrap(),
-        g
-    );
+    assert_eq!(serde_json::from_str::<Mesh>(&serde_json::to_string(&g).unwrap()).unwrap(), g);
 
-    let fixture: Mesh =
-        serde_json::from_str(include_str!("../../fixtures/mesh/grid_2x2.json")).unwrap();
+    let fixture: Mesh = serde_json::from_str(include_str!("../../fixtures/mesh/grid_2x2.json")).unwrap();
     assert_eq!(fixture, grid(2, 2, 1.0));
     let v: serde_json::Value = serde_json::to_value(grid(1, 1, 2.0)).unwrap();
     assert_eq!(
@@ -363,15 +264,7 @@ fn json_round_trip_and_validation() {
 #[test]
 fn accessors_on_small_mesh() {
     let m = build(square_pair(), &[&[0, 1, 4, 3], &[1, 2, 5, 4]]).unwrap();
-    assert_eq!(
-        (
-            m.num_vertices(),
-            m.num_edges(),
-            m.num_faces(),
-            m.num_half_edges()
-        ),
-        (6, 7, 2, 14)
-    );
+    assert_eq!((m.num_vertices(), m.num_edges(), m.num_faces(), m.num_half_edges()), (6, 7, 2, 14));
     let e = m.he_edge(m.half_edge_between(VertexId(1), VertexId(4)).unwrap());
     assert_eq!(e, EdgeId(1));
     assert_eq!(m.edge_faces(e), [Some(FaceId(0)), Some(FaceId(1))]);
@@ -381,14 +274,8 @@ fn accessors_on_small_mesh() {
     assert_eq!(m.boundary_vertices().len(), 6);
     assert_eq!(m.boundary_edges().len(), 6);
     // Vertex 1 (bottom middle): after the gap, east (2), north (4), west (0).
-    assert_eq!(
-        m.neighbors(VertexId(1)).collect::<Vec<_>>(),
-        vec![VertexId(2), VertexId(4), VertexId(0)]
-    );
-    assert_eq!(
-        m.vertex_faces(VertexId(1)).collect::<Vec<_>>(),
-        vec![FaceId(1), FaceId(0)]
-    );
+    assert_eq!(m.neighbors(VertexId(1)).collect::<Vec<_>>(), vec![VertexId(2), VertexId(4), VertexId(0)]);
+    assert_eq!(m.vertex_faces(VertexId(1)).collect::<Vec<_>>(), vec![FaceId(1), FaceId(0)]);
     assert_eq!(m.face_area(FaceId(0)), 1.0);
     assert_eq!(m.boundary_loops().len(), 1);
     check_invariants(&m);
@@ -422,9 +309,7 @@ fn duplicate_detection_is_exhaustive() {
     // Brute force against the sweep on small random-ish point sets with near duplicates.
     let mut state = 12345u64;
     let mut next = || {
-        state = state
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
+        state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
         (state >> 33) as i64
     };
     for _ in 0..300 {

@@ -88,7 +88,9 @@ pub enum Violation {
 impl std::fmt::Display for Violation {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            Violation::Dimension { got, expected } => write!(f, "point has {got} values, model has {expected} variables"),
+            Violation::Dimension { got, expected } => {
+                write!(f, "point has {got} values, model has {expected} variables")
+            }
             Violation::NotFinite { var } => write!(f, "{var} is not finite"),
             Violation::LowerBound { var, value, bound } => write!(f, "{var} = {value} < lower bound {bound}"),
             Violation::UpperBound { var, value, bound } => write!(f, "{var} = {value} > upper bound {bound}"),

@@ -157,12 +157,7 @@ pub struct Model {
 impl Model {
     /// An empty minimisation model.
     pub fn new(name: impl Into<String>) -> Self {
-        Model {
-            name: name.into(),
-            objective_name: "obj".into(),
-            row_start: vec![0],
-            ..Default::default()
-        }
+        Model { name: name.into(), objective_name: "obj".into(), row_start: vec![0], ..Default::default() }
     }
 
     /// Reserves room for more variables, rows and nonzeros (avoids re-allocation when emitting
@@ -217,17 +212,32 @@ impl Model {
     }
 
     /// Adds `Σ a_j x_j ≤ rhs`.
-    pub fn add_le<I: IntoIterator<Item = (VarId, f64)>>(&mut self, name: impl Into<String>, terms: I, rhs: f64) -> RowId {
+    pub fn add_le<I: IntoIterator<Item = (VarId, f64)>>(
+        &mut self,
+        name: impl Into<String>,
+        terms: I,
+        rhs: f64,
+    ) -> RowId {
         self.add_row(name, f64::NEG_INFINITY, rhs, terms)
     }
 
     /// Adds `Σ a_j x_j ≥ lhs`.
-    pub fn add_ge<I: IntoIterator<Item = (VarId, f64)>>(&mut self, name: impl Into<String>, terms: I, lhs: f64) -> RowId {
+    pub fn add_ge<I: IntoIterator<Item = (VarId, f64)>>(
+        &mut self,
+        name: impl Into<String>,
+        terms: I,
+        lhs: f64,
+    ) -> RowId {
         self.add_row(name, lhs, f64::INFINITY, terms)
     }
 
     /// Adds `Σ a_j x_j = rhs`.
-    pub fn add_eq<I: IntoIterator<Item = (VarId, f64)>>(&mut self, name: impl Into<String>, terms: I, rhs: f64) -> RowId {
+    pub fn add_eq<I: IntoIterator<Item = (VarId, f64)>>(
+        &mut self,
+        name: impl Into<String>,
+        terms: I,
+        rhs: f64,
+    ) -> RowId {
         self.add_row(name, rhs, rhs, terms)
     }
 

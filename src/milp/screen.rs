@@ -75,10 +75,19 @@ impl std::fmt::Display for Infeasibility {
             (false, false) => "free".to_string(),
         };
         match &self.kind {
-            InfeasibilityKind::CrossedBounds { lb, ub } => write!(f, "{}: lower bound {lb} is above upper bound {ub}", self.location),
-            InfeasibilityKind::NoIntegerInBounds { lb, ub } => write!(f, "{}: integer variable with no integer in [{lb}, {ub}]", self.location),
+            InfeasibilityKind::CrossedBounds { lb, ub } => {
+                write!(f, "{}: lower bound {lb} is above upper bound {ub}", self.location)
+            }
+            InfeasibilityKind::NoIntegerInBounds { lb, ub } => {
+                write!(f, "{}: integer variable with no integer in [{lb}, {ub}]", self.location)
+            }
             InfeasibilityKind::EmptyRow { lhs, rhs } => {
-                write!(f, "{}: the row has no coefficients, so its activity is 0, which is not {}", self.location, side(*lhs, *rhs))
+                write!(
+                    f,
+                    "{}: the row has no coefficients, so its activity is 0, which is not {}",
+                    self.location,
+                    side(*lhs, *rhs)
+                )
             }
             InfeasibilityKind::ActivityOutOfReach { min, max, lhs, rhs } => write!(
                 f,
@@ -101,10 +110,17 @@ pub fn screen(model: &Model) -> Option<Infeasibility> {
     for v in model.vars() {
         let at = || Location::Variable(v.name.clone());
         if v.lb > v.ub {
-            return Some(Infeasibility { location: at(), kind: InfeasibilityKind::CrossedBounds { lb: v.lb, ub: v.ub } });
+            return Some(Infeasibility {
+                location: at(),
+                kind: InfeasibilityKind::CrossedBounds { lb: v.lb, ub: v.ub },
+            });
         }
-        if v.kind.is_integral() && v.lb.is_finite() && v.ub.is_finite() && (v.lb - 1e-6).ceil() > (v.ub + 1e-6).floor() {
-            return Some(Infeasibility { location: at(), kind: InfeasibilityKind::NoIntegerInBounds { lb: v.lb, ub: v.ub } });
+        if v.kind.is_integral() && v.lb.is_finite() && v.ub.is_finite() && (v.lb - 1e-6).ceil() > (v.ub + 1e-6).floor()
+        {
+            return Some(Infeasibility {
+                location: at(),
+                kind: InfeasibilityKind::NoIntegerInBounds { lb: v.lb, ub: v.ub },
+            });
         }
     }
     for row in model.rows() {
@@ -121,7 +137,8 @@ pub fn screen(model: &Model) -> Option<Infeasibility> {
             max += hi;
         }
         let at = || Location::Row(row.name.to_string());
-        let unreachable = min.is_finite() && min > row.rhs + tol(row.rhs) || max.is_finite() && max < row.lhs - tol(row.lhs);
+        let unreachable =
+            min.is_finite() && min > row.rhs + tol(row.rhs) || max.is_finite() && max < row.lhs - tol(row.lhs);
         if !unreachable {
             continue;
         }
@@ -196,7 +213,10 @@ mod tests {
     fn contradictory_bounds() {
         let mut m = Model::new("b");
         m.add_continuous("x", 2.0, 1.0, 0.0);
-        assert_eq!(kind_at(&m).unwrap(), ("variable `x`".into(), InfeasibilityKind::CrossedBounds { lb: 2.0, ub: 1.0 }));
+        assert_eq!(
+            kind_at(&m).unwrap(),
+            ("variable `x`".into(), InfeasibilityKind::CrossedBounds { lb: 2.0, ub: 1.0 })
+        );
         let mut m = Model::new("i");
         m.add_integer("z", 0.2, 0.8, 0.0);
         assert!(matches!(kind_at(&m).unwrap().1, InfeasibilityKind::NoIntegerInBounds { .. }));

@@ -123,7 +123,8 @@ impl Model {
             }
         }
         if !self.obj_constant.is_finite() {
-            let kind = if self.obj_constant.is_nan() { ModelErrorKind::NaN } else { ModelErrorKind::InfiniteCoefficient };
+            let kind =
+                if self.obj_constant.is_nan() { ModelErrorKind::NaN } else { ModelErrorKind::InfiniteCoefficient };
             push(Location::Objective(String::new()), kind);
         }
         let mut row_names: HashSet<&str> = HashSet::with_capacity(self.num_rows());
@@ -156,9 +157,7 @@ impl Model {
                 }
                 match seen.get_mut(v.index()) {
                     None => push(loc(), ModelErrorKind::UnknownVar(v.0)),
-                    Some(s) if *s == row.id.0 => {
-                        push(loc(), ModelErrorKind::DuplicateEntry(self.var(v).name.clone()))
-                    }
+                    Some(s) if *s == row.id.0 => push(loc(), ModelErrorKind::DuplicateEntry(self.var(v).name.clone())),
                     Some(s) => *s = row.id.0,
                 }
             }
@@ -240,8 +239,17 @@ impl std::fmt::Display for ModelStats {
         write!(
             f,
             "{} vars ({} bin, {} int, {} cont), {} rows ({} ≤, {} ≥, {} =, {} ranged, {} free), {} nonzeros",
-            self.vars, self.binary, self.integer, self.continuous, self.rows, self.rows_le, self.rows_ge,
-            self.rows_eq, self.rows_ranged, self.rows_free, self.nonzeros
+            self.vars,
+            self.binary,
+            self.integer,
+            self.continuous,
+            self.rows,
+            self.rows_le,
+            self.rows_ge,
+            self.rows_eq,
+            self.rows_ranged,
+            self.rows_free,
+            self.nonzeros
         )
     }
 }

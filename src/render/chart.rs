@@ -37,12 +37,25 @@ pub fn performance_profile_svg(series: &[ProfileSeries], limit: f64) -> String {
     let _ = writeln!(s, r##"<rect x="{left}" y="{top}" width="{pw}" height="{ph}" fill="none" stroke="#888"/>"##);
     let mut tick = t0;
     while tick <= limit * 1.0001 {
-        let _ = writeln!(s, r##"<line x1="{0:.1}" y1="{top}" x2="{0:.1}" y2="{1:.1}" stroke="#eee"/><text x="{0:.1}" y="{2:.1}" text-anchor="middle">{3}</text>"##, x(tick), top + ph, top + ph + 16.0, tick);
+        let _ = writeln!(
+            s,
+            r##"<line x1="{0:.1}" y1="{top}" x2="{0:.1}" y2="{1:.1}" stroke="#eee"/><text x="{0:.1}" y="{2:.1}" text-anchor="middle">{3}</text>"##,
+            x(tick),
+            top + ph,
+            top + ph + 16.0,
+            tick
+        );
         tick *= 10.0;
     }
     for k in 0..=4 {
         let f = k as f64 / 4.0;
-        let _ = writeln!(s, r##"<text x="{:.1}" y="{:.1}" text-anchor="end">{:.0}%</text>"##, left - 6.0, y(f) + 4.0, f * 100.0);
+        let _ = writeln!(
+            s,
+            r##"<text x="{:.1}" y="{:.1}" text-anchor="end">{:.0}%</text>"##,
+            left - 6.0,
+            y(f) + 4.0,
+            f * 100.0
+        );
     }
     s.text(left + pw / 2.0, h - 10.0, r#"text-anchor="middle""#, &format!("time (s, log scale; limit {limit} s)"));
     for (i, b) in series.iter().enumerate() {
@@ -60,9 +73,20 @@ pub fn performance_profile_svg(series: &[ProfileSeries], limit: f64) -> String {
         pts.push(format!("{:.1},{:.1}", x(limit), y(times.len() as f64 / n)));
         let c = series_color(i);
         let name = escape(&b.name);
-        let _ = writeln!(s, r#"<polyline class="profile" data-solver="{name}" points="{}" fill="none" stroke="{c}" stroke-width="2"/>"#, pts.join(" "));
+        let _ = writeln!(
+            s,
+            r#"<polyline class="profile" data-solver="{name}" points="{}" fill="none" stroke="{c}" stroke-width="2"/>"#,
+            pts.join(" ")
+        );
         let ly = top + 14.0 + i as f64 * 18.0;
-        let _ = writeln!(s, r#"<line x1="{:.1}" y1="{ly:.1}" x2="{:.1}" y2="{ly:.1}" stroke="{c}" stroke-width="3"/><text x="{:.1}" y="{:.1}">{name}</text>"#, w - right + 10.0, w - right + 30.0, w - right + 36.0, ly + 4.0);
+        let _ = writeln!(
+            s,
+            r#"<line x1="{:.1}" y1="{ly:.1}" x2="{:.1}" y2="{ly:.1}" stroke="{c}" stroke-width="3"/><text x="{:.1}" y="{:.1}">{name}</text>"#,
+            w - right + 10.0,
+            w - right + 30.0,
+            w - right + 36.0,
+            ly + 4.0
+        );
     }
     s.finish()
 }
@@ -134,7 +158,8 @@ pub fn bar_chart_svg(c: &BarChart) -> String {
         .iter()
         .flat_map(|g| g.bars.iter().flatten().flat_map(|b| b.times.iter().copied()).chain(g.reference))
         .chain(std::iter::once(limit));
-    let (tmin, tmax) = shown.fold((f64::INFINITY, 0.0f64), |(lo, hi), t| (if t > 0.0 { lo.min(t) } else { lo }, hi.max(t)));
+    let (tmin, tmax) =
+        shown.fold((f64::INFINITY, 0.0f64), |(lo, hi), t| (if t > 0.0 { lo.min(t) } else { lo }, hi.max(t)));
     let lo_exp = tmin.max(1e-3).log10().floor() as i32;
     let hi_exp = (tmax.log10().ceil() as i32).max(lo_exp + 1);
     let (lo, hi) = (10f64.powi(lo_exp), 10f64.powi(hi_exp));
@@ -170,7 +195,11 @@ pub fn bar_chart_svg(c: &BarChart) -> String {
             pow10_label(k)
         );
     }
-    let _ = writeln!(s, r##"<text transform="translate(16 {:.1}) rotate(-90)" text-anchor="middle">solver time (s, log scale)</text>"##, top + ph / 2.0);
+    let _ = writeln!(
+        s,
+        r##"<text transform="translate(16 {:.1}) rotate(-90)" text-anchor="middle">solver time (s, log scale)</text>"##,
+        top + ph / 2.0
+    );
 
     let (mut any_unsolved, mut any_failed, mut any_killed) = (false, false, false);
     for (g, group) in c.groups.iter().enumerate() {
@@ -206,7 +235,12 @@ pub fn bar_chart_svg(c: &BarChart) -> String {
             );
             if times.len() > 1 {
                 let cx = x0 + bar_w / 2.0;
-                let _ = writeln!(s, r##"<line class="whisker" x1="{cx:.1}" y1="{:.1}" x2="{cx:.1}" y2="{:.1}" stroke="#333"/>"##, y(times[0]), y(times[times.len() - 1]));
+                let _ = writeln!(
+                    s,
+                    r##"<line class="whisker" x1="{cx:.1}" y1="{:.1}" x2="{cx:.1}" y2="{:.1}" stroke="#333"/>"##,
+                    y(times[0]),
+                    y(times[times.len() - 1])
+                );
             }
             if bar.killed {
                 any_killed = true;
@@ -247,7 +281,12 @@ pub fn bar_chart_svg(c: &BarChart) -> String {
                 cx - 4.5
             );
         }
-        let _ = writeln!(s, r#"<text transform="translate({:.1} {:.1}) rotate(-40)" text-anchor="end">{name}</text>"#, gx + ns * bar_w / 2.0 + 3.0, base + 14.0);
+        let _ = writeln!(
+            s,
+            r#"<text transform="translate({:.1} {:.1}) rotate(-40)" text-anchor="end">{name}</text>"#,
+            gx + ns * bar_w / 2.0 + 3.0,
+            base + 14.0
+        );
         s.write_str("</g>\n").expect("writing to a string");
     }
 
@@ -264,17 +303,38 @@ pub fn bar_chart_svg(c: &BarChart) -> String {
     let lx = left + pw + 14.0;
     let mut row_y = top + 24.0;
     for (i, b) in c.series.iter().enumerate() {
-        let _ = writeln!(s, r#"<rect x="{lx:.1}" y="{:.1}" width="12" height="10" fill="{}"/>"#, row_y - 9.0, series_color(i));
+        let _ = writeln!(
+            s,
+            r#"<rect x="{lx:.1}" y="{:.1}" width="12" height="10" fill="{}"/>"#,
+            row_y - 9.0,
+            series_color(i)
+        );
         s.text(lx + 18.0, row_y, "", b);
         row_y += 16.0;
     }
     row_y += 6.0;
     let any_reference = c.groups.iter().any(|g| g.reference.is_some());
     let legend = [
-        (any_unsolved, r##"<rect x="{X}" y="{Y}" width="12" height="10" fill="url(#hatch-0)" stroke="#1f77b4" stroke-width="0.8"/>"##, "not solved (status, gap)".to_string()),
-        (any_failed, r##"<rect x="{X}" y="{Y}" width="12" height="10" fill="none" stroke="#1f77b4" stroke-dasharray="3 2"/>"##, "failed".to_string()),
-        (any_killed, r##"<path d="M{X} {Y}l10 10m-10 0l10 -10" stroke="#c00" stroke-width="2"/>"##, "killed at limit + grace".to_string()),
-        (true, r##"<line x1="{X}" y1="{YM}" x2="{X12}" y2="{YM}" stroke="#000" stroke-dasharray="6 4"/>"##, "time limit".to_string()),
+        (
+            any_unsolved,
+            r##"<rect x="{X}" y="{Y}" width="12" height="10" fill="url(#hatch-0)" stroke="#1f77b4" stroke-width="0.8"/>"##,
+            "not solved (status, gap)".to_string(),
+        ),
+        (
+            any_failed,
+            r##"<rect x="{X}" y="{Y}" width="12" height="10" fill="none" stroke="#1f77b4" stroke-dasharray="3 2"/>"##,
+            "failed".to_string(),
+        ),
+        (
+            any_killed,
+            r##"<path d="M{X} {Y}l10 10m-10 0l10 -10" stroke="#c00" stroke-width="2"/>"##,
+            "killed at limit + grace".to_string(),
+        ),
+        (
+            true,
+            r##"<line x1="{X}" y1="{YM}" x2="{X12}" y2="{YM}" stroke="#000" stroke-dasharray="6 4"/>"##,
+            "time limit".to_string(),
+        ),
         (any_reference, r##"<path d="M{X6} {Y}l5 5l-5 5l-5 -5z" fill="#000"/>"##, c.reference_label.clone()),
     ];
     for (_, shape, text) in legend.iter().filter(|l| l.0) {

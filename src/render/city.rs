@@ -6,7 +6,8 @@ use super::writer::Svg;
 use std::fmt::Write;
 
 /// Level colours and stroke widths (pixels) for pictures.
-const LEVEL_STYLE: [(&str, f64); 5] = [("#999999", 1.0), ("#252525", 5.0), ("#d94801", 3.4), ("#2171b5", 2.2), ("#41ab5d", 1.5)];
+const LEVEL_STYLE: [(&str, f64); 5] =
+    [("#999999", 1.0), ("#252525", 5.0), ("#d94801", 3.4), ("#2171b5", 2.2), ("#41ab5d", 1.5)];
 
 /// The colour and stroke width of a street level.
 pub fn level_style(level: u8) -> (&'static str, f64) {
@@ -84,10 +85,19 @@ pub fn city_svg(c: &CityPicture) -> String {
             d.push(' ');
             d.push_str(&path(hole, true));
         }
-        let _ = writeln!(s, r#"<path d="{d}" fill="{}" fill-rule="evenodd" stroke="none" data-region="{}"/>"#, TINTS[r.index % TINTS.len()], r.index);
+        let _ = writeln!(
+            s,
+            r#"<path d="{d}" fill="{}" fill-rule="evenodd" stroke="none" data-region="{}"/>"#,
+            TINTS[r.index % TINTS.len()],
+            r.index
+        );
     }
     for o in &c.obstacles {
-        let _ = writeln!(s, r##"<path class="obstacle" d="{}" fill="#333" fill-opacity="0.45" stroke="#333" stroke-width="1"/>"##, path(o, true));
+        let _ = writeln!(
+            s,
+            r##"<path class="obstacle" d="{}" fill="#333" fill-opacity="0.45" stroke="#333" stroke-width="1"/>"##,
+            path(o, true)
+        );
     }
     let (colour, width) = level_style(1);
     let mut d = String::new();
@@ -95,16 +105,27 @@ pub fn city_svg(c: &CityPicture) -> String {
         d.push_str(&path(seg, false));
         d.push(' ');
     }
-    let _ = writeln!(s, r#"<path d="{}" fill="none" stroke="{colour}" stroke-width="{width}" stroke-linecap="round" data-level="1"/>"#, d.trim_end());
+    let _ = writeln!(
+        s,
+        r#"<path d="{}" fill="none" stroke="{colour}" stroke-width="{width}" stroke-linecap="round" data-level="1"/>"#,
+        d.trim_end()
+    );
     let mut order: Vec<&(u8, Vec<[f64; 2]>)> = c.streets.iter().collect();
     order.sort_by_key(|sn| std::cmp::Reverse(sn.0));
     for (level, pts) in order {
         let (colour, width) = level_style(*level);
-        let _ = writeln!(s, r#"<path d="{}" fill="none" stroke="{colour}" stroke-width="{width}" stroke-linecap="round" stroke-linejoin="round" data-level="{level}"/>"#, path(pts, false));
+        let _ = writeln!(
+            s,
+            r#"<path d="{}" fill="none" stroke="{colour}" stroke-width="{width}" stroke-linecap="round" stroke-linejoin="round" data-level="{level}"/>"#,
+            path(pts, false)
+        );
     }
     for &p in &c.sinks {
         let (x, y) = tx(p);
-        let _ = writeln!(s, r##"<circle class="sink" cx="{x:.2}" cy="{y:.2}" r="5" fill="#e02424" stroke="#222" stroke-width="0.8"/>"##);
+        let _ = writeln!(
+            s,
+            r##"<circle class="sink" cx="{x:.2}" cy="{y:.2}" r="5" fill="#e02424" stroke="#222" stroke-width="0.8"/>"##
+        );
     }
     for r in &c.regions {
         let (x, y) = tx(r.label_point);
@@ -118,22 +139,39 @@ pub fn city_svg(c: &CityPicture) -> String {
     let lx = w - legend_w + 10.0;
     let mut ly = title_h + margin + 10.0;
     let present = |level: u8| level == 1 || c.streets.iter().any(|(l, _)| *l == level);
-    for (level, label) in [(1u8, "level 1: major roads"), (2, "level 2: collectors"), (3, "level 3: local roads"), (4, "level 4: cul-de-sacs")] {
+    for (level, label) in [
+        (1u8, "level 1: major roads"),
+        (2, "level 2: collectors"),
+        (3, "level 3: local roads"),
+        (4, "level 4: cul-de-sacs"),
+    ] {
         if !present(level) {
             continue;
         }
         let (colour, width) = level_style(level);
-        let _ = writeln!(s, r#"<line x1="{lx}" y1="{ly}" x2="{}" y2="{ly}" stroke="{colour}" stroke-width="{width}"/>"#, lx + 30.0);
+        let _ = writeln!(
+            s,
+            r#"<line x1="{lx}" y1="{ly}" x2="{}" y2="{ly}" stroke="{colour}" stroke-width="{width}"/>"#,
+            lx + 30.0
+        );
         s.text(lx + 36.0, ly + 4.0, r#"font-size="11""#, label);
         ly += 22.0;
     }
     if !c.obstacles.is_empty() {
-        let _ = writeln!(s, r##"<rect x="{lx}" y="{}" width="30" height="12" fill="#333" fill-opacity="0.45" stroke="#333"/>"##, ly - 6.0);
+        let _ = writeln!(
+            s,
+            r##"<rect x="{lx}" y="{}" width="30" height="12" fill="#333" fill-opacity="0.45" stroke="#333"/>"##,
+            ly - 6.0
+        );
         s.text(lx + 36.0, ly + 4.0, r#"font-size="11""#, "obstacle");
         ly += 22.0;
     }
     if !c.sinks.is_empty() {
-        let _ = writeln!(s, r##"<circle cx="{}" cy="{ly}" r="5" fill="#e02424" stroke="#222" stroke-width="0.8"/>"##, lx + 15.0);
+        let _ = writeln!(
+            s,
+            r##"<circle cx="{}" cy="{ly}" r="5" fill="#e02424" stroke="#222" stroke-width="0.8"/>"##,
+            lx + 15.0
+        );
         s.text(lx + 36.0, ly + 4.0, r#"font-size="11""#, "sink (given)");
     }
     s.finish()

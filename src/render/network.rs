@@ -6,12 +6,12 @@
 //! and blocks are filled with their type's colour and marked with its letter (A, B, …); the
 //! title line names the spec, solver, status, objective and gap.
 
+use super::writer::{escape, Svg};
 use crate::design::{travel_distances, Network};
+use crate::mesh::EdgeId;
 use crate::rules::paths::PathSets;
 use crate::rules::placements::Placement;
-use crate::mesh::EdgeId;
 use crate::spec::Problem;
-use super::writer::{escape, Svg};
 use std::fmt::Write;
 
 /// What the title line says.
@@ -33,7 +33,8 @@ pub struct Caption {
 
 /// Five-stop colour ramp (viridis-like), `t` in [0, 1].
 fn ramp(t: f64) -> String {
-    const STOPS: [[f64; 3]; 5] = [[68., 1., 84.], [59., 82., 139.], [33., 145., 140.], [94., 201., 98.], [253., 231., 37.]];
+    const STOPS: [[f64; 3]; 5] =
+        [[68., 1., 84.], [59., 82., 139.], [33., 145., 140.], [94., 201., 98.], [253., 231., 37.]];
     let t = if t.is_finite() { t.clamp(0.0, 1.0) } else { 1.0 };
     let x = t * 4.0;
     let i = (x.floor() as usize).min(3);
@@ -109,7 +110,8 @@ impl Frame {
     pub(crate) fn mesh_and_obstacles(&self, s: &mut Svg, p: &Problem) {
         let mesh = &p.mesh;
         for f in mesh.faces().filter(|f| p.is_obstacle_face[f.index()]) {
-            let _ = writeln!(s, r##"<polygon points="{}" fill="#333" fill-opacity="0.55"/>"##, self.face_points(mesh, f));
+            let _ =
+                writeln!(s, r##"<polygon points="{}" fill="#333" fill-opacity="0.55"/>"##, self.face_points(mesh, f));
         }
         let _ = writeln!(s, r##"<g stroke="#d6d6d6" stroke-width="1">"##);
         for e in mesh.edges() {
@@ -121,7 +123,10 @@ impl Frame {
     /// A dot on vertex `v`.
     pub(crate) fn dot(&self, s: &mut Svg, mesh: &crate::mesh::Mesh, v: crate::mesh::VertexId, fill: &str, r: f64) {
         let (x, y) = self.tx(mesh.position(v));
-        let _ = writeln!(s, r##"<circle cx="{x:.2}" cy="{y:.2}" r="{r:.2}" fill="{fill}" stroke="#222" stroke-width="0.6"/>"##);
+        let _ = writeln!(
+            s,
+            r##"<circle cx="{x:.2}" cy="{y:.2}" r="{r:.2}" fill="{fill}" stroke="#222" stroke-width="0.6"/>"##
+        );
     }
 }
 
@@ -153,14 +158,24 @@ pub(crate) fn point_legend(p: &Problem, paths: bool) -> Vec<(&'static str, &'sta
 /// Draws the network as SVG text. `placements` are the model's room placements (when tiling
 /// rooms); the chosen ones (`net.rooms`) are filled with their template's colour and marked with
 /// its letter ([`template_letter`]). The legend lists only what is drawn.
-pub fn svg(p: &Problem, net: &Network, paths: Option<&PathSets>, placements: Option<&[Placement]>, caption: &Caption) -> String {
+pub fn svg(
+    p: &Problem,
+    net: &Network,
+    paths: Option<&PathSets>,
+    placements: Option<&[Placement]>,
+    caption: &Caption,
+) -> String {
     let mesh = &p.mesh;
     let fr = Frame::new(mesh, 150.0);
     let stroke = fr.stroke;
     let mut s = Svg::new(fr.w, fr.h, None);
     let obj = caption.objective.map_or("-".into(), |o| format!("{o:.4}"));
     let gap = caption.gap.map_or("-".into(), |g| format!("{:.2}%", g * 100.0));
-    fr.title(&mut s, &caption.name, &format!("{} · {} · objective {obj} · gap {gap} · {}", caption.solver, caption.status, caption.verdict));
+    fr.title(
+        &mut s,
+        &caption.name,
+        &format!("{} · {} · objective {obj} · gap {gap} · {}", caption.solver, caption.status, caption.verdict),
+    );
     // Rooms.
     let chosen: Vec<&Placement> = match (&p.rooms, placements) {
         (Some(_), Some(pls)) => net.rooms.iter().map(|&k| &pls[k]).collect(),
@@ -169,7 +184,12 @@ pub fn svg(p: &Problem, net: &Network, paths: Option<&PathSets>, placements: Opt
     if let Some(rooms) = &p.rooms {
         for pl in &chosen {
             for &f in &pl.faces {
-                let _ = writeln!(s, r#"<polygon points="{}" fill="{}" stroke="none"/>"#, fr.face_points(mesh, f), escape(&rooms.colors[pl.template]));
+                let _ = writeln!(
+                    s,
+                    r#"<polygon points="{}" fill="{}" stroke="none"/>"#,
+                    fr.face_points(mesh, f),
+                    escape(&rooms.colors[pl.template])
+                );
             }
         }
     }
@@ -181,7 +201,8 @@ pub fn svg(p: &Problem, net: &Network, paths: Option<&PathSets>, placements: Opt
         }
     }
     for pl in &chosen {
-        let pts: Vec<[f64; 2]> = pl.faces.iter().flat_map(|&f| mesh.face_vertices(f).iter().map(|&v| mesh.position(v))).collect();
+        let pts: Vec<[f64; 2]> =
+            pl.faces.iter().flat_map(|&f| mesh.face_vertices(f).iter().map(|&v| mesh.position(v))).collect();
         let (lo, hi) = pts.iter().fold(([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]), |(lo, hi), q| {
             ([lo[0].min(q[0]), lo[1].min(q[1])], [hi[0].max(q[0]), hi[1].max(q[1])])
         });
@@ -189,7 +210,9 @@ pub fn svg(p: &Problem, net: &Network, paths: Option<&PathSets>, placements: Opt
         // The label sits at the room's bounding-box centre, or on its face nearest to it when
         // the centre is outside the room (L and T shapes).
         let centre = [(lo[0] + hi[0]) / 2.0, (lo[1] + hi[1]) / 2.0];
-        let polygon = |f: crate::mesh::FaceId| -> Vec<[f64; 2]> { mesh.face_vertices(f).iter().map(|&v| mesh.position(v)).collect() };
+        let polygon = |f: crate::mesh::FaceId| -> Vec<[f64; 2]> {
+            mesh.face_vertices(f).iter().map(|&v| mesh.position(v)).collect()
+        };
         let at = if pl.faces.iter().any(|&f| crate::mesh::point_in_polygon(centre, &polygon(f))) {
             centre
         } else {
@@ -204,7 +227,9 @@ pub fn svg(p: &Problem, net: &Network, paths: Option<&PathSets>, placements: Opt
             s.text(
                 x,
                 y + size * 0.35,
-                &format!(r##"class="room-type" font-size="{size:.1}" text-anchor="middle" fill="#333" fill-opacity="0.75""##),
+                &format!(
+                    r##"class="room-type" font-size="{size:.1}" text-anchor="middle" fill="#333" fill-opacity="0.75""##
+                ),
                 &template_letter(pl.template),
             );
         }
@@ -237,7 +262,11 @@ pub fn svg(p: &Problem, net: &Network, paths: Option<&PathSets>, placements: Opt
         }
     }
     if !forced.is_empty() {
-        let _ = writeln!(s, r##"<g stroke="#17a34a" stroke-width="{:.2}" stroke-dasharray="4 3" fill="none">"##, stroke * 0.5);
+        let _ = writeln!(
+            s,
+            r##"<g stroke="#17a34a" stroke-width="{:.2}" stroke-dasharray="4 3" fill="none">"##,
+            stroke * 0.5
+        );
         for e in forced {
             let _ = writeln!(s, "{}", fr.edge_line(mesh, e, ""));
         }
@@ -265,7 +294,12 @@ pub fn svg(p: &Problem, net: &Network, paths: Option<&PathSets>, placements: Opt
         s.text(lx, ly, r#"font-size="12""#, "distance to sink");
         for k in 0..=10 {
             let t = k as f64 / 10.0;
-            let _ = writeln!(s, r#"<rect x="{lx:.1}" y="{:.1}" width="18" height="14" fill="{}"/>"#, ly + 8.0 + k as f64 * 14.0, ramp(t));
+            let _ = writeln!(
+                s,
+                r#"<rect x="{lx:.1}" y="{:.1}" width="18" height="14" fill="{}"/>"#,
+                ly + 8.0 + k as f64 * 14.0,
+                ramp(t)
+            );
         }
         s.text(lx + 24.0, ly + 19.0, r#"font-size="11""#, "0");
         s.text(lx + 24.0, ly + 159.0, r#"font-size="11""#, &format!("{dmax:.2}"));
@@ -274,7 +308,12 @@ pub fn svg(p: &Problem, net: &Network, paths: Option<&PathSets>, placements: Opt
         ly += 14.0;
     }
     for (c, label) in point_legend(p, paths.is_some()) {
-        let _ = writeln!(s, r##"<circle cx="{:.1}" cy="{:.1}" r="5" fill="{c}" stroke="#222" stroke-width="0.6"/>"##, lx + 6.0, ly - 4.0);
+        let _ = writeln!(
+            s,
+            r##"<circle cx="{:.1}" cy="{:.1}" r="5" fill="{c}" stroke="#222" stroke-width="0.6"/>"##,
+            lx + 6.0,
+            ly - 4.0
+        );
         s.text(lx + 18.0, ly, r#"font-size="11""#, label);
         ly += 18.0;
     }
@@ -284,7 +323,13 @@ pub fn svg(p: &Problem, net: &Network, paths: Option<&PathSets>, placements: Opt
             if !chosen.iter().any(|pl| pl.template == i) {
                 continue;
             }
-            let _ = writeln!(s, r##"<rect x="{:.1}" y="{:.1}" width="12" height="12" fill="{}" stroke="#555"/>"##, lx, ly - 10.0, escape(&rooms.colors[i]));
+            let _ = writeln!(
+                s,
+                r##"<rect x="{:.1}" y="{:.1}" width="12" height="12" fill="{}" stroke="#555"/>"##,
+                lx,
+                ly - 10.0,
+                escape(&rooms.colors[i])
+            );
             s.text(lx + 6.0, ly - 0.5, r##"font-size="9" text-anchor="middle" fill="#333""##, &template_letter(i));
             s.text(lx + 18.0, ly, r#"font-size="11""#, &t.name);
             ly += 18.0;
@@ -320,12 +365,25 @@ pub fn conflict_svg(p: &Problem, explanation: &crate::explain::Explanation, capt
     let mesh = &p.mesh;
     let fr = Frame::new(mesh, 270.0);
     let stroke = fr.stroke;
-    let legend_h: f64 = explanation.conflicts.iter().map(|c| 24.0 + 13.0 * c.requirements.iter().map(|r| wrap(&r.field_text(), 40).len()).sum::<usize>() as f64).sum::<f64>()
+    let legend_h: f64 = explanation
+        .conflicts
+        .iter()
+        .map(|c| 24.0 + 13.0 * c.requirements.iter().map(|r| wrap(&r.field_text(), 40).len()).sum::<usize>() as f64)
+        .sum::<f64>()
         + 22.0
         + 18.0 * point_legend(p, false).len() as f64;
     let mut s = Svg::new(fr.w, fr.h.max(fr.legend_origin().1 + legend_h + 10.0), None);
     let n = explanation.conflicts.len();
-    fr.title(&mut s, &caption.name, &format!("{} · {} · {n} conflicting set{} of requirements", caption.solver, caption.status, if n == 1 { "" } else { "s" }));
+    fr.title(
+        &mut s,
+        &caption.name,
+        &format!(
+            "{} · {} · {n} conflicting set{} of requirements",
+            caption.solver,
+            caption.status,
+            if n == 1 { "" } else { "s" }
+        ),
+    );
     let pos = |v: u32| fr.tx(mesh.position(crate::mesh::VertexId(v)));
     // Tinted faces first, under the mesh.
     for (k, c) in explanation.conflicts.iter().enumerate() {
@@ -348,7 +406,11 @@ pub fn conflict_svg(p: &Problem, explanation: &crate::explain::Explanation, capt
         forced.extend(r.windows(2).filter_map(|w| mesh.half_edge_between(w[0], w[1])).map(|h| mesh.he_edge(h)));
     }
     if !forced.is_empty() {
-        let _ = writeln!(s, r##"<g stroke="#17a34a" stroke-width="{:.2}" stroke-dasharray="4 3" fill="none">"##, stroke * 0.5);
+        let _ = writeln!(
+            s,
+            r##"<g stroke="#17a34a" stroke-width="{:.2}" stroke-dasharray="4 3" fill="none">"##,
+            stroke * 0.5
+        );
         for e in forced {
             let _ = writeln!(s, "{}", fr.edge_line(mesh, e, ""));
         }
@@ -399,11 +461,21 @@ pub fn conflict_svg(p: &Problem, explanation: &crate::explain::Explanation, capt
     for (k, c) in explanation.conflicts.iter().enumerate() {
         let col = CONFLICT_COLORS[k % CONFLICT_COLORS.len()];
         let _ = writeln!(s, r#"<rect x="{lx:.1}" y="{:.1}" width="14" height="12" fill="{col}"/>"#, ly - 10.0);
-        s.text(lx + 20.0, ly, r#"font-size="12" font-weight="bold""#, &format!("conflict {}{}", k + 1, if c.minimal { "" } else { " (not proven minimal)" }));
+        s.text(
+            lx + 20.0,
+            ly,
+            r#"font-size="12" font-weight="bold""#,
+            &format!("conflict {}{}", k + 1, if c.minimal { "" } else { " (not proven minimal)" }),
+        );
         ly += 16.0;
         for req in &c.requirements {
             for (i, line) in wrap(&req.field_text(), 40).iter().enumerate() {
-                s.text(lx + if i == 0 { 8.0 } else { 16.0 }, ly, r#"font-size="10""#, &if i == 0 { format!("• {line}") } else { line.clone() });
+                s.text(
+                    lx + if i == 0 { 8.0 } else { 16.0 },
+                    ly,
+                    r#"font-size="10""#,
+                    &if i == 0 { format!("• {line}") } else { line.clone() },
+                );
                 ly += 13.0;
             }
         }
@@ -415,7 +487,12 @@ pub fn conflict_svg(p: &Problem, explanation: &crate::explain::Explanation, capt
     }
     ly += 6.0;
     for (c, label) in point_legend(p, false) {
-        let _ = writeln!(s, r##"<circle cx="{:.1}" cy="{:.1}" r="5" fill="{c}" stroke="#222" stroke-width="0.6"/>"##, lx + 6.0, ly - 4.0);
+        let _ = writeln!(
+            s,
+            r##"<circle cx="{:.1}" cy="{:.1}" r="5" fill="{c}" stroke="#222" stroke-width="0.6"/>"##,
+            lx + 6.0,
+            ly - 4.0
+        );
         s.text(lx + 18.0, ly, r#"font-size="11""#, label);
         ly += 18.0;
     }

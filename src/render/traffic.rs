@@ -16,7 +16,8 @@ fn level_width(level: u8) -> f64 {
 
 /// Yellow → orange → red → dark red, `t` in [0, 1].
 fn heat(t: f64) -> String {
-    const STOPS: [[f64; 3]; 5] = [[255., 237., 160.], [254., 178., 76.], [253., 141., 60.], [227., 26., 28.], [128., 0., 38.]];
+    const STOPS: [[f64; 3]; 5] =
+        [[255., 237., 160.], [254., 178., 76.], [253., 141., 60.], [227., 26., 28.], [128., 0., 38.]];
     let t = if t.is_finite() { t.clamp(0.0, 1.0) } else { 1.0 };
     let x = t * 4.0;
     let i = (x.floor() as usize).min(3);
@@ -37,7 +38,10 @@ fn nice_ceil(v: f64) -> f64 {
 }
 
 fn svg_open(s: &mut String, w: f64, h: f64) {
-    let _ = writeln!(s, r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w:.0}" height="{h:.0}" viewBox="0 0 {w:.1} {h:.1}" font-family="DejaVu Sans, sans-serif">"#);
+    let _ = writeln!(
+        s,
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w:.0}" height="{h:.0}" viewBox="0 0 {w:.1} {h:.1}" font-family="DejaVu Sans, sans-serif">"#
+    );
     let _ = writeln!(s, r#"<rect width="100%" height="100%" fill="white"/>"#);
 }
 
@@ -49,7 +53,9 @@ fn fmt_opt(v: Option<f64>, d: usize) -> String {
 /// as wide as its level; the title gives the demand and the main results.
 pub fn volume_svg(net: &RoadNetwork, r: &TrafficReport) -> String {
     let pts = net.region.boundary.iter().chain(net.nodes.iter().map(|n| &n.pos));
-    let (lo, hi) = pts.fold(([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]), |(lo, hi), p| ([lo[0].min(p[0]), lo[1].min(p[1])], [hi[0].max(p[0]), hi[1].max(p[1])]));
+    let (lo, hi) = pts.fold(([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]), |(lo, hi), p| {
+        ([lo[0].min(p[0]), lo[1].min(p[1])], [hi[0].max(p[0]), hi[1].max(p[1])])
+    });
     let span = (hi[0] - lo[0]).max(hi[1] - lo[1]).max(1e-9);
     let scale = 720.0 / span;
     let (margin, title_h, legend_w) = (24.0, 76.0, 190.0);
@@ -67,11 +73,22 @@ pub fn volume_svg(net: &RoadNetwork, r: &TrafficReport) -> String {
     let mut s = String::new();
     svg_open(&mut s, w, h);
     let d = &r.demand.settings;
-    let _ = writeln!(s, r#"<text x="{margin}" y="22" font-size="15" font-weight="bold">{} — traffic volume per street (SUMO {})</text>"#, xml(&r.name), xml(&r.sumo_version));
+    let _ = writeln!(
+        s,
+        r#"<text x="{margin}" y="22" font-size="15" font-weight="bold">{} — traffic volume per street (SUMO {})</text>"#,
+        xml(&r.name),
+        xml(&r.sumo_version)
+    );
     let _ = writeln!(
         s,
         r#"<text x="{margin}" y="42" font-size="12">{:.0} s of departures: {:.0} through + {:.0} local trips/h, seed {}; inserted {}, arrived {}, teleported {}</text>"#,
-        d.duration, d.through_per_hour, d.local_per_hour, d.seed, r.vehicles.inserted, r.vehicles.arrived, r.vehicles.teleported
+        d.duration,
+        d.through_per_hour,
+        d.local_per_hour,
+        d.seed,
+        r.vehicles.inserted,
+        r.vehicles.arrived,
+        r.vehicles.teleported
     );
     let _ = writeln!(
         s,
@@ -81,7 +98,11 @@ pub fn volume_svg(net: &RoadNetwork, r: &TrafficReport) -> String {
         r.through_on_local.distance_share.map_or("-".into(), |v| format!("{:.1}%", 100.0 * v))
     );
     if net.region.boundary.len() >= 3 {
-        let _ = writeln!(s, r##"<path d="{} Z" fill="#f6f4ee" stroke="#cccccc" stroke-width="1"/>"##, path(&net.region.boundary));
+        let _ = writeln!(
+            s,
+            r##"<path d="{} Z" fill="#f6f4ee" stroke="#cccccc" stroke-width="1"/>"##,
+            path(&net.region.boundary)
+        );
     }
     let volume: Vec<f64> = r.edge_volumes.iter().map(|v| v.forward + v.backward).collect();
     let vmax = volume.iter().copied().fold(0.0, f64::max);
@@ -104,17 +125,38 @@ pub fn volume_svg(net: &RoadNetwork, r: &TrafficReport) -> String {
     let ly = margin + title_h;
     let _ = writeln!(s, r#"<text x="{lx:.1}" y="{ly:.1}" font-size="12">vehicles per street (√ scale)</text>"#);
     for k in 0..=10 {
-        let _ = writeln!(s, r#"<rect x="{lx:.1}" y="{:.1}" width="18" height="14" fill="{}"/>"#, ly + 8.0 + k as f64 * 14.0, heat(k as f64 / 10.0));
+        let _ = writeln!(
+            s,
+            r#"<rect x="{lx:.1}" y="{:.1}" width="18" height="14" fill="{}"/>"#,
+            ly + 8.0 + k as f64 * 14.0,
+            heat(k as f64 / 10.0)
+        );
     }
     for k in [0, 5, 10] {
         let v = vmax * (k as f64 / 10.0).powi(2);
-        let _ = writeln!(s, r#"<text x="{:.1}" y="{:.1}" font-size="11">{v:.0}</text>"#, lx + 24.0, ly + 19.0 + k as f64 * 14.0);
+        let _ = writeln!(
+            s,
+            r#"<text x="{:.1}" y="{:.1}" font-size="11">{v:.0}</text>"#,
+            lx + 24.0,
+            ly + 19.0 + k as f64 * 14.0
+        );
     }
-    let _ = writeln!(s, r##"<line x1="{lx:.1}" y1="{:.1}" x2="{:.1}" y2="{:.1}" stroke="#c8c8c8" stroke-width="3"/>"##, ly + 180.0, lx + 18.0, ly + 180.0);
+    let _ = writeln!(
+        s,
+        r##"<line x1="{lx:.1}" y1="{:.1}" x2="{:.1}" y2="{:.1}" stroke="#c8c8c8" stroke-width="3"/>"##,
+        ly + 180.0,
+        lx + 18.0,
+        ly + 180.0
+    );
     let _ = writeln!(s, r#"<text x="{:.1}" y="{:.1}" font-size="11">unused</text>"#, lx + 24.0, ly + 184.0);
     for (i, label) in ["L1 major road", "L2 collector", "L3 local street", "L4 cul-de-sac"].iter().enumerate() {
         let y = ly + 206.0 + i as f64 * 20.0;
-        let _ = writeln!(s, r##"<line x1="{lx:.1}" y1="{y:.1}" x2="{:.1}" y2="{y:.1}" stroke="#555555" stroke-width="{:.1}"/>"##, lx + 18.0, level_width(i as u8 + 1));
+        let _ = writeln!(
+            s,
+            r##"<line x1="{lx:.1}" y1="{y:.1}" x2="{:.1}" y2="{y:.1}" stroke="#555555" stroke-width="{:.1}"/>"##,
+            lx + 18.0,
+            level_width(i as u8 + 1)
+        );
         let _ = writeln!(s, r#"<text x="{:.1}" y="{:.1}" font-size="11">{label}</text>"#, lx + 24.0, y + 4.0);
     }
     s.push_str("</svg>\n");
@@ -147,7 +189,12 @@ pub fn histogram_svg(r: &TrafficReport) -> String {
     let (x0, y0, pw, ph) = (70.0, 60.0, 640.0, 300.0);
     let mut s = String::new();
     svg_open(&mut s, w, h);
-    let _ = writeln!(s, r#"<text x="20" y="24" font-size="15" font-weight="bold">{} — travel times of {} vehicles</text>"#, xml(&r.name), through.len() + local.len());
+    let _ = writeln!(
+        s,
+        r#"<text x="20" y="24" font-size="15" font-weight="bold">{} — travel times of {} vehicles</text>"#,
+        xml(&r.name),
+        through.len() + local.len()
+    );
     let _ = writeln!(
         s,
         r#"<text x="20" y="44" font-size="12">mean {} s, p95 {} s (through: {} s, local: {} s); bins of {width} s</text>"#,
@@ -163,17 +210,31 @@ pub fn histogram_svg(r: &TrafficReport) -> String {
         let bw = pw / bins as f64 - 1.0;
         let (a, b) = (ht[i] as f64, hl[i] as f64);
         if a > 0.0 {
-            let _ = writeln!(s, r##"<rect x="{x:.2}" y="{:.2}" width="{bw:.2}" height="{:.2}" fill="#d62728"/>"##, by(a), y0 + ph - by(a));
+            let _ = writeln!(
+                s,
+                r##"<rect x="{x:.2}" y="{:.2}" width="{bw:.2}" height="{:.2}" fill="#d62728"/>"##,
+                by(a),
+                y0 + ph - by(a)
+            );
         }
         if b > 0.0 {
-            let _ = writeln!(s, r##"<rect x="{x:.2}" y="{:.2}" width="{bw:.2}" height="{:.2}" fill="#1f77b4"/>"##, by(a + b), by(a) - by(a + b));
+            let _ = writeln!(
+                s,
+                r##"<rect x="{x:.2}" y="{:.2}" width="{bw:.2}" height="{:.2}" fill="#1f77b4"/>"##,
+                by(a + b),
+                by(a) - by(a + b)
+            );
         }
     }
     axes(&mut s, x0, y0, pw, ph, bins as f64 * width, top, "travel time (s)", "vehicles");
     for (label, v, dash) in [("mean", r.all.travel_time_mean, "5 3"), ("p95", r.all.travel_time_p95, "2 2")] {
         if let Some(v) = v {
             let x = bx(v);
-            let _ = writeln!(s, r##"<line x1="{x:.2}" y1="{y0}" x2="{x:.2}" y2="{:.2}" stroke="#222" stroke-dasharray="{dash}"/>"##, y0 + ph);
+            let _ = writeln!(
+                s,
+                r##"<line x1="{x:.2}" y1="{y0}" x2="{x:.2}" y2="{:.2}" stroke="#222" stroke-dasharray="{dash}"/>"##,
+                y0 + ph
+            );
             let _ = writeln!(s, r#"<text x="{:.2}" y="{:.2}" font-size="11">{label}</text>"#, x + 3.0, y0 + 12.0);
         }
     }
@@ -189,17 +250,51 @@ pub fn histogram_svg(r: &TrafficReport) -> String {
 /// Axes with five ticks each.
 #[allow(clippy::too_many_arguments)]
 fn axes(s: &mut String, x0: f64, y0: f64, pw: f64, ph: f64, xmax: f64, ymax: f64, xlabel: &str, ylabel: &str) {
-    let _ = writeln!(s, r##"<path d="M{x0},{y0} L{x0},{:.1} L{:.1},{:.1}" fill="none" stroke="#333"/>"##, y0 + ph, x0 + pw, y0 + ph);
+    let _ = writeln!(
+        s,
+        r##"<path d="M{x0},{y0} L{x0},{:.1} L{:.1},{:.1}" fill="none" stroke="#333"/>"##,
+        y0 + ph,
+        x0 + pw,
+        y0 + ph
+    );
     for k in 0..=5 {
         let f = k as f64 / 5.0;
         let (x, y) = (x0 + f * pw, y0 + ph - f * ph);
-        let _ = writeln!(s, r##"<line x1="{x:.1}" y1="{:.1}" x2="{x:.1}" y2="{:.1}" stroke="#333"/>"##, y0 + ph, y0 + ph + 4.0);
-        let _ = writeln!(s, r#"<text x="{x:.1}" y="{:.1}" font-size="10" text-anchor="middle">{}</text>"#, y0 + ph + 16.0, tick(f * xmax));
+        let _ = writeln!(
+            s,
+            r##"<line x1="{x:.1}" y1="{:.1}" x2="{x:.1}" y2="{:.1}" stroke="#333"/>"##,
+            y0 + ph,
+            y0 + ph + 4.0
+        );
+        let _ = writeln!(
+            s,
+            r#"<text x="{x:.1}" y="{:.1}" font-size="10" text-anchor="middle">{}</text>"#,
+            y0 + ph + 16.0,
+            tick(f * xmax)
+        );
         let _ = writeln!(s, r##"<line x1="{:.1}" y1="{y:.1}" x2="{x0}" y2="{y:.1}" stroke="#333"/>"##, x0 - 4.0);
-        let _ = writeln!(s, r#"<text x="{:.1}" y="{:.1}" font-size="10" text-anchor="end">{}</text>"#, x0 - 6.0, y + 3.0, tick(f * ymax));
+        let _ = writeln!(
+            s,
+            r#"<text x="{:.1}" y="{:.1}" font-size="10" text-anchor="end">{}</text>"#,
+            x0 - 6.0,
+            y + 3.0,
+            tick(f * ymax)
+        );
     }
-    let _ = writeln!(s, r#"<text x="{:.1}" y="{:.1}" font-size="11" text-anchor="middle">{xlabel}</text>"#, x0 + pw / 2.0, y0 + ph + 32.0);
-    let _ = writeln!(s, r#"<text x="{:.1}" y="{:.1}" font-size="11" text-anchor="middle" transform="rotate(-90 {:.1} {:.1})">{ylabel}</text>"#, x0 - 44.0, y0 + ph / 2.0, x0 - 44.0, y0 + ph / 2.0);
+    let _ = writeln!(
+        s,
+        r#"<text x="{:.1}" y="{:.1}" font-size="11" text-anchor="middle">{xlabel}</text>"#,
+        x0 + pw / 2.0,
+        y0 + ph + 32.0
+    );
+    let _ = writeln!(
+        s,
+        r#"<text x="{:.1}" y="{:.1}" font-size="11" text-anchor="middle" transform="rotate(-90 {:.1} {:.1})">{ylabel}</text>"#,
+        x0 - 44.0,
+        y0 + ph / 2.0,
+        x0 - 44.0,
+        y0 + ph / 2.0
+    );
 }
 
 fn tick(v: f64) -> String {
@@ -224,13 +319,21 @@ pub fn comparison_svg(rows: &[(String, &TrafficReport)]) -> String {
         let _ = writeln!(
             s,
             r#"<text x="20" y="44" font-size="12">same demand: {:.0} s of departures, {:.0} through + {:.0} local trips/h, seed {}; SUMO {}</text>"#,
-            d.duration, d.through_per_hour, d.local_per_hour, d.seed, xml(&r.sumo_version)
+            d.duration,
+            d.through_per_hour,
+            d.local_per_hour,
+            d.seed,
+            xml(&r.sumo_version)
         );
     }
     // Left: cumulative distributions.
     let (x0, y0, pw, ph) = (70.0, 80.0, 420.0, 360.0);
     let tmax = nice_ceil(rows.iter().flat_map(|(_, r)| r.travel_times.values().flatten()).copied().fold(0.0, f64::max));
-    let _ = writeln!(s, r#"<text x="{x0}" y="{:.1}" font-size="12" font-weight="bold">share of vehicles arrived within a travel time</text>"#, y0 - 10.0);
+    let _ = writeln!(
+        s,
+        r#"<text x="{x0}" y="{:.1}" font-size="12" font-weight="bold">share of vehicles arrived within a travel time</text>"#,
+        y0 - 10.0
+    );
     for (i, (label, r)) in rows.iter().enumerate() {
         let mut v: Vec<f64> = r.travel_times.values().flatten().copied().collect();
         v.sort_by(f64::total_cmp);
@@ -238,12 +341,18 @@ pub fn comparison_svg(rows: &[(String, &TrafficReport)]) -> String {
         let mut d = format!("M{x0:.2},{:.2}", y0 + ph);
         for (k, t) in v.iter().enumerate() {
             let x = x0 + t / tmax * pw;
-            let _ = write!(d, " L{x:.2},{:.2} L{x:.2},{:.2}", y0 + ph - k as f64 / n * ph, y0 + ph - (k + 1) as f64 / n * ph);
+            let _ = write!(
+                d,
+                " L{x:.2},{:.2} L{x:.2},{:.2}",
+                y0 + ph - k as f64 / n * ph,
+                y0 + ph - (k + 1) as f64 / n * ph
+            );
         }
         let c = PALETTE[i % PALETTE.len()];
         let _ = writeln!(s, r#"<path d="{d}" fill="none" stroke="{c}" stroke-width="2"/>"#);
         let ly = y0 + ph - 20.0 - (rows.len() - 1 - i) as f64 * 18.0;
-        let _ = writeln!(s, r#"<rect x="{:.1}" y="{:.1}" width="12" height="12" fill="{c}"/>"#, x0 + pw - 150.0, ly - 10.0);
+        let _ =
+            writeln!(s, r#"<rect x="{:.1}" y="{:.1}" width="12" height="12" fill="{c}"/>"#, x0 + pw - 150.0, ly - 10.0);
         let _ = writeln!(s, r#"<text x="{:.1}" y="{ly:.1}" font-size="11">{}</text>"#, x0 + pw - 134.0, xml(label));
     }
     axes(&mut s, x0, y0, pw, ph, tmax, 100.0, "travel time (s)", "% of vehicles");
@@ -262,7 +371,12 @@ pub fn comparison_svg(rows: &[(String, &TrafficReport)]) -> String {
     let (px0, py0, pw2, ph2) = (580.0, 80.0, 260.0, 150.0);
     for (k, (title, f)) in panels.iter().enumerate() {
         let (x, y) = (px0 + (k % 2) as f64 * (pw2 + 60.0), py0 + (k / 2) as f64 * (ph2 + 80.0));
-        let _ = writeln!(s, r#"<text x="{x:.1}" y="{:.1}" font-size="11" font-weight="bold">{}</text>"#, y - 10.0, xml(title));
+        let _ = writeln!(
+            s,
+            r#"<text x="{x:.1}" y="{:.1}" font-size="11" font-weight="bold">{}</text>"#,
+            y - 10.0,
+            xml(title)
+        );
         let vals: Vec<Option<f64>> = rows.iter().map(|(_, r)| f(r)).collect();
         let top = nice_ceil(vals.iter().flatten().copied().fold(0.0, f64::max));
         let bw = pw2 / rows.len().max(1) as f64;
@@ -271,16 +385,44 @@ pub fn comparison_svg(rows: &[(String, &TrafficReport)]) -> String {
             match v {
                 Some(v) => {
                     let bh = v / top * ph2;
-                    let _ = writeln!(s, r#"<rect x="{bx:.1}" y="{:.1}" width="{:.1}" height="{bh:.1}" fill="{}"/>"#, y + ph2 - bh, 0.7 * bw, PALETTE[i % PALETTE.len()]);
-                    let _ = writeln!(s, r#"<text x="{:.1}" y="{:.1}" font-size="10" text-anchor="middle">{v:.1}</text>"#, bx + 0.35 * bw, y + ph2 - bh - 3.0);
+                    let _ = writeln!(
+                        s,
+                        r#"<rect x="{bx:.1}" y="{:.1}" width="{:.1}" height="{bh:.1}" fill="{}"/>"#,
+                        y + ph2 - bh,
+                        0.7 * bw,
+                        PALETTE[i % PALETTE.len()]
+                    );
+                    let _ = writeln!(
+                        s,
+                        r#"<text x="{:.1}" y="{:.1}" font-size="10" text-anchor="middle">{v:.1}</text>"#,
+                        bx + 0.35 * bw,
+                        y + ph2 - bh - 3.0
+                    );
                 }
                 None => {
-                    let _ = writeln!(s, r#"<text x="{:.1}" y="{:.1}" font-size="10" text-anchor="middle">n/a</text>"#, bx + 0.35 * bw, y + ph2 - 3.0);
+                    let _ = writeln!(
+                        s,
+                        r#"<text x="{:.1}" y="{:.1}" font-size="10" text-anchor="middle">n/a</text>"#,
+                        bx + 0.35 * bw,
+                        y + ph2 - 3.0
+                    );
                 }
             }
         }
-        let _ = writeln!(s, r##"<path d="M{x:.1},{y:.1} L{x:.1},{:.1} L{:.1},{:.1}" fill="none" stroke="#333"/>"##, y + ph2, x + pw2, y + ph2);
-        let _ = writeln!(s, r#"<text x="{:.1}" y="{:.1}" font-size="10" text-anchor="end">{}</text>"#, x - 4.0, y + 8.0, tick(top));
+        let _ = writeln!(
+            s,
+            r##"<path d="M{x:.1},{y:.1} L{x:.1},{:.1} L{:.1},{:.1}" fill="none" stroke="#333"/>"##,
+            y + ph2,
+            x + pw2,
+            y + ph2
+        );
+        let _ = writeln!(
+            s,
+            r#"<text x="{:.1}" y="{:.1}" font-size="10" text-anchor="end">{}</text>"#,
+            x - 4.0,
+            y + 8.0,
+            tick(top)
+        );
     }
     s.push_str("</svg>\n");
     s

@@ -88,7 +88,10 @@ mod tests {
         s.text(1.0, 2.0, "", "x<y");
         let t = s.finish();
         assert!(t.starts_with("<svg ") && t.ends_with("</svg>\n"), "{t}");
-        assert!(t.contains(r#"width="10" height="20" viewBox="0 0 10.0 20.0""#) && t.contains(r#"font-size="11""#), "{t}");
+        assert!(
+            t.contains(r#"width="10" height="20" viewBox="0 0 10.0 20.0""#) && t.contains(r#"font-size="11""#),
+            "{t}"
+        );
         let defs = t.find("<defs>").unwrap();
         assert!(defs < t.find("fill=\"white\"").unwrap());
         assert!(t.contains(r#"<text x="1.0" y="2.0">x&lt;y</text>"#), "{t}");

@@ -20,7 +20,9 @@ pub fn zigzag_configs(mesh: &Mesh) -> Vec<(String, Vec<EdgeId>)> {
     let mut out = Vec::new();
     for b in mesh.edges() {
         let [h1, h2] = mesh.edge_half_edges(b);
-        let (Some(p1), Some(n1), Some(p2), Some(n2)) = (mesh.he_prev(h1), mesh.he_next(h1), mesh.he_prev(h2), mesh.he_next(h2)) else {
+        let (Some(p1), Some(n1), Some(p2), Some(n2)) =
+            (mesh.he_prev(h1), mesh.he_next(h1), mesh.he_prev(h2), mesh.he_next(h2))
+        else {
             continue;
         };
         out.push((format!("e{}_0", b.0), vec![mesh.he_edge(p1), b, mesh.he_edge(p2)]));
@@ -66,7 +68,9 @@ pub fn t_configs(mesh: &Mesh) -> Vec<(HalfEdgeId, VertexId, EdgeId, [EdgeId; 3])
 pub fn cover_set(p: &Problem, v: VertexId) -> Vec<VertexId> {
     let mesh = &p.mesh;
     let mut out: Vec<VertexId> = match p.coverage_model {
-        CoverageModel::Hops => mesh.hop_distances(v, p.coverage_range.floor() as usize).into_iter().map(|(u, _)| u).collect(),
+        CoverageModel::Hops => {
+            mesh.hop_distances(v, p.coverage_range.floor() as usize).into_iter().map(|(u, _)| u).collect()
+        }
         CoverageModel::Euclidean => {
             let pv = mesh.position(v);
             let r2 = p.coverage_range * p.coverage_range;
@@ -81,4 +85,3 @@ pub fn cover_set(p: &Problem, v: VertexId) -> Vec<VertexId> {
     out.sort();
     out
 }
-

@@ -79,7 +79,8 @@ pub fn enumerate_path_sets(p: &Problem) -> PathSets {
     let mut rng = pp.seed ^ 0x6E65_7473_7065_63; // "netspec"
     let mut samples = Vec::new();
     for (k, vs) in members.iter().enumerate() {
-        let ok: Vec<VertexId> = vs.iter().copied().filter(|&v| usable(mesh, &p.roles, v) && !p.is_obstacle_vertex[v.index()]).collect();
+        let ok: Vec<VertexId> =
+            vs.iter().copied().filter(|&v| usable(mesh, &p.roles, v) && !p.is_obstacle_vertex[v.index()]).collect();
         let interior: Vec<VertexId> = ok
             .iter()
             .copied()
@@ -135,7 +136,15 @@ fn hops_to(mesh: &Mesh, roles: &[EdgeRole], target: VertexId) -> Vec<usize> {
     d
 }
 
-fn enumerate_pair(mesh: &Mesh, roles: &[EdgeRole], parts: (u32, u32), a: VertexId, b: VertexId, tol: usize, cap: usize) -> PairPaths {
+fn enumerate_pair(
+    mesh: &Mesh,
+    roles: &[EdgeRole],
+    parts: (u32, u32),
+    a: VertexId,
+    b: VertexId,
+    tol: usize,
+    cap: usize,
+) -> PairPaths {
     let dist = hops_to(mesh, roles, b);
     let mut out = PairPaths { parts, ends: (a, b), shortest: None, paths: Vec::new(), truncated: false };
     if dist[a.index()] == usize::MAX {

@@ -51,12 +51,7 @@ impl Template {
                 cells.push((x, y));
             }
         }
-        Template {
-            name: name.to_string(),
-            cells,
-            rotations: true,
-            reflections: true,
-        }
+        Template { name: name.to_string(), cells, rotations: true, reflections: true }
     }
 
     /// An L: `a` cells along x starting at `(0, 0)`, plus a column of `b` cells up from that
@@ -70,12 +65,7 @@ impl Template {
         for y in 1..b.max(1) {
             cells.push((0, y));
         }
-        Template {
-            name: name.to_string(),
-            cells,
-            rotations: true,
-            reflections: true,
-        }
+        Template { name: name.to_string(), cells, rotations: true, reflections: true }
     }
 
     /// The distinct symmetry images (normalised so min x = min y = 0, cells sorted),
@@ -87,11 +77,7 @@ impl Template {
             return Vec::new();
         }
         let mut out: Vec<Vec<(i32, i32)>> = Vec::new();
-        let reflections: &[bool] = if self.reflections {
-            &[false, true]
-        } else {
-            &[false]
-        };
+        let reflections: &[bool] = if self.reflections { &[false, true] } else { &[false] };
         let rotations = if self.rotations { 4 } else { 1 };
         for &mirror in reflections {
             for rot in 0..rotations {
@@ -124,12 +110,7 @@ fn normalise(cells: impl Iterator<Item = (i64, i64)>) -> Vec<(i32, i32)> {
     let my = cells.iter().map(|c| c.1).min().unwrap_or(0);
     let mut out: Vec<(i32, i32)> = cells
         .iter()
-        .map(|&(x, y)| {
-            (
-                (x - mx).clamp(0, i32::MAX as i64) as i32,
-                (y - my).clamp(0, i32::MAX as i64) as i32,
-            )
-        })
+        .map(|&(x, y)| ((x - mx).clamp(0, i32::MAX as i64) as i32, (y - my).clamp(0, i32::MAX as i64) as i32))
         .collect();
     out.sort_unstable();
     out.dedup();
@@ -198,9 +179,8 @@ pub fn enumerate_placements(
     let mut placements = Vec::new();
     let mut per_template = vec![0usize; templates.len()];
     let mut truncated = false;
-    let usable = |f: FaceId| -> bool {
-        mesh.face_size(f) == 4 && !blocked_faces.get(f.index()).copied().unwrap_or(false)
-    };
+    let usable =
+        |f: FaceId| -> bool { mesh.face_size(f) == 4 && !blocked_faces.get(f.index()).copied().unwrap_or(false) };
     let mut checks = 0usize;
 
     'outer: for (ti, template) in templates.iter().enumerate() {
@@ -238,25 +218,14 @@ pub fn enumerate_placements(
             }
         }
     }
-    PlacementReport {
-        placements,
-        per_template,
-        truncated,
-        seconds: start.elapsed().as_secs_f64(),
-    }
+    PlacementReport { placements, per_template, truncated, seconds: start.elapsed().as_secs_f64() }
 }
 
 /// Direction offsets: +x, +y, −x, −y.
 const DIRS: [(i32, i32); 4] = [(1, 0), (0, 1), (-1, 0), (0, -1)];
 
 /// Moves one step in direction `d` from state `(f, k)`; `None` if there is no usable neighbour.
-fn step(
-    mesh: &Mesh,
-    f: FaceId,
-    k: u8,
-    d: u8,
-    usable: &impl Fn(FaceId) -> bool,
-) -> Option<(FaceId, u8)> {
+fn step(mesh: &Mesh, f: FaceId, k: u8, d: u8, usable: &impl Fn(FaceId) -> bool) -> Option<(FaceId, u8)> {
     let hes = mesh.face_half_edges_slice(f);
     if hes.len() != 4 {
         return None;
@@ -275,16 +244,9 @@ fn step(
 
 /// Maps the image's cells onto faces from anchor `(f, k)` (the anchor is the image's first,
 /// i.e. smallest, cell). Returns the faces (in cell order) or `None` if the walk is rejected.
-fn walk(
-    mesh: &Mesh,
-    image: &[(i32, i32)],
-    f: FaceId,
-    k: u8,
-    usable: &impl Fn(FaceId) -> bool,
-) -> Option<Vec<FaceId>> {
+fn walk(mesh: &Mesh, image: &[(i32, i32)], f: FaceId, k: u8, usable: &impl Fn(FaceId) -> bool) -> Option<Vec<FaceId>> {
     let first = *image.first()?;
-    let index: BTreeMap<(i32, i32), usize> =
-        image.iter().enumerate().map(|(i, &c)| (c, i)).collect();
+    let index: BTreeMap<(i32, i32), usize> = image.iter().enumerate().map(|(i, &c)| (c, i)).collect();
     let mut state: Vec<Option<(FaceId, u8)>> = vec![None; image.len()];
     state[0] = Some((f, k));
     let mut used: HashSet<FaceId> = HashSet::new();
@@ -344,13 +306,7 @@ fn make_placement(mesh: &Mesh, template: usize, faces: Vec<FaceId>) -> Placement
     inner.dedup();
     boundary.sort_unstable();
     boundary.dedup();
-    Placement {
-        template,
-        faces,
-        inner_edges: inner,
-        boundary_edges: boundary,
-        touches_mesh_boundary: touches,
-    }
+    Placement { template, faces, inner_edges: inner, boundary_edges: boundary, touches_mesh_boundary: touches }
 }
 
 #[cfg(test)]
@@ -377,10 +333,7 @@ mod tests {
             assert!(p.boundary_edges.windows(2).all(|w| w[0] < w[1]));
             // each face contributes 4 edge sides: 2 per inner edge, 1 per boundary edge
             assert_eq!(2 * p.inner_edges.len() + p.boundary_edges.len(), 4 * n);
-            assert_eq!(
-                p.touches_mesh_boundary,
-                p.boundary_edges.iter().any(|&e| m.is_boundary_edge(e))
-            );
+            assert_eq!(p.touches_mesh_boundary, p.boundary_edges.iter().any(|&e| m.is_boundary_edge(e)));
         }
         let mut counts = vec![0; templates.len()];
         for p in &r.placements {
@@ -404,10 +357,7 @@ mod tests {
             reflections: false,
         };
         assert_eq!(t.images().len(), 2);
-        let t2 = Template {
-            reflections: true,
-            ..t.clone()
-        };
+        let t2 = Template { reflections: true, ..t.clone() };
         assert_eq!(t2.images().len(), 4);
         for img in t2.images() {
             assert_eq!(img.iter().map(|c| c.0).min(), Some(0));
@@ -421,10 +371,7 @@ mod tests {
 
     #[test]
     fn grid_counts() {
-        for m in [
-            mesh::grid(4, 3, 1.0),
-            mesh::jitter(&mesh::grid(4, 3, 1.0), 0.2, 7),
-        ] {
+        for m in [mesh::grid(4, 3, 1.0), mesh::jitter(&mesh::grid(4, 3, 1.0), 0.2, 7)] {
             let ts = [
                 Template::rect("1x1", 1, 1),
                 Template::rect("2x2", 2, 2),
@@ -438,10 +385,7 @@ mod tests {
             assert!(!r.truncated);
             check_invariants(&m, &ts, &r);
             // order: by template
-            assert!(r
-                .placements
-                .windows(2)
-                .all(|w| w[0].template <= w[1].template));
+            assert!(r.placements.windows(2).all(|w| w[0].template <= w[1].template));
         }
     }
 
@@ -456,19 +400,12 @@ mod tests {
         }
         // The 1×1 at the centre-ish face 5 (row 1, col 1) does not touch the boundary.
         let r1 = run(&m, Template::rect("1x1", 1, 1), &[]);
-        let p5 = r1
-            .placements
-            .iter()
-            .find(|p| p.faces == vec![FaceId(5)])
-            .unwrap();
+        let p5 = r1.placements.iter().find(|p| p.faces == vec![FaceId(5)]).unwrap();
         assert!(!p5.touches_mesh_boundary);
         assert_eq!(p5.inner_edges.len(), 0);
         assert_eq!(p5.boundary_edges.len(), 4);
         // The 2x2 at bottom-left: faces 0, 1, 4, 5.
-        let p = r
-            .placements
-            .iter()
-            .find(|p| p.faces == vec![FaceId(0), FaceId(1), FaceId(4), FaceId(5)]);
+        let p = r.placements.iter().find(|p| p.faces == vec![FaceId(0), FaceId(1), FaceId(4), FaceId(5)]);
         assert!(p.is_some());
     }
 
@@ -477,19 +414,10 @@ mod tests {
         let m = mesh::grid(4, 3, 1.0);
         let mut blocked = vec![false; m.num_faces()];
         blocked[5] = true;
-        let ts = [
-            Template::rect("2x2", 2, 2),
-            Template::rect("3x2", 3, 2),
-            Template::l_shape("L", 2, 2),
-        ];
+        let ts = [Template::rect("2x2", 2, 2), Template::rect("3x2", 3, 2), Template::l_shape("L", 2, 2)];
         let all = enumerate_placements(&m, &ts, &[], usize::MAX, Duration::from_secs(60));
         let some = enumerate_placements(&m, &ts, &blocked, usize::MAX, Duration::from_secs(60));
-        let expected: Vec<_> = all
-            .placements
-            .iter()
-            .filter(|p| !p.faces.contains(&FaceId(5)))
-            .cloned()
-            .collect();
+        let expected: Vec<_> = all.placements.iter().filter(|p| !p.faces.contains(&FaceId(5))).cloned().collect();
         assert_eq!(some.placements, expected);
         assert!(some.placements.len() < all.placements.len());
         // 2x2: of 6 blocks, those containing face 5 (row 1, col 1) are 4.
@@ -507,27 +435,13 @@ mod tests {
         assert_eq!(r.placements.len(), 12);
         assert!(!r.truncated);
         let big = mesh::grid(30, 30, 1.0);
-        let r = enumerate_placements(
-            &big,
-            &[Template::rect("4x4", 4, 4)],
-            &[],
-            usize::MAX,
-            Duration::ZERO,
-        );
+        let r = enumerate_placements(&big, &[Template::rect("4x4", 4, 4)], &[], usize::MAX, Duration::ZERO);
         assert!(r.truncated);
     }
 
     /// A triangle split into 3 quads around a valence-3 interior vertex.
     fn tri3() -> Mesh {
-        let pos = vec![
-            [0.0, 0.0],
-            [2.0, 0.0],
-            [1.0, 2.0],
-            [1.0, 0.0],
-            [1.5, 1.0],
-            [0.5, 1.0],
-            [1.0, 0.7],
-        ];
+        let pos = vec![[0.0, 0.0], [2.0, 0.0], [1.0, 2.0], [1.0, 0.0], [1.5, 1.0], [0.5, 1.0], [1.0, 0.7]];
         let faces = vec![vec![0, 3, 6, 5], vec![3, 1, 4, 6], vec![4, 2, 5, 6]];
         Mesh::from_polygons(pos, faces).unwrap()
     }
@@ -564,14 +478,7 @@ mod tests {
         let sub = mesh::subdivide(&hex).mesh;
         let sub2 = mesh::subdivide(&sub).mesh;
         let lshape = mesh::clipped_grid(
-            &[
-                [0.0, 0.0],
-                [6.0, 0.0],
-                [6.0, 3.0],
-                [3.0, 3.0],
-                [3.0, 6.0],
-                [0.0, 6.0],
-            ],
+            &[[0.0, 0.0], [6.0, 0.0], [6.0, 3.0], [3.0, 3.0], [3.0, 6.0], [0.0, 6.0]],
             &[vec![[1.0, 1.0], [2.0, 1.0], [2.0, 2.0], [1.0, 2.0]]],
             1.0,
         )
@@ -582,41 +489,19 @@ mod tests {
             Template::rect("3x2", 3, 2),
             Template::l_shape("L", 3, 2),
             Template::rect("1x5", 1, 5),
-            Template {
-                name: "odd".into(),
-                cells: vec![(0, 0), (2, 0)],
-                rotations: true,
-                reflections: true,
-            },
+            Template { name: "odd".into(), cells: vec![(0, 0), (2, 0)], rotations: true, reflections: true },
         ];
         for m in [&hex, &sub, &sub2, &lshape, &tri3()] {
             let r = enumerate_placements(m, &ts, &[true], usize::MAX, Duration::from_secs(60));
             check_invariants(m, &ts, &r);
             assert_eq!(r.per_template[5], 0); // disconnected cells never place
-            let r = enumerate_placements(
-                m,
-                &ts,
-                &vec![true; 3 * m.num_faces()],
-                10,
-                Duration::from_secs(60),
-            );
+            let r = enumerate_placements(m, &ts, &vec![true; 3 * m.num_faces()], 10, Duration::from_secs(60));
             assert!(r.placements.is_empty());
         }
-        assert_eq!(
-            enumerate_placements(&hex, &ts, &[], usize::MAX, Duration::from_secs(60))
-                .placements
-                .len(),
-            0
-        );
+        assert_eq!(enumerate_placements(&hex, &ts, &[], usize::MAX, Duration::from_secs(60)).placements.len(), 0);
         // The subdivided hexagon has one 2x2 block around each interior valence-4 vertex (the
         // spoke midpoints) and none around the valence-3 and valence-6 vertices.
-        let r = enumerate_placements(
-            &sub,
-            &[Template::rect("2x2", 2, 2)],
-            &[],
-            usize::MAX,
-            Duration::from_secs(60),
-        );
+        let r = enumerate_placements(&sub, &[Template::rect("2x2", 2, 2)], &[], usize::MAX, Duration::from_secs(60));
         assert_eq!(r.per_template[0], 6);
     }
 }

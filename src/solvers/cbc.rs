@@ -63,7 +63,10 @@
 //! CBC's time limit nor in `solver_time`.
 
 use super::stop::StopControl;
-use super::{guarded_solve, Capabilities, LimitKind, LogTarget, SolveOptions, SolveResult, Solver, SolverError, SolverErrorKind, SolverKind, Termination};
+use super::{
+    guarded_solve, Capabilities, LimitKind, LogTarget, SolveOptions, SolveResult, Solver, SolverError, SolverErrorKind,
+    SolverKind, Termination,
+};
 use crate::milp::{Model, Sense};
 use coin_cbc::raw::Model as CbcModel;
 use coin_cbc_sys as sys;
@@ -138,7 +141,10 @@ fn set_param(m: &mut CbcModel, name: &str, value: &str) -> Result<(), SolverErro
 
 fn to_c_int(n: usize, what: &str) -> Result<c_int, SolverError> {
     c_int::try_from(n).map_err(|_| {
-        SolverError::new(KIND, SolverErrorKind::ModelUnsupported(format!("{n} {what}: too many for CBC's 32-bit indices")))
+        SolverError::new(
+            KIND,
+            SolverErrorKind::ModelUnsupported(format!("{n} {what}: too many for CBC's 32-bit indices")),
+        )
     })
 }
 
@@ -200,7 +206,13 @@ enum OwnLimit {
     Backstop,
 }
 
-fn apply_options(m: &mut CbcModel, model: &Model, o: &SolveOptions, ctl: &StopControl, own_limit: OwnLimit) -> Result<(), SolverError> {
+fn apply_options(
+    m: &mut CbcModel,
+    model: &Model,
+    o: &SolveOptions,
+    ctl: &StopControl,
+    own_limit: OwnLimit,
+) -> Result<(), SolverError> {
     match &o.log {
         LogTarget::Quiet => set_quiet(m, true)?,
         LogTarget::Stdout => set_quiet(m, false)?,
@@ -396,7 +408,10 @@ fn native(model: &Model, o: &SolveOptions, ctl: &StopControl) -> Result<SolveRes
             }
             let bound_meaningful = !matches!(
                 r.termination,
-                Termination::Infeasible | Termination::Unbounded | Termination::InfeasibleOrUnbounded | Termination::Error(_)
+                Termination::Infeasible
+                    | Termination::Unbounded
+                    | Termination::InfeasibleOrUnbounded
+                    | Termination::Error(_)
             );
             if bound_meaningful && out.secondary == 1 {
                 // Nothing beats the incumbent: its objective is the bound (CBC's own is the
@@ -471,7 +486,13 @@ mod worker {
             let v = data.add(8) as *const usize;
             let (begin, end, cap) = (*v, *v.add(1), *v.add(2));
             let (no_printing, use_signal) = (*data.add(USE_SIGNAL_HANDLER - 1), *data.add(USE_SIGNAL_HANDLER));
-            let sane = total_time == 0.0 && begin != 0 && begin.is_multiple_of(8) && begin < end && end <= cap && no_printing <= 1 && use_signal == 0;
+            let sane = total_time == 0.0
+                && begin != 0
+                && begin.is_multiple_of(8)
+                && begin < end
+                && end <= cap
+                && no_printing <= 1
+                && use_signal == 0;
             sane.then_some(data)
         }
     }
@@ -496,7 +517,14 @@ mod worker {
             let len = HEADER + columns * 8;
             // SAFETY: anonymous shared mapping, checked below.
             let ptr = unsafe {
-                libc::mmap(std::ptr::null_mut(), len, libc::PROT_READ | libc::PROT_WRITE, libc::MAP_SHARED | libc::MAP_ANONYMOUS, -1, 0)
+                libc::mmap(
+                    std::ptr::null_mut(),
+                    len,
+                    libc::PROT_READ | libc::PROT_WRITE,
+                    libc::MAP_SHARED | libc::MAP_ANONYMOUS,
+                    -1,
+                    0,
+                )
             };
             if ptr == libc::MAP_FAILED {
                 return Err(SolverError::new(KIND_CBC, std::io::Error::last_os_error()));
@@ -529,7 +557,12 @@ mod worker {
     /// Forks a worker that solves `m` (loaded, options set) and waits for it, sending SIGINT at
     /// the deadline or on the interrupt and killing it [`HARD_STOP`] later. Copies the best
     /// solution into `best` when CBC found one.
-    pub(super) fn run(m: *mut sys::Cbc_Model, best: &mut [f64], ctl: &StopControl, graceful: bool) -> Result<Ended, SolverError> {
+    pub(super) fn run(
+        m: *mut sys::Cbc_Model,
+        best: &mut [f64],
+        ctl: &StopControl,
+        graceful: bool,
+    ) -> Result<Ended, SolverError> {
         let mut shared = Shared::new(best.len())?;
         let parent = std::process::id() as libc::pid_t;
         // SIGINT stays blocked across the fork until the child has set its disposition, so
@@ -626,7 +659,14 @@ mod worker {
     ///
     /// # Safety
     /// Only in the child of `fork`, with `m` the parent's loaded model.
-    unsafe fn child(m: *mut sys::Cbc_Model, shared: &mut Shared, columns: usize, parent: libc::pid_t, graceful: bool, mask: &libc::sigset_t) -> ! {
+    unsafe fn child(
+        m: *mut sys::Cbc_Model,
+        shared: &mut Shared,
+        columns: usize,
+        parent: libc::pid_t,
+        graceful: bool,
+        mask: &libc::sigset_t,
+    ) -> ! {
         // SAFETY: async-signal-safe calls on our own process; the model is ours (a copy).
         unsafe {
             // Its own process group: a Ctrl-C at the terminal reaches netspec only, which then
@@ -664,7 +704,8 @@ mod params {
     use std::os::fd::FromRawFd;
 
     /// What CBC prints for a parameter it does not take.
-    const REFUSALS: [&str; 5] = ["No match for", "Short match for", "Multiple matches for", " is illegal for", "Possible options for"];
+    const REFUSALS: [&str; 5] =
+        ["No match for", "Short match for", "Multiple matches for", " is illegal for", "Possible options for"];
 
     /// Tries every CBC parameter of `o` on a tiny model in a worker process whose standard
     /// output is read: an unknown name or a refused value is an error naming the parameter.
@@ -674,7 +715,10 @@ mod params {
             if let Some(line) = output.lines().find(|l| REFUSALS.iter().any(|r| l.contains(r))) {
                 return Err(SolverError::new(
                     KIND_CBC,
-                    SolverErrorKind::Param { name: format!("cbc.{}", p.name), reason: format!("CBC says: {}", line.trim()) },
+                    SolverErrorKind::Param {
+                        name: format!("cbc.{}", p.name),
+                        reason: format!("CBC says: {}", line.trim()),
+                    },
                 ));
             }
         }
@@ -685,7 +729,12 @@ mod params {
     /// returns what it printed.
     fn probe(name: &str, value: &str) -> Result<String, SolverError> {
         let io = |e| SolverError::new(KIND_CBC, e);
-        let bad = || SolverError::new(KIND_CBC, SolverErrorKind::Param { name: format!("cbc.{name}"), reason: "contains NUL".into() });
+        let bad = || {
+            SolverError::new(
+                KIND_CBC,
+                SolverErrorKind::Param { name: format!("cbc.{name}"), reason: "contains NUL".into() },
+            )
+        };
         let (n, v) = (CString::new(name).map_err(|_| bad())?, CString::new(value).map_err(|_| bad())?);
         let mut fds = [0 as libc::c_int; 2];
         // SAFETY: valid out-array.
@@ -704,8 +753,21 @@ mod params {
                 libc::dup2(fds[1], 1);
                 libc::close(fds[0]);
                 let m = sys::Cbc_newModel();
-                let (start, index, value, lb, ub, obj, rlb, rub) = ([0, 1], [0], [1.0], [0.0], [1.0], [1.0], [f64::NEG_INFINITY], [1.0]);
-                sys::Cbc_loadProblem(m, 1, 1, start.as_ptr(), index.as_ptr(), value.as_ptr(), lb.as_ptr(), ub.as_ptr(), obj.as_ptr(), rlb.as_ptr(), rub.as_ptr());
+                let (start, index, value, lb, ub, obj, rlb, rub) =
+                    ([0, 1], [0], [1.0], [0.0], [1.0], [1.0], [f64::NEG_INFINITY], [1.0]);
+                sys::Cbc_loadProblem(
+                    m,
+                    1,
+                    1,
+                    start.as_ptr(),
+                    index.as_ptr(),
+                    value.as_ptr(),
+                    lb.as_ptr(),
+                    ub.as_ptr(),
+                    obj.as_ptr(),
+                    rlb.as_ptr(),
+                    rub.as_ptr(),
+                );
                 sys::Cbc_setInteger(m, 0);
                 sys::Cbc_setParameter(m, c"logLevel".as_ptr(), c"0".as_ptr());
                 sys::Cbc_setParameter(m, n.as_ptr(), v.as_ptr());
@@ -757,7 +819,19 @@ pub fn solve_file_with_native_reader(path: &std::path::Path) -> Result<(Terminat
     }
     // The same fixed integer column as in `load`, so that the solve runs through CbcMain1.
     // SAFETY: live model; static NUL-terminated name; nz = 0 needs no arrays.
-    unsafe { ffi::Cbc_addCol(ptr, c"netspec_fixed_one".as_ptr(), 1.0, 1.0, 0.0, 1, 0, std::ptr::null_mut(), std::ptr::null_mut()) };
+    unsafe {
+        ffi::Cbc_addCol(
+            ptr,
+            c"netspec_fixed_one".as_ptr(),
+            1.0,
+            1.0,
+            0.0,
+            1,
+            0,
+            std::ptr::null_mut(),
+            std::ptr::null_mut(),
+        )
+    };
     set_quiet(&mut m, true)?;
     m.solve();
     // SAFETY: live model; column indices below Cbc_getNumCols (the last is our fixed column).

@@ -31,7 +31,9 @@
 //! * "infeasible" and "unbounded" are recognised when the solver reports them as good_lp's
 //!   `ResolutionError`; any other failure is [`Termination::Error`] with the solver's message.
 
-use super::{preflight, Capabilities, LimitKind, SolveOptions, SolveResult, Solver, SolverError, SolverKind, Termination};
+use super::{
+    preflight, Capabilities, LimitKind, SolveOptions, SolveResult, Solver, SolverError, SolverKind, Termination,
+};
 use crate::milp::{Model, RowKind, Sense};
 use good_lp::{variable, Expression, ProblemVariables, ResolutionError, Solution, SolutionStatus, SolverModel};
 use std::time::Instant;

@@ -5,7 +5,10 @@
 //! HiGHS is compiled into the binary (vendored source), so it is the default backend.
 
 use super::stop::StopControl;
-use super::{guarded_solve, Capabilities, LazyRow, LimitKind, LogTarget, LpSession, Progress, ProgressSink, SolveOptions, SolveResult, Solver, SolverError, SolverErrorKind, SolverKind, Termination};
+use super::{
+    guarded_solve, Capabilities, LazyRow, LimitKind, LogTarget, LpSession, Progress, ProgressSink, SolveOptions,
+    SolveResult, Solver, SolverError, SolverErrorKind, SolverKind, Termination,
+};
 use crate::milp::{Model, Sense};
 use highs_sys as sys;
 use std::ffi::{CStr, CString};
@@ -28,7 +31,11 @@ fn rejected(msg: impl Into<String>) -> SolverError {
 }
 
 /// Sets a HiGHS option through the safe crate, turning a refusal into a typed error.
-fn set<V: highs::HighsOptionValue + Copy + std::fmt::Debug>(m: &mut highs::Model, name: &str, v: V) -> Result<(), SolverError> {
+fn set<V: highs::HighsOptionValue + Copy + std::fmt::Debug>(
+    m: &mut highs::Model,
+    name: &str,
+    v: V,
+) -> Result<(), SolverError> {
     m.try_set_option(name, v).map_err(|e| rejected(format!("option {name}={v:?}: {e:?}")))
 }
 
@@ -96,7 +103,9 @@ fn apply_options(m: &mut highs::Model, model: &Model, o: &SolveOptions, ctl: &St
         m.try_set_solution(Some(x), None, None, None).map_err(|e| rejected(format!("MIP start: {e:?}")))?;
     }
     for p in o.params_for(KIND) {
-        set_raw_param(m, &p.name, &p.value).map_err(|reason| SolverError::new(KIND, SolverErrorKind::Param { name: format!("{KIND}.{}", p.name), reason }))?;
+        set_raw_param(m, &p.name, &p.value).map_err(|reason| {
+            SolverError::new(KIND, SolverErrorKind::Param { name: format!("{KIND}.{}", p.name), reason })
+        })?;
     }
     Ok(())
 }
@@ -180,7 +189,9 @@ unsafe extern "C" fn callback(
                 // The C wrapper copies the C block back into HiGHS's input after the call, so the
                 // flag must be set there too (the API call sets it on the C++ side only).
                 unsafe {
-                    if sys::Highs_setCallbackSolution(data_in, x.len() as sys::HighsInt, x.as_ptr()) == sys::kHighsStatusOk {
+                    if sys::Highs_setCallbackSolution(data_in, x.len() as sys::HighsInt, x.as_ptr())
+                        == sys::kHighsStatusOk
+                    {
                         (*data_in).user_has_solution = 1;
                     }
                 }
@@ -361,14 +372,20 @@ struct HighsLp {
 
 impl LpSession for HighsLp {
     fn add_rows(&mut self, rows: &[LazyRow]) -> Result<(), SolverError> {
-        let (mut lower, mut upper, mut starts, mut index, mut value) = (Vec::new(), Vec::new(), Vec::new(), Vec::new(), Vec::new());
+        let (mut lower, mut upper, mut starts, mut index, mut value) =
+            (Vec::new(), Vec::new(), Vec::new(), Vec::new(), Vec::new());
         for r in rows {
             starts.push(index.len() as sys::HighsInt);
             lower.push(r.lhs);
             upper.push(r.rhs);
             for &(v, c) in &r.terms {
                 if v.index() >= self.cols {
-                    return Err(rejected(format!("row `{}` names column {} of a session with {}", r.name, v.index(), self.cols)));
+                    return Err(rejected(format!(
+                        "row `{}` names column {} of a session with {}",
+                        r.name,
+                        v.index(),
+                        self.cols
+                    )));
                 }
                 index.push(v.index() as sys::HighsInt);
                 value.push(c);
@@ -413,7 +430,15 @@ impl LpSession for HighsLp {
         if info_int(ptr, c"primal_solution_status") == Some(sys::SOLUTION_STATUS_FEASIBLE as i64) {
             let mut x = vec![0.0; self.cols];
             // SAFETY: live instance; `x` has one slot per column, the other outputs are null.
-            unsafe { sys::Highs_getSolution(ptr, x.as_mut_ptr(), std::ptr::null_mut(), std::ptr::null_mut(), std::ptr::null_mut()) };
+            unsafe {
+                sys::Highs_getSolution(
+                    ptr,
+                    x.as_mut_ptr(),
+                    std::ptr::null_mut(),
+                    std::ptr::null_mut(),
+                    std::ptr::null_mut(),
+                )
+            };
             r.primal = Some(x);
             // SAFETY: live instance.
             r.objective = Some(unsafe { sys::Highs_getObjectiveValue(ptr) });
@@ -439,7 +464,11 @@ fn native(model: &Model, o: &SolveOptions, ctl: &StopControl) -> Result<SolveRes
     if state.sink.is_some() || ctl.is_armed() || state.start.is_some() {
         // SAFETY: live instance; the data pointer outlives the solve (see above).
         unsafe {
-            sys::Highs_setCallback(m.as_mut_ptr(), Some(callback), &mut state as *mut CallbackState as *mut std::ffi::c_void);
+            sys::Highs_setCallback(
+                m.as_mut_ptr(),
+                Some(callback),
+                &mut state as *mut CallbackState as *mut std::ffi::c_void,
+            );
             sys::Highs_startCallback(m.as_mut_ptr(), sys::kHighsCallbackMipInterrupt);
             if state.start.is_some() {
                 sys::Highs_startCallback(m.as_mut_ptr(), sys::kHighsCallbackCallbackMipUserSolution);

@@ -63,10 +63,7 @@ impl ObjectiveLattice {
         if !model.obj_constant.is_finite() {
             return None;
         }
-        lattice_step(&coefs).map(|step| ObjectiveLattice {
-            step,
-            offset: model.obj_constant,
-        })
+        lattice_step(&coefs).map(|step| ObjectiveLattice { step, offset: model.obj_constant })
     }
 
     /// `bound` rounded up to the lattice (down for a maximisation): to the next lattice point
@@ -83,9 +80,7 @@ impl ObjectiveLattice {
         let slack = ROUNDING_SLACK.max(1e-9 * bound.abs() / self.step);
         match sense {
             Sense::Minimize => bound.max(self.offset + self.step * (steps - slack).ceil()),
-            Sense::Maximize => {
-                bound.min(self.offset + self.step * (steps + slack).floor())
-            }
+            Sense::Maximize => bound.min(self.offset + self.step * (steps + slack).floor()),
         }
     }
 
@@ -151,26 +146,11 @@ mod tests {
         let f = m.add_continuous("f", 0.0, 9.0, 0.5);
         m.add_continuous("free", 0.0, 9.0, 0.0);
         m.obj_constant = 2.0;
-        assert_eq!(
-            ObjectiveLattice::of_model(&m, |v| v == f),
-            Some(lattice(0.5, 2.0))
-        );
-        assert_eq!(
-            ObjectiveLattice::of_model(&m, |_| false),
-            None,
-            "an uncertified continuous cost"
-        );
+        assert_eq!(ObjectiveLattice::of_model(&m, |v| v == f), Some(lattice(0.5, 2.0)));
+        assert_eq!(ObjectiveLattice::of_model(&m, |_| false), None, "an uncertified continuous cost");
         m.add_binary("pi", std::f64::consts::PI);
-        assert_eq!(
-            ObjectiveLattice::of_model(&m, |v| v == f),
-            None,
-            "a coefficient on no lattice"
-        );
-        assert_eq!(
-            ObjectiveLattice::of_model(&Model::new("empty"), |_| true),
-            None,
-            "no costs"
-        );
+        assert_eq!(ObjectiveLattice::of_model(&m, |v| v == f), None, "a coefficient on no lattice");
+        assert_eq!(ObjectiveLattice::of_model(&Model::new("empty"), |_| true), None, "no costs");
     }
 
     /// A bound goes up to the next lattice point; one a hair above a point (round-off) stays
@@ -182,10 +162,7 @@ mod tests {
         assert_eq!(l.round_up(67.0 - 1e-9, Sense::Minimize), 67.0);
         assert_eq!(l.round_up(67.002, Sense::Minimize), 67.002);
         assert_eq!(l.round_up(67.3, Sense::Maximize), 67.0);
-        assert_eq!(
-            l.round_up(f64::NEG_INFINITY, Sense::Minimize),
-            f64::NEG_INFINITY
-        );
+        assert_eq!(l.round_up(f64::NEG_INFINITY, Sense::Minimize), f64::NEG_INFINITY);
         let shifted = lattice(0.5, 0.25);
         assert_eq!(shifted.round_up(1.0, Sense::Minimize), 1.25);
         assert_eq!(shifted.round_up(1.25, Sense::Minimize), 1.25);
@@ -213,33 +190,21 @@ mod tests {
         let mut r = result(Termination::Optimal, 68.0, 67.02);
         assert_eq!(r.termination, Termination::Limit(LimitKind::Gap));
         assert_eq!(l.settle(&mut r, Sense::Minimize), Some(67.02));
-        assert_eq!(
-            (r.termination.clone(), r.dual_bound, r.gap),
-            (Termination::Optimal, Some(68.0), Some(0.0))
-        );
+        assert_eq!((r.termination.clone(), r.dual_bound, r.gap), (Termination::Optimal, Some(68.0), Some(0.0)));
 
         let mut r = result(Termination::Optimal, 68.0, 66.5);
         l.settle(&mut r, Sense::Minimize);
-        assert_eq!(
-            (r.termination.clone(), r.dual_bound),
-            (Termination::Limit(LimitKind::Gap), Some(67.0))
-        );
+        assert_eq!((r.termination.clone(), r.dual_bound), (Termination::Limit(LimitKind::Gap), Some(67.0)));
         assert!(r.gap.unwrap() > 0.01);
 
         let mut r = result(Termination::Limit(LimitKind::Time), 68.0, 67.5);
         l.settle(&mut r, Sense::Minimize);
-        assert_eq!(
-            (r.termination.clone(), r.gap),
-            (Termination::Limit(LimitKind::Time), Some(0.0))
-        );
+        assert_eq!((r.termination.clone(), r.gap), (Termination::Limit(LimitKind::Time), Some(0.0)));
 
         // Never past the objective, which the solver reached a hair below its lattice point.
         let mut r = result(Termination::Optimal, 68.0 - 1e-10, 67.3);
         l.settle(&mut r, Sense::Minimize);
-        assert_eq!(
-            (r.termination.clone(), r.dual_bound),
-            (Termination::Optimal, Some(68.0 - 1e-10))
-        );
+        assert_eq!((r.termination.clone(), r.dual_bound), (Termination::Optimal, Some(68.0 - 1e-10)));
 
         let mut r = result(Termination::Limit(LimitKind::Time), 68.0, 67.5);
         r.dual_bound = None;

@@ -125,7 +125,18 @@ pub struct LazyReport {
 impl LazyReport {
     /// A report with nothing done yet.
     pub fn new(separator: String, mode: LazyMode) -> LazyReport {
-        LazyReport { separator, mode, rounds: 0, rows_added: 0, separation_seconds: 0.0, repaired_starts: 0, root_rounds: 0, root_bounds: None, root_rows_dropped: 0, warm_root_rounds: false }
+        LazyReport {
+            separator,
+            mode,
+            rounds: 0,
+            rows_added: 0,
+            separation_seconds: 0.0,
+            repaired_starts: 0,
+            root_rounds: 0,
+            root_bounds: None,
+            root_rows_dropped: 0,
+            warm_root_rounds: false,
+        }
     }
 }
 
@@ -166,7 +177,12 @@ pub struct LazySolve {
 /// A round that stops with an incumbent that violates lazy rows does not give a solution of the
 /// whole problem: the result then carries the best repaired point found (if any), with
 /// termination `Limit(Time)` when the time is spent.
-pub fn solve_loop<S: Solver + ?Sized>(solver: &S, model: &Model, sep: &mut dyn Separator, o: &SolveOptions) -> Result<LazySolve, SolverError> {
+pub fn solve_loop<S: Solver + ?Sized>(
+    solver: &S,
+    model: &Model,
+    sep: &mut dyn Separator,
+    o: &SolveOptions,
+) -> Result<LazySolve, SolverError> {
     let t0 = Instant::now();
     let tol = Tolerances::default();
     let mut work = model.clone();
@@ -310,7 +326,9 @@ impl RoundBudget {
         if self.base.is_none_or(|b| elapsed < b) {
             return true;
         }
-        let (Some(limit), Some(incumbent), [.., before, _, _, last]) = (self.productive, self.incumbent, bounds) else { return false };
+        let (Some(limit), Some(incumbent), [.., before, _, _, last]) = (self.productive, self.incumbent, bounds) else {
+            return false;
+        };
         let toward = |a: f64, b: f64| match sense {
             Sense::Minimize => b - a,
             Sense::Maximize => a - b,
@@ -366,7 +384,12 @@ fn root_rounds<S: Solver + ?Sized>(
         }
         relaxed
     };
-    let lp_options = SolveOptions { log: super::LogTarget::Quiet, threads: o.threads, interrupt: o.interrupt.clone(), ..SolveOptions::default() };
+    let lp_options = SolveOptions {
+        log: super::LogTarget::Quiet,
+        threads: o.threads,
+        interrupt: o.interrupt.clone(),
+        ..SolveOptions::default()
+    };
     // The LP kept loaded between rounds, when the backend can (each round then starts from the
     // last basis); a session that fails is dropped and the rounds go on from scratch.
     let mut session = solver.lp_session(&relax(work), &lp_options).ok().flatten();
@@ -467,7 +490,12 @@ pub struct LpBound {
 
 /// Solves the LP relaxation of `model` (and runs the separator's cutting-plane rounds on it, if
 /// given) within `o.time_limit`.
-pub fn lp_bound<S: Solver + ?Sized>(solver: &S, model: &Model, sep: Option<&mut dyn Separator>, o: &SolveOptions) -> Result<LpBound, SolverError> {
+pub fn lp_bound<S: Solver + ?Sized>(
+    solver: &S,
+    model: &Model,
+    sep: Option<&mut dyn Separator>,
+    o: &SolveOptions,
+) -> Result<LpBound, SolverError> {
     let t0 = Instant::now();
     let mut report = LazyReport::new(String::new(), LazyMode::Loop);
     let mut work = model.clone();
@@ -489,9 +517,26 @@ pub fn lp_bound<S: Solver + ?Sized>(solver: &S, model: &Model, sep: Option<&mut 
         Some(s) => s,
         None => &mut none,
     };
-    let point = root_rounds(solver, &mut work, &mut rows, &mut left_out, sep, o, t0, RoundBudget { base: o.time_limit, ..RoundBudget::default() }, &mut report)?;
+    let point = root_rounds(
+        solver,
+        &mut work,
+        &mut rows,
+        &mut left_out,
+        sep,
+        o,
+        t0,
+        RoundBudget { base: o.time_limit, ..RoundBudget::default() },
+        &mut report,
+    )?;
     let (plain, with_cuts) = report.root_bounds.map_or((None, None), |(a, b)| (Some(a), Some(b)));
-    Ok(LpBound { plain, with_cuts, rounds: report.root_rounds, rows: rows.len() + left_out.len(), seconds: t0.elapsed().as_secs_f64(), point })
+    Ok(LpBound {
+        plain,
+        with_cuts,
+        rounds: report.root_rounds,
+        rows: rows.len() + left_out.len(),
+        seconds: t0.elapsed().as_secs_f64(),
+        point,
+    })
 }
 
 #[cfg(test)]
@@ -508,7 +553,11 @@ mod tests {
         assert!(b.allows(5.0, &[], min));
         assert_eq!(b.left(5.0, 3), Some(15.0), "up to the productive share, which its successors might reach");
         assert_eq!(b.left(5.0, 2), Some(5.0), "before three rounds, only the base share");
-        assert_eq!(RoundBudget { incumbent: None, ..b }.left(5.0, 3), Some(5.0), "without a start, only the base share");
+        assert_eq!(
+            RoundBudget { incumbent: None, ..b }.left(5.0, 3),
+            Some(5.0),
+            "without a start, only the base share"
+        );
         // Past it: the last three rounds (50 → 60) closed 10 of the 40 left (25 % ≥ 5 %).
         assert!(b.allows(12.0, &[40.0, 50.0, 55.0, 58.0, 60.0], min));
         assert_eq!(b.left(12.0, 5), Some(8.0));
@@ -550,7 +599,8 @@ mod tests {
                 return Ok(r);
             }
             self.rounds.set(self.rounds.get() + 1);
-            let (x, obj, bound) = if self.rounds.get() == 1 { (vec![1.0, 0.0], 1.0, 0.5) } else { (vec![1.0, 1.0], 2.0, 2.0) };
+            let (x, obj, bound) =
+                if self.rounds.get() == 1 { (vec![1.0, 0.0], 1.0, 0.5) } else { (vec![1.0, 1.0], 2.0, 2.0) };
             r.primal = Some(x);
             r.objective = Some(obj);
             r.dual_bound = Some(bound);
@@ -568,7 +618,12 @@ mod tests {
         }
         fn separate_integral(&mut self, x: &[f64]) -> Vec<LazyRow> {
             if x[1] + 1e-9 < x[0] {
-                vec![LazyRow { name: "follows".into(), lhs: f64::NEG_INFINITY, rhs: 0.0, terms: vec![(VarId(0), 1.0), (VarId(1), -1.0)] }]
+                vec![LazyRow {
+                    name: "follows".into(),
+                    lhs: f64::NEG_INFINITY,
+                    rhs: 0.0,
+                    terms: vec![(VarId(0), 1.0), (VarId(1), -1.0)],
+                }]
             } else {
                 Vec::new()
             }
@@ -596,7 +651,12 @@ mod tests {
             if self.calls > 1 {
                 return Vec::new();
             }
-            let row = |name: &str, lhs: f64, terms: Vec<(VarId, f64)>| LazyRow { name: name.into(), lhs, rhs: f64::INFINITY, terms };
+            let row = |name: &str, lhs: f64, terms: Vec<(VarId, f64)>| LazyRow {
+                name: name.into(),
+                lhs,
+                rhs: f64::INFINITY,
+                terms,
+            };
             vec![row("tight", 0.5, vec![(VarId(0), 1.0)]), row("slack", 0.2, vec![(VarId(0), 1.0), (VarId(1), 1.0)])]
         }
         fn locks(&self) -> Vec<(VarId, Lock)> {
@@ -615,7 +675,11 @@ mod tests {
         assert_eq!(out.report.root_rounds, 1);
         assert_eq!(out.report.root_rows_dropped, 1);
         let names = |rows: &[LazyRow]| rows.iter().map(|r| r.name.clone()).collect::<Vec<_>>();
-        assert_eq!(names(&out.rows), ["tight"], "only the tight row stays in the model (a split's next phase gets these)");
+        assert_eq!(
+            names(&out.rows),
+            ["tight"],
+            "only the tight row stays in the model (a split's next phase gets these)"
+        );
         assert_eq!(names(&out.left_out), ["slack"], "the slack one is kept aside, to be checked");
         assert_eq!(out.result.termination, Termination::Optimal);
         assert_eq!(out.result.objective, Some(1.0));
@@ -629,7 +693,9 @@ mod tests {
         m.add_ge("one", [(a, 1.0)], 1.0);
         let _ = b;
         let solver = Scripted { rounds: Cell::new(0) };
-        let out = solve_loop(&solver, &m, &mut Follows, &SolveOptions { rel_gap: Some(0.99), ..SolveOptions::default() }).unwrap();
+        let out =
+            solve_loop(&solver, &m, &mut Follows, &SolveOptions { rel_gap: Some(0.99), ..SolveOptions::default() })
+                .unwrap();
         assert_eq!(solver.rounds.get(), 2, "the loop stopped after the gap-limited round");
         assert_eq!(out.result.termination, Termination::Optimal);
         assert_eq!(out.result.primal.as_deref(), Some(&[1.0, 1.0][..]));

@@ -27,7 +27,10 @@
 //! The result reports microlp's best bound, its node count and its own elapsed time.
 
 use super::stop::StopControl;
-use super::{guarded_solve, Capabilities, LimitKind, SolveOptions, SolveResult, Solver, SolverError, SolverErrorKind, SolverKind, Termination};
+use super::{
+    guarded_solve, Capabilities, LimitKind, SolveOptions, SolveResult, Solver, SolverError, SolverErrorKind,
+    SolverKind, Termination,
+};
 use crate::milp::{Model, RowKind, Sense, VarKind};
 use microlp::{ComparisonOp, OptimizationDirection, Problem, Variable};
 use std::time::Duration;
@@ -177,7 +180,11 @@ impl Solver for MicrolpSolver {
 /// Runs microlp; with an interrupt, in slices of [`SLICE`], resuming until the search ends, a
 /// limit is reached or the interrupt comes. Returns the last outcome and whether the interrupt
 /// stopped it.
-fn run_sliced(loaded: &Loaded, o: &SolveOptions, ctl: &StopControl) -> (Result<microlp::SolveOutcome, microlp::Error>, bool) {
+fn run_sliced(
+    loaded: &Loaded,
+    o: &SolveOptions,
+    ctl: &StopControl,
+) -> (Result<microlp::SolveOutcome, microlp::Error>, bool) {
     let sliced = o.interrupt.is_some();
     let mut outcome = loaded.problem.solve_with(options(loaded, o, ctl, sliced));
     if !sliced {

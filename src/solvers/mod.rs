@@ -18,16 +18,18 @@ pub mod scip;
 #[cfg(feature = "scip")]
 mod scip_lazy;
 
-pub mod lazy;
 pub mod lattice;
+pub mod lazy;
 mod options;
-pub mod split;
 mod result;
+pub mod split;
 mod stop;
 
 pub use lazy::{LazyMode, LazyReport, LazyRow, LazySolve, Lock, Separator};
 pub use options::{Capabilities, Interrupt, InvalidOption, LogTarget, Progress, ProgressSink, RawParam, SolveOptions};
-pub use result::{gap, percent, within_optimality_tolerance, LimitKind, SolveResult, StartCheck, Termination, OPTIMALITY_TOLERANCE};
+pub use result::{
+    gap, percent, within_optimality_tolerance, LimitKind, SolveResult, StartCheck, Termination, OPTIMALITY_TOLERANCE,
+};
 
 use crate::milp::{check_point, Model, Tolerances};
 use serde::{Deserialize, Serialize};
@@ -49,7 +51,12 @@ pub trait Solver {
     /// Solves `model` together with the rows `separator` produces on demand. Backends with
     /// [`Capabilities::lazy_constraints`] run the separator inside their branch and cut; the
     /// default is the solve–separate–resolve loop [`lazy::solve_loop`].
-    fn solve_lazy(&self, model: &Model, separator: &mut dyn Separator, options: &SolveOptions) -> Result<LazySolve, SolverError> {
+    fn solve_lazy(
+        &self,
+        model: &Model,
+        separator: &mut dyn Separator,
+        options: &SolveOptions,
+    ) -> Result<LazySolve, SolverError> {
         lazy::solve_loop(self, model, separator, options)
     }
     /// An LP `model` (every variable continuous) loaded once for repeated solves, rows added
@@ -160,7 +167,9 @@ impl std::str::FromStr for SolverKind {
     fn from_str(s: &str) -> Result<Self, String> {
         Self::ALL
             .into_iter()
-            .find(|k| k.name().eq_ignore_ascii_case(s) || (s.eq_ignore_ascii_case("good-lp") && *k == SolverKind::GoodLp))
+            .find(|k| {
+                k.name().eq_ignore_ascii_case(s) || (s.eq_ignore_ascii_case("good-lp") && *k == SolverKind::GoodLp)
+            })
             .ok_or_else(|| {
                 let names: Vec<_> = Self::ALL.iter().map(|k| k.name()).collect();
                 format!("unknown solver `{s}` (known: {})", names.join(", "))
@@ -228,7 +237,12 @@ impl SolverError {
 }
 
 /// Validates the model and checks the options against the backend's capabilities.
-pub(crate) fn preflight(kind: SolverKind, caps: &Capabilities, model: &Model, options: &SolveOptions) -> Result<(), SolverError> {
+pub(crate) fn preflight(
+    kind: SolverKind,
+    caps: &Capabilities,
+    model: &Model,
+    options: &SolveOptions,
+) -> Result<(), SolverError> {
     model.validate().map_err(|e| SolverError::new(kind, e))?;
     caps.check(kind, options).map_err(|k| SolverError::new(kind, k))?;
     if model.is_mip() && !caps.integer_variables {
@@ -238,7 +252,11 @@ pub(crate) fn preflight(kind: SolverKind, caps: &Capabilities, model: &Model, op
         if start.len() != model.num_vars() {
             return Err(SolverError::new(
                 kind,
-                SolverErrorKind::Rejected(format!("MIP start has {} values for {} variables", start.len(), model.num_vars())),
+                SolverErrorKind::Rejected(format!(
+                    "MIP start has {} values for {} variables",
+                    start.len(),
+                    model.num_vars()
+                )),
             ));
         }
         if let Some(j) = start.iter().position(|v| !v.is_finite()) {

@@ -273,8 +273,12 @@ impl Capabilities {
             return Err(unsupported("node_limit", "the backend has no node limit"));
         }
         match &o.log {
-            LogTarget::Stdout if !self.log_stdout => return Err(unsupported("log", "the backend cannot print its log")),
-            LogTarget::File(_) if !self.log_file => return Err(unsupported("log", "the backend cannot write a log file")),
+            LogTarget::Stdout if !self.log_stdout => {
+                return Err(unsupported("log", "the backend cannot print its log"))
+            }
+            LogTarget::File(_) if !self.log_file => {
+                return Err(unsupported("log", "the backend cannot write a log file"))
+            }
             _ => {}
         }
         if o.progress.is_some() && !self.reports_progress {

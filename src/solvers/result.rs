@@ -177,7 +177,10 @@ impl SolveResult {
     pub fn status_line(&self) -> String {
         let found = match (&self.primal, self.objective) {
             (Some(_), Some(obj)) | (None, Some(obj)) => {
-                format!("solution found (objective {obj}{})", self.gap.map_or(String::new(), |g| format!(", gap {}", percent(g))))
+                format!(
+                    "solution found (objective {obj}{})",
+                    self.gap.map_or(String::new(), |g| format!(", gap {}", percent(g)))
+                )
             }
             (Some(_), None) => "solution found".to_string(),
             (None, None) => "no solution".to_string(),

@@ -23,7 +23,10 @@
 //! sides as SCIP's infinity.
 
 use super::stop::{with_watchdog, StopControl};
-use super::{guarded_solve, Capabilities, LazyMode, LazyReport, LazySolve, LimitKind, LogTarget, Separator, SolveOptions, SolveResult, Solver, SolverError, SolverErrorKind, SolverKind, Termination};
+use super::{
+    guarded_solve, Capabilities, LazyMode, LazyReport, LazySolve, LimitKind, LogTarget, Separator, SolveOptions,
+    SolveResult, Solver, SolverError, SolverErrorKind, SolverKind, Termination,
+};
 use crate::milp::{Model, Sense, VarKind};
 use russcip::{ffi, ObjSense, ProblemOrSolving, VarType, Variable, WithSolutions};
 use std::ffi::CString;
@@ -113,7 +116,12 @@ fn load(model: &Model) -> Result<(Problem, Vec<Variable>), SolverError> {
 }
 
 /// Sets SCIP parameters for the options (the log is handled by [`LogGuard`]).
-fn apply_options(mut p: Problem, vars: &[Variable], o: &SolveOptions, ctl: &StopControl) -> Result<Problem, SolverError> {
+fn apply_options(
+    mut p: Problem,
+    vars: &[Variable],
+    o: &SolveOptions,
+    ctl: &StopControl,
+) -> Result<Problem, SolverError> {
     let real = |p: Problem, name: &str, v: f64| p.set_real_param(name, v).map_err(|e| retcode(name, e));
     // Wall clock for `limits/time` (SCIP's default, set explicitly so it cannot drift).
     p = p.set_int_param("timing/clocktype", 2).map_err(|e| retcode("timing/clocktype", e))?;
@@ -130,7 +138,9 @@ fn apply_options(mut p: Problem, vars: &[Variable], o: &SolveOptions, ctl: &Stop
     }
     if let Some(s) = o.seed {
         let shift = (s % (i32::MAX as u64 + 1)) as i32;
-        p = p.set_int_param("randomization/randomseedshift", shift).map_err(|e| retcode("randomization/randomseedshift", e))?;
+        p = p
+            .set_int_param("randomization/randomseedshift", shift)
+            .map_err(|e| retcode("randomization/randomseedshift", e))?;
         // The concurrent solvers (threads > 1) draw their seeds from their own parameter.
         p = p.set_int_param("concurrent/initseed", shift).map_err(|e| retcode("concurrent/initseed", e))?;
     }
@@ -147,8 +157,9 @@ fn apply_options(mut p: Problem, vars: &[Variable], o: &SolveOptions, ctl: &Stop
         let _accepted = p.add_sol(sol).is_ok();
     }
     for param in o.params_for(KIND) {
-        set_raw_param(p.scip_ptr(), &param.name, &param.value)
-            .map_err(|reason| SolverError::new(KIND, SolverErrorKind::Param { name: format!("{KIND}.{}", param.name), reason }))?;
+        set_raw_param(p.scip_ptr(), &param.name, &param.value).map_err(|reason| {
+            SolverError::new(KIND, SolverErrorKind::Param { name: format!("{KIND}.{}", param.name), reason })
+        })?;
     }
     Ok(p)
 }
@@ -173,15 +184,21 @@ fn set_raw_param(scip: *mut ffi::SCIP, name: &str, value: &str) -> Result<(), St
                 };
                 ffi::SCIPsetBoolParam(scip, c_name.as_ptr(), v)
             }
-            ffi::SCIP_ParamType_SCIP_PARAMTYPE_INT => ffi::SCIPsetIntParam(scip, c_name.as_ptr(), value.parse().map_err(|_| bad("int"))?),
+            ffi::SCIP_ParamType_SCIP_PARAMTYPE_INT => {
+                ffi::SCIPsetIntParam(scip, c_name.as_ptr(), value.parse().map_err(|_| bad("int"))?)
+            }
             ffi::SCIP_ParamType_SCIP_PARAMTYPE_LONGINT => {
                 ffi::SCIPsetLongintParam(scip, c_name.as_ptr(), value.parse().map_err(|_| bad("longint"))?)
             }
-            ffi::SCIP_ParamType_SCIP_PARAMTYPE_REAL => ffi::SCIPsetRealParam(scip, c_name.as_ptr(), value.parse().map_err(|_| bad("real"))?),
+            ffi::SCIP_ParamType_SCIP_PARAMTYPE_REAL => {
+                ffi::SCIPsetRealParam(scip, c_name.as_ptr(), value.parse().map_err(|_| bad("real"))?)
+            }
             ffi::SCIP_ParamType_SCIP_PARAMTYPE_CHAR => {
                 let mut chars = value.chars();
                 match (chars.next(), chars.next()) {
-                    (Some(c), None) if c.is_ascii() => ffi::SCIPsetCharParam(scip, c_name.as_ptr(), c as std::os::raw::c_char),
+                    (Some(c), None) if c.is_ascii() => {
+                        ffi::SCIPsetCharParam(scip, c_name.as_ptr(), c as std::os::raw::c_char)
+                    }
                     _ => return Err(bad("char")),
                 }
             }
@@ -193,7 +210,9 @@ fn set_raw_param(scip: *mut ffi::SCIP, name: &str, value: &str) -> Result<(), St
     };
     match rc {
         ffi::SCIP_Retcode_SCIP_OKAY => Ok(()),
-        ffi::SCIP_Retcode_SCIP_PARAMETERWRONGVAL => Err(format!("SCIP refused the value `{value}` (out of range or not allowed)")),
+        ffi::SCIP_Retcode_SCIP_PARAMETERWRONGVAL => {
+            Err(format!("SCIP refused the value `{value}` (out of range or not allowed)"))
+        }
         rc => Err(format!("SCIP returned {rc}")),
     }
 }
@@ -249,8 +268,13 @@ impl LogGuard {
             LogTarget::File(path) => {
                 // SCIP only prints an error when it cannot open the file: check first, so that
                 // an unusable path is a typed error rather than a silently missing log.
-                std::fs::OpenOptions::new().create(true).append(true).open(path).map_err(|e| SolverError::new(KIND, e))?;
-                let c = CString::new(path.to_string_lossy().as_bytes()).map_err(|_| rejected("log file path contains NUL"))?;
+                std::fs::OpenOptions::new()
+                    .create(true)
+                    .append(true)
+                    .open(path)
+                    .map_err(|e| SolverError::new(KIND, e))?;
+                let c = CString::new(path.to_string_lossy().as_bytes())
+                    .map_err(|_| rejected("log file path contains NUL"))?;
                 let p = p.set_int_param("display/verblevel", 4).map_err(|e| retcode("display/verblevel", e))?;
                 // SAFETY: live SCIP instance; SCIP copies nothing but opens the file by name now.
                 unsafe { ffi::SCIPsetMessagehdlrLogfile(scip, c.as_ptr()) };
@@ -277,12 +301,18 @@ fn termination(status: ffi::SCIP_Status) -> Termination {
         ffi::SCIP_Status_SCIP_STATUS_UNBOUNDED => Termination::Unbounded,
         ffi::SCIP_Status_SCIP_STATUS_INFORUNBD => Termination::InfeasibleOrUnbounded,
         ffi::SCIP_Status_SCIP_STATUS_TIMELIMIT => Termination::Limit(LimitKind::Time),
-        ffi::SCIP_Status_SCIP_STATUS_NODELIMIT | ffi::SCIP_Status_SCIP_STATUS_TOTALNODELIMIT => Termination::Limit(LimitKind::Node),
+        ffi::SCIP_Status_SCIP_STATUS_NODELIMIT | ffi::SCIP_Status_SCIP_STATUS_TOTALNODELIMIT => {
+            Termination::Limit(LimitKind::Node)
+        }
         // Stopped by the user's gap limit: reported optimal, and `SolveResult::finish` turns it
         // into `Limit(Gap)` when the gap is above the default tolerance.
         ffi::SCIP_Status_SCIP_STATUS_GAPLIMIT => Termination::Optimal,
-        ffi::SCIP_Status_SCIP_STATUS_SOLLIMIT | ffi::SCIP_Status_SCIP_STATUS_BESTSOLLIMIT => Termination::Limit(LimitKind::Solution),
-        ffi::SCIP_Status_SCIP_STATUS_USERINTERRUPT | ffi::SCIP_Status_SCIP_STATUS_TERMINATE => Termination::Limit(LimitKind::Interrupt),
+        ffi::SCIP_Status_SCIP_STATUS_SOLLIMIT | ffi::SCIP_Status_SCIP_STATUS_BESTSOLLIMIT => {
+            Termination::Limit(LimitKind::Solution)
+        }
+        ffi::SCIP_Status_SCIP_STATUS_USERINTERRUPT | ffi::SCIP_Status_SCIP_STATUS_TERMINATE => {
+            Termination::Limit(LimitKind::Interrupt)
+        }
         ffi::SCIP_Status_SCIP_STATUS_STALLNODELIMIT
         | ffi::SCIP_Status_SCIP_STATUS_MEMLIMIT
         | ffi::SCIP_Status_SCIP_STATUS_PRIMALLIMIT
@@ -349,14 +379,24 @@ impl Solver for ScipSolver {
         if let Some(e) = handler.error.take() {
             return Err(rejected(format!("lazy-row handler: {e}")));
         }
-        let report = LazyReport { rounds: handler.calls, rows_added: handler.rows.len(), separation_seconds: handler.seconds, ..LazyReport::new(name, LazyMode::Callback) };
+        let report = LazyReport {
+            rounds: handler.calls,
+            rows_added: handler.rows.len(),
+            separation_seconds: handler.seconds,
+            ..LazyReport::new(name, LazyMode::Callback)
+        };
         Ok(LazySolve { result, rows: std::mem::take(&mut handler.rows), left_out: Vec::new(), report })
     }
 }
 
 /// The solve itself, after netspec's common checks (`guarded_solve`), with a lazy-row handler
 /// installed when given.
-fn native(model: &Model, o: &SolveOptions, ctl: &StopControl, handler: Option<&mut super::scip_lazy::Handler<'_>>) -> Result<SolveResult, SolverError> {
+fn native(
+    model: &Model,
+    o: &SolveOptions,
+    ctl: &StopControl,
+    handler: Option<&mut super::scip_lazy::Handler<'_>>,
+) -> Result<SolveResult, SolverError> {
     let (p, vars) = load(model)?;
     if let Some(h) = handler {
         h.set_vars(vars.iter().map(|v| v.inner()).collect());
@@ -402,8 +442,12 @@ fn native(model: &Model, o: &SolveOptions, ctl: &StopControl, handler: Option<&m
     }
     if has_statistics(ptr) {
         // SAFETY: live SCIP instance in a stage where these statistics exist.
-        let (bound, inf, nodes) = unsafe { (ffi::SCIPgetDualbound(ptr), ffi::SCIPinfinity(ptr), ffi::SCIPgetNTotalNodes(ptr)) };
-        let meaningful = !matches!(r.termination, Termination::Infeasible | Termination::Unbounded | Termination::InfeasibleOrUnbounded);
+        let (bound, inf, nodes) =
+            unsafe { (ffi::SCIPgetDualbound(ptr), ffi::SCIPinfinity(ptr), ffi::SCIPgetNTotalNodes(ptr)) };
+        let meaningful = !matches!(
+            r.termination,
+            Termination::Infeasible | Termination::Unbounded | Termination::InfeasibleOrUnbounded
+        );
         r.dual_bound = (meaningful && bound.abs() < inf).then_some(bound);
         r.nodes = Some(nodes.max(0) as u64);
     }

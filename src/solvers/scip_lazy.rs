@@ -75,7 +75,10 @@ impl<'s> Handler<'s> {
         // A solution checked before the solve (a MIP start added in the problem stage) or kept in
         // the original space is read through the original variables.
         // SAFETY: live SCIP instance; `sol` is NULL or one of its solutions.
-        let original = unsafe { ffi::SCIPgetStage(scip) == ffi::SCIP_Stage_SCIP_STAGE_PROBLEM || (!sol.is_null() && ffi::SCIPsolIsOriginal(sol) != 0) };
+        let original = unsafe {
+            ffi::SCIPgetStage(scip) == ffi::SCIP_Stage_SCIP_STAGE_PROBLEM
+                || (!sol.is_null() && ffi::SCIPsolIsOriginal(sol) != 0)
+        };
         if original {
             // SAFETY: live instance, original variables of it.
             return Some(self.orig.iter().map(|&v| unsafe { ffi::SCIPgetSolVal(scip, sol, v) }).collect());
@@ -88,7 +91,13 @@ impl<'s> Handler<'s> {
     }
 
     /// Adds rows to the LP; returns (added, infeasible).
-    fn add_rows(&mut self, scip: *mut ffi::SCIP, conshdlr: *mut ffi::SCIP_CONSHDLR, rows: Vec<LazyRow>, force: bool) -> (usize, bool) {
+    fn add_rows(
+        &mut self,
+        scip: *mut ffi::SCIP,
+        conshdlr: *mut ffi::SCIP_CONSHDLR,
+        rows: Vec<LazyRow>,
+        force: bool,
+    ) -> (usize, bool) {
         let inf = unsafe { ffi::SCIPinfinity(scip) };
         let mut added = 0;
         let mut infeasible = false;
@@ -98,7 +107,9 @@ impl<'s> Handler<'s> {
             let (lhs, rhs) = (r.lhs.max(-inf), r.rhs.min(inf));
             // SAFETY: live instance in the solving stage; the row is released below.
             unsafe {
-                if ffi::SCIPcreateEmptyRowConshdlr(scip, &mut row, conshdlr, name.as_ptr(), lhs, rhs, 0, 0, 1) != ffi::SCIP_Retcode_SCIP_OKAY {
+                if ffi::SCIPcreateEmptyRowConshdlr(scip, &mut row, conshdlr, name.as_ptr(), lhs, rhs, 0, 0, 1)
+                    != ffi::SCIP_Retcode_SCIP_OKAY
+                {
                     self.error.get_or_insert_with(|| "SCIPcreateEmptyRowConshdlr failed".into());
                     continue;
                 }
@@ -295,11 +306,31 @@ pub(super) unsafe fn install(scip: *mut ffi::SCIP, h: &mut Handler<'_>) -> Resul
     let desc = c"netspec lazily separated rows";
     let mut conshdlr: *mut ffi::SCIP_CONSHDLR = std::ptr::null_mut();
     let data = h as *mut Handler<'_> as *mut ffi::SCIP_CONSHDLRDATA;
-    let ok = |rc: ffi::SCIP_RETCODE, what: &str| if rc == ffi::SCIP_Retcode_SCIP_OKAY { Ok(()) } else { Err(format!("{what}: SCIP returned {rc}")) };
+    let ok = |rc: ffi::SCIP_RETCODE, what: &str| {
+        if rc == ffi::SCIP_Retcode_SCIP_OKAY {
+            Ok(())
+        } else {
+            Err(format!("{what}: SCIP returned {rc}"))
+        }
+    };
     // SAFETY: the caller's contract; callbacks match SCIP's signatures.
     unsafe {
         ok(
-            ffi::SCIPincludeConshdlrBasic(scip, &mut conshdlr, name.as_ptr(), desc.as_ptr(), -1, -1, 1, 0, Some(enfolp), Some(enfops), Some(check), Some(lock), data),
+            ffi::SCIPincludeConshdlrBasic(
+                scip,
+                &mut conshdlr,
+                name.as_ptr(),
+                desc.as_ptr(),
+                -1,
+                -1,
+                1,
+                0,
+                Some(enfolp),
+                Some(enfops),
+                Some(check),
+                Some(lock),
+                data,
+            ),
             "SCIPincludeConshdlrBasic",
         )?;
         ok(ffi::SCIPsetConshdlrSepa(scip, conshdlr, Some(sepalp), None, 1, 0, 0), "SCIPsetConshdlrSepa")?;

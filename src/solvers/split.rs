@@ -50,7 +50,13 @@ impl ObjectiveSplit {
         if model.sense != Sense::Minimize {
             return None;
         }
-        let terms: Vec<(VarId, f64)> = model.vars().iter().enumerate().filter(|(_, v)| v.obj != 0.0).map(|(j, v)| (VarId(j as u32), v.obj)).collect();
+        let terms: Vec<(VarId, f64)> = model
+            .vars()
+            .iter()
+            .enumerate()
+            .filter(|(_, v)| v.obj != 0.0)
+            .map(|(j, v)| (VarId(j as u32), v.obj))
+            .collect();
         let mut mags: Vec<f64> = terms.iter().map(|t| t.1.abs()).collect();
         mags.sort_by(|a, b| b.total_cmp(a));
         mags.dedup();
@@ -131,7 +137,13 @@ impl PhaseReport {
     /// The report of a phase that ended with `r`, its objective and bound given in the phase's
     /// own terms.
     fn new(r: &SolveResult, objective: Option<f64>, dual_bound: Option<f64>, since: Instant) -> PhaseReport {
-        PhaseReport { termination: r.termination.clone(), objective, dual_bound, nodes: r.nodes, wall_time: since.elapsed().as_secs_f64() }
+        PhaseReport {
+            termination: r.termination.clone(),
+            objective,
+            dual_bound,
+            nodes: r.nodes,
+            wall_time: since.elapsed().as_secs_f64(),
+        }
     }
 }
 
@@ -331,10 +343,18 @@ mod tests {
 
     /// A scripted solve: phase 1 (the model whose small terms cost nothing) returns `phase1`,
     /// phase 2 returns `phase2`; every model it was given is kept.
-    fn scripted(phase1: Option<(Vec<f64>, f64)>, phase2: Option<(Vec<f64>, f64, Termination)>, seen: &mut Vec<Model>) -> impl FnMut(&Model, &SolveOptions) -> Result<PhaseSolve, SolverError> + '_ {
+    fn scripted(
+        phase1: Option<(Vec<f64>, f64)>,
+        phase2: Option<(Vec<f64>, f64, Termination)>,
+        seen: &mut Vec<Model>,
+    ) -> impl FnMut(&Model, &SolveOptions) -> Result<PhaseSolve, SolverError> + '_ {
         move |m: &Model, _: &SolveOptions| {
             seen.push(m.clone());
-            let mut r = SolveResult::empty(crate::solvers::SolverKind::Microlp, "scripted".into(), Termination::Limit(crate::solvers::LimitKind::Time));
+            let mut r = SolveResult::empty(
+                crate::solvers::SolverKind::Microlp,
+                "scripted".into(),
+                Termination::Limit(crate::solvers::LimitKind::Time),
+            );
             if m.var(VarId(3)).obj == 0.0 {
                 if let Some((x, bound)) = &phase1 {
                     r.objective = Some(m.objective_value(x));
@@ -368,7 +388,12 @@ mod tests {
         let m2 = &seen[1];
         let row = m2.row(crate::milp::RowId(m2.num_rows() as u32 - 1));
         assert_eq!(row.name, "split_primary");
-        assert!((row.lhs - 7.0).abs() < 1e-6 && (row.rhs - 7.0).abs() < 1e-6, "P held at 7: [{}, {}]", row.lhs, row.rhs);
+        assert!(
+            (row.lhs - 7.0).abs() < 1e-6 && (row.rhs - 7.0).abs() < 1e-6,
+            "P held at 7: [{}, {}]",
+            row.lhs,
+            row.rhs
+        );
         // The polished design (better than the start, whose P = 8 is outside [7, 7]) is returned,
         // and the bound is P ≥ 7 plus the small terms' floor: the design is proven.
         assert_eq!(out.result.primal.as_deref(), Some(&[1.0, 1.0, 2.0, 0.0, 1.0][..]));
@@ -378,17 +403,30 @@ mod tests {
         // all that is known of the designs with P ≥ P₁ + q.
         let costly = vec![1.0, 1.0, 2.0, 10.0, 10.0];
         let mut seen = Vec::new();
-        let out = solve_split(&m, &s, &o, scripted(Some((x1.clone(), 14.0)), Some((costly.clone(), 9.0, Termination::Optimal)), &mut seen), |_: &[f64]| None).unwrap();
+        let out = solve_split(
+            &m,
+            &s,
+            &o,
+            scripted(Some((x1.clone(), 14.0)), Some((costly.clone(), 9.0, Termination::Optimal)), &mut seen),
+            |_: &[f64]| None,
+        )
+        .unwrap();
         assert!((out.result.dual_bound.unwrap() - 7.5002).abs() < 1e-12, "{:?}", out.result.dual_bound);
         assert_eq!(out.result.primal.as_deref(), Some(&costly[..]));
         // Phase 1 without a design: no phase 2, the bound is phase 1's on P plus S's floor.
         let mut seen = Vec::new();
-        let out = solve_split(&m, &s, &o, |mm: &Model, oo: &SolveOptions| {
-            let mut f = scripted(None, None, &mut seen);
-            let (mut r, rows, lazy) = f(mm, oo)?;
-            r.dual_bound = Some(12.4);
-            Ok((r, rows, lazy))
-        }, |_: &[f64]| None)
+        let out = solve_split(
+            &m,
+            &s,
+            &o,
+            |mm: &Model, oo: &SolveOptions| {
+                let mut f = scripted(None, None, &mut seen);
+                let (mut r, rows, lazy) = f(mm, oo)?;
+                r.dual_bound = Some(12.4);
+                Ok((r, rows, lazy))
+            },
+            |_: &[f64]| None,
+        )
         .unwrap();
         assert!(out.report.phase2.is_none());
         assert!(out.result.primal.is_none());

@@ -27,7 +27,8 @@ pub(crate) struct StopControl {
 impl StopControl {
     /// The control for a solve that started at `started` with options `o`.
     pub(crate) fn new(o: &SolveOptions, started: Instant) -> Self {
-        let deadline = o.finite_time_limit().map(|t| started + Duration::try_from_secs_f64(t).unwrap_or(Duration::MAX / 4));
+        let deadline =
+            o.finite_time_limit().map(|t| started + Duration::try_from_secs_f64(t).unwrap_or(Duration::MAX / 4));
         StopControl { interrupt: o.interrupt.clone(), deadline, overdue: AtomicBool::new(false) }
     }
 

@@ -283,7 +283,9 @@ impl<'de> Deserialize<'de> for FormulationSpec {
         impl<'de> Visitor<'de> for V {
             type Value = FormulationSpec;
             fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
-                f.write_str("a recipe name (\"paper\", \"tight\" or \"strong\") or a table with `recipe` and part overrides")
+                f.write_str(
+                    "a recipe name (\"paper\", \"tight\" or \"strong\") or a table with `recipe` and part overrides",
+                )
             }
             fn visit_str<E: de::Error>(self, s: &str) -> Result<FormulationSpec, E> {
                 s.parse::<RecipeName>().map(FormulationSpec::Named).map_err(E::custom)
@@ -326,6 +328,10 @@ mod tests {
     }
 
     fn h_parts() -> FormulationSpec {
-        FormulationSpec::Parts(FormulationParts { recipe: RecipeName::Tight, coverage: Some(CoverageForm::Aggregated), ..Default::default() })
+        FormulationSpec::Parts(FormulationParts {
+            recipe: RecipeName::Tight,
+            coverage: Some(CoverageForm::Aggregated),
+            ..Default::default()
+        })
     }
 }

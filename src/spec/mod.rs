@@ -8,10 +8,13 @@ mod formulation;
 mod resolve;
 mod symmetry;
 
-pub use formulation::{BigMForm, ConnectivityForm, CoverageForm, DeadEndForm, DistanceForm, FormulationParts, FormulationSpec, PathForm, RecipeName};
+pub use formulation::{
+    BigMForm, ConnectivityForm, CoverageForm, DeadEndForm, DistanceForm, FormulationParts, FormulationSpec, PathForm,
+    RecipeName,
+};
 
-pub use resolve::{EdgeRole, PointToPoint, Problem, Rooms, Weight};
 pub(crate) use resolve::OrdF64;
+pub use resolve::{EdgeRole, PointToPoint, Problem, Rooms, Weight};
 pub use symmetry::{symmetries, Symmetry};
 
 use crate::solvers::SolverKind;

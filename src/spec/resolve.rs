@@ -1,8 +1,8 @@
 //! From a [`Spec`] to a [`Problem`]: the mesh, edge roles, sinks and switches, checked.
 
 use super::*;
-use crate::rules::placements::Template;
 use crate::mesh::{self, EdgeId, FaceId, Mesh, VertexId};
+use crate::rules::placements::Template;
 
 /// What an edge is in the model (FORMULATION §1).
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -71,9 +71,11 @@ pub struct Rooms {
 const PALETTE: [&str; 8] = ["#8dd3c7", "#ffffb3", "#bebada", "#fb8072", "#80b1d3", "#fdb462", "#b3de69", "#fccde5"];
 
 fn parse_shape(field: &str, name: &str, shape: &str) -> Result<Template, SpecErrorKind> {
-    let bad = || SpecErrorKind::Field {
+    let bad = || {
+        SpecErrorKind::Field {
         field: field.to_string(),
         message: format!("expected \"rect AxB\", \"L AxB\" or \"T AxB\" (A, B between 1 and 20; L: A, B ≥ 2; T: A odd ≥ 3, B ≥ 2), got {shape:?}"),
+    }
     };
     let mut parts = shape.split_whitespace();
     let (kind, dims) = (parts.next().ok_or_else(bad)?, parts.next().ok_or_else(bad)?);
@@ -103,14 +105,24 @@ impl RoomsSpec {
         if self.templates.is_empty() {
             return Err(field("rooms.templates", "give at least one template"));
         }
-        let mut out = Rooms { mode: self.mode, level: self.level, templates: Vec::new(), counts: Vec::new(), colors: Vec::new(), max_placements: self.max_placements };
+        let mut out = Rooms {
+            mode: self.mode,
+            level: self.level,
+            templates: Vec::new(),
+            counts: Vec::new(),
+            colors: Vec::new(),
+            max_placements: self.max_placements,
+        };
         for (i, t) in self.templates.iter().enumerate() {
             let f = format!("rooms.templates[{i}]");
             let mut tpl = match (&t.shape, &t.cells) {
                 (Some(s), None) => parse_shape(&format!("{f}.shape"), &t.name, s)?,
                 (None, Some(cells)) => {
                     if cells.is_empty() || cells.iter().any(|c| c[0] < 0 || c[1] < 0 || c[0] > 50 || c[1] > 50) {
-                        return Err(field(format!("{f}.cells"), "cells must be a non-empty list of [x, y] with 0 ≤ x, y ≤ 50"));
+                        return Err(field(
+                            format!("{f}.cells"),
+                            "cells must be a non-empty list of [x, y] with 0 ≤ x, y ≤ 50",
+                        ));
                     }
                     let mut cs: Vec<(i32, i32)> = cells.iter().map(|c| (c[0], c[1])).collect();
                     cs.sort();
@@ -207,7 +219,11 @@ fn weight(name: &str, w: &WeightValue, forbid_ok: bool) -> Result<Weight, SpecEr
         WeightValue::Word(s) if forbid_ok && (s == "forbid" || s == "inf") => Ok(Weight::Forbid),
         WeightValue::Word(s) => Err(field(
             format!("weights.{name}"),
-            if forbid_ok { format!("expected a number or \"forbid\", got {s:?}") } else { format!("expected a number, got {s:?}") },
+            if forbid_ok {
+                format!("expected a number or \"forbid\", got {s:?}")
+            } else {
+                format!("expected a number, got {s:?}")
+            },
         )),
     }
 }
@@ -259,7 +275,10 @@ impl Spec {
         let mut is_obstacle_face = vec![false; nf];
         for (i, &f) in u.obstacle_faces.iter().enumerate() {
             if f as usize >= nf {
-                return Err(field(format!("user.obstacle_faces[{i}]"), format!("face {f} does not exist (the mesh has {nf} faces)")));
+                return Err(field(
+                    format!("user.obstacle_faces[{i}]"),
+                    format!("face {f} does not exist (the mesh has {nf} faces)"),
+                ));
             }
             is_obstacle_face[f as usize] = true;
         }
@@ -306,7 +325,10 @@ impl Spec {
             let f = format!("user.existing_edges[{i}]");
             let e = edge_of(f.clone(), pair)?;
             if roles[e.index()] == EdgeRole::Excluded {
-                return Err(field(f, format!("edge {}–{} is an existing road but excluded (an obstacle or a wall)", pair[0], pair[1])));
+                return Err(field(
+                    f,
+                    format!("edge {}–{} is an existing road but excluded (an obstacle or a wall)", pair[0], pair[1]),
+                ));
             }
             roles[e.index()] = EdgeRole::Existing;
             existing_ends.extend(pair);
@@ -352,7 +374,10 @@ impl Spec {
             let f = format!("user.forced_edges[{i}]");
             let e = edge_of(f.clone(), pair)?;
             if roles[e.index()] == EdgeRole::Excluded {
-                return Err(field(f, format!("edge {}–{} is forced but excluded (an obstacle or a wall)", pair[0], pair[1])));
+                return Err(field(
+                    f,
+                    format!("edge {}–{} is forced but excluded (an obstacle or a wall)", pair[0], pair[1]),
+                ));
             }
             forced_edges.push(e);
         }
@@ -372,8 +397,9 @@ impl Spec {
             if a == b {
                 return Err(field(f, "both ends are the same vertex"));
             }
-            let path = shortest_path(&mesh, &roles, a, b)
-                .ok_or_else(|| field(f.clone(), format!("no path from vertex {} to {} avoids walls and obstacles", a.0, b.0)))?;
+            let path = shortest_path(&mesh, &roles, a, b).ok_or_else(|| {
+                field(f.clone(), format!("no path from vertex {} to {} avoids walls and obstacles", a.0, b.0))
+            })?;
             through_routes.push(path);
         }
 
@@ -382,9 +408,13 @@ impl Spec {
         if let Some(r) = &self.rooms {
             let sinks: Vec<VertexId> = mesh.vertices().filter(|v| is_sink[v.index()]).collect();
             match (r.mode, r.level) {
-                (RoomMode::Floorplan, Some(_)) => return Err(field("rooms.level", "level types are for mode = \"game\"")),
+                (RoomMode::Floorplan, Some(_)) => {
+                    return Err(field("rooms.level", "level types are for mode = \"game\""))
+                }
                 (RoomMode::Game, Some(LevelType::Branching)) => branches = Allow::Allow,
-                (RoomMode::Game, Some(level @ (LevelType::Circular | LevelType::Linear))) if self.features.dead_ends == Allow::Allow => {
+                (RoomMode::Game, Some(level @ (LevelType::Circular | LevelType::Linear)))
+                    if self.features.dead_ends == Allow::Allow =>
+                {
                     let what = if level == LevelType::Linear {
                         "a linear level is one path from one boundary sink to the other through every block"
                     } else {
@@ -397,7 +427,10 @@ impl Spec {
                 }
                 (RoomMode::Game, Some(LevelType::Circular)) => {
                     if sinks.len() != 1 {
-                        return Err(field("sinks", format!("a circular level has exactly one sink, the spec gives {}", sinks.len())));
+                        return Err(field(
+                            "sinks",
+                            format!("a circular level has exactly one sink, the spec gives {}", sinks.len()),
+                        ));
                     }
                     branches = Allow::Forbid;
                 }
@@ -413,7 +446,10 @@ impl Spec {
 
         // Switches.
         if !(self.coverage.range >= 1.0 && self.coverage.range.is_finite()) {
-            return Err(field("coverage.range", format!("must be a finite number of at least 1, got {}", self.coverage.range)));
+            return Err(field(
+                "coverage.range",
+                format!("must be a finite number of at least 1, got {}", self.coverage.range),
+            ));
         }
         let w = &self.weights;
         let p2p = match &self.point_to_point {
@@ -459,7 +495,10 @@ impl Spec {
         }
         let mesh = if let Some(g) = &m.grid {
             if g.width == 0 || g.height == 0 || g.width * g.height > 1_000_000 {
-                return Err(field("mesh.grid", format!("size {}×{} must be between 1×1 and 10^6 cells", g.width, g.height)));
+                return Err(field(
+                    "mesh.grid",
+                    format!("size {}×{} must be between 1×1 and 10^6 cells", g.width, g.height),
+                ));
             }
             if !(g.spacing > 0.0 && g.spacing.is_finite()) {
                 return Err(field("mesh.grid.spacing", "must be a positive number"));
@@ -472,7 +511,8 @@ impl Spec {
             mesh::clipped_grid(&c.outer, &c.holes, c.spacing).map_err(|e| SpecErrorKind::Mesh(e.to_string()))?
         } else {
             let path = base.join(m.file.as_ref().expect("one source"));
-            let text = std::fs::read_to_string(&path).map_err(|e| SpecErrorKind::Mesh(format!("{}: {e}", path.display())))?;
+            let text =
+                std::fs::read_to_string(&path).map_err(|e| SpecErrorKind::Mesh(format!("{}: {e}", path.display())))?;
             if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("json")) {
                 serde_json::from_str(&text).map_err(|e| SpecErrorKind::Mesh(format!("{}: {e}", path.display())))?
             } else {
@@ -509,7 +549,10 @@ impl Spec {
             }
             (None, Some(parts)) => {
                 if parts.len() != nf {
-                    return Err(field("point_to_point.parts", format!("has {} entries; the mesh has {nf} faces", parts.len())));
+                    return Err(field(
+                        "point_to_point.parts",
+                        format!("has {} entries; the mesh has {nf} faces", parts.len()),
+                    ));
                 }
                 parts.clone()
             }

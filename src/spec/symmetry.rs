@@ -27,7 +27,8 @@ pub struct Symmetry {
 }
 
 /// The seven maps of the square's dihedral group other than the identity.
-const MAPS: [[i8; 4]; 7] = [[-1, 0, 0, 1], [1, 0, 0, -1], [-1, 0, 0, -1], [0, 1, 1, 0], [0, -1, -1, 0], [0, -1, 1, 0], [0, 1, -1, 0]];
+const MAPS: [[i8; 4]; 7] =
+    [[-1, 0, 0, 1], [1, 0, 0, -1], [-1, 0, 0, -1], [0, 1, 1, 0], [0, -1, -1, 0], [0, -1, 1, 0], [0, 1, -1, 0]];
 
 /// Coordinates are matched to this fraction of the bounding box's larger side.
 const RELATIVE_TOLERANCE: f64 = 1e-7;
@@ -76,8 +77,11 @@ fn map_onto_itself(
     image_key: impl Fn(usize) -> (i64, i64),
 ) -> Option<Symmetry> {
     let mesh = &p.mesh;
-    let vertex: Vec<VertexId> = (0..mesh.num_vertices()).map(|v| by_place.get(&image_key(v)).map(|&w| VertexId(w))).collect::<Option<_>>()?;
-    let same_vertex = |v: usize, w: VertexId| p.is_sink[v] == p.is_sink[w.index()] && p.is_obstacle_vertex[v] == p.is_obstacle_vertex[w.index()];
+    let vertex: Vec<VertexId> =
+        (0..mesh.num_vertices()).map(|v| by_place.get(&image_key(v)).map(|&w| VertexId(w))).collect::<Option<_>>()?;
+    let same_vertex = |v: usize, w: VertexId| {
+        p.is_sink[v] == p.is_sink[w.index()] && p.is_obstacle_vertex[v] == p.is_obstacle_vertex[w.index()]
+    };
     if !vertex.iter().enumerate().all(|(v, &w)| same_vertex(v, w)) {
         return None;
     }

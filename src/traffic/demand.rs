@@ -93,7 +93,14 @@ pub fn generate(region: &Region, s: &DemandSettings) -> Vec<Trip> {
             let u = rng.random::<f64>() * perimeter;
             let v = u + perimeter * (0.3 + 0.4 * rng.random::<f64>());
             let forward = [rng.random::<bool>(), rng.random::<bool>()];
-            trips.push(Trip { id: format!("through{k}"), class: TripClass::Through, depart, from: at_arc(&region.boundary, u), to: at_arc(&region.boundary, v), forward });
+            trips.push(Trip {
+                id: format!("through{k}"),
+                class: TripClass::Through,
+                depart,
+                from: at_arc(&region.boundary, u),
+                to: at_arc(&region.boundary, v),
+                forward,
+            });
         }
     }
     let (lo, hi) = bounds(region.areas.iter().flatten());
@@ -102,7 +109,8 @@ pub fn generate(region: &Region, s: &DemandSettings) -> Vec<Trip> {
             // Rejection sampling in the bounding box (given up on an area of measure zero).
             let mut point = || {
                 (0..10_000).find_map(|_| {
-                    let p = [lo[0] + rng.random::<f64>() * (hi[0] - lo[0]), lo[1] + rng.random::<f64>() * (hi[1] - lo[1])];
+                    let p =
+                        [lo[0] + rng.random::<f64>() * (hi[0] - lo[0]), lo[1] + rng.random::<f64>() * (hi[1] - lo[1])];
                     region.areas.iter().any(|a| geom::point_in_polygon(p, a)).then_some(p)
                 })
             };
@@ -132,7 +140,9 @@ fn poisson(rng: &mut Xoshiro256PlusPlus, per_hour: f64, duration: f64) -> Vec<f6
 }
 
 fn bounds<'a>(pts: impl Iterator<Item = &'a [f64; 2]>) -> ([f64; 2], [f64; 2]) {
-    pts.fold(([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]), |(lo, hi), p| ([lo[0].min(p[0]), lo[1].min(p[1])], [hi[0].max(p[0]), hi[1].max(p[1])]))
+    pts.fold(([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]), |(lo, hi), p| {
+        ([lo[0].min(p[0]), lo[1].min(p[1])], [hi[0].max(p[0]), hi[1].max(p[1])])
+    })
 }
 
 fn closed_length(poly: &[[f64; 2]]) -> f64 {
@@ -256,7 +266,9 @@ pub fn place(trips: &[Trip], net: &RoadNetwork, sumo_net: &SumoNet) -> Placement
     let gates: Vec<usize> = (0..net.nodes.len()).filter(|&k| net.nodes[k].entrance).collect();
     let locals: Vec<usize> = (0..net.edges.len()).filter(|&k| net.edges[k].local).collect();
     let gate = |p: [f64; 2]| {
-        let k = *gates.iter().min_by(|&&a, &&b| geom::dist(p, net.nodes[a].pos).total_cmp(&geom::dist(p, net.nodes[b].pos)))?;
+        let k = *gates
+            .iter()
+            .min_by(|&&a, &&b| geom::dist(p, net.nodes[a].pos).total_cmp(&geom::dist(p, net.nodes[b].pos)))?;
         Some(Place::Junction { node: k, sumo_node: node_id(net.nodes[k].id) })
     };
     let street = |p: [f64; 2], forward: bool| {
@@ -264,7 +276,12 @@ pub fn place(trips: &[Trip], net: &RoadNetwork, sumo_net: &SumoNet) -> Placement
         let id = edge_id(net.edges[k].id, forward);
         let len = sumo_net.edges.get(&id).map_or_else(|| net.edges[k].length(), |e| e.length);
         let frac = if forward { f } else { 1.0 - f };
-        Some(Place::Street(EdgePlace { edge: k, forward, sumo_edge: id, pos: (frac * len).clamp(0.0, (len - 0.1).max(0.0)) }))
+        Some(Place::Street(EdgePlace {
+            edge: k,
+            forward,
+            sumo_edge: id,
+            pos: (frac * len).clamp(0.0, (len - 0.1).max(0.0)),
+        }))
     };
     let mut out = Placement::default();
     for (i, t) in trips.iter().enumerate() {

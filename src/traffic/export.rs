@@ -43,7 +43,12 @@ pub fn road_types() -> Vec<RoadType> {
         speed: kmh / 3.6,
         priority: 5 - level as i32,
     };
-    vec![t(1, "major road", 2, 50.0), t(2, "collector", 1, 40.0), t(3, "local street", 1, 30.0), t(4, "cul-de-sac", 1, 20.0)]
+    vec![
+        t(1, "major road", 2, 50.0),
+        t(2, "collector", 1, 40.0),
+        t(3, "local street", 1, 30.0),
+        t(4, "cul-de-sac", 1, 20.0),
+    ]
 }
 
 /// The SUMO type id of a level (levels outside 1–4 take the nearest).
@@ -93,7 +98,12 @@ pub struct PlainFiles {
 /// The node file's text.
 pub fn nodes_xml(net: &RoadNetwork) -> String {
     let mut s = String::from("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
-    let _ = writeln!(s, "<!-- netspec {}: {}, one node per design vertex with a street, metres -->", env!("CARGO_PKG_VERSION"), xml_comment(&net.name));
+    let _ = writeln!(
+        s,
+        "<!-- netspec {}: {}, one node per design vertex with a street, metres -->",
+        env!("CARGO_PKG_VERSION"),
+        xml_comment(&net.name)
+    );
     s.push_str("<nodes>\n");
     for n in &net.nodes {
         let _ = writeln!(s, r#"    <node id="{}" x="{:.3}" y="{:.3}"/>"#, node_id(n.id), n.pos[0], n.pos[1]);
@@ -105,7 +115,12 @@ pub fn nodes_xml(net: &RoadNetwork) -> String {
 /// The edge file's text.
 pub fn edges_xml(net: &RoadNetwork) -> String {
     let mut s = String::from("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
-    let _ = writeln!(s, "<!-- netspec {}: {}, two edges (one per direction) per designed street -->", env!("CARGO_PKG_VERSION"), xml_comment(&net.name));
+    let _ = writeln!(
+        s,
+        "<!-- netspec {}: {}, two edges (one per direction) per designed street -->",
+        env!("CARGO_PKG_VERSION"),
+        xml_comment(&net.name)
+    );
     s.push_str("<edges>\n");
     for e in &net.edges {
         let (a, b) = (node_id(net.nodes[e.a].id), node_id(net.nodes[e.b].id));
@@ -125,7 +140,11 @@ pub fn edges_xml(net: &RoadNetwork) -> String {
 pub fn types_xml() -> String {
     let mut s = String::from("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<types>\n");
     for t in road_types() {
-        let _ = writeln!(s, r#"    <type id="{}" numLanes="{}" speed="{:.4}" priority="{}"/> <!-- {} -->"#, t.id, t.lanes, t.speed, t.priority, t.name);
+        let _ = writeln!(
+            s,
+            r#"    <type id="{}" numLanes="{}" speed="{:.4}" priority="{}"/> <!-- {} -->"#,
+            t.id, t.lanes, t.speed, t.priority, t.name
+        );
     }
     s.push_str("</types>\n");
     s
@@ -137,7 +156,11 @@ fn xml_comment(t: &str) -> String {
 
 /// Writes `<stem>.nod.xml`, `<stem>.edg.xml` and `<stem>.typ.xml` into `dir`.
 pub fn write_plain(net: &RoadNetwork, dir: &Path, stem: &str) -> Result<PlainFiles, TrafficError> {
-    let files = PlainFiles { nodes: dir.join(format!("{stem}.nod.xml")), edges: dir.join(format!("{stem}.edg.xml")), types: dir.join(format!("{stem}.typ.xml")) };
+    let files = PlainFiles {
+        nodes: dir.join(format!("{stem}.nod.xml")),
+        edges: dir.join(format!("{stem}.edg.xml")),
+        types: dir.join(format!("{stem}.typ.xml")),
+    };
     write(&files.nodes, &nodes_xml(net))?;
     write(&files.edges, &edges_xml(net))?;
     write(&files.types, &types_xml())?;

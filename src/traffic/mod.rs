@@ -104,7 +104,12 @@ pub(crate) fn write(path: &Path, text: &str) -> Result<(), TrafficError> {
 /// Runs one whole evaluation of `net` into `dir` (SUMO's files under `dir/sumo/`): export,
 /// `netconvert`, demand, `duarouter`, `sumo`, and the parsed report (write it with
 /// [`TrafficReport::write`]). Pictures are the caller's (see `render::traffic`).
-pub fn evaluate(net: &RoadNetwork, demand: &DemandSettings, sumo: &Sumo, dir: &Path) -> Result<TrafficReport, TrafficError> {
+pub fn evaluate(
+    net: &RoadNetwork,
+    demand: &DemandSettings,
+    sumo: &Sumo,
+    dir: &Path,
+) -> Result<TrafficReport, TrafficError> {
     let t0 = Instant::now();
     let sdir = dir.join("sumo");
     std::fs::create_dir_all(&sdir).map_err(|e| TrafficError::new(&sdir, e.into()))?;

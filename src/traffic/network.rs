@@ -130,7 +130,9 @@ pub fn load(path: &Path, opts: &LoadOptions) -> Result<RoadNetwork, TrafficError
         path.to_path_buf()
     };
     let text = read(&file)?;
-    let res: DesignResult = serde_json::from_str(&text).map_err(|e| TrafficError::new(&file, TrafficErrorKind::Parse { what: "a netspec design result", message: e.to_string() }))?;
+    let res: DesignResult = serde_json::from_str(&text).map_err(|e| {
+        TrafficError::new(&file, TrafficErrorKind::Parse { what: "a netspec design result", message: e.to_string() })
+    })?;
     from_design(&res, &file, opts)
 }
 
@@ -146,7 +148,8 @@ pub fn from_design(res: &DesignResult, path: &Path, opts: &LoadOptions) -> Resul
         return Err(err(TrafficErrorKind::NoNetwork(format!("solver {}: {}", s.solver, s.termination.label()))));
     };
     if !res.validity.valid {
-        let n = res.validity.design_violations.len() + res.validity.milp_check.as_ref().map_or(0, |c| c.violations.len());
+        let n =
+            res.validity.design_violations.len() + res.validity.milp_check.as_ref().map_or(0, |c| c.violations.len());
         return Err(err(TrafficErrorKind::Invalid(format!("{n} violations"))));
     }
     let m = opts.metres_per_unit.unwrap_or(DEFAULT_METRES_PER_UNIT);
@@ -184,9 +187,17 @@ pub fn from_design(res: &DesignResult, path: &Path, opts: &LoadOptions) -> Resul
         return Err(err(TrafficErrorKind::NoNetwork("no active edge".into())));
     }
     // The region: the mesh's outer boundary loop (largest area) and its faces.
-    let loops: Vec<Vec<[f64; 2]>> = mesh.boundary_loops().iter().map(|l| l.iter().map(|&h| scaled(mesh.position(mesh.he_tail(h)))).collect()).collect();
-    let boundary = loops.into_iter().max_by(|a, b| geom::signed_area(a).abs().total_cmp(&geom::signed_area(b).abs())).unwrap_or_default();
-    let areas = mesh.faces().map(|f| mesh.face_vertices(f).iter().map(|&v| scaled(mesh.position(v))).collect()).collect();
+    let loops: Vec<Vec<[f64; 2]>> = mesh
+        .boundary_loops()
+        .iter()
+        .map(|l| l.iter().map(|&h| scaled(mesh.position(mesh.he_tail(h)))).collect())
+        .collect();
+    let boundary = loops
+        .into_iter()
+        .max_by(|a, b| geom::signed_area(a).abs().total_cmp(&geom::signed_area(b).abs()))
+        .unwrap_or_default();
+    let areas =
+        mesh.faces().map(|f| mesh.face_vertices(f).iter().map(|&v| scaled(mesh.position(v))).collect()).collect();
     let run = format!(
         "{} {}: {}, objective {}, gap {}, {:.1} s, valid",
         s.solver,
@@ -198,7 +209,13 @@ pub fn from_design(res: &DesignResult, path: &Path, opts: &LoadOptions) -> Resul
     );
     Ok(RoadNetwork {
         name: res.spec.name.clone(),
-        source: Provenance { kind: "solve".into(), path: path.display().to_string(), netspec_version: res.netspec_version.clone(), description: res.spec.description.clone(), runs: vec![run] },
+        source: Provenance {
+            kind: "solve".into(),
+            path: path.display().to_string(),
+            netspec_version: res.netspec_version.clone(),
+            description: res.spec.description.clone(),
+            runs: vec![run],
+        },
         metres_per_unit: m,
         nodes,
         edges,
@@ -213,7 +230,9 @@ pub fn from_design(res: &DesignResult, path: &Path, opts: &LoadOptions) -> Resul
 pub fn from_city(dir: &Path, opts: &LoadOptions) -> Result<RoadNetwork, TrafficError> {
     let file = dir.join("city.json");
     let text = read(&file)?;
-    let mut city: CityResult = serde_json::from_str(&text).map_err(|e| TrafficError::new(&file, TrafficErrorKind::Parse { what: "a netspec city result", message: e.to_string() }))?;
+    let mut city: CityResult = serde_json::from_str(&text).map_err(|e| {
+        TrafficError::new(&file, TrafficErrorKind::Parse { what: "a netspec city result", message: e.to_string() })
+    })?;
     if !city.valid {
         return Err(TrafficError::new(&file, TrafficErrorKind::Invalid("city.json says valid = false".into())));
     }
@@ -221,7 +240,9 @@ pub fn from_city(dir: &Path, opts: &LoadOptions) -> Result<RoadNetwork, TrafficE
     let m = opts.metres_per_unit.unwrap_or(spec.metres_per_unit);
     let mut runs = Vec::new();
     for r in &mut city.regions {
-        r.roads = saved_roads(&spec, dir, r).map_err(|e| TrafficError::new(dir, TrafficErrorKind::Parse { what: "the city's saved roads", message: e.to_string() }))?;
+        r.roads = saved_roads(&spec, dir, r).map_err(|e| {
+            TrafficError::new(dir, TrafficErrorKind::Parse { what: "the city's saved roads", message: e.to_string() })
+        })?;
         for l in &r.levels {
             runs.push(format!(
                 "{:02} {} L{}: {} {}, objective {}, gap {}, {} s{}",
@@ -241,7 +262,12 @@ pub fn from_city(dir: &Path, opts: &LoadOptions) -> Result<RoadNetwork, TrafficE
             ));
         }
     }
-    runs.push(format!("backend {}, threads {:?}, time limit override {}", city.solver, city.threads, fmt_opt(city.time_limit_override, |t| format!("{t} s"))));
+    runs.push(format!(
+        "backend {}, threads {:?}, time limit override {}",
+        city.solver,
+        city.threads,
+        fmt_opt(city.time_limit_override, |t| format!("{t} s"))
+    ));
     let (graph, _, _) = street_graph(&city.regions, spec.mesh.spacing);
     let smoothed = smooth::by_method(&graph, spec.smoothing.method);
     let (positions, shapes) = smoothed_geometry(&graph, &smoothed.snakes);
@@ -249,7 +275,9 @@ pub fn from_city(dir: &Path, opts: &LoadOptions) -> Result<RoadNetwork, TrafficE
     let outer: Vec<[f64; 2]> = spec.domain.outer.iter().map(|&p| scaled(p)).collect();
     // The domain's boundary: mesh boundary edges of exactly one sub-region (a major road
     // between two sub-regions bounds both).
-    let key = |p: [f64; 2]| ((p[0] / spec.mesh.spacing * 1e3).round() as i64, (p[1] / spec.mesh.spacing * 1e3).round() as i64);
+    let key = |p: [f64; 2]| {
+        ((p[0] / spec.mesh.spacing * 1e3).round() as i64, (p[1] / spec.mesh.spacing * 1e3).round() as i64)
+    };
     let edge_key = |p: [f64; 2], q: [f64; 2]| if key(p) <= key(q) { (key(p), key(q)) } else { (key(q), key(p)) };
     let mut bounding: BTreeMap<_, usize> = BTreeMap::new();
     for roads in city.regions.iter().filter_map(|r| r.roads.as_ref()) {
@@ -271,7 +299,9 @@ pub fn from_city(dir: &Path, opts: &LoadOptions) -> Result<RoadNetwork, TrafficE
         }
         let shape: Vec<[f64; 2]> = shapes[k].iter().map(|&p| scaled(p)).collect();
         // A major road along the domain's boundary: through traffic enters and leaves there.
-        if e.level == 1 && bounding.get(&edge_key(graph.positions[e.a as usize], graph.positions[e.b as usize])) == Some(&1) {
+        if e.level == 1
+            && bounding.get(&edge_key(graph.positions[e.a as usize], graph.positions[e.b as usize])) == Some(&1)
+        {
             nodes[ends[0]].entrance = true;
             nodes[ends[1]].entrance = true;
         }
@@ -282,7 +312,13 @@ pub fn from_city(dir: &Path, opts: &LoadOptions) -> Result<RoadNetwork, TrafficE
     }
     Ok(RoadNetwork {
         name: spec.name.clone(),
-        source: Provenance { kind: "city".into(), path: file.display().to_string(), netspec_version: city.netspec_version.clone(), description: spec.description.clone(), runs },
+        source: Provenance {
+            kind: "city".into(),
+            path: file.display().to_string(),
+            netspec_version: city.netspec_version.clone(),
+            description: spec.description.clone(),
+            runs,
+        },
         metres_per_unit: m,
         nodes,
         edges,
@@ -300,7 +336,8 @@ pub fn smoothed_geometry(graph: &StreetGraph, snakes: &[smooth::Snake]) -> (Vec<
     for (k, e) in graph.edges.iter().enumerate() {
         index.entry((e.a.min(e.b), e.a.max(e.b))).or_insert(k);
     }
-    let mut shapes: Vec<Vec<[f64; 2]>> = graph.edges.iter().map(|e| vec![graph.positions[e.a as usize], graph.positions[e.b as usize]]).collect();
+    let mut shapes: Vec<Vec<[f64; 2]>> =
+        graph.edges.iter().map(|e| vec![graph.positions[e.a as usize], graph.positions[e.b as usize]]).collect();
     for s in snakes {
         let n = s.vertices.len();
         if n < 2 || s.points.len() < n || (s.points.len() - 1) % (n - 1) != 0 {

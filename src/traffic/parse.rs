@@ -13,7 +13,11 @@ fn bad(path: &Path, what: &'static str, message: impl Into<String>) -> TrafficEr
 }
 
 /// Parses `path` and hands the document to `f`.
-fn with_doc<T>(path: &Path, what: &'static str, f: impl FnOnce(&roxmltree::Document) -> Result<T, String>) -> Result<T, TrafficError> {
+fn with_doc<T>(
+    path: &Path,
+    what: &'static str,
+    f: impl FnOnce(&roxmltree::Document) -> Result<T, String>,
+) -> Result<T, TrafficError> {
     let text = read(path)?;
     let opts = roxmltree::ParsingOptions { allow_dtd: true, ..Default::default() };
     let doc = roxmltree::Document::parse_with_options(&text, opts).map_err(|e| bad(path, what, e.to_string()))?;
@@ -21,8 +25,11 @@ fn with_doc<T>(path: &Path, what: &'static str, f: impl FnOnce(&roxmltree::Docum
 }
 
 fn attr<T: FromStr>(n: roxmltree::Node, name: &str) -> Result<T, String> {
-    let v = n.attribute(name).ok_or_else(|| format!("<{}> at byte {} has no `{name}`", n.tag_name().name(), n.range().start))?;
-    v.parse().map_err(|_| format!("<{}> at byte {}: `{name}` = {v:?} is not a number", n.tag_name().name(), n.range().start))
+    let v = n
+        .attribute(name)
+        .ok_or_else(|| format!("<{}> at byte {} has no `{name}`", n.tag_name().name(), n.range().start))?;
+    v.parse()
+        .map_err(|_| format!("<{}> at byte {}: `{name}` = {v:?} is not a number", n.tag_name().name(), n.range().start))
 }
 
 fn attr_or<T: FromStr>(n: roxmltree::Node, name: &str, default: T) -> Result<T, String> {
@@ -33,7 +40,10 @@ fn attr_or<T: FromStr>(n: roxmltree::Node, name: &str, default: T) -> Result<T, 
     }
 }
 
-fn elements<'a, 'i>(doc: &'a roxmltree::Document<'i>, tag: &'a str) -> impl Iterator<Item = roxmltree::Node<'a, 'i>> + 'a {
+fn elements<'a, 'i>(
+    doc: &'a roxmltree::Document<'i>,
+    tag: &'a str,
+) -> impl Iterator<Item = roxmltree::Node<'a, 'i>> + 'a {
     doc.descendants().filter(move |n| n.is_element() && n.tag_name().name() == tag)
 }
 
@@ -72,7 +82,14 @@ pub fn net(path: &Path) -> Result<SumoNet, TrafficError> {
             let first = lanes.first().ok_or_else(|| format!("edge {:?} has no lane", e.attribute("id")))?;
             out.edges.insert(
                 attr(e, "id")?,
-                NetEdge { from: attr(e, "from")?, to: attr(e, "to")?, edge_type: attr_or(e, "type", String::new())?, lanes: lanes.len(), length: attr(*first, "length")?, speed: attr(*first, "speed")? },
+                NetEdge {
+                    from: attr(e, "from")?,
+                    to: attr(e, "to")?,
+                    edge_type: attr_or(e, "type", String::new())?,
+                    lanes: lanes.len(),
+                    length: attr(*first, "length")?,
+                    speed: attr(*first, "speed")?,
+                },
             );
         }
         out.junctions = elements(doc, "junction").filter(|j| j.attribute("type") != Some("internal")).count();
@@ -169,7 +186,11 @@ pub fn vehroutes(path: &Path) -> Result<BTreeMap<String, Vec<String>>, TrafficEr
     with_doc(path, "a SUMO vehroute output", |doc| {
         let mut out = BTreeMap::new();
         for v in elements(doc, "vehicle") {
-            let route = v.descendants().filter(|c| c.is_element() && c.tag_name().name() == "route").last().ok_or_else(|| format!("vehicle {:?} has no route", v.attribute("id")))?;
+            let route = v
+                .descendants()
+                .filter(|c| c.is_element() && c.tag_name().name() == "route")
+                .last()
+                .ok_or_else(|| format!("vehicle {:?} has no route", v.attribute("id")))?;
             let edges: String = attr(route, "edges")?;
             out.insert(attr(v, "id")?, edges.split_whitespace().map(str::to_string).collect());
         }
@@ -197,6 +218,12 @@ pub fn statistics(path: &Path) -> Result<Statistics, TrafficError> {
     with_doc(path, "a SUMO statistic output", |doc| {
         let v = elements(doc, "vehicles").next().ok_or("no <vehicles>")?;
         let t = elements(doc, "teleports").next().ok_or("no <teleports>")?;
-        Ok(Statistics { loaded: attr(v, "loaded")?, inserted: attr(v, "inserted")?, running: attr(v, "running")?, waiting: attr(v, "waiting")?, teleports: attr(t, "total")? })
+        Ok(Statistics {
+            loaded: attr(v, "loaded")?,
+            inserted: attr(v, "inserted")?,
+            running: attr(v, "running")?,
+            waiting: attr(v, "waiting")?,
+            teleports: attr(t, "total")?,
+        })
     })
 }

@@ -235,10 +235,15 @@ pub fn build(
     let class_of: BTreeMap<&str, TripClass> = placed.trips.iter().map(|t| (t.id.as_str(), t.class)).collect();
     for t in &infos {
         if !class_of.contains_key(t.id.as_str()) {
-            return Err(TrafficError::new(&out.tripinfo, TrafficErrorKind::Output(format!("vehicle {:?} is not one of the trips written", t.id))));
+            return Err(TrafficError::new(
+                &out.tripinfo,
+                TrafficErrorKind::Output(format!("vehicle {:?} is not one of the trips written", t.id)),
+            ));
         }
     }
-    let of = |c: Option<TripClass>| -> Vec<&parse::TripInfo> { infos.iter().filter(|t| c.is_none_or(|c| class_of[t.id.as_str()] == c)).collect() };
+    let of = |c: Option<TripClass>| -> Vec<&parse::TripInfo> {
+        infos.iter().filter(|t| c.is_none_or(|c| class_of[t.id.as_str()] == c)).collect()
+    };
 
     let street_of: BTreeMap<u32, usize> = net.edges.iter().enumerate().map(|(k, e)| (e.id, k)).collect();
     let (mut local_m, mut total_m, mut used_local, mut measured) = (0.0, 0.0, 0usize, 0usize);
@@ -266,7 +271,13 @@ pub fn build(
         vehicle_share: (measured > 0).then(|| used_local as f64 / measured as f64),
     };
 
-    let mut summary = NetworkSummary { nodes: net.nodes.len(), streets: net.edges.len(), sumo_edges: sumo_net.edges.len(), sumo_junctions: sumo_net.junctions, ..Default::default() };
+    let mut summary = NetworkSummary {
+        nodes: net.nodes.len(),
+        streets: net.edges.len(),
+        sumo_edges: sumo_net.edges.len(),
+        sumo_junctions: sumo_net.junctions,
+        ..Default::default()
+    };
     let vol = |id: String| edata.get(&id).map_or(0.0, |d| d.volume());
     let mut edge_volumes = Vec::new();
     for e in &net.edges {
@@ -330,7 +341,10 @@ fn pct(v: Option<f64>) -> String {
 impl TrafficReport {
     /// Writes the report as `dir/traffic.json`.
     pub fn write(&self, dir: &std::path::Path) -> Result<(), TrafficError> {
-        super::write(&dir.join("traffic.json"), &(serde_json::to_string_pretty(self).expect("reports serialise") + "\n"))
+        super::write(
+            &dir.join("traffic.json"),
+            &(serde_json::to_string_pretty(self).expect("reports serialise") + "\n"),
+        )
     }
 
     /// A few lines for the terminal.
@@ -357,7 +371,11 @@ impl TrafficReport {
             "demand     {:.0} s, {:.0} through + {:.0} local per hour, seed {} (digest {}): drawn {} + {}, dropped {} same place + {} no street, routed {}/{}",
             d.settings.duration, d.settings.through_per_hour, d.settings.local_per_hour, d.settings.seed, d.digest, d.through_drawn, d.local_drawn, d.same_place, d.no_street, d.routed, d.placed
         );
-        let _ = writeln!(s, "vehicles   inserted {}, arrived {}, teleported {}, still running {}, never inserted {}", v.inserted, v.arrived, v.teleported, v.running_at_end, v.waiting_at_end);
+        let _ = writeln!(
+            s,
+            "vehicles   inserted {}, arrived {}, teleported {}, still running {}, never inserted {}",
+            v.inserted, v.arrived, v.teleported, v.running_at_end, v.waiting_at_end
+        );
         for (label, c) in [("all", &self.all), ("through", &self.through), ("local", &self.local)] {
             let _ = writeln!(
                 s,
@@ -406,7 +424,11 @@ pub fn comparison_markdown(rows: &[(String, &TrafficReport)]) -> String {
             d.through_per_hour,
             d.local_per_hour,
             d.seed,
-            if digests.len() == 1 { "the same trips (places and times) for every design".to_string() } else { format!("NOT the same trips: {} different demand digests (different regions)", digests.len()) },
+            if digests.len() == 1 {
+                "the same trips (places and times) for every design".to_string()
+            } else {
+                format!("NOT the same trips: {} different demand digests (different regions)", digests.len())
+            },
             r.sumo_version
         );
     }
@@ -441,7 +463,8 @@ pub fn comparison_markdown(rows: &[(String, &TrafficReport)]) -> String {
     }
     s.push_str("\nWhich run produced each design:\n\n");
     for (label, r) in rows {
-        let _ = writeln!(s, "- **{label}**: `{}` ({}, netspec {})", r.source.path, r.source.kind, r.source.netspec_version);
+        let _ =
+            writeln!(s, "- **{label}**: `{}` ({}, netspec {})", r.source.path, r.source.kind, r.source.netspec_version);
         for line in &r.source.runs {
             let _ = writeln!(s, "  - {line}");
         }

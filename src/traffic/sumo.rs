@@ -28,7 +28,9 @@ pub struct Sumo {
 /// Where `scripts/setup.sh` puts SUMO: `<deps>/sumo-home`.
 pub fn setup_location() -> Option<PathBuf> {
     let env = |k: &str| std::env::var_os(k).filter(|v| !v.is_empty()).map(PathBuf::from);
-    let deps = env("NETSPEC_DEPS").or_else(|| env("XDG_CACHE_HOME").map(|c| c.join("netspec"))).or_else(|| env("HOME").map(|h| h.join(".cache").join("netspec")))?;
+    let deps = env("NETSPEC_DEPS")
+        .or_else(|| env("XDG_CACHE_HOME").map(|c| c.join("netspec")))
+        .or_else(|| env("HOME").map(|h| h.join(".cache").join("netspec")))?;
     Some(deps.join("sumo-home"))
 }
 
@@ -54,7 +56,9 @@ impl Sumo {
             }
             looked.push(bin.display().to_string());
         }
-        if let Some(dir) = std::env::var_os("PATH").and_then(|p| std::env::split_paths(&p).find(|d| d.join("sumo").is_file())) {
+        if let Some(dir) =
+            std::env::var_os("PATH").and_then(|p| std::env::split_paths(&p).find(|d| d.join("sumo").is_file()))
+        {
             let home = Some(PathBuf::from("/usr/share/sumo")).filter(|h| h.join("data").is_dir());
             return Sumo::at(dir, home);
         }
@@ -73,7 +77,12 @@ impl Sumo {
             .rev()
             .find(|w| w.chars().next().is_some_and(|c| c.is_ascii_digit()) && w.contains('.'))
             .map(str::to_string)
-            .ok_or_else(|| TrafficError::new(&exe, TrafficErrorKind::Output(format!("`sumo --version` printed no version: {first:?}"))))?;
+            .ok_or_else(|| {
+                TrafficError::new(
+                    &exe,
+                    TrafficErrorKind::Output(format!("`sumo --version` printed no version: {first:?}")),
+                )
+            })?;
         Ok(Sumo { bin, home, version })
     }
 
@@ -94,8 +103,20 @@ impl Sumo {
             return Ok(());
         }
         let errors: Vec<&str> = text.lines().filter(|l| l.starts_with("Error")).collect();
-        let detail = if errors.is_empty() { text.lines().rev().take(3).collect::<Vec<_>>().into_iter().rev().collect::<Vec<_>>().join(" / ") } else { errors[..errors.len().min(3)].join(" / ") };
-        Err(TrafficError::new(input, TrafficErrorKind::ToolFailed { tool: tool.into(), status: out.status.to_string(), detail, log: log.to_path_buf() }))
+        let detail = if errors.is_empty() {
+            text.lines().rev().take(3).collect::<Vec<_>>().into_iter().rev().collect::<Vec<_>>().join(" / ")
+        } else {
+            errors[..errors.len().min(3)].join(" / ")
+        };
+        Err(TrafficError::new(
+            input,
+            TrafficErrorKind::ToolFailed {
+                tool: tool.into(),
+                status: out.status.to_string(),
+                detail,
+                log: log.to_path_buf(),
+            },
+        ))
     }
 
     /// `netconvert`: plain XML to `net` (coordinates kept as given; U-turns only at dead ends).
@@ -145,7 +166,13 @@ impl Sumo {
     /// `sumo` headless: the routes from time 0 until every vehicle has left, or at most one
     /// hour after the last departure window (`duration + 3600` s); writes the outputs into
     /// `dir`.
-    pub fn simulate(&self, net: &Path, routes: &Path, dir: &Path, demand: &DemandSettings) -> Result<SimOutputs, TrafficError> {
+    pub fn simulate(
+        &self,
+        net: &Path,
+        routes: &Path,
+        dir: &Path,
+        demand: &DemandSettings,
+    ) -> Result<SimOutputs, TrafficError> {
         let o = SimOutputs {
             tripinfo: dir.join("tripinfo.xml"),
             edgedata: dir.join("edgedata.xml"),

@@ -283,29 +283,44 @@ pub fn saved_roads(spec: &CitySpec, out: &Path, region: &RegionOutcome) -> Resul
     if let Some(last) = region.levels.iter().rev().find(|l| l.has_network()) {
         let path = region_dir(out, region.index, &region.name).join(format!("L{}", last.level)).join("state.json");
         let text = std::fs::read_to_string(&path).map_err(io_err(&path))?;
-        let state: LevelState = serde_json::from_str(&text).map_err(|e| CityError::State { path: path.clone(), message: e.to_string() })?;
+        let state: LevelState =
+            serde_json::from_str(&text).map_err(|e| CityError::State { path: path.clone(), message: e.to_string() })?;
         return match state.roads {
             Some(r) => Ok(Some(r)),
-            None => Err(CityError::State { path, message: format!("level {} is recorded with a network but has no roads", last.level) }),
+            None => Err(CityError::State {
+                path,
+                message: format!("level {} is recorded with a network but has no roads", last.level),
+            }),
         };
     }
     let origin = spec.domain_bounds().0;
-    Ok(mesh::clipped_grid_on_lattice(&region.outer, &region.holes, spec.mesh.spacing, origin).ok().map(RegionRoads::boundary_only))
+    Ok(mesh::clipped_grid_on_lattice(&region.outer, &region.holes, spec.mesh.spacing, origin)
+        .ok()
+        .map(RegionRoads::boundary_only))
 }
 
 /// The sub-regions of a city, each matched to its `[[region]]` entry.
 pub fn regions(spec: &CitySpec) -> Result<Vec<(Region, Option<usize>)>, CityError> {
     let roads: Vec<Vec<[f64; 2]>> = spec.roads.iter().map(|r| r.points.clone()).collect();
     let tol = spec.mesh.spacing * 1e-6;
-    let arr = planar::arrangement(&spec.domain.outer, &roads, tol).map_err(|e| CityError::Arrangement(e.to_string()))?;
+    let arr =
+        planar::arrangement(&spec.domain.outer, &roads, tol).map_err(|e| CityError::Arrangement(e.to_string()))?;
     let mut entries: Vec<Option<usize>> = vec![None; arr.regions.len()];
     for (i, r) in spec.regions.iter().enumerate() {
         let hit = arr.regions.iter().position(|reg| point_in_region(r.at, reg));
         let Some(k) = hit else {
-            return Err(CitySpecErrorKind::Field { field: format!("region[{i}].at"), message: format!("point {:?} is in no sub-region", r.at) }.into());
+            return Err(CitySpecErrorKind::Field {
+                field: format!("region[{i}].at"),
+                message: format!("point {:?} is in no sub-region", r.at),
+            }
+            .into());
         };
         if let Some(j) = entries[k] {
-            return Err(CitySpecErrorKind::Field { field: format!("region[{i}].at"), message: format!("names the same sub-region as region[{j}]") }.into());
+            return Err(CitySpecErrorKind::Field {
+                field: format!("region[{i}].at"),
+                message: format!("names the same sub-region as region[{j}]"),
+            }
+            .into());
         }
         entries[k] = Some(i);
     }
@@ -318,7 +333,8 @@ fn point_in_region(p: [f64; 2], r: &Region) -> bool {
 
 /// The directory of one region's files.
 pub fn region_dir(out: &Path, index: usize, name: &str) -> PathBuf {
-    let safe: String = name.chars().map(|c| if c.is_ascii_alphanumeric() || c == '-' || c == '_' { c } else { '_' }).collect();
+    let safe: String =
+        name.chars().map(|c| if c.is_ascii_alphanumeric() || c == '-' || c == '_' { c } else { '_' }).collect();
     out.join("regions").join(format!("{index:02}-{safe}"))
 }
 
@@ -329,13 +345,24 @@ fn write_atomic(path: &Path, text: &str) -> Result<(), CityError> {
 /// Runs every sub-region's levels (in parallel) and returns the outcomes in region order;
 /// `regs` are the city's sub-regions from [`regions`].
 /// Finished levels are written under `out/regions/` as they end.
-pub fn run_regions(spec: &CitySpec, regs: Vec<(Region, Option<usize>)>, out: &Path, opts: &CityRunOptions) -> Result<Vec<RegionOutcome>, CityError> {
+pub fn run_regions(
+    spec: &CitySpec,
+    regs: Vec<(Region, Option<usize>)>,
+    out: &Path,
+    opts: &CityRunOptions,
+) -> Result<Vec<RegionOutcome>, CityError> {
     // One lattice for the whole city, through the domain's lower-left corner.
     let origin = spec.domain_bounds().0;
     let workers = (opts.threads / opts.threads_per_solve.max(1)).max(1) as usize;
-    let pool = rayon::ThreadPoolBuilder::new().num_threads(workers).build().map_err(|e| CityError::Threads(e.to_string()))?;
+    let pool =
+        rayon::ThreadPoolBuilder::new().num_threads(workers).build().map_err(|e| CityError::Threads(e.to_string()))?;
     use rayon::prelude::*;
-    pool.install(|| regs.into_par_iter().enumerate().map(|(i, (reg, entry))| run_region(spec, out, opts, origin, i, reg, entry)).collect())
+    pool.install(|| {
+        regs.into_par_iter()
+            .enumerate()
+            .map(|(i, (reg, entry))| run_region(spec, out, opts, origin, i, reg, entry))
+            .collect()
+    })
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -351,7 +378,17 @@ fn run_region(
     let name = spec.region_name(index, entry);
     let dir = region_dir(out, index, &name);
     std::fs::create_dir_all(&dir).map_err(io_err(&dir))?;
-    let mut outcome = RegionOutcome { index, name: name.clone(), spec_entry: entry, outer: reg.outer.clone(), holes: reg.holes.clone(), area: reg.area, label_point: reg.label_point, levels: Vec::new(), roads: None };
+    let mut outcome = RegionOutcome {
+        index,
+        name: name.clone(),
+        spec_entry: entry,
+        outer: reg.outer.clone(),
+        holes: reg.holes.clone(),
+        area: reg.area,
+        label_point: reg.label_point,
+        levels: Vec::new(),
+        roads: None,
+    };
     let emit = |e: CityEvent| {
         if let Some(o) = &opts.observer {
             o(&e)
@@ -362,7 +399,11 @@ fn run_region(
         Ok(m) => m,
         Err(e) => {
             for &n in &levels {
-                let o = LevelOutcome::bare(n, "error", format!("the sub-region cannot be meshed at spacing {}: {e}", spec.mesh.spacing));
+                let o = LevelOutcome::bare(
+                    n,
+                    "error",
+                    format!("the sub-region cannot be meshed at spacing {}: {e}", spec.mesh.spacing),
+                );
                 emit(CityEvent::LevelDone { region: index, outcome: o.clone() });
                 outcome.levels.push(o);
             }
@@ -387,7 +428,10 @@ fn run_region(
         if let Some(r) = next {
             roads = r;
         } else {
-            blocked = Some(format!("level {n} ended without a network ({})", o.termination.clone().or(o.message.clone()).unwrap_or_default()));
+            blocked = Some(format!(
+                "level {n} ended without a network ({})",
+                o.termination.clone().or(o.message.clone()).unwrap_or_default()
+            ));
         }
         if o.termination.as_deref() == Some("interrupted") {
             blocked = Some("interrupted".into());
@@ -421,7 +465,8 @@ pub fn level_input(city: &str, region: &str, n: u8, level: &LevelSpec, prev: &Re
     } else {
         prev.clone()
     };
-    let mut spec = level.to_spec(format!("{city}-{region}-L{n}"), format!("city {city}, sub-region {region}, level {n}"));
+    let mut spec =
+        level.to_spec(format!("{city}-{region}-L{n}"), format!("city {city}, sub-region {region}, level {n}"));
     for e in roads.mesh.edges() {
         if roads.edge_level[e.index()] >= 2 {
             let (a, b) = roads.mesh.edge_vertices(e);
@@ -445,7 +490,13 @@ fn run_level(
 ) -> Result<(LevelOutcome, Option<RegionRoads>), CityError> {
     let input = level_input(&city.name, name, n, level, prev);
     let time_limit = opts.time_limit.or(level.time_limit);
-    let solve_opts = SolveOptions { time_limit, rel_gap: opts.gap, threads: Some(opts.threads_per_solve), seed: opts.seed, ..SolveOptions::default() };
+    let solve_opts = SolveOptions {
+        time_limit,
+        rel_gap: opts.gap,
+        threads: Some(opts.threads_per_solve),
+        seed: opts.seed,
+        ..SolveOptions::default()
+    };
     let spec_json = serde_json::to_string(&input.spec).expect("specs serialise");
     let mesh_json = serde_json::to_string(&input.roads.mesh).expect("meshes serialise");
     let opts_json = serde_json::to_string(&(opts.solver, &solve_opts)).expect("options serialise");
@@ -453,7 +504,9 @@ fn run_level(
     let ldir = dir.join(format!("L{n}"));
     let state_path = ldir.join("state.json");
     if opts.resume {
-        if let Some(state) = std::fs::read_to_string(&state_path).ok().and_then(|t| serde_json::from_str::<LevelState>(&t).ok()) {
+        if let Some(state) =
+            std::fs::read_to_string(&state_path).ok().and_then(|t| serde_json::from_str::<LevelState>(&t).ok())
+        {
             if state.fingerprint == fingerprint {
                 let mut o = state.outcome;
                 if o.has_network() {
@@ -467,7 +520,10 @@ fn run_level(
     let _ = std::fs::remove_file(&state_path);
     // The level as a standalone instance: `netspec solve L<n>/spec.json` rebuilds the same model.
     write_atomic(&ldir.join("mesh.json"), &mesh_json)?;
-    write_atomic(&ldir.join("spec.json"), &(serde_json::to_string_pretty(&input.spec).expect("specs serialise") + "\n"))?;
+    write_atomic(
+        &ldir.join("spec.json"),
+        &(serde_json::to_string_pretty(&input.spec).expect("specs serialise") + "\n"),
+    )?;
     emit(CityEvent::LevelStarted { region, level: n, time_limit });
     let problem = match input.spec.resolve_on_mesh(input.roads.mesh.clone()) {
         Ok(p) => p,
@@ -478,7 +534,9 @@ fn run_level(
     solve_opts.interrupt = opts.interrupt.clone();
     if opts.observer.is_some() && opts.solver.instance().is_ok_and(|s| s.capabilities().reports_progress) {
         let observer = opts.observer.clone().expect("checked");
-        solve_opts.progress = Some(ProgressSink(Arc::new(move |progress| observer(&CityEvent::LevelProgress { region, level: n, progress }))));
+        solve_opts.progress = Some(ProgressSink(Arc::new(move |progress| {
+            observer(&CityEvent::LevelProgress { region, level: n, progress })
+        })));
     }
     // Every level starts from the construction heuristic's design (checked before it is used).
     let from = pipeline::default_start(solve_opts.finite_time_limit());

@@ -2,14 +2,14 @@
 //! (`city.json`, `streets.geojson`, `city.svg`, `city.png`).
 
 use super::city::{self, CityError, CityRunOptions, RegionOutcome};
-use crate::mesh::geom;
 use super::metrics::{street_metrics, StreetMetrics};
 use super::planar::{PlanarGraph, Region};
 use super::smooth::{self, Snake, StreetEdge, StreetGraph};
 use super::spec::{CitySpec, SmoothingMethod};
+use crate::mesh::geom;
+use crate::render::city::{CityPicture, RegionShape};
 use indexmap::IndexMap;
 use serde::{Deserialize, Serialize};
-use crate::render::city::{CityPicture, RegionShape};
 use std::path::Path;
 
 /// Version of the city result schema (`city.json`).
@@ -112,7 +112,12 @@ pub fn run_city(spec: &CitySpec, out: &Path, opts: &CityRunOptions) -> Result<Ci
 
 /// [`run_city`] on sub-regions already computed with [`city::regions`] (the command line needs
 /// them first, for its progress bars).
-pub fn run_city_on(spec: &CitySpec, regs: Vec<(Region, Option<usize>)>, out: &Path, opts: &CityRunOptions) -> Result<CityResult, CityError> {
+pub fn run_city_on(
+    spec: &CitySpec,
+    regs: Vec<(Region, Option<usize>)>,
+    out: &Path,
+    opts: &CityRunOptions,
+) -> Result<CityResult, CityError> {
     let t0 = std::time::Instant::now();
     std::fs::create_dir_all(out).map_err(|source| CityError::Io { path: out.to_path_buf(), source })?;
     let regions = city::run_regions(spec, regs, out, opts)?;
@@ -129,7 +134,8 @@ pub fn run_city_on(spec: &CitySpec, regs: Vec<(Region, Option<usize>)>, out: &Pa
         energy_after: smoothed.energy_after,
         iterations: smoothed.iterations,
         converged: smoothed.converged,
-        smoothed_length_km: (streets.iter().map(|s| polyline_length(&s.points)).sum::<f64>() + major.iter().map(|g| polyline_length(g)).sum::<f64>())
+        smoothed_length_km: (streets.iter().map(|s| polyline_length(&s.points)).sum::<f64>()
+            + major.iter().map(|g| polyline_length(g)).sum::<f64>())
             * spec.metres_per_unit
             / 1000.0,
     };
@@ -184,14 +190,23 @@ pub fn major_road_segments(regions: &[RegionOutcome]) -> Vec<[[f64; 2]; 2]> {
 }
 
 fn nearest_on_segments(p: [f64; 2], segments: &[[[f64; 2]; 2]]) -> Option<[f64; 2]> {
-    segments.iter().map(|&[a, b]| geom::closest_on_segment(p, a, b)).min_by(|q, r| geom::dist(p, *q).total_cmp(&geom::dist(p, *r)))
+    segments
+        .iter()
+        .map(|&[a, b]| geom::closest_on_segment(p, a, b))
+        .min_by(|q, r| geom::dist(p, *q).total_cmp(&geom::dist(p, *r)))
 }
 
 /// The streets to draw: level-1 snakes are dropped (level 1 is drawn as given), and every end of
 /// a level ≥ 2 snake that sits on the sub-region boundary (the staircase next to a major road)
 /// where streets may join it (`joins`) is moved onto the major road itself, the move fading out linearly over `blend` of arc length,
 /// so streets meet the roads they join.
-pub fn snap_to_major_roads(g: &StreetGraph, joins: &[bool], snakes: Vec<Snake>, major: &[[[f64; 2]; 2]], blend: f64) -> Vec<Snake> {
+pub fn snap_to_major_roads(
+    g: &StreetGraph,
+    joins: &[bool],
+    snakes: Vec<Snake>,
+    major: &[[[f64; 2]; 2]],
+    blend: f64,
+) -> Vec<Snake> {
     let mut on_major = vec![false; g.positions.len()];
     for e in g.edges.iter().filter(|e| e.level == 1) {
         for v in [e.a as usize, e.b as usize] {
@@ -316,7 +331,10 @@ pub fn city_picture(spec: &CitySpec, result: &CityResult, major: &[[[f64; 2]; 2]
             result.solver,
             if result.valid { "; every network valid" } else { "; NOT EVERY NETWORK VALID" }
         ),
-        subtitle: vec![format!("{}; {} m per unit", result.metrics.totals_line(), spec.metres_per_unit), result.metrics.density_line()],
+        subtitle: vec![
+            format!("{}; {} m per unit", result.metrics.totals_line(), spec.metres_per_unit),
+            result.metrics.density_line(),
+        ],
         bounds: spec.domain_bounds(),
         regions: result
             .regions

@@ -25,7 +25,6 @@ use crate::mesh::geom::{dist, dot, sub, P};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeSet;
 
-
 /// A street network drawn on a mesh: positions and undirected edges with a level (1 = major
 /// roads, 2 = collector, 3 = local, 4 = cul-de-sacs).
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -559,7 +558,9 @@ pub fn by_method(g: &StreetGraph, method: super::spec::SmoothingMethod) -> Smoot
     match method {
         SmoothingMethod::Snake => smooth(g, &SnakeOptions::default()),
         SmoothingMethod::Fair => fair(g, &FairOptions::default()),
-        SmoothingMethod::None => SmoothResult { snakes: decompose(g), energy_before: 0.0, energy_after: 0.0, iterations: 0, converged: true },
+        SmoothingMethod::None => {
+            SmoothResult { snakes: decompose(g), energy_before: 0.0, energy_after: 0.0, iterations: 0, converged: true }
+        }
     }
 }
 

@@ -8,7 +8,8 @@
 
 use crate::solvers::SolverKind;
 use crate::spec::{
-    BoundaryRole, CoverageSpec, FeatureSpec, FormulationSpec, MeshSpec, PointToPointSpec, SinkSpec, Spec, SolverSpec, UserSpec, WeightSpec,
+    BoundaryRole, CoverageSpec, FeatureSpec, FormulationSpec, MeshSpec, PointToPointSpec, SinkSpec, SolverSpec, Spec,
+    UserSpec, WeightSpec,
 };
 use indexmap::IndexMap;
 use serde::{Deserialize, Serialize};
@@ -329,12 +330,18 @@ impl CitySpec {
             for key in r.levels.keys() {
                 let n = level_number(&format!("region[{i}].levels.{key}"), key)?;
                 if !self.levels.contains_key(key) {
-                    return Err(field(format!("region[{i}].levels.{key}"), format!("level {n} has no default in [levels.{n}]")));
+                    return Err(field(
+                        format!("region[{i}].levels.{key}"),
+                        format!("level {n} has no default in [levels.{n}]"),
+                    ));
                 }
             }
             for &n in r.run_levels.iter().flatten() {
                 if !self.levels.contains_key(&n.to_string()) {
-                    return Err(field(format!("region[{i}].run_levels"), format!("level {n} has no default in [levels.{n}]")));
+                    return Err(field(
+                        format!("region[{i}].run_levels"),
+                        format!("level {n} has no default in [levels.{n}]"),
+                    ));
                 }
             }
         }
@@ -379,7 +386,8 @@ impl CitySpec {
     /// Level `n`'s spec for a region (`None`: the defaults), overrides merged.
     pub fn level(&self, region: Option<usize>, n: u8) -> Result<LevelSpec, CitySpecErrorKind> {
         let key = n.to_string();
-        let mut table = self.levels.get(&key).cloned().ok_or_else(|| field("levels", format!("level {n} has no default")))?;
+        let mut table =
+            self.levels.get(&key).cloned().ok_or_else(|| field("levels", format!("level {n} has no default")))?;
         let mut at = format!("levels.{n}");
         if let Some(i) = region {
             if let Some(over) = self.regions[i].levels.get(&key) {
@@ -387,9 +395,7 @@ impl CitySpec {
                 at = format!("region[{i}].levels.{n} (merged with levels.{n})");
             }
         }
-        table
-            .try_into::<LevelSpec>()
-            .map_err(|e| field(at, e.to_string().trim_end().to_string()))
+        table.try_into::<LevelSpec>().map_err(|e| field(at, e.to_string().trim_end().to_string()))
     }
 }
 

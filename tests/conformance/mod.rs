@@ -21,11 +21,20 @@ pub fn solve(kind: SolverKind, model: &Model, options: &SolveOptions) -> SolveRe
 /// Asserts the result's primal point passes the independent checker and that the recomputed
 /// objective matches the reported one.
 pub fn assert_checked(model: &Model, r: &SolveResult) {
-    let x = r.primal.as_ref().unwrap_or_else(|| panic!("{} on {}: no primal point ({})", r.solver, model.name, r.termination));
+    let x = r
+        .primal
+        .as_ref()
+        .unwrap_or_else(|| panic!("{} on {}: no primal point ({})", r.solver, model.name, r.termination));
     let rep = check_point(model, x, &Tolerances::default());
     assert!(rep.is_feasible(), "{} on {}: checker found {:?}", r.solver, model.name, rep.violations);
     let obj = r.objective.expect("objective with a primal point");
-    assert!(objectives_agree(rep.objective, obj, 1e-6), "{} on {}: solver objective {obj}, recomputed {}", r.solver, model.name, rep.objective);
+    assert!(
+        objectives_agree(rep.objective, obj, 1e-6),
+        "{} on {}: solver objective {obj}, recomputed {}",
+        r.solver,
+        model.name,
+        rep.objective
+    );
 }
 
 /// Solves to optimality and checks the optimum against `expected`.
@@ -46,7 +55,11 @@ pub fn assert_optimal_with(kind: SolverKind, model: &Model, options: &SolveOptio
     if let Some(g) = r.gap {
         assert!(g <= 1e-6, "{kind}: gap {g} at optimality");
     }
-    assert!(r.wall_time >= 0.0 && r.solver_version.chars().any(|c| c.is_ascii_digit()), "{kind}: version {:?}", r.solver_version);
+    assert!(
+        r.wall_time >= 0.0 && r.solver_version.chars().any(|c| c.is_ascii_digit()),
+        "{kind}: version {:?}",
+        r.solver_version
+    );
     assert_reports_match_capabilities(kind, model, &r);
     r
 }
@@ -128,7 +141,12 @@ pub fn empty_model(kind: SolverKind) {
 
 fn assert_termination_in(kind: SolverKind, model: &Model, allowed: &[Termination]) {
     let r = solve(kind, model, &SolveOptions::default());
-    assert!(allowed.contains(&r.termination), "{kind} on {}: got {}, expected one of {allowed:?}", model.name, r.termination);
+    assert!(
+        allowed.contains(&r.termination),
+        "{kind} on {}: got {}, expected one of {allowed:?}",
+        model.name,
+        r.termination
+    );
     assert!(r.objective.is_none() || r.termination == Termination::Unbounded, "{kind}: objective on {}", r.termination);
     if r.termination == Termination::Infeasible {
         assert!(r.primal.is_none(), "{kind} on {}: a primal point for an infeasible model", model.name);
@@ -162,11 +180,19 @@ pub fn unbounded_lp(kind: SolverKind) {
 }
 
 pub fn unbounded_mip(kind: SolverKind) {
-    assert_termination_in(kind, &models::unbounded_mip(), &[Termination::Unbounded, Termination::InfeasibleOrUnbounded]);
+    assert_termination_in(
+        kind,
+        &models::unbounded_mip(),
+        &[Termination::Unbounded, Termination::InfeasibleOrUnbounded],
+    );
 }
 
 pub fn infeasible_or_unbounded(kind: SolverKind) {
-    assert_termination_in(kind, &models::infeasible_or_unbounded(), &[Termination::Infeasible, Termination::InfeasibleOrUnbounded]);
+    assert_termination_in(
+        kind,
+        &models::infeasible_or_unbounded(),
+        &[Termination::Infeasible, Termination::InfeasibleOrUnbounded],
+    );
 }
 
 /// Seconds the solve itself took: the solver's own time where it reports one, else the wall
@@ -271,7 +297,11 @@ pub fn unsupported_options_are_refused(kind: SolverKind) {
         (caps.abs_gap, "abs_gap", SolveOptions { abs_gap: Some(1.0), ..Default::default() }),
     ];
     let log = std::env::temp_dir().join(format!("netspec-log-{kind}-{}.txt", std::process::id()));
-    probes.push((caps.log_file, "log", SolveOptions { log: netspec::solvers::LogTarget::File(log.clone()), ..Default::default() }));
+    probes.push((
+        caps.log_file,
+        "log",
+        SolveOptions { log: netspec::solvers::LogTarget::File(log.clone()), ..Default::default() },
+    ));
     // A log on standard output is probed only where it must be refused (it would litter the
     // test output where it is honoured).
     if !caps.log_stdout {
@@ -391,7 +421,9 @@ pub fn optimal_mip_start_is_proven_optimal(kind: SolverKind) {
     for a in -5..=5 {
         for b in -5..=5 {
             let x = vec![a as f64, b as f64];
-            if netspec::milp::check_point(&model, &x, &netspec::milp::Tolerances::default()).is_feasible() && model.objective_value(&x) == best {
+            if netspec::milp::check_point(&model, &x, &netspec::milp::Tolerances::default()).is_feasible()
+                && model.objective_value(&x) == best
+            {
                 start = Some(x);
             }
         }
@@ -406,7 +438,10 @@ pub fn optimal_mip_start_is_proven_optimal(kind: SolverKind) {
     let best = models::knapsack_optimum();
     let start = (0u32..1 << n)
         .map(|s| (0..n).map(|i| (s >> i & 1) as f64).collect::<Vec<f64>>())
-        .find(|x| netspec::milp::check_point(&model, x, &netspec::milp::Tolerances::default()).is_feasible() && model.objective_value(x) == best)
+        .find(|x| {
+            netspec::milp::check_point(&model, x, &netspec::milp::Tolerances::default()).is_feasible()
+                && model.objective_value(x) == best
+        })
         .unwrap();
     assert_optimal_with(kind, &model, &SolveOptions { mip_start: Some(start), ..Default::default() }, best);
 }
@@ -423,7 +458,12 @@ pub fn lazy_subtour_elimination(kind: SolverKind) {
     assert_eq!(r.termination, Termination::Optimal, "{kind}");
     assert!(out.report.rows_added >= 1 && out.rows.len() == out.report.rows_added, "{kind}: {:?}", out.report);
     let caps = solver.capabilities();
-    assert_eq!(out.report.mode == netspec::solvers::LazyMode::Callback, caps.lazy_constraints, "{kind}: {:?}", out.report.mode);
+    assert_eq!(
+        out.report.mode == netspec::solvers::LazyMode::Callback,
+        caps.lazy_constraints,
+        "{kind}: {:?}",
+        out.report.mode
+    );
     // The point satisfies the model and every separated row, and is one tour.
     let mut full = model.clone();
     for row in &out.rows {
@@ -433,7 +473,11 @@ pub fn lazy_subtour_elimination(kind: SolverKind) {
     let x = r.primal.as_ref().unwrap();
     assert!(models::SubtourSeparator { edges, n: cities.len(), calls: 0 }.components(x) == 1, "{kind}: not one tour");
     let best = models::brute_force_tour(&cities);
-    assert!(objectives_agree(r.objective.unwrap(), best, 1e-6), "{kind}: {} vs brute force {best}", r.objective.unwrap());
+    assert!(
+        objectives_agree(r.objective.unwrap(), best, 1e-6),
+        "{kind}: {} vs brute force {best}",
+        r.objective.unwrap()
+    );
 }
 
 /// A lazy solve from a MIP start that satisfies every lazy row (a poor but complete tour):
@@ -465,7 +509,11 @@ pub fn lazy_solve_from_a_start(kind: SolverKind) {
     }
     assert_checked(&full, r);
     let best = models::brute_force_tour(&cities);
-    assert!(objectives_agree(r.objective.unwrap(), best, 1e-6), "{kind}: {} vs brute force {best}", r.objective.unwrap());
+    assert!(
+        objectives_agree(r.objective.unwrap(), best, 1e-6),
+        "{kind}: {} vs brute force {best}",
+        r.objective.unwrap()
+    );
 }
 
 /// An LP kept loaded between solves ([`netspec::solvers::Solver::lp_session`]), for backends
@@ -478,11 +526,17 @@ pub fn lp_session_adds_rows(kind: SolverKind) {
     // (model, its optimum, a row to add as (lhs, rhs, terms by column), an infeasible row)
     type Side = (f64, f64, Vec<(usize, f64)>);
     let cases: Vec<(Model, f64, Side, Side)> = vec![
-        (models::lp_with_constant(), 4.2, (f64::NEG_INFINITY, 2.0, vec![(0, 1.0), (1, 1.0)]), (3.0, f64::INFINITY, vec![(0, 1.0), (1, 1.0)])),
+        (
+            models::lp_with_constant(),
+            4.2,
+            (f64::NEG_INFINITY, 2.0, vec![(0, 1.0), (1, 1.0)]),
+            (3.0, f64::INFINITY, vec![(0, 1.0), (1, 1.0)]),
+        ),
         (models::lp_max(), 11.0, (1.5, f64::INFINITY, vec![(1, 1.0)]), (f64::NEG_INFINITY, 1.0, vec![(1, 1.0)])),
     ];
     for (model, optimum, row, empties) in cases {
-        let Some(mut lp) = solver.lp_session(&model, &o).unwrap_or_else(|e| panic!("{kind} on {}: {e}", model.name)) else {
+        let Some(mut lp) = solver.lp_session(&model, &o).unwrap_or_else(|e| panic!("{kind} on {}: {e}", model.name))
+        else {
             return;
         };
         let lazy = |name: &str, (lhs, rhs, terms): &Side| netspec::solvers::LazyRow {
@@ -503,11 +557,26 @@ pub fn lp_session_adds_rows(kind: SolverKind) {
         let r = lp.solve(Some(10.0)).unwrap();
         assert_eq!(r.termination, Termination::Optimal, "{kind} on {} with the row", model.name);
         assert_checked(&with_row, &r);
-        assert!(objectives_agree(r.objective.unwrap(), fresh.objective.unwrap(), 1e-6), "{kind} on {}: {:?} kept, {:?} fresh", model.name, r.objective, fresh.objective);
-        assert!(!objectives_agree(r.objective.unwrap(), optimum, 1e-6), "{kind} on {}: the added row must cut the optimum off", model.name);
+        assert!(
+            objectives_agree(r.objective.unwrap(), fresh.objective.unwrap(), 1e-6),
+            "{kind} on {}: {:?} kept, {:?} fresh",
+            model.name,
+            r.objective,
+            fresh.objective
+        );
+        assert!(
+            !objectives_agree(r.objective.unwrap(), optimum, 1e-6),
+            "{kind} on {}: the added row must cut the optimum off",
+            model.name
+        );
         lp.add_rows(&[lazy("empties", &empties)]).unwrap();
         let r = lp.solve(None).unwrap();
-        assert!(matches!(r.termination, Termination::Infeasible | Termination::InfeasibleOrUnbounded), "{kind} on {}: {}", model.name, r.termination);
+        assert!(
+            matches!(r.termination, Termination::Infeasible | Termination::InfeasibleOrUnbounded),
+            "{kind} on {}: {}",
+            model.name,
+            r.termination
+        );
     }
 }
 

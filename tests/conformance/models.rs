@@ -364,8 +364,18 @@ impl netspec::solvers::Separator for SubtourSeparator {
             .iter()
             .map(|&r| {
                 self.calls += 1;
-                let terms = self.edges.iter().filter(|&&(i, j, _)| (labels[i] == r) != (labels[j] == r)).map(|&(_, _, v)| (v, 1.0)).collect();
-                netspec::solvers::LazyRow { name: format!("subtour{}", self.calls), lhs: 2.0, rhs: f64::INFINITY, terms }
+                let terms = self
+                    .edges
+                    .iter()
+                    .filter(|&&(i, j, _)| (labels[i] == r) != (labels[j] == r))
+                    .map(|&(_, _, v)| (v, 1.0))
+                    .collect();
+                netspec::solvers::LazyRow {
+                    name: format!("subtour{}", self.calls),
+                    lhs: 2.0,
+                    rhs: f64::INFINITY,
+                    terms,
+                }
             })
             .collect()
     }

@@ -64,7 +64,8 @@ pub fn distance_flow(c: &mut Ctx) {
         let mut ex = Expr::new();
         for h in mesh.edge_half_edges(e) {
             let head_is_sink = p.is_sink[mesh.he_head(h).index()];
-            let d = c.em.model.add_binary(format!("H_{}", he_name(mesh, h)), if head_is_sink { 0.0 } else { lambda * len });
+            let d =
+                c.em.model.add_binary(format!("H_{}", he_name(mesh, h)), if head_is_sink { 0.0 } else { lambda * len });
             c.vars.half_edge[h.index()] = Some(d);
             ex.add(d, 1.0);
         }
@@ -101,7 +102,9 @@ fn vertex_flow(c: &mut Ctx, prefix: &str, cost: impl Fn(f64) -> f64) -> Vec<Opti
     let p = c.p;
     let mesh = &p.mesh;
     let hes = candidate_half_edges(c);
-    let cap = mesh.vertices().filter(|v| !p.is_sink[v.index()] && mesh.incident_edges(*v).any(|e| c.is_candidate(e))).count() as f64;
+    let cap =
+        mesh.vertices().filter(|v| !p.is_sink[v.index()] && mesh.incident_edges(*v).any(|e| c.is_candidate(e))).count()
+            as f64;
     let mut flow = vec![None; mesh.num_half_edges()];
     for &h in &hes {
         if p.is_sink[mesh.he_tail(h).index()] {

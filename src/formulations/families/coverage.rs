@@ -119,7 +119,8 @@ fn ball_cut(c: &mut Ctx, name: &str, cover: &[crate::mesh::VertexId], girth: f64
     for &u in cover {
         inside[u.index()] = true;
     }
-    let mut edges: Vec<crate::mesh::EdgeId> = cover.iter().flat_map(|&u| mesh.incident_edges(u)).filter(|&e| c.is_candidate(e)).collect();
+    let mut edges: Vec<crate::mesh::EdgeId> =
+        cover.iter().flat_map(|&u| mesh.incident_edges(u)).filter(|&e| c.is_candidate(e)).collect();
     edges.sort();
     edges.dedup();
     let mut ex = Expr::new();
@@ -127,7 +128,13 @@ fn ball_cut(c: &mut Ctx, name: &str, cover: &[crate::mesh::VertexId], girth: f64
     for e in edges {
         let (a, b) = mesh.edge_vertices(e);
         let crossing = inside[a.index()] != inside[b.index()];
-        let w = if crossing { 1.0 } else if forbid { 1.0 / girth } else { 0.0 };
+        let w = if crossing {
+            1.0
+        } else if forbid {
+            1.0 / girth
+        } else {
+            0.0
+        };
         if w > 0.0 {
             ex.add_value(c.edge_value(e), w);
         }

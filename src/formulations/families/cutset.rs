@@ -22,9 +22,9 @@
 //! new capacities and stops as soon as the flow reaches the vertex's activity.
 
 use crate::formulations::expr::Value;
+use crate::mesh::VertexId;
 use crate::milp::VarId;
 use crate::solvers::{LazyRow, Lock, Separator};
-use crate::mesh::VertexId;
 use crate::spec::Problem;
 use serde::{Deserialize, Serialize};
 use std::collections::VecDeque;
@@ -99,10 +99,24 @@ impl CutsetGraph {
     /// its half-edges (direction binaries or parent arcs) when the recipe has them (see
     /// [`CutsetGraph::arcs`]). An arc may be missing only out of a sink; otherwise the graph
     /// gets no arcs.
-    pub fn new(p: &Problem, edge: &[Option<VarId>], vertex: &[Value], directions: Option<&[Option<VarId>]>) -> CutsetGraph {
+    pub fn new(
+        p: &Problem,
+        edge: &[Option<VarId>],
+        vertex: &[Value],
+        directions: Option<&[Option<VarId>]>,
+    ) -> CutsetGraph {
         let mesh = &p.mesh;
         let mut node = vec![u32::MAX; mesh.num_vertices()];
-        let mut g = CutsetGraph { nodes: 1, edges: Vec::new(), activity: vec![Value::Const(1.0)], vertex: vec![u32::MAX], groups: Vec::new(), arcs: None, girth: None, cuts_only: false };
+        let mut g = CutsetGraph {
+            nodes: 1,
+            edges: Vec::new(),
+            activity: vec![Value::Const(1.0)],
+            vertex: vec![u32::MAX],
+            groups: Vec::new(),
+            arcs: None,
+            girth: None,
+            cuts_only: false,
+        };
         for v in mesh.vertices() {
             if p.is_sink[v.index()] {
                 node[v.index()] = 0;
@@ -142,7 +156,11 @@ impl CutsetGraph {
     /// reads it), the ball's nodes. Only inclusion-minimal groups are kept (a superset's
     /// cutsets are among its subset's).
     pub fn with_cover_groups(self, p: &Problem, vertex: &[Value], girth: Option<f64>) -> CutsetGraph {
-        let balls = p.mesh.vertices().filter(|v| !p.is_obstacle_vertex[v.index()]).map(|v| (GroupOrigin::Ball(v.0), crate::rules::cover_set(p, v)));
+        let balls = p
+            .mesh
+            .vertices()
+            .filter(|v| !p.is_obstacle_vertex[v.index()])
+            .map(|v| (GroupOrigin::Ball(v.0), crate::rules::cover_set(p, v)));
         self.with_groups(p, vertex, girth, balls)
     }
 
@@ -150,7 +168,13 @@ impl CutsetGraph {
     /// vertex lies in. A set holding a sink or a vertex active as a constant (`vertex`) gives
     /// no cut and is left out, as is every set that contains another (a superset's cutsets
     /// are among its subset's). `girth` as for [`CutsetGraph::with_cover_groups`].
-    pub fn with_groups(mut self, p: &Problem, vertex: &[Value], girth: Option<f64>, sets: impl IntoIterator<Item = (GroupOrigin, Vec<VertexId>)>) -> CutsetGraph {
+    pub fn with_groups(
+        mut self,
+        p: &Problem,
+        vertex: &[Value],
+        girth: Option<f64>,
+        sets: impl IntoIterator<Item = (GroupOrigin, Vec<VertexId>)>,
+    ) -> CutsetGraph {
         self.girth = girth;
         let mut node = vec![u32::MAX; p.mesh.num_vertices()];
         for (k, &v) in self.vertex.iter().enumerate().skip(1) {
@@ -170,7 +194,13 @@ impl CutsetGraph {
         }
         let subset = |a: &[u32], b: &[u32]| a.len() <= b.len() && a.iter().all(|k| b.binary_search(k).is_ok());
         let keep: Vec<bool> = (0..groups.len())
-            .map(|i| !(0..groups.len()).any(|j| j != i && subset(&groups[j].nodes, &groups[i].nodes) && (groups[j].nodes.len() < groups[i].nodes.len() || j < i)))
+            .map(|i| {
+                !(0..groups.len()).any(|j| {
+                    j != i
+                        && subset(&groups[j].nodes, &groups[i].nodes)
+                        && (groups[j].nodes.len() < groups[i].nodes.len() || j < i)
+                })
+            })
             .collect();
         self.groups = groups.into_iter().zip(keep).filter(|(_, k)| *k).map(|(g, _)| g).collect();
         self
@@ -196,7 +226,8 @@ impl FlowGraph {
     fn new(g: &CutsetGraph) -> FlowGraph {
         let n = g.nodes;
         let src = n as u32;
-        let links: Vec<(u32, u32)> = g.edges.iter().map(|&(a, b, _)| (a, b)).chain((1..n as u32).map(|v| (src, v))).collect();
+        let links: Vec<(u32, u32)> =
+            g.edges.iter().map(|&(a, b, _)| (a, b)).chain((1..n as u32).map(|v| (src, v))).collect();
         let mut deg = vec![0usize; n + 2];
         for &(a, b) in &links {
             deg[a as usize] += 1;
@@ -218,7 +249,15 @@ impl FlowGraph {
             adj[fill[b as usize]] = k + 1;
             fill[b as usize] += 1;
         }
-        FlowGraph { cap: vec![0.0; head.len()], head, adj_start, adj, level: vec![0; n + 1], iter: vec![0; n + 1], edges: g.edges.len() }
+        FlowGraph {
+            cap: vec![0.0; head.len()],
+            head,
+            adj_start,
+            adj,
+            level: vec![0; n + 1],
+            iter: vec![0; n + 1],
+            edges: g.edges.len(),
+        }
     }
 
     /// Sets the edges' capacities; the extra source is cut off.
@@ -424,7 +463,11 @@ impl<'a> CutsetSeparator<'a> {
         let n = self.graph.nodes;
         let directed = self.directed_capacities(x);
         let mut found: Vec<(f64, GroupOrigin, CoverRow, Vec<bool>)> = Vec::new();
-        let push = |found: &mut Vec<(f64, GroupOrigin, CoverRow, Vec<bool>)>, violation: f64, v: GroupOrigin, kind: CoverRow, inside: Vec<bool>| {
+        let push = |found: &mut Vec<(f64, GroupOrigin, CoverRow, Vec<bool>)>,
+                    violation: f64,
+                    v: GroupOrigin,
+                    kind: CoverRow,
+                    inside: Vec<bool>| {
             if !found.iter().any(|(_, _, k, c)| *k == kind && *c == inside) {
                 found.push((violation, v, kind, inside));
             }
@@ -457,7 +500,14 @@ impl<'a> CutsetSeparator<'a> {
             }
             let mut inside = self.flow.source_side(n);
             inside.truncate(n);
-            let within: f64 = self.graph.edges.iter().zip(caps).filter(|(&(a, b, _), _)| inside[a as usize] && inside[b as usize]).map(|(_, &c)| c).sum();
+            let within: f64 = self
+                .graph
+                .edges
+                .iter()
+                .zip(caps)
+                .filter(|(&(a, b, _), _)| inside[a as usize] && inside[b as usize])
+                .map(|(_, &c)| c)
+                .sum();
             let lhs = f + within / g;
             if lhs < 2.0 - MIN_VIOLATION {
                 push(&mut found, 2.0 - lhs, v, CoverRow::Lifted, inside);
@@ -525,7 +575,11 @@ impl<'a> CutsetSeparator<'a> {
                 continue;
             }
             let members: Vec<usize> = (0..n).filter(|&v| comp[v] == c).collect();
-            let Some(&best) = members.iter().max_by(|&&a, &&b| self.activity(a, x).total_cmp(&self.activity(b, x)).then(b.cmp(&a))) else { continue };
+            let Some(&best) =
+                members.iter().max_by(|&&a, &&b| self.activity(a, x).total_cmp(&self.activity(b, x)).then(b.cmp(&a)))
+            else {
+                continue;
+            };
             if self.activity(best, x) > 0.5 || members.iter().any(|&v| !adj[v].is_empty()) {
                 let mut inside = vec![false; n];
                 for &v in &members {
@@ -576,7 +630,10 @@ impl Separator for CutsetSeparator<'_> {
                 continue;
             }
             // The most violated row of this cut is the one for its most active node.
-            let best = (0..self.graph.nodes).filter(|&u| inside[u]).max_by(|&a, &b| self.activity(a, x).total_cmp(&self.activity(b, x)).then(b.cmp(&a))).unwrap_or(v);
+            let best = (0..self.graph.nodes)
+                .filter(|&u| inside[u])
+                .max_by(|&a, &b| self.activity(a, x).total_cmp(&self.activity(b, x)).then(b.cmp(&a)))
+                .unwrap_or(v);
             rows.push(self.row(&inside, best, directed.is_some()));
             seen_cuts.push(inside);
         }
@@ -705,7 +762,11 @@ mod tests {
         let mut s = path();
         // Direction binaries: edge k's arc from its first end to its second is variable 6 + 2k,
         // the other way 7 + 2k (r→1 is 6, 1→r is 7, 1→2 is 8, 2→1 is 9, 2→3 is 10, 3→2 is 11).
-        s.graph.arcs = Some(vec![(Some(VarId(6)), Some(VarId(7))), (Some(VarId(8)), Some(VarId(9))), (Some(VarId(10)), Some(VarId(11)))]);
+        s.graph.arcs = Some(vec![
+            (Some(VarId(6)), Some(VarId(7))),
+            (Some(VarId(8)), Some(VarId(9))),
+            (Some(VarId(10)), Some(VarId(11))),
+        ]);
         // Every edge at 0.8, but r–1 points away from the root (r→1 at 0.8, 1→r at 0): the
         // undirected cutsets hold for V3 = 0.7, the directed one over the arcs leaving
         // {1, 2, 3} (just 1→r) is violated by 0.7.
@@ -721,7 +782,8 @@ mod tests {
         let mut s = path();
         // Parent arcs (no arc leaves the root): r–1 has only P(1→r) = 6; 1→2 is 7, 2→1 is 8,
         // 2→3 is 9, 3→2 is 10.
-        s.graph.arcs = Some(vec![(None, Some(VarId(6))), (Some(VarId(7)), Some(VarId(8))), (Some(VarId(9)), Some(VarId(10)))]);
+        s.graph.arcs =
+            Some(vec![(None, Some(VarId(6))), (Some(VarId(7)), Some(VarId(8))), (Some(VarId(9)), Some(VarId(10)))]);
         // Every edge at 0.8, V2 = 0 and V3 = 0.7, but the parent arc on 1–2 points away from
         // the root: the set {2, 3} has no arc leaving it (the undirected cutsets hold), and
         // its row counts 2→1 alone.

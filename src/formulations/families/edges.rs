@@ -11,7 +11,8 @@ use crate::spec::{BigMForm, EdgeRole, Problem};
 /// of a simple path, which has at most `|V_c| − 1` edges).
 pub fn big_m(p: &Problem, form: BigMForm) -> f64 {
     let mesh = &p.mesh;
-    let mut lens: Vec<f64> = mesh.edges().filter(|e| p.roles[e.index()] == EdgeRole::Candidate).map(|e| mesh.edge_length(e)).collect();
+    let mut lens: Vec<f64> =
+        mesh.edges().filter(|e| p.roles[e.index()] == EdgeRole::Candidate).map(|e| mesh.edge_length(e)).collect();
     match form {
         BigMForm::Paper => 2.0 * lens.iter().sum::<f64>(),
         BigMForm::Tight => {

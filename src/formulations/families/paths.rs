@@ -69,14 +69,17 @@ pub fn point_to_point(c: &mut Ctx) -> PathSets {
             nine.add(pv, 1.0);
         }
         // `Σ ps − carrier ≤ 0`: the carrier (an edge's or a vertex's variable) holds the paths.
-        let carry = |ps: &[VarId], carrier: VarId| ps.iter().map(|&pv| (pv, 1.0)).chain([(carrier, -1.0)]).collect::<Vec<_>>();
+        let carry =
+            |ps: &[VarId], carrier: VarId| ps.iter().map(|&pv| (pv, 1.0)).chain([(carrier, -1.0)]).collect::<Vec<_>>();
         for (e, (x, ps)) in &through {
             c.em.model.add_le(format!("p2p8_p{pi}_e{}", e.0), carry(ps, *x), 0.0);
         }
         // Through one vertex, unless one edge at it carries every path through it (the row is
         // then implied by the edge's row and `E_x ≤ V_y`).
         let implied = |v: VertexId, ps: &[VarId]| {
-            p.mesh.incident_edges(v).any(|e| through.get(&e).is_some_and(|(_, on_e)| ps.iter().all(|pv| on_e.contains(pv))))
+            p.mesh
+                .incident_edges(v)
+                .any(|e| through.get(&e).is_some_and(|(_, on_e)| ps.iter().all(|pv| on_e.contains(pv))))
         };
         for (&v, (y, ps)) in at.iter().filter(|(&v, (_, ps))| !implied(v, ps)) {
             c.em.model.add_le(format!("p2p8_p{pi}_{}", vname(v)), carry(ps, *y), 0.0);
@@ -93,4 +96,3 @@ pub fn point_to_point(c: &mut Ctx) -> PathSets {
     }
     sets
 }
-

@@ -4,9 +4,9 @@
 use super::cutset::GroupOrigin;
 use super::Ctx;
 use crate::formulations::expr::{Expr, Value};
+use crate::mesh::{EdgeId, VertexId};
 use crate::milp::VarId;
 use crate::rules::placements::{enumerate_placements, Placement, PlacementReport};
-use crate::mesh::{EdgeId, VertexId};
 use crate::spec::{Allow, CoverageForm, LevelType, Problem, RoomMode, Rooms};
 use std::time::Duration;
 
@@ -39,7 +39,8 @@ pub fn rooms(c: &mut Ctx, rooms: &Rooms) -> PlacementReport {
     let mesh = &p.mesh;
     // The rows that replace coverage (5)–(6) on tilings are strengthened with it.
     let strong = c.recipe.coverage == CoverageForm::Strong;
-    let report = enumerate_placements(mesh, &rooms.templates, &p.is_obstacle_face, rooms.max_placements, PLACEMENT_TIME_CAP);
+    let report =
+        enumerate_placements(mesh, &rooms.templates, &p.is_obstacle_face, rooms.max_placements, PLACEMENT_TIME_CAP);
     let mut vars = Vec::with_capacity(report.placements.len());
     let mut covering: Vec<Vec<VarId>> = vec![Vec::new(); mesh.num_faces()];
     for (k, pl) in report.placements.iter().enumerate() {
@@ -48,7 +49,7 @@ pub fn rooms(c: &mut Ctx, rooms: &Rooms) -> PlacementReport {
         for f in &pl.faces {
             covering[f.index()].push(r);
         }
-        
+
         match rooms.mode {
             RoomMode::Floorplan => {
                 // (17) |inner|·R − Σ (1 − E_i) ≤ 0: no corridor inside a room.
@@ -183,7 +184,8 @@ pub fn served_faces(c: &mut Ctx, mode: RoomMode, report: &PlacementReport) -> Ve
     mesh.faces()
         .filter(|f| !serving[f.index()].is_empty())
         .map(|f| {
-            let mut ends: Vec<VertexId> = serving[f.index()].iter().flat_map(|&e| <[VertexId; 2]>::from(mesh.edge_vertices(e))).collect();
+            let mut ends: Vec<VertexId> =
+                serving[f.index()].iter().flat_map(|&e| <[VertexId; 2]>::from(mesh.edge_vertices(e))).collect();
             ends.sort();
             ends.dedup();
             (GroupOrigin::Face(f.0), ends)
@@ -222,7 +224,8 @@ fn level_shape(c: &mut Ctx, rooms: &Rooms, report: &PlacementReport, vars: &[Var
     }
     for (k, (pl, &r)) in report.placements.iter().zip(vars).enumerate() {
         let inner: std::collections::BTreeSet<EdgeId> = pl.inner_edges.iter().copied().collect();
-        let own: std::collections::BTreeSet<EdgeId> = pl.inner_edges.iter().chain(&pl.boundary_edges).copied().collect();
+        let own: std::collections::BTreeSet<EdgeId> =
+            pl.inner_edges.iter().chain(&pl.boundary_edges).copied().collect();
         let border = pl.border_vertices(mesh);
         let mut ex = Expr::new();
         let mut big = 0.0;

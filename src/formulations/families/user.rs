@@ -20,4 +20,3 @@ pub fn user_specs(c: &mut Ctx) {
         }
     }
 }
-
