@@ -1,4 +1,4 @@
-//! Every file of `../shared/corpus/highs-check/` is read, solved with every backend and matched
+//! Every file of `fixtures/highs-check/` (HiGHS's test instances) is read, solved with every backend and matched
 //! against its `EXPECTED.csv` row; the malformed ones must give clear errors that name the line.
 
 use crate::conformance::assert_checked;
@@ -8,7 +8,7 @@ use netspec::solvers::{SolveOptions, SolverKind, Termination};
 use std::path::PathBuf;
 
 pub fn corpus_dir() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/corpus/highs-check")
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("fixtures/highs-check")
 }
 
 /// One row of EXPECTED.csv.
@@ -20,7 +20,7 @@ pub struct Expected {
 }
 
 pub fn expected() -> Vec<Expected> {
-    let text = std::fs::read_to_string(corpus_dir().join("EXPECTED.csv")).expect("shared/ beside the project");
+    let text = std::fs::read_to_string(corpus_dir().join("EXPECTED.csv")).expect("fixtures/highs-check/EXPECTED.csv");
     text.lines()
         .skip(1)
         .filter(|l| !l.trim().is_empty())

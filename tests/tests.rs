@@ -2,7 +2,7 @@
 
 // The MOI.Test-style conformance suite, instantiated for every compiled backend.
 mod conformance;
-// The external corpus (../shared/corpus/highs-check): read, solve with every backend, compare.
+// The external corpus (fixtures/highs-check, HiGHS's test instances): read, solve with every backend, compare.
 mod corpus;
 // Files we write, read back by HiGHS, CBC and SCIP through their own readers.
 mod native_readers;
@@ -18,7 +18,7 @@ mod compare;
 mod heuristics;
 // Street layouts: cities, levels, resume, outputs (paper §5.1).
 mod urban;
-// Traffic evaluation in SUMO (issue 12): real netconvert, duarouter and sumo.
+// Traffic evaluation in SUMO: real netconvert, duarouter and sumo.
 mod traffic;
 // The everyday solve loop: infeasibility found by netspec, honest optimality, time limits,
 // interrupts, option errors, .gz files, solution files, raw parameters.

@@ -46,7 +46,7 @@ fn t(name: &str, a: f64) -> (String, f64) {
 
 #[test]
 fn corpus_1448_is_an_empty_model() {
-    let o = read(include_str!("../../../fixtures/lp/highs-check/1448.lp"));
+    let o = read(include_str!("../../../fixtures/highs-check/1448.lp"));
     assert_eq!(o.model.num_vars(), 0);
     assert_eq!(o.model.num_rows(), 0);
     assert!(
@@ -58,7 +58,7 @@ fn corpus_1448_is_an_empty_model() {
 
 #[test]
 fn corpus_fixed_binary() {
-    let o = read(include_str!("../../../fixtures/lp/highs-check/fixed-binary.lp"));
+    let o = read(include_str!("../../../fixtures/highs-check/fixed-binary.lp"));
     let m = &o.model;
     assert_eq!(m.num_vars(), 1);
     assert_eq!(m.num_rows(), 0);
@@ -69,7 +69,7 @@ fn corpus_fixed_binary() {
 
 #[test]
 fn corpus_issue_2388() {
-    let o = read(include_str!("../../../fixtures/lp/highs-check/issue-2388.lp"));
+    let o = read(include_str!("../../../fixtures/highs-check/issue-2388.lp"));
     let m = &o.model;
     m.validate().unwrap();
     assert_eq!(m.name, "QP from CasADi");
@@ -90,7 +90,7 @@ fn corpus_issue_2388() {
 
 #[test]
 fn corpus_issue_2585() {
-    let o = read(include_str!("../../../fixtures/lp/highs-check/issue-2585.lp"));
+    let o = read(include_str!("../../../fixtures/highs-check/issue-2585.lp"));
     let m = &o.model;
     m.validate().unwrap();
     assert_eq!(m.vars().iter().map(|v| v.name.as_str()).collect::<Vec<_>>(), ["a", "b", "c", "d"]);
@@ -110,7 +110,7 @@ fn corpus_issue_2585() {
 
 #[test]
 fn corpus_no_newline_eof() {
-    let o = read(include_str!("../../../fixtures/lp/highs-check/no-newline-eof.lp"));
+    let o = read(include_str!("../../../fixtures/highs-check/no-newline-eof.lp"));
     let m = &o.model;
     assert_eq!(m.num_vars(), 2);
     let c1 = row_by_name(m, "c1");
@@ -120,7 +120,7 @@ fn corpus_no_newline_eof() {
 
 #[test]
 fn corpus_garbage_is_an_error() {
-    let e = err(include_str!("../../../fixtures/lp/highs-check/garbage.lp"));
+    let e = err(include_str!("../../../fixtures/highs-check/garbage.lp"));
     assert_eq!(e.line, 2, "{e}");
     assert!(matches!(e.kind, ParseErrorKind::ExpectedSection(_)), "{e}");
     let msg = e.to_string();
@@ -130,7 +130,7 @@ fn corpus_garbage_is_an_error() {
 
 #[test]
 fn corpus_through_read_model_file() {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/lp/highs-check");
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/highs-check");
     for (file, vars, rows) in [
         ("1448.lp", 0, 0),
         ("fixed-binary.lp", 1, 0),
@@ -1135,7 +1135,7 @@ fn dump_for_other_readers() {
         std::fs::write(dir.join(format!("m{i}.json")), serde_json::to_string_pretty(&desc).unwrap()).unwrap();
     }
     // The HiGHS corpus, read and written again.
-    let corpus = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/lp/highs-check");
+    let corpus = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/highs-check");
     for file in ["1448.lp", "fixed-binary.lp", "issue-2388.lp", "issue-2585.lp", "no-newline-eof.lp"] {
         let m = crate::io::read_model_file(&corpus.join(file)).unwrap().model;
         crate::io::write_model_file(&m, &dir.join(format!("corpus-{file}"))).unwrap();

@@ -325,21 +325,13 @@ fn no_objective_row_warns() {
 // ---------------------------------------------------------------------------------------------
 // The corpus of HiGHS test instances.
 
-fn corpus_dir() -> Option<PathBuf> {
-    let dir = std::env::var_os("NETSPEC_MPS_CORPUS")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| PathBuf::from("/work/shared/corpus/highs-check"));
-    if dir.join("EXPECTED.csv").exists() {
-        Some(dir)
-    } else {
-        eprintln!("corpus not found at {} (set NETSPEC_MPS_CORPUS): skipped", dir.display());
-        None
-    }
+fn corpus_dir() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("fixtures/highs-check")
 }
 
 #[test]
 fn corpus_files() {
-    let Some(dir) = corpus_dir() else { return };
+    let dir = corpus_dir();
     let expected = std::fs::read_to_string(dir.join("EXPECTED.csv")).unwrap();
     let mut checked = 0;
     for line in expected.lines().skip(1) {
@@ -380,7 +372,7 @@ fn corpus_files() {
 
 #[test]
 fn corpus_specific_files() {
-    let Some(dir) = corpus_dir() else { return };
+    let dir = corpus_dir();
     let get = |f: &str| read_str(&std::fs::read_to_string(dir.join(f)).unwrap());
     let m = get("afiro.mps").unwrap().model;
     assert_eq!((m.num_rows(), m.num_vars(), m.num_nonzeros()), (27, 32, 83));
@@ -420,7 +412,7 @@ fn corpus_specific_files() {
 #[test]
 #[ignore]
 fn corpus_dump_json() {
-    let Some(dir) = corpus_dir() else { return };
+    let dir = corpus_dir();
     let out = std::env::var("NETSPEC_MPS_DUMP").unwrap_or_else(|_| "/tmp/netspec_mps_dump".into());
     std::fs::create_dir_all(&out).unwrap();
     let mut files: Vec<_> = std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().path()).collect();
