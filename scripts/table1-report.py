@@ -1,59 +1,74 @@
 #!/usr/bin/env python3
-"""Writes docs/table1-reproduction.md (and docs/img/table1/) from Table 1 comparison runs.
+"""Writes docs/table1.md (Table 1 at the paper's times) from docs/table1/results.json and
+models/table1.toml, and with a netspec binary the charts docs/img/table1/{profile,bars}.svg.
 
-Usage: scripts/table1-report.py MERGED_DIR [--hours H] [--shared FROM/TO,…] [--beside DIR,…]
+Usage (from anywhere; paths are the repository's):
+  scripts/table1-report.py [--netspec BIN]
+      Write docs/table1.md; with BIN also the charts, by
+      `BIN compare --merge docs/table1 --manifest models/table1.toml --out TMP` (run from the
+      repository's root; profile.svg and bars.svg are copied from TMP).
+  scripts/table1-report.py --check [--netspec BIN]
+      Regenerate into a temporary directory and compare byte for byte with the committed
+      files; exit 1 naming each file that differs (with the first lines of the difference).
+      Without BIN only the page is checked. Also warns (without failing) where a record's spec
+      digest no longer matches its spec file: that row's results are for an older spec.
+  scripts/table1-report.py --import DIR[,DIR...] [--shared-machine]
+      Put the runs of `netspec compare --out DIR` outputs (DIR/runs/*/run.json and each run's
+      result.json) into docs/table1/results.json: a record with the same row and column
+      replaces the old one, a new column is added after the others (its command taken from
+      DIR/results.json). --shared-machine marks the imported runs as having shared the
+      machine with another run. Then rerun this script to write the page and the charts.
 
-  MERGED_DIR: `netspec compare --merge DIR,DIR… --manifest models/table1.toml --out MERGED_DIR`
-  over the protocol's runs (each DIR a `netspec compare --manifest models/table1.toml
-  --paper-limits …` output). The merged results.json names the source directories; each run's
-  design objective (recomputed by netspec from the network, not the formulation's surrogate)
-  and picture are read from SOURCE/runs/*/.
-  --hours H: the wall time the runs took in all (said in the report).
-  --shared FROM/TO[,FROM/TO…] (ISO times): runs that started inside one of these windows shared
-  the machine with another column's run (two solvers side by side on the two cores); their
-  cells are marked †.
-  --beside DIR[,DIR…]: runs of the same columns made beside the other column and later made
-  again alone (their runs/ moved to DIR): the report sets the two results side by side.
+docs/table1/results.json is what `netspec compare --merge` reads (`settings` with `manifest`
+and `time_limit`, `records` of src/compare.rs RunRecord, `summary`), one record per line; each
+record is a run's run.json plus five fields from its result.json and the protocol:
+design_objective (the design's own objective, recomputed by netspec from the network, when the
+design is valid), start_objective and start_returned (the heuristic's checked MIP start, and
+whether it was the design returned), solver_hints (the recipe's backend settings) and
+shared_machine (the run ran while another run shared the machine's two cores).
 
-Run records of the protocol's runs (run.json, result.json and stdout of every run; no pictures):
-docs/table1-runs/2026-12-01.tar.gz, for the third session 2026-12-01b.tar.gz (which also
-keeps the old 1e's flow runs under t1-1e-5x5-flow/ and a side run of the short rows under
-t1-short-xeon/), for the fourth 2026-12-02.tar.gz (which also keeps the strong columns' 1e runs
-of its first window under t1-1e-first-window/), for the fifth 2026-12-02c.tar.gz, the sixth
-2026-12-02d.tar.gz, the seventh 2026-12-02e.tar.gz, the eighth 2026-12-02f.tar.gz (which
-also keeps its superseded first pass under t1-paths-a733c45/), the ninth 2026-12-02g.tar.gz
-the tenth 2026-12-03.tar.gz (which also keeps the cells it replaced under t1-before-spurs/)
-the eleventh 2026-12-03b.tar.gz (which also keeps the cells it replaced under
-t1-before-indicators/), the twelfth 2026-12-03c.tar.gz (the baseline columns, and their
-stopped first attempt under t1-baselines-first-attempt/), the thirteenth 2026-12-03d.tar.gz
-(the baseline columns on all 43 rows), the fourteenth 2026-12-03e.tar.gz (HiGHS/strong's 28
-rows of models/table1-parallel.toml, and the cells they replaced under t1-before-parallel/),
-the fifteenth 2026-12-03f.tar.gz (HiGHS/strong's 10 rows of models/table1-directed.toml and
-SCIP/strong's 1c-L2, 1c-L3, 5L3 and 5L4, and the cells they replaced under t1-before-directed/)
-the sixteenth 2026-12-03g.tar.gz (the three strong columns' 2a and 2b, and the cells they
-replaced under t1-before-symmetric/) and the seventeenth 2026-12-04.tar.gz (HiGHS/strong's eight
-room rows and CBC/strong's 1c-L2, 1c-L3, 5L3 and 5L4, and the cells they replaced under
-t1-before-rerun16/);
-how to extract them is written into the
-report (the paragraph after the protocol). A row whose run has no picture keeps the picture already in the gallery.
-
-Copies MERGED_DIR/profile.svg and bars.svg to docs/img/table1/, and for every row the picture
-of the best valid design any column found to docs/img/table1/designs/ROW.png (a 560-pixel
-thumbnail; needs Pillow). The protocol and the reading are hand-written
-(scripts/table1-protocol.md, scripts/table1-reading.md) and copied in.
-Ratios, never verdicts: time / paper time where a run proved optimality.
+Standard library only (Python 3.11+, for tomllib).
 """
-import datetime, glob, json, os, shutil, sys
+import difflib, glob, json, math, os, shutil, subprocess, sys, tempfile, textwrap, tomllib
 
-from table1_common import ROOT, design_of, fmt, seconds, sgm
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+RESULTS = "docs/table1/results.json"
+MANIFEST = "models/table1.toml"
+PAGE = "docs/table1.md"
+CHARTS = ["docs/img/table1/profile.svg", "docs/img/table1/bars.svg"]
 
-TOL = 1e-6
+PROVEN_GAP = 1e-4  # src/compare.rs PROVEN_GAP (Gurobi's default MIPGap)
+TOL = 1e-6  # objectives and bounds closer than this (relative, at least 1) count as equal
+RECORD_KEYS = ["instance", "solver", "seed", "edges", "vars", "rows", "nonzeros", "status", "objective",
+               "dual_bound", "gap", "nodes", "solver_time", "wall_time", "valid", "killed", "solver_version",
+               "exit_code", "time_limit", "settings"]
+EXTRA_KEYS = ["design_objective", "start_objective", "start_returned", "solver_hints", "shared_machine"]
 
 
-# The CPUs of the VMs the sessions ran on (scripts/table1-protocol.md).
-SESSION_CPUS = {"AMD EPYC", "Intel(R) Xeon(R) Processor"}
+# ---------------------------------------------------------------------------------------------
+# Numbers
 
-PROVEN_GAP = 1e-4  # src/compare.rs PROVEN_GAP: the target's gap (Gurobi's default MIPGap)
+
+def seconds(t):
+    """A number of seconds from a paper time; None when it is not one (`-`, `379/366/49`)."""
+    try:
+        return float(t)
+    except (TypeError, ValueError):
+        return None
+
+
+def fmt(v):
+    """An objective or bound as the tables show it."""
+    if v is None:
+        return "-"
+    if abs(v) >= 1e5:
+        return f"{v:.3g}"
+    return f"{v:.4g}" if v != int(v) else f"{int(v)}"
+
+
+def sgm(xs, shift):
+    """Shifted geometric mean `exp(mean(ln(x + shift))) - shift` (None for no values)."""
+    return math.exp(sum(math.log(x + shift) for x in xs) / len(xs)) - shift if xs else None
 
 
 def within_gap(r):
@@ -61,348 +76,587 @@ def within_gap(r):
     return r["status"] != "optimal" and r["valid"] and r.get("gap") is not None and r["gap"] <= PROVEN_GAP
 
 
-def solved(r):
-    return (r["status"] == "optimal" and r["valid"]) or r["status"] == "infeasible" or within_gap(r)
+def proven(r):
+    """src/compare.rs solved(): infeasible, or a valid design optimal or within PROVEN_GAP."""
+    return r["status"] == "infeasible" or (r["valid"] and (r["status"] == "optimal" or within_gap(r)))
 
 
-def run_dirs(source):
-    """(instance, column label) → the run's directory, for one compare output directory."""
-    out = {}
-    for path in glob.glob(os.path.join(source, "runs", "*", "run.json")):
-        r = json.load(open(path))
-        out[(r["instance"], r["solver"])] = os.path.dirname(path)
+# ---------------------------------------------------------------------------------------------
+# The results file
+
+
+def load_manifest():
+    """models/table1.toml's rows as netspec's Manifest::load serializes them (spec paths
+    relative to the repository's root)."""
+    with open(os.path.join(ROOT, MANIFEST), "rb") as f:
+        rows = tomllib.load(f)["row"]
+    out = []
+    for r in rows:
+        p = r.get("paper") or {}
+        out.append({
+            "name": r["name"],
+            "spec": os.path.normpath(os.path.join(os.path.dirname(MANIFEST), r["spec"])) if r.get("spec") else None,
+            "missing": r.get("missing"),
+            "paper": {"edges": p.get("edges"), "variables": p.get("variables"), "time": p.get("time")},
+        })
     return out
 
 
-def started(run_dir, r):
-    """When a run started: its record's write time less its wall time (seconds since the epoch)."""
-    return os.path.getmtime(os.path.join(run_dir, "run.json")) - r["wall_time"]
+def summarize(records, columns):
+    """src/compare.rs summarize(): per column the shifted geometric mean of time (shift 10 s;
+    runs not proven charged their limit), runs proven, runs, and rows where it proved fastest."""
+    instances = list(dict.fromkeys(r["instance"] for r in records))
+    out = []
+    for c in columns:
+        mine = [r for r in records if r["solver"] == c]
+        times = [min(r["wall_time"], r["time_limit"]) if proven(r) else r["time_limit"] for r in mine]
+        wins = 0
+        for i in instances:
+            done = [r for r in records if r["instance"] == i and proven(r)]
+            if done and min(done, key=lambda r: r["wall_time"])["solver"] == c:
+                wins += 1
+        out.append({"solver": c, "sgm_time": sgm(times, 10.0) or 0.0, "solved": sum(1 for r in mine if proven(r)),
+                    "runs": len(mine), "wins": wins})
+    return out
 
 
-def thumbnail(src, dst):
-    """A 560-pixel, 64-colour copy of a design's picture (Pillow; `pip install pillow`)."""
-    from PIL import Image
-    im = Image.open(src)
-    im.thumbnail((560, 560))
-    im.convert("RGB").convert("P", palette=Image.ADAPTIVE, colors=64).save(dst, optimize=True)
+def dump(res):
+    """The results file's text: compact, one column, manifest row or record per line."""
+    j = lambda v: json.dumps(v, ensure_ascii=False, separators=(", ", ": "))
+    listed = lambda items: [j(x) + ("," if i < len(items) - 1 else "") for i, x in enumerate(items)]
+    s = res["settings"]
+    rows = [r["name"] for r in s["manifest"]["row"]]
+    cols = [c["label"] for c in s["columns"]]
+    records = sorted(res["records"], key=lambda r: (rows.index(r["instance"]), cols.index(r["solver"])))
+    lines = ["{", f'"netspec_version": {j(res["netspec_version"])},', '"settings": {']
+    for k in ("time_limit", "grace", "paper_limits"):
+        lines.append(f"{j(k)}: {j(s[k])},")
+    lines += ['"columns": ['] + listed(s["columns"]) + ["],"]
+    lines += ['"manifest": {"row": ['] + listed(s["manifest"]["row"]) + ["]}"]
+    lines += ["},", '"records": ['] + listed(records) + ["],"]
+    lines += ['"summary": ['] + listed(summarize(records, cols)) + ["]", "}"]
+    return "\n".join(lines) + "\n"
 
 
-def cell(r, d):
+def run_record(run_json, shared):
+    """A run's record for the results file: its run.json and the extra fields."""
+    r = json.load(open(run_json))
+    missing = [k for k in RECORD_KEYS if k not in r]
+    if missing:
+        sys.exit(f"{run_json}: not a compare run record (no {', '.join(missing)})")
+    rec = {k: r[k] for k in RECORD_KEYS}
+    extra = {"design_objective": None, "start_objective": None, "start_returned": False, "solver_hints": None}
+    res = os.path.join(os.path.dirname(run_json), "result.json")
+    if not r.get("killed") and os.path.exists(res):
+        try:
+            j = json.load(open(res))
+        except ValueError:
+            j = {}
+        if (j.get("validity") or {}).get("valid") and j.get("objective"):
+            extra["design_objective"] = j["objective"]["total"]
+        extra["solver_hints"] = j.get("solver_hints")
+        st = j.get("start") or {}
+        if st.get("accepted"):
+            extra["start_objective"] = st.get("objective")
+            extra["start_returned"] = st.get("returned", False)
+    rec.update(extra)
+    rec["shared_machine"] = shared
+    return rec
+
+
+def import_runs(dirs, shared):
+    path = os.path.join(ROOT, RESULTS)
+    res = json.load(open(path))
+    s = res["settings"]
+    s["manifest"]["row"] = load_manifest()
+    names = [r["name"] for r in s["manifest"]["row"]]
+    by = {(r["instance"], r["solver"]): r for r in res["records"]}
+    for d in dirs:
+        runs = sorted(glob.glob(os.path.join(d, "runs", "*", "run.json")))
+        if not runs:
+            sys.exit(f"{d}: no runs/*/run.json (a `netspec compare --out {d}` output?)")
+        try:
+            cmd = json.load(open(os.path.join(d, "results.json"))).get("command") or []
+        except (OSError, ValueError):
+            cmd = []
+        for p in runs:
+            rec = run_record(p, shared)
+            if rec["instance"] not in names:
+                sys.exit(f"{p}: row {rec['instance']!r} is not in {MANIFEST}")
+            if rec["status"] == "interrupted":
+                sys.exit(f"{p}: an interrupted run (resume the comparison first)")
+            label = rec["solver"]
+            if label not in [c["label"] for c in s["columns"]]:
+                st = rec["settings"] or {}
+                s["columns"].append({"label": label, "solver": label.split("/")[0],
+                                     "formulation": st.get("formulation"), "threads": st.get("threads"),
+                                     "command": " ".join(["netspec"] + cmd[1:]) if cmd else None})
+            by[(rec["instance"], label)] = rec
+        print(f"{d}: {len(runs)} runs")
+    res["records"] = list(by.values())
+    open(path, "w").write(dump(res))
+    print(f"wrote {RESULTS}: {len(res['records'])} records")
+
+
+# ---------------------------------------------------------------------------------------------
+# The page
+
+
+def cell(r):
+    """One column's cell of a row: status, the design's own objective, time or gap and bound."""
     if r is None:
         return "not run"
-    t = r["wall_time"]
+    t, o = r["wall_time"], r["design_objective"]
     if r.get("killed"):
-        return f"killed at {t:.0f} s"
-    if r["status"] == "optimal" and r["valid"]:
-        return f"**optimal** {fmt(d['objective'])} in {t:.1f} s"
-    if r["status"] == "infeasible":
-        return f"**infeasible** (proven) in {t:.1f} s"
-    if within_gap(r):
-        return f"**optimal** {fmt(d['objective'])} in {t:.1f} s ({r['status']} at gap {r['gap']:.1e} ≤ 1e-4)"
-    obj = d["objective"]
-    gap = f", gap {100 * r['gap']:.1f} %" if r.get("gap") is not None and obj is not None else ""
-    bound = f", bound {fmt(r['dual_bound'])}" if r.get("dual_bound") is not None and obj is not None else ""
-    return f"{r['status']}: {fmt(obj) if obj is not None else 'no design'}{gap}{bound}"
+        text = f"killed at {t:.0f} s"
+    elif r["status"] == "optimal" and r["valid"]:
+        text = f"**optimal** {fmt(o)} in {t:.1f} s"
+    elif r["status"] == "infeasible":
+        text = f"**infeasible** (proven) in {t:.1f} s"
+    elif within_gap(r):
+        text = f"**optimal** {fmt(o)} in {t:.1f} s ({r['status']} at gap {r['gap']:.1e} ≤ 1e-4)"
+    else:
+        gap = f", gap {100 * r['gap']:.1f} %" if r.get("gap") is not None and o is not None else ""
+        bound = f", bound {fmt(r['dual_bound'])}" if r.get("dual_bound") is not None and o is not None else ""
+        text = f"{r['status']}: {fmt(o) if o is not None else 'no design'}{gap}{bound}"
+    return text + (" †" if r.get("shared_machine") else "")
+
+
+def words(n, one, many=None):
+    return f"{n} {one if n == 1 else (many or one + 's')}"
+
+
+def listing(xs):
+    xs = list(xs)
+    return ", ".join(xs[:-1]) + " and " + xs[-1] if len(xs) > 1 else "".join(xs)
+
+
+def wrap(text, first="", rest=""):
+    """A paragraph or list item wrapped at 100 columns (never inside a row name)."""
+    return textwrap.fill(text, 100, initial_indent=first, subsequent_indent=rest, break_on_hyphens=False,
+                         break_long_words=False)
+
+
+def render(res, manifest):
+    rows = manifest
+    ran = [r for r in rows if r["spec"]]
+    cols = [c["label"] for c in res["settings"]["columns"]]
+    colinfo = {c["label"]: c for c in res["settings"]["columns"]}
+    by = {(r["instance"], r["solver"]): r for r in res["records"]}
+    recs = res["records"]
+    grace = res["settings"]["grace"]
+    cap = res["settings"]["time_limit"]
+    versions = {}
+    for r in recs:
+        if r.get("solver_version"):
+            versions.setdefault(r["solver"].split("/")[0], set()).add(r["solver_version"])
+    netspec_versions = sorted({(r["settings"] or {}).get("netspec_version") for r in recs} - {None})
+
+    def design(n, c):
+        r = by.get((n, c))
+        return r["design_objective"] if r else None
+
+    # Per row: the best design, the best bound, whether and how fast some column proved it.
+    best, bound, fastest = {}, {}, {}
+    for row in ran:
+        n = row["name"]
+        objs = [(design(n, c), c) for c in cols if design(n, c) is not None]
+        # Ties go to the earlier column.
+        best[n] = min(objs, key=lambda oc: (oc[0], cols.index(oc[1]))) if objs else None
+        bs = [(by[(n, c)]["dual_bound"], c) for c in cols if (n, c) in by and by[(n, c)].get("dual_bound") is not None]
+        bound[n] = max(bs, key=lambda bc: (bc[0], -cols.index(bc[1]))) if bs else None
+        done = [(by[(n, c)]["wall_time"], c) for c in cols if (n, c) in by and proven(by[(n, c)])]
+        fastest[n] = min(done) if done else None
+    proven_rows = [r["name"] for r in ran if fastest[r["name"]]]
+    open_rows = [r["name"] for r in ran if not fastest[r["name"]]]
+    no_design = [r["name"] for r in ran if best[r["name"]] is None]
+    paper_s = {r["name"]: seconds(r["paper"]["time"]) for r in rows}
+    shared = sum(1 for r in recs if r.get("shared_machine"))
+    killed = sum(1 for r in recs if r.get("killed"))
+
+    lines = []
+    w = lines.append
+    w("# Table 1 at the paper's times")
+    w("")
+    w("<!-- Generated by scripts/table1-report.py from docs/table1/results.json and models/table1.toml;")
+    w("     edit the script, not this page. scripts/table1-check.sh checks that the two agree. -->")
+    w("")
+    w(wrap("Peng et al. (SIGGRAPH 2016) list in their Table 1 every network of the paper with its mesh's "
+           "edges, its MILP's variables and the time Gurobi took to solve it. This page runs netspec's "
+           f"backends on the same rows, each at the paper's time for it: {len(ran)} rows with an instance "
+           f"([models/table1.toml](../models/table1.toml) lists all {len(rows)}; "
+           + "; ".join(f"{r['name']} has none: {r['missing']}" for r in rows if not r["spec"]) + ")."))
+    w("")
+    w("## What the rows are")
+    w("")
+    w("Every instance is a reconstruction: the paper's size class, weights and switches (the rules of")
+    w("each figure), not the paper's meshes, which are not published. Each street row (Fig. 1a–c, 5,")
+    w("7a–e, 8) is one level of a city example's streets — level 2 collector roads, level 3 local roads,")
+    w("level 4 cul-de-sacs — frozen from a `netspec city` run")
+    w("([scripts/freeze-street-levels.py](../scripts/freeze-street-levels.py)): levels 3 and 4 are built")
+    w("on the network that run found at the level before, so every backend solves the same model,")
+    w("though not the paper's. The paper publishes no objective values, so no design here can be said")
+    w("to match or beat the paper's: only times are set against the paper's, as ratios, on the rows")
+    w("proven here.")
+    w("")
+    w("## Protocol")
+    w("")
+    w(f"- **Limits.** Each row runs at min(paper time, {cap:g} s) (`--paper-limits --time-limit {cap:g}`); a run")
+    w(f"  still going {grace:g} s past its limit is killed (`--grace {grace:g}`)"
+      + (f"; {words(killed, 'run was', 'runs were')} killed." if killed else "; no run was killed."))
+    w("  One run per row and column, with each backend's default seed.")
+    w("- **Columns.** A backend with a formulation recipe ([docs/spec.md](spec.md)): `strong`, netspec's own, and")
+    w("  `paper`, the paper's model as written.")
+    w("")
+    w("  | column | backend | threads | settings |")
+    w("  |---|---|---|---|")
+    presolve_off = [r["name"] for r in ran if "highs.presolve=off" in (by.get((r["name"], "highs/strong")) or {}).get("solver_hints") or []]
+    notes = {
+        "highs/strong": "the recipe's HiGHS settings: pseudocost branching from the first node and the parallel tree search (`parallel=on`)"
+        + (f"; on the symmetric grids {listing(presolve_off)} no cutsets and presolve off, so that HiGHS finds the symmetry" if presolve_off else ""),
+        "scip/strong": "netspec's cutset constraint handler, which runs in SCIP's sequential solve",
+        "highs/paper": "the paper's recipe, HiGHS's default settings",
+        "cbc/strong": "",
+        "anneal/strong": "the paper's stochastic search (§6), no MILP: no bound, no start; its designs are checked against the `strong` formulation",
+    }
+    for c in cols:
+        b = c.split("/")[0]
+        v = ", ".join(sorted(versions.get(b, []))) if b != "anneal" else ""
+        name = {"highs": "HiGHS", "scip": "SCIP", "cbc": "CBC", "anneal": "netspec's `anneal`"}.get(b, b)
+        w(f"  | {c} | {name}{' ' + v if v else ''} | {colinfo[c].get('threads') or '-'} | {notes.get(c, '')} |")
+    w("")
+    w("- **Start.** Every MILP run starts from the construction heuristic's design")
+    w("  ([docs/heuristics.md](heuristics.md)), checked row by row before it is handed over; the")
+    w("  heuristic's time counts in the run's. When the solver ends with nothing better, the start is")
+    w("  the design returned.")
+    w("- **Times** are the wall time of the whole `netspec solve` process: model, start, solve and")
+    w("  checks.")
+    w("- **Objectives** are the design's own, recomputed by netspec from the network (the solver's value")
+    w("  of the formulation's objective can be higher where an indicator is not at its bound); the")
+    w("  gap is the solver's, (objective − bound) / objective, and the bound its dual bound.")
+    w("- **Valid** means the design passed both of netspec's checks: every row and bound of the MILP at")
+    w("  the returned point, and the design's own checks in plain graph code that never reads the MILP")
+    w("  (no islands, coverage, forbidden configurations, obstacles, forced elements, paths).")
+    w("- **Proven** means a valid design whose solver proved it optimal (to 1e-6), or which ended within")
+    w("  a gap of 1e-4 (Gurobi's default `MIPGap`; the paper names no gap), or a proof of infeasibility.")
+    w(f"- **Machines.** 2-core x86-64 machines (AMD EPYC and Intel Xeon). † marks the {shared} of")
+    w(f"  {len(recs)} runs that ran while another run shared the machine's two cores; the others had it")
+    w("  to themselves.")
+    w("")
+    w("## Commands")
+    w("")
+    w("One comparison per column (each run in its own process, recorded as it ends; rerun to resume):")
+    w("")
+    w("```sh")
+    for c in cols:
+        if colinfo[c].get("command"):
+            w(colinfo[c]["command"])
+    w("```")
+    w("")
+    w("Their records, one per run, are [docs/table1/results.json](table1/results.json) (each run's")
+    w("`run.json`, with the design's own objective, the start, the recipe's backend settings and the")
+    w("shared-machine mark from its `result.json` and the protocol). This page and the charts are")
+    w("regenerated from that file alone:")
+    w("")
+    w("```sh")
+    w("NETSPEC=~/.cache/netspec/target/release/netspec   # the binary of ./dev's release build")
+    w("scripts/table1-report.py --netspec $NETSPEC        # writes this page and docs/img/table1/*.svg")
+    w("scripts/table1-check.sh $NETSPEC                   # exit 1, naming the file, if one is out of date")
+    w("```")
+    w("")
+    w("The charts are `netspec compare --merge docs/table1 --manifest models/table1.toml --out DIR`'s.")
+    w("`scripts/table1-report.py --import out/t1-highs-strong` puts a comparison's runs into the")
+    w("results file, replacing the cells they rerun. Rerunning a column solves every row again with")
+    w("the current netspec; the records keep the settings each cell was made with, and the new cells")
+    w("can differ.")
+    w("")
+
+    # The table.
+    w("## Per row")
+    w("")
+    w("Each column's cell: the status and the design's own objective, with the time where proven,")
+    w("else the gap and the bound; *best design* is the lowest objective of any column, *best bound*")
+    w("the highest bound. *Edges*: our mesh's (the paper's, given on level 2 for the street rows).")
+    w("")
+    w("| row | edges | paper variables | paper s | limit s | " + " | ".join(cols) + " | best design | best bound |")
+    w("|---|---|---|---|---|" + "---|" * (len(cols) + 2))
+    for row in rows:
+        n, p = row["name"], row["paper"]
+        paper_t = p["time"] or "-"
+        pe = "-" if p["edges"] is None else str(p["edges"])
+        pv = "-" if p["variables"] is None else str(p["variables"])
+        if not row["spec"]:
+            w(f"| {n} | - ({pe}) | {pv} | {paper_t} | - | " + " | ".join("no instance" for _ in cols) + " | - | - |")
+            continue
+        rs = [by.get((n, c)) for c in cols]
+        edges = next((r["edges"] for r in rs if r and r.get("edges") is not None), None)
+        limit = next((r["time_limit"] for r in rs if r and r.get("time_limit")), None)
+        b, bd = best[n], bound[n]
+        w(f"| {n} | {edges if edges is not None else '-'} ({pe}) | {pv} | {paper_t} | {fmt(limit)} | "
+          + " | ".join(cell(r) for r in rs) + f" | {fmt(b[0]) if b else '-'} | {fmt(bd[0]) if bd else '-'} |")
+    w("")
+    w("† ran while another run shared the machine's two cores.")
+    w("")
+
+    # Per column.
+    w("## Per column")
+    w("")
+    w("| column | threads | rows | proven | valid design | best design of the row (ties count) | shifted geometric mean of time (shift 10 s, not proven = its limit) | time / paper time on its proven rows (geometric mean) | start: given / improved / returned |")
+    w("|---|---|---|---|---|---|---|---|---|")
+    summary = {s["solver"]: s for s in summarize(recs, cols)}
+    for c in cols:
+        mine = [by[(r["name"], c)] for r in ran if (r["name"], c) in by]
+        done = [r for r in mine if proven(r)]
+        valid = [r for r in mine if r["design_objective"] is not None]
+        best_count = sum(1 for r in valid
+                         if r["design_objective"] <= best[r["instance"]][0] + TOL * max(1.0, abs(best[r["instance"]][0])))
+        ratios = [r["wall_time"] / paper_s[r["instance"]] for r in done if paper_s.get(r["instance"])]
+        g = sgm(ratios, 0.0)
+        starts = [r for r in mine if r["start_objective"] is not None]
+        improved = sum(1 for r in starts if r["design_objective"] is not None and r["design_objective"] < r["start_objective"] - TOL * max(1.0, abs(r["start_objective"])))
+        returned = sum(1 for r in starts if r["start_returned"])
+        st = f"{len(starts)} / {improved} / {returned}" if starts else "-"
+        ratio = "-" if g is None else f"{g:.2f} ({words(len(ratios), 'row')})"
+        w(f"| {c} | {colinfo[c].get('threads') or '-'} | {len(mine)} | {len(done)} | {len(valid)} | {best_count} | "
+          f"{summary[c]['sgm_time']:.1f} s | {ratio} | {st} |")
+    w("")
+    w("*Start*: rows where the heuristic's start was checked and handed over / where the column's")
+    w("design is better than it / where the start itself is the design returned.")
+    w("")
+
+    # Against the paper's times.
+    w("## Against the paper's times")
+    w("")
+    w(wrap(f"**{len(proven_rows)} of {len(ran)} rows are proven by some column** within min(paper time, {cap:g} s): "
+           + (listing(proven_rows) if proven_rows else "none") + ".", "- ", "  "))
+    w(wrap(f"**{len(ran) - len(no_design)} of {len(ran)} rows have a valid design** from some column"
+           + (f" (none on {listing(no_design)})." if no_design else "."), "- ", "  "))
+    pairs = [(fastest[n][0], paper_s[n], n, fastest[n][1]) for n in proven_rows if paper_s.get(n)]
+    if pairs:
+        ours, theirs = sgm([a for a, *_ in pairs], 10.0), sgm([b for _, b, *_ in pairs], 10.0)
+        g = sgm([a / b for a, b, *_ in pairs], 0.0)
+        w(wrap(f"**On the {len(pairs)} rows proven here**, the fastest proving column's time against the paper's: "
+               f"shifted geometric means (shift 10 s) {ours:.1f} s against {theirs:.1f} s, **ratio {ours / theirs:.2f}**; "
+               f"geometric mean of the per-row ratios {g:.2f}. Per row: "
+               + ", ".join(f"{n} {a / b:.2f}× ({c})" for a, b, n, c in pairs) + ".", "- ", "  "))
+    w(wrap(f"The other {len(open_rows)} rows end at their limit without a proof in every column; their times "
+           "are not set against the paper's.", "- ", "  "))
+    w("")
+
+    # The recipes.
+    for cs in cols:
+        cp = cs.split("/")[0] + "/paper"
+        if not cs.endswith("/strong") or cp not in cols:
+            continue
+        both = [r["name"] for r in ran if (r["name"], cs) in by and (r["name"], cp) in by]
+        ob = lambda n, c: by[(n, c)]["design_objective"]
+        bd = lambda n, c: by[(n, c)].get("dual_bound")
+        better = sum(1 for n in both if ob(n, cs) is not None and (ob(n, cp) is None or ob(n, cs) < ob(n, cp) - TOL * max(1.0, abs(ob(n, cp)))))
+        worse = sum(1 for n in both if ob(n, cp) is not None and (ob(n, cs) is None or ob(n, cp) < ob(n, cs) - TOL * max(1.0, abs(ob(n, cs)))))
+        with_b = [n for n in both if bd(n, cs) is not None and bd(n, cp) is not None]
+        higher = sum(1 for n in with_b if bd(n, cs) > bd(n, cp) + TOL * max(1.0, abs(bd(n, cp))))
+        lower = sum(1 for n in with_b if bd(n, cs) < bd(n, cp) - TOL * max(1.0, abs(bd(n, cp))))
+        pv = lambda c: [n for n in both if proven(by[(n, c)])]
+        gaps = [(by[(n, cs)]["gap"], by[(n, cp)]["gap"]) for n in both
+                if not proven(by[(n, cs)]) and by[(n, cs)].get("gap") is not None and by[(n, cp)].get("gap") is not None]
+        med = lambda xs: sorted(xs)[len(xs) // 2]
+        w(f"## The strong recipe against the paper's ({cs} and {cp})")
+        w("")
+        w(wrap(f"Same backend, threads and limits, on the {len(both)} rows: proven {len(pv(cs))} against {len(pv(cp))}"
+               + (f" ({listing(pv(cp))} by both)" if pv(cp) else "") + f"; a better design on {words(better, 'row')}, worse on"
+               f" {worse}, equal on the rest; a higher bound on {higher} of the {len(with_b)} rows where both have one,"
+               f" lower on {lower}."
+               + (f" On the {len(gaps)} rows {cs} does not prove where both end with a gap, the median gap is"
+                  f" {100 * med([a for a, _ in gaps]):.1f} % against {100 * med([b for _, b in gaps]):.1f} %." if gaps else "")))
+        w("")
+
+    # Where the open rows stand.
+    w("## Where the open rows stand")
+    w("")
+    og = []
+    for n in open_rows:
+        if best[n] and bound[n]:
+            og.append(((best[n][0] - bound[n][0]) / abs(best[n][0]), n))
+    og.sort()
+    if og:
+        w(wrap(f"Between the best design and the best bound of any column, the {len(og)} open rows"
+               + (" with both" if len(og) < len(open_rows) else "") + " are open by "
+               + ", ".join(f"{n} {100 * g:.1f} %" for g, n in og) + "."))
+        if len(og) == len(open_rows):
+            w("Every open row has a design and a bound below it; what is missing is the proof. Where tested")
+        else:
+            w("Where tested")
+        w("(2c and 5L3), handing HiGHS the optimum as an objective bound up front did not shorten the")
+        w("proof (2c: 21.6 s with it, 19.9 s without): the open rows are held by their bounds, not by the")
+        w("search for designs. Hop-indexed distance labels, the textbook strengthening of a distance-flow")
+        w("bound, raise the root bound of the open distance rows by less than the cuts `strong` already")
+        w("adds, or only a little (7c-L3 and 2c), at 6–13 times the model's size; on 7c-L3 the MILP with")
+        w("them ended its 294 s with bound 168.9, below the table's 170.5 ([docs/benchmarks.md](benchmarks.md)). The")
+        w("remaining gaps lie in coverage and the no-dead-end rule rather than in the distance term.")
+        w("")
+
+    # Charts.
+    w("## Charts")
+    w("")
+    w("Performance profile: the share of each column's rows proven within t seconds of wall time.")
+    w("")
+    w("![performance profile](img/table1/profile.svg)")
+    w("")
+    w("Time per row and column: the solver's own time, log scale; hatched bars are not proven and")
+    w("carry their status and gap; the dashed line is the limit, the diamond the paper's Gurobi time.")
+    w("")
+    w("![time per row and column](img/table1/bars.svg)")
+    w("")
+
+    # Limits.
+    w("## Limits of the comparison")
+    w("")
+    w("- **Hardware and solver.** The paper's times are Gurobi (2014) on a 2.4 GHz eight-core CPU;")
+    w(wrap("  these are open-source backends ("
+           + ", ".join(f"{ {'highs': 'HiGHS', 'scip': 'SCIP', 'cbc': 'CBC'}[b]} {', '.join(sorted(v))}" for b, v in sorted(versions.items()) if b in ("highs", "scip", "cbc"))
+           + ") with one or two threads on 2-core machines.", "", "  "))
+    w("- **Instances.** Reconstructions of the paper's size class and rules, not its meshes; the")
+    w("  street levels 3 and 4 rest on the network of our own city run, not the paper's.")
+    w("- **Objectives.** The paper publishes none, so designs cannot be compared with the paper's; only")
+    w("  times are, as ratios, and only on rows proven here. The paper also says it accepted sub-optimal")
+    w("  designs within reasonable time limits, so its times need not all be proofs.")
+    w("- **Variation.** One run per cell. Times vary between runs, seeds and machines (HiGHS proves 2c")
+    w("  in 11.7–21.4 s over seeds 0–5, against the paper's 11 s), and a run that shared the machine (†)")
+    w("  is slower than alone (5–15 % where measured).")
+    w(f"- **Code.** Every record names netspec {', '.join(netspec_versions)}, but the columns were not all made")
+    w("  with the same build of it: the records keep each run's settings, and a rerun can differ.")
+    return "\n".join(lines) + "\n"
+
+
+# ---------------------------------------------------------------------------------------------
+# Charts and checks
+
+
+def charts(netspec, out_dir):
+    """Runs `netspec compare --merge` over the results file into out_dir; returns the charts' paths."""
+    cmd = [netspec, "compare", "--merge", os.path.dirname(RESULTS), "--manifest", MANIFEST, "--out", out_dir]
+    p = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True)
+    if p.returncode != 0:
+        sys.exit(f"{' '.join(cmd)} failed ({p.returncode}):\n{p.stderr.strip()}")
+    return {c: os.path.join(out_dir, os.path.basename(c)) for c in CHARTS}
+
+
+def digest(parts):
+    """src/io/mod.rs digest: FNV-1a over the parts, each followed by 0xff."""
+    h, mask = 0xCBF29CE484222325, (1 << 64) - 1
+    for part in parts:
+        for b in part:
+            h = ((h ^ b) * 0x100000001B3) & mask
+        h = ((h ^ 0xFF) * 0x100000001B3) & mask
+    return f"{h:016x}"
+
+
+def spec_digest(spec):
+    """src/compare.rs RunSettings::new: the spec file's bytes and its mesh file's, if it names one."""
+    try:
+        data = open(os.path.join(ROOT, spec), "rb").read()
+    except OSError:
+        return ""
+    try:
+        value = json.loads(data) if spec.lower().endswith(".json") else tomllib.loads(data.decode())
+    except ValueError:
+        value = {}
+    mesh = value.get("mesh") if isinstance(value, dict) else None
+    f = mesh.get("file") if isinstance(mesh, dict) else None
+    extra = b""
+    if isinstance(f, str):
+        try:
+            extra = open(os.path.join(ROOT, os.path.dirname(spec), f), "rb").read()
+        except OSError:
+            pass
+    return digest([data, extra])
+
+
+def stale_specs(res):
+    """Records whose spec file has changed since the run (its digest differs)."""
+    out, cache = [], {}
+    for r in res["records"]:
+        st = r.get("settings") or {}
+        spec = st.get("spec")
+        if spec and spec not in cache:
+            cache[spec] = spec_digest(spec)
+        if spec and cache[spec] != st.get("spec_digest"):
+            out.append(f"{r['instance']} ({r['solver']}): {spec}")
+    return out
+
+
+def compare_file(committed, fresh):
+    """None when the files are byte-identical, else a short account of the difference."""
+    path = os.path.join(ROOT, committed)
+    if not os.path.exists(path):
+        return f"{committed}: missing (the generator writes it)"
+    a, b = open(path, "rb").read(), open(fresh, "rb").read()
+    if a == b:
+        return None
+    diff = list(difflib.unified_diff(a.decode(errors="replace").splitlines(), b.decode(errors="replace").splitlines(),
+                                     f"{committed} (committed)", f"{committed} (regenerated)", n=0, lineterm=""))
+    changed = sum(1 for l in diff if l[:1] in "+-" and l[:3] not in ("+++", "---"))
+    changed = words(changed, "line")
+    head = "\n".join("    " + l[:200] for l in diff[:14])
+    return f"{committed}: differs ({changed} changed)\n{head}" + ("\n    …" if len(diff) > 14 else "")
 
 
 def main():
     args = sys.argv[1:]
+    if "-h" in args or "--help" in args:
+        print(__doc__)
+        return 0
+
     def option(name):
         if name not in args:
             return None
         i = args.index(name)
+        if i + 1 >= len(args):
+            sys.exit(f"{name} needs a value")
         v = args[i + 1]
         del args[i:i + 2]
         return v
-    hours = option("--hours")
-    hours = float(hours) if hours else None
-    iso = lambda t: datetime.datetime.fromisoformat(t.replace("Z", "+00:00")).timestamp()
-    shared_windows = [tuple(iso(t) for t in w.split("/")) for w in (option("--shared") or "").split(",") if w]
-    beside_dir = option("--beside")
-    merged = args[0]
-    res = json.load(open(os.path.join(merged, "results.json")))
-    settings, records = res["settings"], res["records"]
-    sources = [s[0] for s in settings["merged_from"]]
-    source_results = {src: json.load(open(os.path.join(src, "results.json"))) for src in sources}
-    rows = settings["manifest"]["row"]
-    columns = [b["solver"] for b in res["summary"]]
-    dirs = {}
-    column_source = {}
-    for src in sources:
-        for k, v in run_dirs(src).items():
-            dirs[k] = v
-            column_source[k[1]] = src
-    by = {(r["instance"], r["solver"]): r for r in records}
-    designs = {k: design_of(dirs[k], r) if k in dirs else design_of("", r) for k, r in by.items()}
-    shared = {k for k, r in by.items() if k in dirs and any(a <= started(dirs[k], r) < b for a, b in shared_windows)}
 
-    img = os.path.join(ROOT, "docs/img/table1")
-    gallery = os.path.join(img, "designs")
-    os.makedirs(gallery, exist_ok=True)
-    for f in ("profile.svg", "bars.svg"):
-        shutil.copy(os.path.join(merged, f), os.path.join(img, f))
-
-    def threads(col):
-        for r in records:
-            if r["solver"] == col and r.get("settings"):
-                return r["settings"].get("threads")
-        return None
-
-    lines = []
-    w = lines.append
-    w("# Reproducing Table 1 (Peng et al. 2016): the strong and the paper recipe at the paper's times")
-    w("")
-    # Each compare output records the CPU of its last invocation (a resume on another VM
-    # rewrites it), so the kinds of VM the protocol's sessions used are named as well.
-    cpus = sorted({r.get("cpu") or "unknown CPU" for r in source_results.values()} | SESSION_CPUS)
-    w("Generated by `scripts/table1-report.py` from these runs (netspec "
-      f"{res['netspec_version']}, 2 cores; {' and '.join(cpus)}, see *Protocol*):")
-    w("")
-    for src in sources:
-        cols = ", ".join(f"`{c}`" for c in columns if column_source.get(c) == src)
-        cmd = source_results[src].get("command") or []
-        w(f"- {cols}: `netspec {' '.join(cmd[1:])}`")
-    w(f"- merged by `netspec compare --merge {','.join(sources)} --manifest models/table1.toml --out {merged}`")
-    w("")
-    w("**Read this first.** The paper's times are Gurobi (2014) on a 2.4 GHz eight-core CPU; ours are")
-    w("HiGHS 1.15, SCIP 10.0.2 and CBC 2.10.8 on 2-core virtual machines. Our instances are reconstructions (same size")
-    w("class, weights and switches, not the paper's meshes; street levels 3–4 are built on the network")
-    w("*our* city run found at the level before). The paper publishes no objective values, so no row")
-    w("can be said to match or beat the paper's design: only times are set against the paper's, as a")
-    w("ratio where we proved optimality. Objectives below are the design's own (recomputed by netspec")
-    w("from the network), not the formulation's surrogate; *optimal* means the bound met the objective")
-    w("to netspec's own tolerance (1e-6 absolute or 1e-9 relative), or came within the target's gap of")
-    w("1e-4 (Gurobi's default `MIPGap`; the paper names no gap and says it also accepted sub-optimal")
-    w("designs within reasonable time limits; such cells name the status and the gap, and their time is")
-    w("the whole run's, so at least the time to the proof), and the design passed every check of the")
-    w("MILP and of the design.")
-    w("")
-    protocol = os.path.join(ROOT, "scripts/table1-protocol.md")
-    if os.path.exists(protocol):
-        w(open(protocol).read().strip())
-    if hours is not None:
-        w(f"The comparisons took {hours:.2f} h of wall time in all.")
-    w("")
-
-    # Per row.
-    w("Every run's record (`run.json`, `result.json`, `stdout.txt`) is in")
-    w("[table1-runs/2026-12-01.tar.gz](table1-runs/2026-12-01.tar.gz), for the third session's")
-    w("runs [table1-runs/2026-12-01b.tar.gz](table1-runs/2026-12-01b.tar.gz), for the fourth's")
-    w("[table1-runs/2026-12-02.tar.gz](table1-runs/2026-12-02.tar.gz), for the fifth's")
-    w("[table1-runs/2026-12-02c.tar.gz](table1-runs/2026-12-02c.tar.gz), for the sixth's")
-    w("[table1-runs/2026-12-02d.tar.gz](table1-runs/2026-12-02d.tar.gz), for the seventh's")
-    w("[table1-runs/2026-12-02e.tar.gz](table1-runs/2026-12-02e.tar.gz), for the eighth's")
-    w("[table1-runs/2026-12-02f.tar.gz](table1-runs/2026-12-02f.tar.gz), for the ninth's")
-    w("[table1-runs/2026-12-02g.tar.gz](table1-runs/2026-12-02g.tar.gz), for the tenth's")
-    w("[table1-runs/2026-12-03.tar.gz](table1-runs/2026-12-03.tar.gz), for the eleventh's")
-    w("[table1-runs/2026-12-03b.tar.gz](table1-runs/2026-12-03b.tar.gz), for the twelfth's")
-    w("[table1-runs/2026-12-03c.tar.gz](table1-runs/2026-12-03c.tar.gz), for the thirteenth's")
-    w("[table1-runs/2026-12-03d.tar.gz](table1-runs/2026-12-03d.tar.gz), for the fourteenth's")
-    w("[table1-runs/2026-12-03e.tar.gz](table1-runs/2026-12-03e.tar.gz), for the fifteenth's")
-    w("[table1-runs/2026-12-03f.tar.gz](table1-runs/2026-12-03f.tar.gz), for the sixteenth's")
-    w("[table1-runs/2026-12-03g.tar.gz](table1-runs/2026-12-03g.tar.gz) and for the seventeenth's")
-    w("[table1-runs/2026-12-04.tar.gz](table1-runs/2026-12-04.tar.gz) (each keeps the runs the next")
-    w("replaces): extract the first into `out/`, remove its strong-recipe room rows and the paper")
-    w("recipe's 1e, extract the second, remove its 1e (all three columns) and its strong-recipe")
-    w("11b, extract the third, remove HiGHS/strong's rows of `models/table1-cuts.toml` and")
-    w("SCIP/strong's rows of `models/table1-streets-l4.toml` and 2a–2g (also from `t1-scip-beside-highs/`),")
-    w("then extract the fifth, remove both strong columns' rows of `models/table1-split.toml`, then")
-    w("extract the sixth, remove HiGHS/strong's rows of `models/table1-tuned.toml`, then extract the")
-    w("seventh, remove both strong columns' rows of `models/table1-paths.toml`, then extract the")
-    w("eighth, remove HiGHS/strong's rows of `models/table1-rooms.toml`, then extract the ninth,")
-    w("remove both strong columns' rows of `models/table1-spurs.toml`, then extract the tenth,")
-    w("remove HiGHS/strong's rows of `models/table1-indicators.toml` and its 7a rows and SCIP/strong's")
-    w("rows of `models/table1-fig2.toml`, then extract")
-    w("the eleventh, then the twelfth (the baseline columns `t1-cbc-strong/` and `t1-anneal/`), then")
-    w("the thirteenth (the same two columns on all 43 rows; it replaces the twelfth's), remove")
-    w("HiGHS/strong's rows of `models/table1-parallel.toml`, then extract the fourteenth, remove")
-    w("HiGHS/strong's rows of `models/table1-directed.toml` and SCIP/strong's 1c-L2, 1c-L3, 5L3 and")
-    w("5L4, then extract the fifteenth, remove HiGHS/strong's, SCIP/strong's and CBC/strong's 2a and")
-    w("2b, then extract the sixteenth, remove HiGHS/strong's 1d, 1e, 9b1–9b4, 11a and 11b and")
-    w("CBC/strong's 1c-L2, 1c-L3, 5L3 and 5L4, then extract the seventeenth,")
-    w("to resume these comparisons (a record with the same settings is")
-    w("reused) or to report again.")
-    w("")
-    w("## Per row")
-    w("")
-    w("| row | paper s | limit s | " + " | ".join(columns) + " | best design |")
-    w("|---|---|---|" + "---|" * (len(columns) + 1))
-    proven_rows, ratios, pairs = [], [], []
-    missing = []
-    no_design = []
-    for row in rows:
-        name = row["name"]
-        paper_t = (row.get("paper") or {}).get("time")
-        if not row.get("spec"):
-            missing.append((name, row.get("missing")))
-            w(f"| {name} | {paper_t or '-'} | - | " + " | ".join("no spec" for _ in columns) + " | - |")
-            continue
-        recs = [by.get((name, c)) for c in columns]
-        limit = next((r.get("time_limit") for r in recs if r and r.get("time_limit")), None)
-        cells = [cell(r, designs.get((name, c))) + (" †" if (name, c) in shared else "") for r, c in zip(recs, columns)]
-        objs = [(designs[(name, c)]["objective"], c) for r, c in zip(recs, columns) if r and designs[(name, c)]["objective"] is not None]
-        # Ties go to the earlier column (the order given to --merge).
-        best = min(objs, key=lambda oc: (oc[0], columns.index(oc[1]))) if objs else None
-        fastest = min(((r["wall_time"], c) for r, c in zip(recs, columns) if r and solved(r)), default=None)
-        ps = seconds(paper_t)
-        if fastest:
-            proven_rows.append(name)
-            if ps:
-                ratios.append((name, fastest[0] / ps, fastest[1]))
-                pairs.append((fastest[0], ps))
-        if best is None:
-            no_design.append(name)
-            if os.path.exists(os.path.join(gallery, f"{name}.png")):
-                os.remove(os.path.join(gallery, f"{name}.png"))
-        else:
-            pic = designs[(name, best[1])]["picture"]
-            if pic:
-                thumbnail(pic, os.path.join(gallery, f"{name}.png"))
-        w(f"| {name} | {paper_t or '-'} | {fmt(limit)} | " + " | ".join(cells) + f" | {fmt(best[0]) if best else '-'} |")
-    w("")
-    if shared:
-        w("† ran while another column's solver ran on the other core (see *Protocol*); every other")
-        w("run had the machine to itself.")
-        w("")
-    if beside_dir:
-        w("**Side by side vs alone.** The same runs (same settings) made beside the other solver and")
-        w("again alone; wall time of the whole solve, or the gap where the limit was reached:")
-        w("")
-        w("| row | column | beside the other solver | alone |")
-        w("|---|---|---|---|")
-        paths = [p for d in beside_dir.split(",") for p in glob.glob(os.path.join(d, "runs", "*", "run.json"))]
-        order = {r["name"]: i for i, r in enumerate(rows)}
-        beside_runs = sorted((json.load(open(p)) for p in paths), key=lambda b: (order.get(b["instance"], 0), b["solver"]))
-        for b in beside_runs:
-            a = by.get((b["instance"], b["solver"]))
-            if not a:
-                continue
-            show = lambda r: f"optimal in {r['wall_time']:.1f} s" if solved(r) else f"{r['status']} at {r['wall_time']:.0f} s, gap {100 * (r['gap'] or 0):.1f} %"
-            w(f"| {b['instance']} | {b['solver']} | {show(b)} | {show(a)} |")
-        w("")
-    if missing:
-        w("Rows without an instance (listed, never dropped): " + "; ".join(f"**{n}** ({why})" for n, why in missing) + ".")
-        w("")
-
-    # Per column.
-    ran = [r["name"] for r in rows if r.get("spec")]
-    w("## Per backend")
-    w("")
-    w("| column | threads | rows | proven optimal | proven infeasible | valid design | best design of the row (ties count) | shifted geometric mean of time (shift 10 s, unsolved = its limit) | time / paper time on its proven rows (geometric mean) |")
-    w("|---|---|---|---|---|---|---|---|---|")
-    for b in res["summary"]:
-        c = b["solver"]
-        mine = [by[(n, c)] for n in ran if (n, c) in by]
-        opt = [r for r in mine if solved(r) and r["status"] != "infeasible"]
-        inf = [r for r in mine if r["status"] == "infeasible"]
-        valid = [r for r in mine if designs[(r["instance"], c)]["objective"] is not None]
-        best_count = 0
-        for r in mine:
-            o = designs[(r["instance"], c)]["objective"]
-            os_ = [designs[(r["instance"], x)]["objective"] for x in columns if (r["instance"], x) in designs and designs[(r["instance"], x)]["objective"] is not None]
-            if o is not None and o <= min(os_) + TOL * max(1.0, abs(min(os_))):
-                best_count += 1
-        rr = []
-        for r in opt + inf:
-            ps = seconds(next((x.get("paper") or {} for x in rows if x["name"] == r["instance"]), {}).get("time"))
-            if ps:
-                rr.append(r["wall_time"] / ps)
-        g = sgm(rr, 0.0)
-        plural = "" if len(rr) == 1 else "s"
-        w(f"| {c} | {threads(c) or '-'} | {len(mine)} | {len(opt)} | {len(inf)} | {len(valid)} | {best_count} | {b['sgm_time']:.1f} s | {'-' if g is None else f'{g:.2f} ({len(rr)} row{plural})'} |")
-    w("")
-
-    # The recipes against each other, per backend.
-    pairs_rp = [(c, c.split("/")[0] + "/paper") for c in columns if c.endswith("/strong") and c.split("/")[0] + "/paper" in columns]
-    if pairs_rp:
-        w("## The strong recipe against the paper's")
-        w("")
-        w("Same backend, threads and caps; per row, the design's own objective and the solver's bound:")
-        w("")
-        for cs, cp in pairs_rp:
-            both = [n for n in ran if (n, cs) in by and (n, cp) in by]
-            ob = lambda n, c: designs[(n, c)]["objective"]
-            bd = lambda n, c: by[(n, c)].get("dual_bound")
-            better_d = sum(1 for n in both if ob(n, cs) is not None and (ob(n, cp) is None or ob(n, cs) < ob(n, cp) - TOL * max(1.0, abs(ob(n, cp)))))
-            worse_d = sum(1 for n in both if ob(n, cp) is not None and (ob(n, cs) is None or ob(n, cp) < ob(n, cs) - TOL * max(1.0, abs(ob(n, cs)))))
-            with_b = [n for n in both if bd(n, cs) is not None and bd(n, cp) is not None]
-            higher_b = sum(1 for n in with_b if bd(n, cs) > bd(n, cp) + TOL * max(1.0, abs(bd(n, cp))))
-            lower_b = sum(1 for n in with_b if bd(n, cs) < bd(n, cp) - TOL * max(1.0, abs(bd(n, cp))))
-            proven = lambda c: [n for n in both if solved(by[(n, c)])]
-            w(f"- **{cs} vs {cp}** on the {len(both)} rows both ran: proven {len(proven(cs))} vs {len(proven(cp))}"
-              f" ({', '.join(proven(cs)) or '-'} vs {', '.join(proven(cp)) or '-'}); better design on {better_d} rows, worse on {worse_d}, equal on the rest;"
-              f" higher bound on {higher_b} of the {len(with_b)} rows where both have one, lower on {lower_b}.")
-            gaps = [(n, by[(n, cs)].get("gap"), by[(n, cp)].get("gap")) for n in both if not solved(by[(n, cs)]) and by[(n, cs)].get("gap") is not None and by[(n, cp)].get("gap") is not None]
-            if gaps:
-                med = lambda xs: sorted(xs)[len(xs) // 2]
-                w(f"  Median gap on the {len(gaps)} rows {cs} does not prove where both end with a gap: {100 * med([g for _, g, _ in gaps]):.1f} % vs {100 * med([g for _, _, g in gaps]):.1f} %.")
-        w("")
-
-    # Against the targets.
-    n_rows = len(ran)
-    w("## Against the issue's targets")
-    w("")
-    w(f"- **Rows proven optimal (or infeasible) by some backend within min(paper time, 300 s): {len(proven_rows)} of {n_rows}**"
-      f" (the paper's 43 rows, all with an instance here; target ≥ 30){' — met' if len(proven_rows) >= 30 else ' — missed'}" + (f". Proven: {', '.join(proven_rows)}." if proven_rows else "."))
-    w(f"- **Rows with a valid design: {len(ran) - len(no_design)} of {len(ran)}** (target: every row){' — met' if not no_design else ' — missed on ' + ', '.join(no_design)}.")
-    if ratios:
-        g = sgm([x for _, x, _ in ratios], 0.0)
-        ours = sgm([a for a, _ in pairs], 10.0)
-        theirs = sgm([b for _, b in pairs], 10.0)
-        w(f"- **Time / paper time on the {len(ratios)} rows proven by both** (the fastest of our backends, wall time of the whole solve with the start):"
-          f" geometric mean {g:.2f}; shifted geometric means (shift 10 s) {ours:.1f} s ours vs {theirs:.1f} s the paper's, ratio {ours / theirs:.2f}"
-          f" (target < 0.5{', met' if ours / theirs < 0.5 else ', missed'} — on these rows only; every other row is unproven here at its cap).")
-        w("  Per row: " + ", ".join(f"{n} {x:.2f}× ({c})" for n, x, c in ratios) + ".")
-    w("")
-
-    # Reading (hand-written against this run; regenerate the rest, then check these lines).
-    reading = os.path.join(ROOT, "scripts/table1-reading.md")
-    if os.path.exists(reading):
-        w("## Reading")
-        w("")
-        w(open(reading).read().strip())
-        w("")
-
-    # Starts.
-    w("## The heuristic's start")
-    w("")
-    for c in columns:
-        starts = [(k, d) for k, d in designs.items() if k[1] == c and d["start"] is not None]
-        if not starts:
-            continue
-        better = sum(1 for _, d in starts if d["objective"] is not None and d["objective"] < d["start"] - TOL * max(1.0, abs(d["start"])))
-        returned = sum(1 for _, d in starts if d["start_returned"])
-        worse = sum(1 for _, d in starts if d["objective"] is not None and d["objective"] > d["start"] + TOL * max(1.0, abs(d["start"])))
-        equal = len(starts) - better - worse
-        ran_c = sum(1 for n in ran if (n, c) in by)
-        w(f"- {c}: a checked start on {len(starts)} of the {ran_c} rows it ran; the solver improved it on {better}, ended at the start's objective on {equal}"
-          f" (on {returned} of them netspec returned the start because the solver had nothing as good), ended worse than it on {worse}.")
-    w("")
-
-    # Figures.
-    w("## Figures")
-    w("")
-    w("Performance profile (share of rows proven within t seconds) and time per row (hatched: not")
-    w("proven, with the gap; diamonds: the paper's Gurobi time):")
-    w("")
-    w("![performance profile](img/table1/profile.svg)")
-    w("")
-    w("![time per row and backend](img/table1/bars.svg)")
-    w("")
-    w("The best design of each row (the lowest design objective any column reached; edge colour is")
-    w("the network distance to the nearest sink; a picture's title shows the solver's objective,")
-    w("which can differ from the design's own in the table):")
-    w("")
-    pics = sorted(os.path.basename(p)[:-4] for p in glob.glob(os.path.join(gallery, "*.png")))
-    order = [r["name"] for r in rows if r["name"] in pics]
-    for i in range(0, len(order), 4):
-        chunk = order[i:i + 4]
-        w("| " + " | ".join(chunk) + " |")
-        w("|" + "---|" * len(chunk))
-        w("| " + " | ".join(f"![{n}](img/table1/designs/{n}.png)" for n in chunk) + " |")
-        w("")
-    open(os.path.join(ROOT, "docs/table1-reproduction.md"), "w").write("\n".join(lines) + "\n")
+    netspec = option("--netspec") or os.environ.get("NETSPEC") or None
+    imports = option("--import")
+    check = "--check" in args
+    shared = "--shared-machine" in args
+    args = [a for a in args if a not in ("--check", "--shared-machine")]
+    if args:
+        sys.exit(f"unknown arguments: {' '.join(args)}\n\n{__doc__}")
+    if netspec:
+        netspec = os.path.abspath(netspec)
+        if not os.access(netspec, os.X_OK):
+            sys.exit(f"{netspec}: not an executable netspec binary")
+    if imports:
+        import_runs([os.path.abspath(d) for d in imports.split(",")], shared)
+        return 0
+    res = json.load(open(os.path.join(ROOT, RESULTS)))
+    page = render(res, load_manifest())
+    with tempfile.TemporaryDirectory(prefix="table1-") as tmp:
+        fresh = {PAGE: os.path.join(tmp, "table1.md")}
+        open(fresh[PAGE], "w").write(page)
+        if netspec:
+            fresh.update(charts(netspec, os.path.join(tmp, "merged")))
+        if check:
+            stale = stale_specs(res)
+            if stale:
+                print(f"warning: {len(stale)} records ran a spec that has changed since (digest differs):\n  "
+                      + "\n  ".join(stale), file=sys.stderr)
+            problems = [p for p in (compare_file(k, v) for k, v in fresh.items()) if p]
+            if problems:
+                print("Table 1 page/charts out of date with docs/table1/results.json "
+                      "(regenerate: scripts/table1-report.py --netspec NETSPEC):", file=sys.stderr)
+                print("\n".join(problems), file=sys.stderr)
+                return 1
+            print(f"ok: {', '.join(fresh)} match {RESULTS}" + ("" if netspec else " (charts not checked: no --netspec)"))
+            return 0
+        for k, v in fresh.items():
+            os.makedirs(os.path.dirname(os.path.join(ROOT, k)), exist_ok=True)
+            shutil.copyfile(v, os.path.join(ROOT, k))
+            print(f"wrote {k}")
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())
