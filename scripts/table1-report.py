@@ -649,7 +649,7 @@ def main():
                       "(regenerate: scripts/table1-report.py --netspec NETSPEC):", file=sys.stderr)
                 print("\n".join(problems), file=sys.stderr)
                 return 1
-            print(f"ok: {', '.join(fresh)} match {RESULTS}" + ("" if netspec else " (charts not checked: no --netspec)"))
+            print(f"ok: {', '.join(fresh)} {'match' if len(fresh) > 1 else 'matches'} {RESULTS}" + ("" if netspec else " (charts not checked: no --netspec)"))
             return 0
         for k, v in fresh.items():
             os.makedirs(os.path.dirname(os.path.join(ROOT, k)), exist_ok=True)
