@@ -2,7 +2,7 @@
 
 use anyhow::{bail, Context, Result};
 use clap::{Args, Parser, Subcommand};
-use netspec::heuristics::run::Method;
+use netspec::pipeline::Method;
 use netspec::io::{read_model_file, write_model_file};
 use netspec::milp::Tolerances;
 use netspec::report::{SolveReport, SCHEMA_VERSION};

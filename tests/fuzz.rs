@@ -21,9 +21,9 @@ fn mps_seeds() -> Vec<String> {
 
 fn lp_seeds() -> Vec<String> {
     texts(&[
-        "fixtures/lp/highs-check/1448.lp",
-        "fixtures/lp/highs-check/fixed-binary.lp",
-        "fixtures/lp/highs-check/issue-2388.lp",
+        "fixtures/highs-check/1448.lp",
+        "fixtures/highs-check/fixed-binary.lp",
+        "fixtures/highs-check/issue-2388.lp",
     ])
 }
 

@@ -6,7 +6,7 @@
 
 use netspec::design::{self, Network, Objective};
 use netspec::formulations::{build_with, Recipe};
-use netspec::heuristics::run::{run_search, SearchMethod};
+use netspec::pipeline::search::{run_search, SearchMethod};
 use netspec::heuristics::{self, AnnealOptions, Inputs, Options, OwnedInputs, Stop};
 use netspec::pipeline;
 use netspec::spec::{Problem, RecipeName, Spec};

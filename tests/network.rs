@@ -8,7 +8,7 @@ use netspec::mesh::{EdgeId, VertexId};
 use netspec::milp::objectives_agree;
 use netspec::pipeline;
 use netspec::solvers::{SolveOptions, Solver, SolverKind, Termination};
-use netspec::spec::{EdgeRole, PathForm, Problem, RecipeName, Spec, SpecErrorKind};
+use netspec::spec::{switch, EdgeRole, PathForm, Problem, RecipeName, Spec, SpecErrorKind};
 use serde::Serialize;
 use std::path::Path;
 
@@ -579,9 +579,8 @@ fn directed_cutsets_on_parent_arcs_raise_the_root_bound_and_keep_the_optimum() {
     {
         let p = problem(&spec("directed", &format!("boundary = \"candidate\"\nformulation = \"strong\"\n[mesh]\ngrid = {{ width = 5, height = 5 }}\n[sinks]\nvertices = [0]\n[coverage]\nrange = 2\n[weights]\nlength = 1\n[features]\ndead_ends = \"{dead_ends}\"\n")));
         let directed = pipeline::build(&p);
-        assert!(directed.recipe.directed_cutsets);
-        let undirected =
-            formulations::build_with(&p, &formulations::Recipe { directed_cutsets: false, ..directed.recipe.clone() });
+        assert!(directed.recipe.on(&switch::DIRECTED_CUTSETS));
+        let undirected = formulations::build_with(&p, &directed.recipe.with(&switch::DIRECTED_CUTSETS, false));
         let arcs = directed.cutsets.as_ref().and_then(|g| g.arcs.as_ref()).expect("parent arcs in the cutset graph");
         assert!(arcs.iter().flat_map(|&(a, b)| [a, b]).flatten().all(|a| directed.vars.parent.contains(&Some(a))));
         assert!(undirected.cutsets.as_ref().is_some_and(|g| g.arcs.is_none()));
@@ -635,15 +634,16 @@ fn symmetric_grids_leave_connectivity_to_the_distance_flow_and_keep_the_optimum(
     assert_eq!(symmetric.symmetry_order, Some(8));
     assert!(
         symmetric.cutsets.is_none()
-            && symmetric.vars.connect_flow.iter().all(Option::is_none)
+            && !symmetric.families.contains_key("connectivity flow (§8)")
             && symmetric.is_complete()
     );
-    let presolve_off = |f: &formulations::Formulation, kind| {
-        f.solver_hints(kind, Some(1)).iter().any(|h| h.name == "presolve" && h.value == "off")
+    let presolve_off = |f: &formulations::Formulation, kind: SolverKind| {
+        let hints = pipeline::Strategy::for_problem(&p, f).hints(f, Some(1));
+        kind.instance().unwrap().strategy_hints(&hints).iter().any(|h| h.name == "presolve" && h.value == "off")
     };
     assert!(presolve_off(&symmetric, SolverKind::Highs) && !presolve_off(&symmetric, SolverKind::Microlp));
     let cutsets =
-        formulations::build_with(&p, &formulations::Recipe { symmetric_flow: false, ..symmetric.recipe.clone() });
+        formulations::build_with(&p, &symmetric.recipe.with(&switch::SYMMETRIC_FLOW, false));
     assert!(
         cutsets.symmetry_order.is_none() && cutsets.cutsets.is_some() && !presolve_off(&cutsets, SolverKind::Highs)
     );
@@ -729,8 +729,9 @@ fn selected_paths_tighten_the_relaxation_and_keep_the_optimum() {
         assert!(report.accepted, "{}: {:?}", f.recipe.label, report.reason);
         let x = x.unwrap();
         let sets = f.path_sets.as_ref().expect("path sets");
-        for (pair, vars) in sets.pairs.iter().zip(&f.vars.paths) {
-            let on = vars.iter().flatten().filter(|v| x[v.index()] > 0.5).count();
+        for (pi, pair) in sets.pairs.iter().enumerate() {
+            let prefix = format!("P_p{pi}_");
+            let on = f.model.vars().iter().zip(&x).filter(|(v, &xv)| v.name.starts_with(&prefix) && xv > 0.5).count();
             let want = if f.recipe.paths == PathForm::Select { 1 } else { pair.paths.len() };
             assert_eq!(on, want, "{}: paths chosen of a pair", f.recipe.label);
         }
@@ -756,13 +757,13 @@ fn out_arcs_tighten_the_relaxation_and_keep_the_optimum() {
     for (distance, dead_ends) in [(0.0, "allow"), (1.0, "allow"), (0.0, "forbid")] {
         let p = problem(&spec("out-arcs", &text(distance, dead_ends)));
         let with = pipeline::build(&p);
-        assert!(with.recipe.out_arcs);
+        assert!(with.recipe.on(&switch::OUT_ARCS));
         let without = formulations::build_with(
             &p,
-            &formulations::Recipe { out_arcs: false, directed_cutsets: false, ..with.recipe.clone() },
+            &with.recipe.with(&switch::OUT_ARCS, false).with(&switch::DIRECTED_CUTSETS, false),
         );
         let undirected =
-            formulations::build_with(&p, &formulations::Recipe { directed_cutsets: false, ..with.recipe.clone() });
+            formulations::build_with(&p, &with.recipe.with(&switch::DIRECTED_CUTSETS, false));
         let family = with.families.get("out-arcs (§8)");
         let parents = with.vars.parent.iter().flatten().count();
         // Parent arcs with the directed cutsets are a forest's: one out of each active vertex.
@@ -953,7 +954,7 @@ fn continuous_indicators_are_exact_and_write_one_row_each() {
     for continuous in [true, false] {
         let p = problem(&spec("indicators", &text(continuous)));
         let f = pipeline::build(&p);
-        assert_eq!(f.recipe.continuous_indicators, continuous);
+        assert_eq!(f.recipe.on(&switch::CONTINUOUS_INDICATORS), continuous);
         let indicators: Vec<_> = f
             .model
             .vars()
@@ -1003,7 +1004,7 @@ fn continuous_indicators_are_exact_and_write_one_row_each() {
     }
 }
 
-/// The strong recipe's objective lattice: a distance spec on a unit grid (lengths, zig-zag
+/// The objective lattice (a formulation property the solve strategy uses): a distance spec on a unit grid (lengths, zig-zag
 /// penalty and distance flow all integral) has the lattice ℤ; the backend's bound is rounded up
 /// to it, and the optimum is the one without it, on HiGHS and microlp. The paper's labels carry
 /// the distance term on big-M rows: no lattice; without a distance term its objective is
@@ -1011,7 +1012,7 @@ fn continuous_indicators_are_exact_and_write_one_row_each() {
 #[test]
 fn objective_lattice_rounds_the_bound_and_keeps_the_optimum() {
     let text = |recipe: &str, lattice: bool, distance: f64| {
-        format!("boundary = \"candidate\"\n[formulation]\nrecipe = \"{recipe}\"\nobjective_lattice = {lattice}\n[mesh]\ngrid = {{ width = 4, height = 3 }}\n[sinks]\nvertices = [0]\n[coverage]\nrange = 1\n[weights]\nlength = 1\ndistance = {distance}\nzigzag = 5\n[features]\ndead_ends = \"forbid\"\n")
+        format!("boundary = \"candidate\"\nformulation = \"{recipe}\"\n[mesh]\ngrid = {{ width = 4, height = 3 }}\n[sinks]\nvertices = [0]\n[coverage]\nrange = 1\n[weights]\nlength = 1\ndistance = {distance}\nzigzag = 5\n[features]\ndead_ends = \"forbid\"\n[solver]\nobjective_lattice = {lattice}\n")
     };
     let one_thread = SolveOptions { threads: Some(1), ..SolveOptions::default() };
     let mut optima = Vec::new();

@@ -442,7 +442,7 @@ fn picture_marks_room_types_and_lists_what_is_drawn() {
     .unwrap();
     let net = r.network.unwrap();
     let placements = &nm.placements.as_ref().unwrap().placements;
-    let svg = netspec::render::svg(
+    let svg = netspec::design::picture::network_svg(
         &p,
         &net,
         None,
@@ -465,85 +465,3 @@ fn picture_marks_room_types_and_lists_what_is_drawn() {
     netspec::render::png(&svg).unwrap();
 }
 
-/// The served faces (`served_faces = true` on tilings): a served row per face and the faces' cover cutsets,
-/// separated as cuts beside the flow. The LP as written rises above the recipe's without them
-/// (fractional rooms can no longer share one corridor edge), the cuts raise it further, and
-/// with and without prove the same optimum with a valid design — on a floor plan (dead-ends
-/// allowed, one serving edge per face) and on a linear game level (dead-ends forbidden, two
-/// inner edges per traversed block).
-#[test]
-fn served_faces_tighten_the_relaxation_and_keep_the_optimum() {
-    use netspec::formulations;
-    let floorplan = r#"
-name = "served-floorplan"
-boundary = "wall"
-formulation = "strong"
-[mesh]
-grid = { width = 6, height = 4 }
-[sinks]
-vertices = [3]
-[features]
-dead_ends = "allow"
-[rooms]
-mode = "floorplan"
-templates = [{ name = "office", shape = "rect 2x2" }, { name = "meeting", shape = "rect 3x2" }]
-"#;
-    let linear = r#"
-name = "served-linear"
-boundary = "wall"
-formulation = "strong"
-[mesh]
-grid = { width = 6, height = 6 }
-[sinks]
-vertices = [1, 5]
-[rooms]
-mode = "game"
-level = "linear"
-templates = [{ name = "block", shape = "rect 2x2" }, { name = "hall", shape = "rect 3x2" }]
-"#;
-    let highs = SolverKind::Highs.instance().unwrap();
-    let one_thread = SolveOptions { threads: Some(1), ..SolveOptions::default() };
-    for (text, need, optimum) in [(floorplan, 1.0, 3.0), (linear, 2.0, 14.0)] {
-        let p = problem(text);
-        let without = pipeline::build(&p);
-        assert!(!without.recipe.served_faces, "opt-in");
-        let with = formulations::build_with(&p, &formulations::Recipe { served_faces: true, ..without.recipe.clone() });
-        assert!(with.is_complete());
-        let served: Vec<_> = with.model.rows().filter(|r| r.name.starts_with("roomserved_f")).collect();
-        assert_eq!(served.len(), p.mesh.num_faces(), "{}", p.spec.name);
-        assert!(served.iter().all(|r| r.lhs == need), "{}", p.spec.name);
-        assert!(without.model.rows().all(|r| !r.name.starts_with("roomserved_")) && without.cutsets.is_none());
-        let groups = with.cutsets.as_ref().map_or(0, |g| g.groups.len());
-        assert!(groups > 0, "{}", p.spec.name);
-        let bound = |f: &formulations::Formulation, cuts: bool| {
-            let mut sep = if cuts { f.separator() } else { None };
-            let b = netspec::solvers::lazy::lp_bound(
-                highs.as_ref(),
-                &f.model,
-                sep.as_mut().map(|s| s as &mut dyn netspec::solvers::Separator),
-                &one_thread,
-            )
-            .unwrap();
-            if cuts {
-                b.with_cuts.unwrap()
-            } else {
-                b.plain.unwrap()
-            }
-        };
-        let (b_without, b_with, b_cuts) = (bound(&without, false), bound(&with, false), bound(&with, true));
-        // Floor plan: 1.43, 2, 3 (the optimum); game level: 9.20, 10, 10.875.
-        assert!(
-            b_with > b_without + 0.5 && b_cuts > b_with + 0.5,
-            "{}: LP without {b_without}, with {b_with}, after cuts {b_cuts}",
-            p.spec.name
-        );
-        let mut optima = Vec::new();
-        for (f, kind) in [(&with, SolverKind::Highs), (&without, SolverKind::Highs), (&with, SolverKind::Microlp)] {
-            let r = pipeline::solve_built(&p, f, kind, &one_thread).unwrap();
-            assert_eq!(r.solve.termination, Termination::Optimal, "{kind} on {}", p.spec.name);
-            assert!(r.validity.valid, "{kind} on {}: {:?}", p.spec.name, r.validity);
-            optima.push(r.solve.objective.unwrap());
-        }
-        assert!(optima.iter().all(|&o| objectives_agree(o, optimum, 1e-9)), "{}: {optima:?}", p.spec.name);
-    }
-}

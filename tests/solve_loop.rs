@@ -58,7 +58,7 @@ fn optimal_is_true_for_the_papers_zero_star_weights() {
 fn objective_split_proves_the_zero_star_optimum_on_every_backend() {
     let p = problem(&ZERO_STAR.replace("formulation = \"tight\"", "formulation = \"strong\""));
     let f = pipeline::build(&p);
-    assert!(f.recipe.split_objective);
+    assert!(pipeline::Strategy::for_problem(&p, &f).split_objective);
     let o = SolveOptions { time_limit: Some(60.0), threads: Some(1), ..Default::default() };
     for k in crate::network::backends(true) {
         let r = pipeline::solve_from(&p, &f, k, &o, &pipeline::default_start(o.time_limit)).unwrap();
@@ -74,12 +74,15 @@ fn objective_split_proves_the_zero_star_optimum_on_every_backend() {
             assert_eq!(split.phase2.as_ref().map(|p| p.termination.clone()), Some(Termination::Optimal), "{k}");
         }
     }
-    // Switched off in the spec, the strong recipe solves in one phase to the same optimum.
-    let off = problem(
-        &ZERO_STAR.replace("formulation = \"tight\"", "[formulation]\nrecipe = \"strong\"\nsplit_objective = false"),
-    );
+    // Switched off in the spec's [solver] section, the strong recipe solves in one phase to the
+    // same optimum; the model is the same.
+    let off = problem(&format!(
+        "{}[solver]\nsplit_objective = false\n",
+        ZERO_STAR.replace("formulation = \"tight\"", "formulation = \"strong\"")
+    ));
     let f = pipeline::build(&off);
-    assert_eq!(f.recipe.label, "strong(split_objective=false)");
+    assert_eq!(f.recipe.label, "strong");
+    assert!(!pipeline::Strategy::for_problem(&off, &f).split_objective);
     let r = pipeline::solve_from(&off, &f, SolverKind::Highs, &o, &pipeline::default_start(o.time_limit)).unwrap();
     assert!(r.split.is_none());
     assert_eq!(r.solve.termination, Termination::Optimal);
@@ -90,10 +93,10 @@ fn objective_split_proves_the_zero_star_optimum_on_every_backend() {
 const SYMMETRY_OFF: &str = "[formulation]\nrecipe = \"strong\"\nsymmetric_flow = false";
 
 /// Solves the zero-star grid with `formulation` (TOML in place of its `formulation = "tight"`
-/// line) on HiGHS from the default start, asserts the proven optimum 5.0004 and a valid design,
-/// and returns the result with the recipe's label.
-fn solve_zero_star(formulation: &str, o: &SolveOptions, what: &str) -> (pipeline::DesignResult, String) {
-    let p = problem(&ZERO_STAR.replace("formulation = \"tight\"", formulation));
+/// line) and `solver` (lines of its `[solver]` section) on HiGHS from the default start, asserts
+/// the proven optimum 5.0004 and a valid design, and returns the result with the recipe's label.
+fn solve_zero_star(formulation: &str, solver: &str, o: &SolveOptions, what: &str) -> (pipeline::DesignResult, String) {
+    let p = problem(&format!("{}[solver]\n{solver}\n", ZERO_STAR.replace("formulation = \"tight\"", formulation)));
     let f = pipeline::build(&p);
     let r = pipeline::solve_from(&p, &f, SolverKind::Highs, o, &pipeline::default_start(o.time_limit)).unwrap();
     assert_eq!(r.solve.termination, Termination::Optimal, "{what}: {}", r.solve.status_line());
@@ -102,7 +105,7 @@ fn solve_zero_star(formulation: &str, o: &SolveOptions, what: &str) -> (pipeline
     (r, f.recipe.label)
 }
 
-/// The strong recipe's solver hint (`Recipe::solver_hints`): HiGHS gets
+/// The solve strategy's backend hint for the strong recipe (`Solver::strategy_hints`): HiGHS gets
 /// `mip_pscost_minreliable=0` and the result says so; the user's own value for it, or
 /// `solver_tuning = false`, replaces it and the result lists none; every way ends at the same
 /// proven optimum. (`symmetric_flow` is off: the zero-star grid is symmetric, and its own hint,
@@ -111,17 +114,17 @@ fn solve_zero_star(formulation: &str, o: &SolveOptions, what: &str) -> (pipeline
 fn the_strong_recipes_solver_hint_reaches_highs_and_yields_to_the_user() {
     let strong = SYMMETRY_OFF;
     let o = SolveOptions { time_limit: Some(60.0), threads: Some(1), ..Default::default() };
-    let (r, _) = solve_zero_star(strong, &o, "hinted");
+    let (r, _) = solve_zero_star(strong, "", &o, "hinted");
     assert_eq!(r.solver_hints, ["highs.mip_pscost_minreliable=0"]);
     let json = serde_json::to_value(&r).unwrap();
     assert_eq!(json["solver_hints"][0], "highs.mip_pscost_minreliable=0");
 
     let own = SolveOptions { params: vec!["highs.mip_pscost_minreliable=8".parse::<RawParam>().unwrap()], ..o.clone() };
-    let (r, _) = solve_zero_star(strong, &own, "user's value");
+    let (r, _) = solve_zero_star(strong, "", &own, "user's value");
     assert!(r.solver_hints.is_empty(), "{:?}", r.solver_hints);
 
-    let (r, label) = solve_zero_star(&format!("{SYMMETRY_OFF}\nsolver_tuning = false"), &o, "tuning off");
-    assert_eq!(label, "strong(solver_tuning=false,symmetric_flow=false)");
+    let (r, label) = solve_zero_star(SYMMETRY_OFF, "solver_tuning = false", &o, "tuning off");
+    assert_eq!(label, "strong(symmetric_flow=false)");
     assert!(r.solver_hints.is_empty());
     assert!(serde_json::to_value(&r).unwrap().get("solver_hints").is_none());
     // Other backends get no hint: checked per backend in
@@ -135,15 +138,15 @@ fn the_strong_recipes_solver_hint_reaches_highs_and_yields_to_the_user() {
 fn the_parallel_tree_search_reaches_highs_at_two_threads_and_yields_to_the_user() {
     let strong = SYMMETRY_OFF;
     let o = SolveOptions { time_limit: Some(60.0), threads: Some(2), ..Default::default() };
-    let (r, _) = solve_zero_star(strong, &o, "parallel");
+    let (r, _) = solve_zero_star(strong, "", &o, "parallel");
     assert_eq!(r.solver_hints, ["highs.mip_pscost_minreliable=0", "highs.parallel=on"]);
 
     let own = SolveOptions { params: vec!["highs.parallel=off".parse::<RawParam>().unwrap()], ..o.clone() };
-    let (r, _) = solve_zero_star(strong, &own, "user's value");
+    let (r, _) = solve_zero_star(strong, "", &own, "user's value");
     assert_eq!(r.solver_hints, ["highs.mip_pscost_minreliable=0"]);
 
-    let (r, label) = solve_zero_star(&format!("{SYMMETRY_OFF}\nparallel_search = false"), &o, "serial");
-    assert_eq!(label, "strong(parallel_search=false,symmetric_flow=false)");
+    let (r, label) = solve_zero_star(SYMMETRY_OFF, "parallel_search = false", &o, "serial");
+    assert_eq!(label, "strong(symmetric_flow=false)");
     assert_eq!(r.solver_hints, ["highs.mip_pscost_minreliable=0"]);
 }
 

@@ -1,18 +1,21 @@
 //! A design as a point of a formulation (a MIP start): every variable of the recipe set from
-//! the active edges and rooms alone.
+//! the active edges and rooms alone, each family setting its own ([`super::Family::encode`]).
 //!
-//! Directions point every active edge toward its end with the smaller paper label
-//! (`0` at a sink, else `Δ + h`, see [`crate::design::Objective`]); labels take those values;
-//! successors and the distance flow follow each vertex's best next step; the travel and
-//! connectivity flows and the parent arcs follow a shortest-path tree. The point is meant to be checked by the MILP
-//! checker before it is handed to a solver: a design that breaks the spec gives a point that
-//! breaks rows, and the checker says which.
+//! What several families need is computed once here ([`Encoding`]): directions point every
+//! active edge toward its end with the smaller paper label (`0` at a sink, else `Δ + h`, see
+//! [`crate::design::Objective`]); successors and the distance flow follow each vertex's best next
+//! step; the travel and connectivity flows and the parent arcs follow a shortest-path tree. The
+//! point is meant to be checked by the MILP checker before it is handed to a solver: a design
+//! that breaks the spec gives a point that breaks rows, and the checker says which.
 
 use super::build::Formulation;
-use super::expr::Value;
+use super::family::VarMap;
 use crate::design::{label_distances, travel_distances, Network};
-use crate::mesh::{HalfEdgeId, VertexId};
-use crate::spec::{PathForm, Problem};
+use crate::mesh::{EdgeId, HalfEdgeId, VertexId};
+use crate::milp::VarId;
+use crate::rules::paths::PathSets;
+use crate::spec::Problem;
+use std::sync::OnceLock;
 
 /// Why a design could not be turned into a point.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -33,195 +36,196 @@ pub enum EncodeError {
     UnknownRoom(usize),
 }
 
-impl Formulation {
-    /// The point of this formulation that stands for `net`.
-    pub fn encode(&self, p: &Problem, net: &Network) -> Result<Vec<f64>, EncodeError> {
+/// A design being encoded, with what the families compute from it once.
+pub struct Encoding<'a> {
+    /// The problem.
+    pub p: &'a Problem,
+    /// The design.
+    pub net: &'a Network,
+    /// The formulation's shared variables.
+    pub vars: &'a VarMap,
+    /// The formulation's point-to-point path sets, if any.
+    pub path_sets: Option<&'a PathSets>,
+    degree: Vec<usize>,
+    labels: OnceLock<Vec<f64>>,
+    next: OnceLock<Vec<Option<HalfEdgeId>>>,
+    travel: OnceLock<Vec<f64>>,
+}
+
+impl<'a> Encoding<'a> {
+    fn new(p: &'a Problem, net: &'a Network, f: &'a Formulation) -> Encoding<'a> {
         let mesh = &p.mesh;
-        if net.active.len() != mesh.num_edges() {
-            return Err(EncodeError::WrongSize { got: net.active.len(), want: mesh.num_edges() });
-        }
-        let mut x: Vec<f64> = self.model.vars().iter().map(|v| v.lb.max(0.0).min(v.ub)).collect();
-        let set = |x: &mut Vec<f64>, v: Option<crate::milp::VarId>, val: f64| {
-            if let Some(v) = v {
-                x[v.index()] = val;
-            }
-        };
-        let on = |e: crate::mesh::EdgeId| net.active[e.index()];
-        for e in mesh.edges() {
-            set(&mut x, self.vars.edge[e.index()], if on(e) { 1.0 } else { 0.0 });
-        }
         let mut degree = vec![0usize; mesh.num_vertices()];
         for e in net.active_edges() {
             let (a, b) = mesh.edge_vertices(e);
             degree[a.index()] += 1;
             degree[b.index()] += 1;
         }
-        for v in mesh.vertices() {
-            if let Value::Var(y) = self.vars.vertex[v.index()] {
-                x[y.index()] = if degree[v.index()] > 0 { 1.0 } else { 0.0 };
-            }
+        Encoding {
+            p,
+            net,
+            vars: &f.vars,
+            path_sets: f.path_sets.as_ref(),
+            degree,
+            labels: OnceLock::new(),
+            next: OnceLock::new(),
+            travel: OnceLock::new(),
         }
-
-        // Labels and directions.
-        let h = label_distances(p, net);
-        let label_into = |v: VertexId, len: f64| if p.is_sink[v.index()] { 0.0 } else { len + h[v.index()] };
-        // The best next step of every non-sink vertex: the active half-edge out of it with the
-        // smallest label (ties: the first in the mesh's order).
-        let mut next: Vec<Option<HalfEdgeId>> = vec![None; mesh.num_vertices()];
-        for v in mesh.vertices() {
-            if p.is_sink[v.index()] || degree[v.index()] == 0 {
-                continue;
-            }
-            let mut best: Option<(f64, HalfEdgeId)> = None;
-            for &g in mesh.outgoing(v) {
-                if on(mesh.he_edge(g)) {
-                    let d = label_into(mesh.he_head(g), mesh.he_length(g));
-                    if d.is_finite() && best.is_none_or(|(b, _)| d < b) {
-                        best = Some((d, g));
-                    }
-                }
-            }
-            match best {
-                Some((_, g)) => next[v.index()] = Some(g),
-                None if self.needs_directions() => return Err(EncodeError::Unreachable(v.0)),
-                None => {}
-            }
-        }
-        if self.needs_directions() {
-            for e in mesh.edges().filter(|&e| on(e) && self.vars.edge[e.index()].is_some()) {
-                let [h0, h1] = mesh.edge_half_edges(e);
-                let len = mesh.edge_length(e);
-                let (d0, d1) = (label_into(mesh.he_head(h0), len), label_into(mesh.he_head(h1), len));
-                if !d0.is_finite() && !d1.is_finite() {
-                    return Err(EncodeError::Unreachable(mesh.he_head(h0).0));
-                }
-                let chosen = if d0 <= d1 { h0 } else { h1 };
-                set(&mut x, self.vars.half_edge[chosen.index()], 1.0);
-                set(&mut x, self.vars.label[chosen.index()], label_into(mesh.he_head(chosen), len));
-            }
-            for s in &self.vars.successors {
-                let j = mesh.he_head(s.from);
-                let from_on = self.vars.half_edge[s.from.index()].is_some_and(|v| x[v.index()] > 0.5);
-                x[s.var.index()] = if from_on && next[j.index()] == Some(s.to) { 1.0 } else { 0.0 };
-            }
-        }
-        for nu in &self.vars.dead_end_indicators {
-            let e = mesh.he_edge(nu.half_edge);
-            let j = mesh.he_head(nu.half_edge);
-            let others = mesh.incident_edges(j).filter(|&f| f != e && on(f)).count();
-            x[nu.var.index()] = if others > 0 { 1.0 } else { 0.0 };
-        }
-
-        // Distance flow: each active half-edge into a non-sink supplies a unit at its head, which
-        // follows the best next steps to a sink.
-        if self.vars.distance_flow.iter().any(Option::is_some) {
-            let mut supply = vec![0.0f64; mesh.num_vertices()];
-            for e in mesh.edges() {
-                for g in mesh.edge_half_edges(e) {
-                    if self.vars.half_edge[g.index()].is_some_and(|v| x[v.index()] > 0.5)
-                        && !p.is_sink[mesh.he_head(g).index()]
-                    {
-                        supply[mesh.he_head(g).index()] += 1.0;
-                    }
-                }
-            }
-            route(p, &mut x, &self.vars.distance_flow, &mut supply, &next, &h);
-        }
-        // Travel and connectivity flows: every active non-sink vertex supplies a unit along a
-        // shortest-path tree (true distances).
-        let parents = self.vars.parent.iter().any(Option::is_some);
-        if parents
-            || self.vars.travel_flow.iter().any(Option::is_some)
-            || self.vars.connect_flow.iter().any(Option::is_some)
-        {
-            let d = travel_distances(mesh, net, &p.is_sink);
-            let mut tree: Vec<Option<HalfEdgeId>> = vec![None; mesh.num_vertices()];
-            for v in mesh.vertices() {
-                if p.is_sink[v.index()] || degree[v.index()] == 0 {
-                    continue;
-                }
-                if !d[v.index()].is_finite() {
-                    return Err(EncodeError::Unreachable(v.0));
-                }
-                tree[v.index()] = mesh.outgoing(v).iter().copied().filter(|&g| on(mesh.he_edge(g))).min_by(|&a, &b| {
-                    (mesh.he_length(a) + d[mesh.he_head(a).index()])
-                        .total_cmp(&(mesh.he_length(b) + d[mesh.he_head(b).index()]))
-                });
-            }
-            // Parent arcs: each active non-sink vertex owns the edge to its parent in the tree.
-            for g in tree.iter().flatten() {
-                set(&mut x, self.vars.parent[g.index()], 1.0);
-            }
-            for flow in [&self.vars.travel_flow, &self.vars.connect_flow] {
-                if flow.iter().any(Option::is_some) {
-                    let mut supply: Vec<f64> = mesh
-                        .vertices()
-                        .map(|v| if !p.is_sink[v.index()] && degree[v.index()] > 0 { 1.0 } else { 0.0 })
-                        .collect();
-                    route(p, &mut x, flow, &mut supply, &tree, &d);
-                }
-            }
-        }
-
-        // Point-to-point paths, local configurations, T-junctions, rooms.
-        if let Some(sets) = &self.path_sets {
-            // The `select` form chooses one path per pair (the first whole one); the others
-            // mark every whole path.
-            let one_per_pair = self.recipe.paths == PathForm::Select;
-            for (pair, vars) in sets.pairs.iter().zip(&self.vars.paths) {
-                let mut chosen = false;
-                for (path, v) in pair.paths.iter().zip(vars) {
-                    let whole = path.edges.iter().all(|&e| on(e)) && !(one_per_pair && chosen);
-                    chosen |= whole && v.is_some();
-                    set(&mut x, *v, if whole { 1.0 } else { 0.0 });
-                }
-            }
-        }
-        for c in &self.vars.local_configs {
-            set(&mut x, c.indicator, if c.edges.iter().all(|&e| on(e)) { 1.0 } else { 0.0 });
-        }
-        for t in &self.vars.t_configs {
-            set(&mut x, t.indicator, if !on(t.e0) && t.others.iter().all(|&e| on(e)) { 1.0 } else { 0.0 });
-        }
-        for &k in &net.rooms {
-            let v = self.vars.rooms.get(k).ok_or(EncodeError::UnknownRoom(k))?;
-            x[v.index()] = 1.0;
-        }
-        Ok(x)
     }
 
-    /// Whether the recipe has direction binaries (labels or the distance flow).
-    fn needs_directions(&self) -> bool {
-        self.vars.half_edge.iter().any(Option::is_some)
+    /// Whether edge `e` is active in the design.
+    pub fn on(&self, e: EdgeId) -> bool {
+        self.net.active[e.index()]
+    }
+
+    /// The active degree of `v`.
+    pub fn degree(&self, v: VertexId) -> usize {
+        self.degree[v.index()]
+    }
+
+    /// Whether `v` is an active non-sink vertex.
+    pub fn active_non_sink(&self, v: VertexId) -> bool {
+        !self.p.is_sink[v.index()] && self.degree(v) > 0
+    }
+
+    /// The paper's label of a half-edge of length `len` into `v`: 0 into a sink, else `len + h(v)`
+    /// ([`label_distances`]).
+    pub fn label_into(&self, v: VertexId, len: f64) -> f64 {
+        if self.p.is_sink[v.index()] {
+            0.0
+        } else {
+            len + self.labels.get_or_init(|| label_distances(self.p, self.net))[v.index()]
+        }
+    }
+
+    /// The labels `h` of [`label_distances`], per vertex.
+    pub fn labels(&self) -> &[f64] {
+        self.labels.get_or_init(|| label_distances(self.p, self.net))
+    }
+
+    /// The best next step of every active non-sink vertex: the active half-edge out of it with
+    /// the smallest label (ties: the first in the mesh's order); `None` where there is none.
+    pub fn next(&self) -> &[Option<HalfEdgeId>] {
+        self.next.get_or_init(|| {
+            let mesh = &self.p.mesh;
+            let mut next = vec![None; mesh.num_vertices()];
+            for v in mesh.vertices().filter(|&v| self.active_non_sink(v)) {
+                let mut best: Option<(f64, HalfEdgeId)> = None;
+                for &g in mesh.outgoing(v) {
+                    if self.on(mesh.he_edge(g)) {
+                        let d = self.label_into(mesh.he_head(g), mesh.he_length(g));
+                        if d.is_finite() && best.is_none_or(|(b, _)| d < b) {
+                            best = Some((d, g));
+                        }
+                    }
+                }
+                next[v.index()] = best.map(|(_, g)| g);
+            }
+            next
+        })
+    }
+
+    /// Sets the direction binaries `E(i→j)` (and, where the recipe has them, the labels
+    /// `D(i→j)`): every active candidate edge toward its end with the smaller label. Fails when
+    /// an active vertex cannot reach a sink.
+    pub fn set_directions(&self, x: &mut [f64]) -> Result<(), EncodeError> {
+        let mesh = &self.p.mesh;
+        let next = self.next();
+        if let Some(v) = mesh.vertices().find(|&v| self.active_non_sink(v) && next[v.index()].is_none()) {
+            return Err(EncodeError::Unreachable(v.0));
+        }
+        for e in mesh.edges().filter(|&e| self.on(e) && self.vars.edge[e.index()].is_some()) {
+            let [h0, h1] = mesh.edge_half_edges(e);
+            let len = mesh.edge_length(e);
+            let (d0, d1) = (self.label_into(mesh.he_head(h0), len), self.label_into(mesh.he_head(h1), len));
+            if !d0.is_finite() && !d1.is_finite() {
+                return Err(EncodeError::Unreachable(mesh.he_head(h0).0));
+            }
+            let chosen = if d0 <= d1 { h0 } else { h1 };
+            set(x, self.vars.half_edge[chosen.index()], 1.0);
+            set(x, self.vars.label[chosen.index()], self.label_into(mesh.he_head(chosen), len));
+        }
+        Ok(())
+    }
+
+    /// Whether the direction binary of `h` is on at `x`.
+    pub fn direction_on(&self, x: &[f64], h: HalfEdgeId) -> bool {
+        self.vars.half_edge[h.index()].is_some_and(|v| x[v.index()] > 0.5)
+    }
+
+    /// True network distances to the nearest sink ([`travel_distances`]).
+    pub fn travel(&self) -> &[f64] {
+        self.travel.get_or_init(|| travel_distances(&self.p.mesh, self.net, &self.p.is_sink))
+    }
+
+    /// A shortest-path tree into the sinks: each active non-sink vertex's step toward the
+    /// nearest sink. Fails when an active vertex cannot reach one.
+    pub fn tree(&self) -> Result<Vec<Option<HalfEdgeId>>, EncodeError> {
+        let mesh = &self.p.mesh;
+        let d = self.travel();
+        let mut tree = vec![None; mesh.num_vertices()];
+        for v in mesh.vertices().filter(|&v| self.active_non_sink(v)) {
+            if !d[v.index()].is_finite() {
+                return Err(EncodeError::Unreachable(v.0));
+            }
+            tree[v.index()] = mesh.outgoing(v).iter().copied().filter(|&g| self.on(mesh.he_edge(g))).min_by(|&a, &b| {
+                (mesh.he_length(a) + d[mesh.he_head(a).index()]).total_cmp(&(mesh.he_length(b) + d[mesh.he_head(b).index()]))
+            });
+        }
+        Ok(tree)
+    }
+
+    /// Sends every vertex's supply along `step` to a sink, accumulating the flow on each arc's
+    /// variable in `flow`; vertices are processed from the farthest (largest `dist`) in, so
+    /// each arc's flow is final when it is set.
+    pub fn route(
+        &self,
+        x: &mut [f64],
+        flow: &[Option<VarId>],
+        supply: &mut [f64],
+        step: &[Option<HalfEdgeId>],
+        dist: &[f64],
+    ) {
+        let p = self.p;
+        let mesh = &p.mesh;
+        let mut order: Vec<VertexId> = mesh.vertices().filter(|v| step[v.index()].is_some()).collect();
+        order.sort_by(|a, b| dist[b.index()].total_cmp(&dist[a.index()]).then(a.cmp(b)));
+        for v in order {
+            let g = step[v.index()].expect("filtered");
+            let amount = supply[v.index()];
+            if amount == 0.0 {
+                continue;
+            }
+            if let Some(f) = flow[g.index()] {
+                x[f.index()] += amount;
+            }
+            let w = mesh.he_head(g);
+            if !p.is_sink[w.index()] {
+                supply[w.index()] += amount;
+            }
+        }
     }
 }
 
-/// Sends every vertex's supply along `step` to a sink, accumulating the flow on each arc;
-/// vertices are processed from the farthest (largest `dist`) in, so each arc's flow is final
-/// when it is set.
-fn route(
-    p: &Problem,
-    x: &mut [f64],
-    flow: &[Option<crate::milp::VarId>],
-    supply: &mut [f64],
-    step: &[Option<HalfEdgeId>],
-    dist: &[f64],
-) {
-    let mesh = &p.mesh;
-    let mut order: Vec<VertexId> = mesh.vertices().filter(|v| step[v.index()].is_some()).collect();
-    order.sort_by(|a, b| dist[b.index()].total_cmp(&dist[a.index()]).then(a.cmp(b)));
-    for v in order {
-        let g = step[v.index()].expect("filtered");
-        let amount = supply[v.index()];
-        if amount == 0.0 {
-            continue;
+/// Sets `v` to `val` in `x` when the variable exists.
+pub fn set(x: &mut [f64], v: Option<VarId>, val: f64) {
+    if let Some(v) = v {
+        x[v.index()] = val;
+    }
+}
+
+impl Formulation {
+    /// The point of this formulation that stands for `net`: every variable at its lower bound
+    /// (clamped into its bounds), then each family's own set from the design, in emission order.
+    pub fn encode(&self, p: &Problem, net: &Network) -> Result<Vec<f64>, EncodeError> {
+        if net.active.len() != p.mesh.num_edges() {
+            return Err(EncodeError::WrongSize { got: net.active.len(), want: p.mesh.num_edges() });
         }
-        if let Some(f) = flow[g.index()] {
-            x[f.index()] += amount;
+        let mut x: Vec<f64> = self.model.vars().iter().map(|v| v.lb.max(0.0).min(v.ub)).collect();
+        let e = Encoding::new(p, net, self);
+        for family in &self.parts {
+            family.encode(&e, &mut x)?;
         }
-        let w = mesh.he_head(g);
-        if !p.is_sink[w.index()] {
-            supply[w.index()] += amount;
-        }
+        Ok(x)
     }
 }

@@ -17,7 +17,9 @@
 //!   (see the module `anneal` for what the text leaves open and how it is fixed).
 //! - [`repair`]: a design that breaks connectivity or local rules, made valid when possible.
 //! - [`start`]: the heuristic's design within a budget, for a MIP start.
-//! - [`run`]: either method as a solver choice, with a result record like a MILP solve's.
+//!
+//! Searches return designs only; [`crate::pipeline::search`] runs them as a solver choice and
+//! checks their designs like a MILP solve's.
 
 mod anneal;
 mod build;
@@ -25,7 +27,6 @@ mod local;
 mod paths;
 mod rng;
 mod rooms;
-pub mod run;
 mod state;
 mod tiling;
 
@@ -33,7 +34,7 @@ pub use anneal::{AnnealOptions, Operation};
 
 use crate::design::{self, Network};
 use crate::rules::paths::{enumerate_path_sets, PathSets};
-use crate::rules::placements::{enumerate_placements, Placement, PlacementReport};
+use crate::rules::placements::{enumerate_for, Placement, PlacementReport};
 use crate::spec::Problem;
 use build::Builder;
 use local::LocalSearch;
@@ -64,18 +65,13 @@ pub struct OwnedInputs {
     pub placements: Option<PlacementReport>,
 }
 
-/// The formulation's cap on placement enumeration (the same, so both see the same list).
-const PLACEMENT_TIME_CAP: Duration = Duration::from_secs(20);
-
 impl OwnedInputs {
-    /// Enumerates the path sets and placements of `p` exactly as [`crate::formulations::build`]
-    /// does (deterministic unless an enumeration hits its time cap).
+    /// Enumerates the path sets and placements of `p` exactly as the formulations do
+    /// (deterministic unless an enumeration hits its time cap).
     pub fn enumerate(p: &Problem) -> OwnedInputs {
         OwnedInputs {
             paths: p.p2p.is_some().then(|| enumerate_path_sets(p)),
-            placements: p.rooms.as_ref().map(|r| {
-                enumerate_placements(&p.mesh, &r.templates, &p.is_obstacle_face, r.max_placements, PLACEMENT_TIME_CAP)
-            }),
+            placements: p.rooms.as_ref().map(|r| enumerate_for(p, r)),
         }
     }
 
@@ -551,7 +547,7 @@ pub fn repair(p: &Problem, inputs: &Inputs, net: &Network) -> Option<Network> {
 }
 
 /// The heuristic's best design within `budget` seconds (construction and local search), for a
-/// MIP start: hand it to [`crate::pipeline::prepare_start`].
+/// MIP start (the pipeline encodes and checks it before a solver sees it).
 pub fn start(p: &Problem, inputs: &Inputs, budget: f64, seed: u64) -> Option<Network> {
     start_within(p, inputs, budget, budget, seed, 1)
 }

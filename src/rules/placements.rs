@@ -23,98 +23,19 @@
 //! entries as unblocked.
 
 use crate::mesh::{EdgeId, FaceId, Mesh, VertexId};
+pub use crate::spec::Template;
 use serde::{Deserialize, Serialize};
 use std::collections::{BTreeMap, HashSet, VecDeque};
 use std::time::{Duration, Instant};
 
-/// A room template: a polyomino given as unit cells (x, y) ≥ 0.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct Template {
-    /// A name for reports.
-    pub name: String,
-    /// The unit cells `(x, y)`; duplicates are ignored and the cells are normalised by
-    /// [`Template::images`], so any offset works.
-    pub cells: Vec<(i32, i32)>,
-    /// Whether the 90°, 180° and 270° rotations of the cells are images too.
-    pub rotations: bool,
-    /// Whether the mirror images (x ↦ −x, with their rotations if `rotations`) are images too.
-    pub reflections: bool,
-}
+/// Time cap on placement enumeration for a problem (its model and its heuristics use the same,
+/// so both see the same list).
+pub const PLACEMENT_TIME_CAP: Duration = Duration::from_secs(20);
 
-impl Template {
-    /// An `a × b` rectangle (`a` cells along x, `b` along y), rotations and reflections on.
-    /// Non-positive sizes give an empty template (which has no placements).
-    pub fn rect(name: &str, a: i32, b: i32) -> Template {
-        let mut cells = Vec::new();
-        for y in 0..b.max(0) {
-            for x in 0..a.max(0) {
-                cells.push((x, y));
-            }
-        }
-        Template { name: name.to_string(), cells, rotations: true, reflections: true }
-    }
-
-    /// An L: `a` cells along x starting at `(0, 0)`, plus a column of `b` cells up from that
-    /// first cell (sharing it), so `a + b − 1` cells; meant for `a, b ≥ 2` (smaller values give
-    /// a bar or a single cell). Rotations and reflections on.
-    pub fn l_shape(name: &str, a: i32, b: i32) -> Template {
-        let mut cells = Vec::new();
-        for x in 0..a.max(1) {
-            cells.push((x, 0));
-        }
-        for y in 1..b.max(1) {
-            cells.push((0, y));
-        }
-        Template { name: name.to_string(), cells, rotations: true, reflections: true }
-    }
-
-    /// The distinct symmetry images (normalised so min x = min y = 0, cells sorted),
-    /// deduplicated, in a deterministic order: unreflected first, then reflected (if
-    /// `reflections`), each in rotation order 0°, 90°, 180°, 270° (only 0° without
-    /// `rotations`); an image equal to an earlier one is dropped. Empty for an empty template.
-    pub fn images(&self) -> Vec<Vec<(i32, i32)>> {
-        if self.cells.is_empty() {
-            return Vec::new();
-        }
-        let mut out: Vec<Vec<(i32, i32)>> = Vec::new();
-        let reflections: &[bool] = if self.reflections { &[false, true] } else { &[false] };
-        let rotations = if self.rotations { 4 } else { 1 };
-        for &mirror in reflections {
-            for rot in 0..rotations {
-                let img = normalise(self.cells.iter().map(|&(x, y)| {
-                    // Work in i64 so extreme coordinates cannot overflow.
-                    let (mut x, mut y) = (x as i64, y as i64);
-                    if mirror {
-                        x = -x;
-                    }
-                    for _ in 0..rot {
-                        let (nx, ny) = (-y, x);
-                        x = nx;
-                        y = ny;
-                    }
-                    (x, y)
-                }));
-                if !out.contains(&img) {
-                    out.push(img);
-                }
-            }
-        }
-        out
-    }
-}
-
-/// Shifts cells so min x = min y = 0, sorts and deduplicates them.
-fn normalise(cells: impl Iterator<Item = (i64, i64)>) -> Vec<(i32, i32)> {
-    let cells: Vec<(i64, i64)> = cells.collect();
-    let mx = cells.iter().map(|c| c.0).min().unwrap_or(0);
-    let my = cells.iter().map(|c| c.1).min().unwrap_or(0);
-    let mut out: Vec<(i32, i32)> = cells
-        .iter()
-        .map(|&(x, y)| ((x - mx).clamp(0, i32::MAX as i64) as i32, (y - my).clamp(0, i32::MAX as i64) as i32))
-        .collect();
-    out.sort_unstable();
-    out.dedup();
-    out
+/// The placements of a problem's room templates on its mesh, as its model and its heuristics
+/// use them ([`enumerate_placements`] with the problem's obstacles and caps).
+pub fn enumerate_for(p: &crate::spec::Problem, rooms: &crate::spec::Rooms) -> PlacementReport {
+    enumerate_placements(&p.mesh, &rooms.templates, &p.is_obstacle_face, rooms.max_placements, PLACEMENT_TIME_CAP)
 }
 
 /// One placement of a template on the mesh.

@@ -68,6 +68,25 @@ pub trait Solver {
     fn lp_session(&self, _model: &Model, _options: &SolveOptions) -> Result<Option<Box<dyn LpSession>>, SolverError> {
         Ok(None)
     }
+    /// The backend's own parameters for a solve strategy ([`StrategyHints`]): settings measured
+    /// to help on netspec's models, handed over before the user's parameters (a parameter the
+    /// user sets by the same name replaces its hint). The default: none.
+    fn strategy_hints(&self, _hints: &StrategyHints) -> Vec<RawParam> {
+        Vec::new()
+    }
+}
+
+/// What a solve strategy asks of a backend's own settings ([`Solver::strategy_hints`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct StrategyHints {
+    /// Use the settings measured on the model's recipe.
+    pub tuned: bool,
+    /// Use the backend's parallel tree search when `threads` ≥ 2.
+    pub parallel_search: bool,
+    /// The solve's thread count.
+    pub threads: Option<u32>,
+    /// Keep the model's symmetry visible to the backend (its presolve may break it first).
+    pub keep_symmetry: bool,
 }
 
 /// An LP kept loaded in a backend between solves ([`Solver::lp_session`]).

@@ -7,15 +7,17 @@
 mod formulation;
 mod resolve;
 mod symmetry;
+mod template;
 
 pub use formulation::{
-    BigMForm, ConnectivityForm, CoverageForm, DeadEndForm, DistanceForm, FormulationParts, FormulationSpec, PathForm,
-    RecipeName,
+    parse_on_off, switch, BigMForm, ConnectivityForm, CoverageForm, DeadEndForm, DistanceForm, FormulationParts,
+    FormulationSpec, PathForm, RecipeName, Switch, Variant, STRATEGY_KEYS, SWITCHES,
 };
 
 pub(crate) use resolve::OrdF64;
 pub use resolve::{EdgeRole, PointToPoint, Problem, Rooms, Weight};
 pub use symmetry::{symmetries, Symmetry};
+pub use template::Template;
 
 use crate::solvers::SolverKind;
 use serde::{Deserialize, Serialize};
@@ -479,6 +481,21 @@ pub struct SolverSpec {
     /// Seed.
     #[serde(default)]
     pub seed: Option<u64>,
+    /// Solve in two phases when the objective has two scales (`solvers::split`); the solve
+    /// strategy's switches (this and the three below) change no row of the model, and each
+    /// defaults to what was measured best for the recipe (`pipeline::Strategy`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub split_objective: Option<bool>,
+    /// Round the backend's bound up to the objective's lattice (`solvers::lattice`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub objective_lattice: Option<bool>,
+    /// Hand the backend the settings measured on the recipe's models (each backend's own
+    /// `Solver::strategy_hints`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub solver_tuning: Option<bool>,
+    /// The backend's parallel tree search when the solve has two threads or more.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub parallel_search: Option<bool>,
 }
 
 /// Why a spec file could not be used.

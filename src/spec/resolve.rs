@@ -2,7 +2,7 @@
 
 use super::*;
 use crate::mesh::{self, EdgeId, FaceId, Mesh, VertexId};
-use crate::rules::placements::Template;
+use super::Template;
 
 /// What an edge is in the model (FORMULATION §1).
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]

@@ -1,16 +1,54 @@
-//! Vertex activity (5), coverage (6), and the edge-coverage rows of FORMULATION §8.
+//! Vertex activity (5), coverage (6), and the edge-coverage rows and ball cuts of
+//! docs/formulation.md §8.
 
-use super::{vname, Ctx};
+use crate::formulations::encode::{EncodeError, Encoding};
 use crate::formulations::expr::{Expr, Value};
+use crate::formulations::family::{vname, Ctx, Family};
 use crate::rules::cover_set;
 use crate::spec::{Allow, CoverageForm, EdgeRole};
+
+/// `V_y` and (5) for every vertex; without room tiling (whose rows replace it) also (6) and its
+/// strengthenings.
+pub struct Coverage {
+    rooms: bool,
+}
+
+impl Coverage {
+    /// Always in the model.
+    pub fn entry(c: &Ctx) -> Option<Box<dyn Family>> {
+        Some(Box::new(Coverage { rooms: c.p.rooms.is_some() }))
+    }
+}
+
+impl Family for Coverage {
+    fn label(&self) -> String {
+        if self.rooms { "vertices (5)" } else { "coverage (5)-(6)" }.to_string()
+    }
+
+    fn emit(&mut self, c: &mut Ctx) {
+        vertices(c);
+        if !self.rooms {
+            coverage(c);
+        }
+    }
+
+    /// A vertex is active when it has an active edge.
+    fn encode(&self, e: &Encoding, x: &mut [f64]) -> Result<(), EncodeError> {
+        for v in e.p.mesh.vertices() {
+            if let Value::Var(y) = e.vars.vertex[v.index()] {
+                x[y.index()] = if e.degree(v) > 0 { 1.0 } else { 0.0 };
+            }
+        }
+        Ok(())
+    }
+}
 
 /// `V_y` for every vertex whose incident edges are candidates or excluded (a vertex with an
 /// existing edge is active as a constant), tied to its edges by (5):
 /// `aggregated`: `1 − |E_y| ≤ Σ_{x∈E_y} E_x − |E_y|·V_y ≤ 0`;
 /// otherwise `V_y ≤ Σ_{x∈E_y} E_x` and `E_x ≤ V_y` for each incident `x`.
 /// Forced vertices get `V_y ≥ 1` on the variable's bound.
-pub fn vertices(c: &mut Ctx) {
+fn vertices(c: &mut Ctx) {
     let p = c.p;
     let mesh = &p.mesh;
     for v in mesh.vertices() {
@@ -61,7 +99,7 @@ pub fn vertices(c: &mut Ctx) {
 /// candidate edges with an end in `cover(v)`, `Σ_{x∈T(v)} E_x ≥ 2` when `cover(v)` holds no
 /// sink and dead-ends are forbidden (an active non-sink vertex then has two active edges, both
 /// in `T(v)`), else `≥ 1`.
-pub fn coverage(c: &mut Ctx) {
+fn coverage(c: &mut Ctx) {
     let p = c.p;
     let mesh = &p.mesh;
     let strong = c.recipe.coverage == CoverageForm::Strong;
@@ -105,7 +143,7 @@ pub fn coverage(c: &mut Ctx) {
     }
 }
 
-/// The ball cut of FORMULATION §8 (this project's strengthening): some vertex of `cover(v)` is
+/// The ball cut of docs/formulation.md §8 (this project's strengthening): some vertex of `cover(v)` is
 /// active and no sink is in the ball, so the network crosses the ball's boundary `δ(C)`, `C =
 /// cover(v)`: `Σ_{x∈δ(C)} E_x ≥ 1`. With dead-ends forbidden, a single crossing leaves every
 /// active vertex inside with degree ≥ 2, so the active part inside holds a cycle of at least

@@ -1,4 +1,4 @@
-//! Cutset connectivity (FORMULATION §8): contract every sink into a root `r`; for every vertex
+//! Cutset connectivity (docs/formulation.md §8): contract every sink into a root `r`; for every vertex
 //! set `C` with `r ∉ C` and every `v ∈ C`, `Σ_{x∈δ(C)} E_x ≥ V_v`. The rows are exponentially
 //! many, so none is written into the model: [`CutsetSeparator`] finds violated ones — by
 //! connected components on integral points (exact), and by max-flow/min-cut from each vertex to
@@ -21,7 +21,10 @@
 //! graph crate) because it runs hundreds of times per separation round on the same graph with
 //! new capacities and stops as soon as the flow reaches the vertex's activity.
 
+use super::coverage::girth;
 use crate::formulations::expr::Value;
+use crate::formulations::family::{Ctx, Family};
+use crate::spec::Allow;
 use crate::mesh::VertexId;
 use crate::milp::VarId;
 use crate::solvers::{LazyRow, Lock, Separator};
@@ -42,8 +45,7 @@ pub struct CutsetGraph {
     /// The mesh vertex of each node (`u32::MAX` for the root).
     pub vertex: Vec<u32>,
     /// The cover groups: node sets some node of which every valid design makes active — each
-    /// sink-free ball `cover(v)` of coverage (6), or on tilings the ends of the edges that can
-    /// serve a face (inclusion-minimal, deterministic order).
+    /// sink-free ball `cover(v)` of coverage (6) (inclusion-minimal, deterministic order).
     #[serde(default)]
     pub groups: Vec<CoverGroup>,
     /// The arcs of each edge in `edges`, `(a→b, b→a)`, when the recipe has them: the distance
@@ -58,11 +60,6 @@ pub struct CutsetGraph {
     /// then lifted: one crossing leaves a cycle inside); `None` when dead-ends are allowed.
     #[serde(default)]
     pub girth: Option<f64>,
-    /// Whether the model already holds connectivity (a flow), so that the cutsets are only
-    /// cuts that tighten it: integral points are then never separated, and the formulation is
-    /// complete without them.
-    #[serde(default)]
-    pub cuts_only: bool,
 }
 
 /// A vertex set some vertex of which every valid design makes active, as nodes of a
@@ -80,16 +77,12 @@ pub struct CoverGroup {
 pub enum GroupOrigin {
     /// The ball `cover(v)` of coverage (6) of this mesh vertex `v`.
     Ball(u32),
-    /// The ends of the edges that can serve this face of a tiling: (18) makes the room that
-    /// covers it touch a corridor, (19) makes the block that covers it traversed.
-    Face(u32),
 }
 
 impl std::fmt::Display for GroupOrigin {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             GroupOrigin::Ball(v) => write!(f, "v{v}"),
-            GroupOrigin::Face(k) => write!(f, "f{k}"),
         }
     }
 }
@@ -115,7 +108,6 @@ impl CutsetGraph {
             groups: Vec::new(),
             arcs: None,
             girth: None,
-            cuts_only: false,
         };
         for v in mesh.vertices() {
             if p.is_sink[v.index()] {
@@ -204,6 +196,44 @@ impl CutsetGraph {
             .collect();
         self.groups = groups.into_iter().zip(keep).filter(|(_, k)| *k).map(|(g, _)| g).collect();
         self
+    }
+}
+
+/// The cutsets as a family: no variable and no row in the model, only the graph their
+/// separator works on ([`CutsetSeparator`]), with the cover groups of coverage (6). The
+/// cutsets count the distance flow's direction binaries where the recipe has them, else the
+/// parent arcs of the out-arc rows with the `directed_cutsets` switch.
+pub struct Cutsets {
+    graph: Option<CutsetGraph>,
+}
+
+impl Cutsets {
+    /// When the plan separates cutsets lazily.
+    pub fn entry(c: &Ctx) -> Option<Box<dyn Family>> {
+        c.plan.lazy_cutsets().then(|| Box::new(Cutsets { graph: None }) as Box<dyn Family>)
+    }
+}
+
+impl Family for Cutsets {
+    fn label(&self) -> String {
+        "cutsets (§8, lazy)".into()
+    }
+
+    fn emit(&mut self, c: &mut Ctx) {
+        let p = c.p;
+        let directions = if c.plan.distance_flow {
+            Some(c.vars.half_edge.as_slice())
+        } else {
+            c.parent_cutsets().then_some(c.vars.parent.as_slice())
+        };
+        let g = CutsetGraph::new(p, &c.vars.edge, &c.vars.vertex, directions);
+        let girth = (p.dead_ends == Allow::Forbid).then(|| girth(p));
+        // Coverage (6) is in the model only without rooms; its balls give the cover cutsets.
+        self.graph = Some(g.with_cover_groups(p, &c.vars.vertex, girth));
+    }
+
+    fn cutsets(&self) -> Option<&CutsetGraph> {
+        self.graph.as_ref()
     }
 }
 
@@ -598,9 +628,6 @@ impl Separator for CutsetSeparator<'_> {
     }
 
     fn separate_integral(&mut self, x: &[f64]) -> Vec<LazyRow> {
-        if self.graph.cuts_only {
-            return Vec::new();
-        }
         let islands = self.islands(x);
         islands.into_iter().map(|(inside, v)| self.row(&inside, v, false)).collect()
     }
@@ -673,7 +700,6 @@ mod tests {
             groups: Vec::new(),
             arcs: None,
             girth: None,
-            cuts_only: false,
         };
         CutsetSeparator::new(g)
     }

@@ -1,17 +1,14 @@
-//! Room tiling on the network IP: floor plans (paper §5.2) and game levels (§5.3), as
-//! `shared/FORMULATION.md` §4–§5 state them. One binary `R` per enumerated placement.
+//! Room tiling on the network IP: floor plans (paper §5.2) and game levels (§5.3),
+//! docs/formulation.md §4–§5. One binary `R` per enumerated placement.
 
-use super::cutset::GroupOrigin;
-use super::Ctx;
-use crate::formulations::expr::{Expr, Value};
+use crate::design::Network;
+use crate::formulations::encode::{EncodeError, Encoding};
+use crate::formulations::expr::Expr;
+use crate::formulations::family::{Ctx, Family};
 use crate::mesh::{EdgeId, VertexId};
 use crate::milp::VarId;
-use crate::rules::placements::{enumerate_placements, Placement, PlacementReport};
-use crate::spec::{Allow, CoverageForm, LevelType, Problem, RoomMode, Rooms};
-use std::time::Duration;
-
-/// Time cap on placement enumeration.
-const PLACEMENT_TIME_CAP: Duration = Duration::from_secs(20);
+use crate::rules::placements::{Placement, PlacementReport};
+use crate::spec::{Allow, CoverageForm, LevelType, Problem, RoomMode, Rooms as RoomsSpec};
 
 /// Whether a traversed block has at least two active inner edges in every valid design: dead-ends
 /// are forbidden, every inner edge has an end off the block's boundary (true of rectangles at
@@ -31,166 +28,153 @@ fn traversal_needs_two(p: &Problem, pl: &Placement) -> bool {
     })
 }
 
-/// Emits `R` per placement and (16) exact cover, then (17)–(18) for floor plans or (19)–(20)
-/// for game levels, then the room-type counts. Returns the enumerated placements (their `R` go
-/// to the variable map).
-pub fn rooms(c: &mut Ctx, rooms: &Rooms) -> PlacementReport {
-    let p = c.p;
-    let mesh = &p.mesh;
-    // The rows that replace coverage (5)–(6) on tilings are strengthened with it.
-    let strong = c.recipe.coverage == CoverageForm::Strong;
-    let report =
-        enumerate_placements(mesh, &rooms.templates, &p.is_obstacle_face, rooms.max_placements, PLACEMENT_TIME_CAP);
-    let mut vars = Vec::with_capacity(report.placements.len());
-    let mut covering: Vec<Vec<VarId>> = vec![Vec::new(); mesh.num_faces()];
-    for (k, pl) in report.placements.iter().enumerate() {
-        let r = c.em.model.add_binary(format!("R_t{}_{k}", pl.template), 0.0);
-        vars.push(r);
-        for f in &pl.faces {
-            covering[f.index()].push(r);
-        }
+/// `R` per placement and (16) exact cover, then (17)–(18) for floor plans or (19)–(20) for game
+/// levels, then the room-type counts; linear and circular levels get their shape rows.
+pub struct Rooms {
+    mode: RoomMode,
+    /// `R` per placement (parallel to the formulation's placements).
+    vars: Vec<VarId>,
+    /// The crossing counters of linear and circular levels.
+    crossings: Vec<Crossing>,
+}
 
-        match rooms.mode {
-            RoomMode::Floorplan => {
-                // (17) |inner|·R − Σ (1 − E_i) ≤ 0: no corridor inside a room.
-                if !pl.inner_edges.is_empty() {
-                    let n = pl.inner_edges.len() as f64;
+/// A continuous crossing counter `X` at a block's boundary vertex with several inner edges (a
+/// reflex corner): `X ≥ inner + outer − 1`, and at a sink `X ≥ inner − outer`.
+struct Crossing {
+    var: VarId,
+    inner: Vec<EdgeId>,
+    outer: Vec<EdgeId>,
+    sink: bool,
+}
+
+impl Rooms {
+    /// When the spec tiles rooms.
+    pub fn entry(c: &Ctx) -> Option<Box<dyn Family>> {
+        let rooms = c.p.rooms.as_ref()?;
+        c.placements?;
+        Some(Box::new(Rooms { mode: rooms.mode, vars: Vec::new(), crossings: Vec::new() }))
+    }
+}
+
+impl Family for Rooms {
+    fn label(&self) -> String {
+        match self.mode {
+            RoomMode::Floorplan => "rooms (16)-(18)",
+            RoomMode::Game => "blocks (16), (19)-(20)",
+        }
+        .to_string()
+    }
+
+    fn emit(&mut self, c: &mut Ctx) {
+        let rooms: &RoomsSpec = c.p.rooms.as_ref().expect("the entry checked");
+        let p = c.p;
+        let mesh = &p.mesh;
+        // The rows that replace coverage (5)–(6) on tilings are strengthened with it.
+        let strong = c.recipe.coverage == CoverageForm::Strong;
+        let report = c.placements.expect("the entry checked");
+        let mut vars = Vec::with_capacity(report.placements.len());
+        let mut covering: Vec<Vec<VarId>> = vec![Vec::new(); mesh.num_faces()];
+        for (k, pl) in report.placements.iter().enumerate() {
+            let r = c.em.model.add_binary(format!("R_t{}_{k}", pl.template), 0.0);
+            vars.push(r);
+            for f in &pl.faces {
+                covering[f.index()].push(r);
+            }
+
+            match rooms.mode {
+                RoomMode::Floorplan => {
+                    // (17) |inner|·R − Σ (1 − E_i) ≤ 0: no corridor inside a room.
+                    if !pl.inner_edges.is_empty() {
+                        let n = pl.inner_edges.len() as f64;
+                        let mut ex = Expr::new();
+                        ex.add(r, n).add_const(-n);
+                        for e in &pl.inner_edges {
+                            ex.add_value(c.edge_value(*e), 1.0);
+                        }
+                        c.em.le(format!("room17_{k}"), &ex, 0.0);
+                    }
+                    // (18) R − Σ_bnd E_j ≤ 0: a room touches a corridor.
+                    let mut ex = Expr::new();
+                    ex.add(r, 1.0);
+                    for e in &pl.boundary_edges {
+                        ex.add_value(c.edge_value(*e), -1.0);
+                    }
+                    c.em.le(format!("room18_{k}"), &ex, 0.0);
+                }
+                RoomMode::Game => {
+                    // (19) R − Σ_inner E_i ≤ 0: a block is traversed; strengthened to 2R where
+                    // two inner edges are implied (see `traversal_needs_two`).
+                    let need = if strong && traversal_needs_two(p, pl) { 2.0 } else { 1.0 };
+                    let mut ex = Expr::new();
+                    ex.add(r, need);
+                    for e in &pl.inner_edges {
+                        ex.add_value(c.edge_value(*e), -1.0);
+                    }
+                    c.em.le(format!("room19_{k}"), &ex, 0.0);
+                    // (20) |bnd|·R − Σ_bnd (1 − E_j) ≤ 0: nothing runs along a block's boundary.
+                    let n = pl.boundary_edges.len() as f64;
                     let mut ex = Expr::new();
                     ex.add(r, n).add_const(-n);
-                    for e in &pl.inner_edges {
+                    for e in &pl.boundary_edges {
                         ex.add_value(c.edge_value(*e), 1.0);
                     }
-                    c.em.le(format!("room17_{k}"), &ex, 0.0);
+                    c.em.le(format!("room20_{k}"), &ex, 0.0);
                 }
-                // (18) R − Σ_bnd E_j ≤ 0: a room touches a corridor.
-                let mut ex = Expr::new();
-                ex.add(r, 1.0);
-                for e in &pl.boundary_edges {
-                    ex.add_value(c.edge_value(*e), -1.0);
-                }
-                c.em.le(format!("room18_{k}"), &ex, 0.0);
-            }
-            RoomMode::Game => {
-                // (19) R − Σ_inner E_i ≤ 0: a block is traversed; strengthened to 2R where
-                // two inner edges are implied (see `traversal_needs_two`).
-                let need = if strong && traversal_needs_two(p, pl) { 2.0 } else { 1.0 };
-                let mut ex = Expr::new();
-                ex.add(r, need);
-                for e in &pl.inner_edges {
-                    ex.add_value(c.edge_value(*e), -1.0);
-                }
-                c.em.le(format!("room19_{k}"), &ex, 0.0);
-                // (20) |bnd|·R − Σ_bnd (1 − E_j) ≤ 0: nothing runs along a block's boundary.
-                let n = pl.boundary_edges.len() as f64;
-                let mut ex = Expr::new();
-                ex.add(r, n).add_const(-n);
-                for e in &pl.boundary_edges {
-                    ex.add_value(c.edge_value(*e), 1.0);
-                }
-                c.em.le(format!("room20_{k}"), &ex, 0.0);
             }
         }
-    }
-    // (16) exact cover of every non-obstacle face.
-    for f in mesh.faces() {
-        if p.is_obstacle_face[f.index()] {
-            continue;
-        }
-        let mut ex = Expr::new();
-        for &r in &covering[f.index()] {
-            ex.add(r, 1.0);
-        }
-        c.em.eq(format!("room16_f{}", f.0), &ex, 1.0);
-    }
-    // Room-type counts.
-    for (t, &(lo, hi)) in rooms.counts.iter().enumerate() {
-        if lo.is_none() && hi.is_none() {
-            continue;
-        }
-        let mut ex = Expr::new();
-        for (pl, &r) in report.placements.iter().zip(&vars) {
-            if pl.template == t {
+        // (16) exact cover of every non-obstacle face.
+        for f in mesh.faces() {
+            if p.is_obstacle_face[f.index()] {
+                continue;
+            }
+            let mut ex = Expr::new();
+            for &r in &covering[f.index()] {
                 ex.add(r, 1.0);
             }
+            c.em.eq(format!("room16_f{}", f.0), &ex, 1.0);
         }
-        let lo = lo.map_or(f64::NEG_INFINITY, f64::from);
-        let hi = hi.map_or(f64::INFINITY, f64::from);
-        c.em.row(format!("roomcount_t{t}"), lo, &ex, hi);
-    }
-    if rooms.mode == RoomMode::Game && matches!(rooms.level, Some(LevelType::Linear | LevelType::Circular)) {
-        level_shape(c, rooms, &report, &vars, strong);
-    }
-    c.vars.rooms = vars;
-    report
-}
-
-/// Per face, the candidate edges one of which is active in every valid tiling with the face's
-/// room or block: the union over the placements covering the face of their boundary edges for
-/// floor plans (18: the room touches a corridor) or of their inner edges for game levels (19: the
-/// block is traversed). Ascending; empty for a face no placement covers, and for a face one of
-/// whose edges is active as a constant (nothing to ask).
-fn serving_edges(c: &Ctx, mode: RoomMode, report: &PlacementReport) -> Vec<Vec<EdgeId>> {
-    let mesh = &c.p.mesh;
-    let mut serving: Vec<Vec<EdgeId>> = vec![Vec::new(); mesh.num_faces()];
-    for pl in &report.placements {
-        let edges = match mode {
-            RoomMode::Floorplan => &pl.boundary_edges,
-            RoomMode::Game => &pl.inner_edges,
-        };
-        for f in &pl.faces {
-            serving[f.index()].extend(edges.iter().copied().filter(|&e| c.edge_value(e) != Value::Const(0.0)));
-        }
-    }
-    for edges in &mut serving {
-        edges.sort();
-        edges.dedup();
-        if edges.iter().any(|&e| c.edge_value(e) == Value::Const(1.0)) {
-            edges.clear();
-        }
-    }
-    serving
-}
-
-/// The served faces (this project's strengthening, opt-in): exactly one placement covers a
-/// face (16) and it needs an active edge among its own (18, 19), so `Σ_{x∈U(f)} E_x ≥ 1` over
-/// the [`serving_edges`] `U(f)` of each face `f` — `≥ 2` for a game level's face all of whose
-/// blocks need two (see `traversal_needs_two`). Summing (18) over the placements at `f` counts
-/// an edge once per placement that has it; this row counts it once, so fractional rooms can no
-/// longer share one corridor edge. Returns the ends of each `U(f)`, the cover groups of the
-/// cutset separator (one of them is active in every valid design).
-pub fn served_faces(c: &mut Ctx, mode: RoomMode, report: &PlacementReport) -> Vec<(GroupOrigin, Vec<VertexId>)> {
-    let p = c.p;
-    let serving = serving_edges(c, mode, report);
-    let mut two = vec![mode == RoomMode::Game; p.mesh.num_faces()];
-    if mode == RoomMode::Game {
-        for pl in report.placements.iter().filter(|pl| !traversal_needs_two(p, pl)) {
-            for f in &pl.faces {
-                two[f.index()] = false;
+        // Room-type counts.
+        for (t, &(lo, hi)) in rooms.counts.iter().enumerate() {
+            if lo.is_none() && hi.is_none() {
+                continue;
             }
+            let mut ex = Expr::new();
+            for (pl, &r) in report.placements.iter().zip(&vars) {
+                if pl.template == t {
+                    ex.add(r, 1.0);
+                }
+            }
+            let lo = lo.map_or(f64::NEG_INFINITY, f64::from);
+            let hi = hi.map_or(f64::INFINITY, f64::from);
+            c.em.row(format!("roomcount_t{t}"), lo, &ex, hi);
         }
+        if rooms.mode == RoomMode::Game && matches!(rooms.level, Some(LevelType::Linear | LevelType::Circular)) {
+            self.crossings = level_shape(c, rooms, report, &vars, strong);
+        }
+        self.vars = vars;
     }
-    for f in p.mesh.faces() {
-        let edges = &serving[f.index()];
-        if edges.is_empty() {
-            continue;
+
+    /// The chosen rooms, and each crossing counter at the least value its rows allow.
+    fn encode(&self, e: &Encoding, x: &mut [f64]) -> Result<(), EncodeError> {
+        for &k in &e.net.rooms {
+            let v = self.vars.get(k).ok_or(EncodeError::UnknownRoom(k))?;
+            x[v.index()] = 1.0;
         }
-        let mut ex = Expr::new();
-        for &e in edges {
-            ex.add_value(c.edge_value(e), 1.0);
+        for cr in &self.crossings {
+            let count = |edges: &[EdgeId]| edges.iter().filter(|&&f| e.on(f)).count() as f64;
+            let (inner, outer) = (count(&cr.inner), count(&cr.outer));
+            let mut least = (inner + outer - 1.0).max(0.0);
+            if cr.sink {
+                least = least.max(inner - outer);
+            }
+            x[cr.var.index()] = least.min(2.0);
         }
-        c.em.ge(format!("roomserved_f{}", f.0), &ex, if two[f.index()] { 2.0 } else { 1.0 });
+        Ok(())
     }
-    let mesh = &p.mesh;
-    mesh.faces()
-        .filter(|f| !serving[f.index()].is_empty())
-        .map(|f| {
-            let mut ends: Vec<VertexId> =
-                serving[f.index()].iter().flat_map(|&e| <[VertexId; 2]>::from(mesh.edge_vertices(e))).collect();
-            ends.sort();
-            ends.dedup();
-            (GroupOrigin::Face(f.0), ends)
-        })
-        .collect()
+
+    fn decode(&self, _p: &Problem, x: &[f64], net: &mut Network) {
+        net.rooms = self.vars.iter().enumerate().filter(|(_, v)| x[v.index()] > 0.5).map(|(k, _)| k).collect();
+    }
 }
 
 /// What a linear or circular level means, as rows (docs/spec.md "Game level types"). With
@@ -214,7 +198,8 @@ pub fn served_faces(c: &mut Ctx, mode: RoomMode, report: &PlacementReport) -> Ve
 /// twice, `Σ crossings ≥ 2R` (`levelenter_…`): its active inner edges are paths (no branches)
 /// with no end inside (no dead-ends) and no cycle (a cycle inside would hold no sink), so each
 /// path has both ends on the boundary.
-fn level_shape(c: &mut Ctx, rooms: &Rooms, report: &PlacementReport, vars: &[VarId], strong: bool) {
+fn level_shape(c: &mut Ctx, rooms: &RoomsSpec, report: &PlacementReport, vars: &[VarId], strong: bool) -> Vec<Crossing> {
+    let mut crossings = Vec::new();
     let p = c.p;
     let mesh = &p.mesh;
     let circular = rooms.level == Some(LevelType::Circular);
@@ -240,6 +225,7 @@ fn level_shape(c: &mut Ctx, rooms: &Rooms, report: &PlacementReport, vars: &[Var
                 _ => {
                     let outs: Vec<EdgeId> = mesh.incident_edges(v).filter(|e| !own.contains(e)).collect();
                     let x = c.em.model.add_continuous(format!("X_{k}_v{}", v.0), 0.0, 2.0, 0.0);
+                    crossings.push(Crossing { var: x, inner: ins.clone(), outer: outs.clone(), sink: p.is_sink[v.index()] });
                     let mut cross = Expr::new();
                     cross.add(x, 1.0);
                     for &e in &ins {
@@ -288,4 +274,5 @@ fn level_shape(c: &mut Ctx, rooms: &Rooms, report: &PlacementReport, vars: &[Var
         }
         c.em.ge("levelblocks".to_string(), &ex, 3.0);
     }
+    crossings
 }

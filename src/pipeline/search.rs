@@ -1,20 +1,18 @@
 //! The design methods as solver choices: a MILP backend, the heuristic, or the paper's
 //! stochastic search ([`Method`]), and for the two searches a result record with the same
-//! shape and the same independent checks as a MILP solve's [`crate::pipeline::DesignResult`]:
+//! shape and the same independent checks as a MILP solve's [`super::DesignResult`]:
 //! the validator, the objective recomputed from the design, and the MILP checker on the design
-//! encoded as a point of the formulation (as a MIP start would be, [`crate::pipeline::prepare_start`]).
+//! encoded as a point of the formulation (as a MIP start would be, [`super::prepare_start`]).
 //! `netspec solve --solver heuristic|anneal` writes it as `result.json`, and `netspec compare`
 //! reads it like any other run.
 
-use super::{AnnealOptions, Inputs, Options, Outcome, SearchStats, Stop, TracePoint};
+use super::result::{active_edge_pairs, design_point, design_violations, rooms_result, RoomsResult, Validity, DESIGN_SCHEMA_VERSION};
 use crate::design::{Metrics, Network, Objective};
+use crate::heuristics::{self, AnnealOptions, Inputs, Options, Outcome, SearchStats, Stop, TracePoint};
 use crate::formulations::expr::FamilyStats;
 use crate::formulations::Formulation;
 use crate::mesh::Mesh;
 use crate::milp::ModelStats;
-use crate::pipeline::{
-    active_edge_pairs, design_point, design_violations, rooms_result, RoomsResult, Validity, DESIGN_SCHEMA_VERSION,
-};
 use crate::rules::paths::PathSets;
 use crate::solvers::{LimitKind, SolverKind, Termination};
 use crate::spec::{Problem, Spec};
@@ -36,9 +34,9 @@ pub enum Method {
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum SearchMethod {
-    /// Construction and local search ([`super::heuristic`]).
+    /// Construction and local search ([`crate::heuristics::heuristic`]).
     Heuristic,
-    /// The paper's stochastic search ([`super::anneal`]).
+    /// The paper's stochastic search ([`crate::heuristics::anneal`]).
     Anneal,
 }
 
@@ -183,10 +181,10 @@ pub fn run_search(
         Inputs { paths: f.path_sets.as_ref(), placements: f.placements.as_ref().map(|r| r.placements.as_slice()) };
     let outcome = match method {
         SearchMethod::Heuristic => {
-            super::heuristic(p, &inputs, &Options { time_limit, seed, threads, ..Options::default() })
+            heuristics::heuristic(p, &inputs, &Options { time_limit, seed, threads, ..Options::default() })
         }
         SearchMethod::Anneal => {
-            super::anneal(p, &inputs, &AnnealOptions { time_limit, seed, ..AnnealOptions::default() })
+            heuristics::anneal(p, &inputs, &AnnealOptions { time_limit, seed, ..AnnealOptions::default() })
         }
     };
     record(p, f, method, seed, outcome, t0)

@@ -1,0 +1,177 @@
+//! What a design run produces (`result.json`), and the independent checks every design goes
+//! through: the validator on the network, the MILP checker on the design as a point of the
+//! formulation.
+
+use crate::design::{self, Metrics, Network, Objective, Violation};
+use crate::formulations::expr::FamilyStats;
+use crate::formulations::Formulation;
+use crate::mesh::Mesh;
+use crate::milp::{check_point, CheckReport, ModelStats, Tolerances};
+use crate::rules::paths::PathSets;
+use crate::solvers::lattice::LatticeReport;
+use crate::solvers::split::SplitReport;
+use crate::solvers::{LazyReport, Separator, SolveResult};
+use crate::spec::{Problem, Spec};
+use indexmap::IndexMap;
+use serde::{Deserialize, Serialize};
+
+use super::StartReport;
+
+/// Version of the design result schema (`result.json`).
+pub const DESIGN_SCHEMA_VERSION: u32 = 2;
+
+/// The verdict of every independent check.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct Validity {
+    /// `true` when a network exists and every check below passed.
+    pub valid: bool,
+    /// FORMULATION §6 items 1–5, from plain graph code.
+    pub design_violations: Vec<Violation>,
+    /// §6 item 7: every row and bound of the emitted MILP at the returned point.
+    pub milp_check: Option<CheckReport>,
+    /// §6 item 7: the objective recomputed from the decoded design alone (see
+    /// [`crate::design::Objective`]).
+    pub objective_recomputed: Option<f64>,
+    /// Whether the solver's objective equals the model's objective at its point (the
+    /// formulation's surrogate, 1e-6 relative) and the design's own objective is not above it.
+    pub objective_agrees: Option<bool>,
+}
+
+/// The room part of a design result.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct RoomsResult {
+    /// Placements enumerated, per template.
+    pub enumerated_per_template: Vec<usize>,
+    /// Whether enumeration hit its count or time cap.
+    pub truncated: bool,
+    /// Seconds spent enumerating.
+    pub seconds: f64,
+    /// Game levels: the block connectivity graph (also written as `blocks.dot`).
+    pub block_graph: Option<crate::design::BlockGraph>,
+    /// The chosen placements (faces, inner and boundary edges), in placement order; the
+    /// network's `rooms` indices refer to the model's full list, these are the rooms themselves.
+    pub chosen: Vec<crate::rules::placements::Placement>,
+}
+
+/// Everything about one design run (`result.json`).
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct DesignResult {
+    /// Always `netspec.design`.
+    pub schema: String,
+    /// [`DESIGN_SCHEMA_VERSION`].
+    pub schema_version: u32,
+    /// The netspec version.
+    pub netspec_version: String,
+    /// The spec, echoed.
+    pub spec: Spec,
+    /// The mesh.
+    pub mesh: Mesh,
+    /// Sink vertex ids.
+    pub sinks: Vec<u32>,
+    /// Active edges as vertex pairs (existing edges included), in edge-id order.
+    pub active_edges: Vec<[u32; 2]>,
+    /// The decoded network (active flags, directions, labels), if there is a solution.
+    pub network: Option<Network>,
+    /// Whether a design exists (apart from why the solver stopped, `solve.termination`).
+    #[serde(default)]
+    pub design_found: bool,
+    /// Metrics of the network.
+    pub metrics: Option<Metrics>,
+    /// The objective recomputed from the design alone, term by term (the paper's distance term,
+    /// total travel, counts of penalised features).
+    pub objective: Option<Objective>,
+    /// The independent checks.
+    pub validity: Validity,
+    /// The solver's result (the primal point is omitted here; see `--export` for the model).
+    pub solve: SolveResult,
+    /// Size of the MILP.
+    pub model_stats: ModelStats,
+    /// Variables and rows per constraint family.
+    pub families: IndexMap<String, FamilyStats>,
+    /// The recipe, with its overrides (`strong`, `paper(coverage=strong)`).
+    pub formulation: String,
+    /// The big-M of the label rows (2), when the recipe has labels.
+    pub big_m: Option<f64>,
+    /// Lazily separated rows: how they were handled and how many were added.
+    #[serde(default)]
+    pub lazy: Option<LazyReport>,
+    /// The two-phase solve, when the objective's two scales called for it
+    /// ([`crate::solvers::split`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub split: Option<SplitReport>,
+    /// The objective's lattice, when the recipe used it, with the backend's bound before it was
+    /// rounded up to the lattice ([`crate::solvers::lattice`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lattice: Option<LatticeReport>,
+    /// The solve strategy's settings handed to the backend (`highs.mip_pscost_minreliable=0`;
+    /// [`crate::solvers::Solver::strategy_hints`]), beside the user's own.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub solver_hints: Vec<String>,
+    /// The MIP start handed to the solver (or refused), if one was prepared.
+    #[serde(default)]
+    pub start: Option<StartReport>,
+    /// Point-to-point path sets, if on.
+    pub path_sets: Option<PathSets>,
+    /// Room tiling, if on.
+    pub rooms: Option<RoomsResult>,
+    /// The solver's point, one value per MILP variable (not in `result.json`; for `--sol`).
+    #[serde(skip)]
+    pub primal_point: Option<Vec<f64>>,
+}
+
+/// A design as a point of a formulation, with the MILP checker's report on it.
+pub(crate) struct DesignPoint {
+    /// The point.
+    pub x: Vec<f64>,
+    /// Every emitted row and bound, checked.
+    pub check: CheckReport,
+    /// Lazily separated rows the point violates (0 without a separator).
+    pub lazy_violations: usize,
+}
+
+/// Encodes `net` for `f` and checks the point against every row, bound and lazy row.
+pub(crate) fn design_point(f: &Formulation, p: &Problem, net: &Network) -> Result<DesignPoint, String> {
+    let x = f.encode(p, net).map_err(|e| e.to_string())?;
+    let check = check_point(&f.model, &x, &Tolerances::default());
+    let lazy_violations = f.separator().map_or(0, |mut sep| sep.separate_integral(&x).len());
+    Ok(DesignPoint { x, check, lazy_violations })
+}
+
+/// The validator's verdict on a design of `f`: §6 items 1–5, and the room rules when tiling.
+pub(crate) fn design_violations(p: &Problem, f: &Formulation, net: &Network) -> Vec<Violation> {
+    let mut v = design::validate(p, net, f.path_sets.as_ref());
+    if let Some(pl) = &f.placements {
+        v.extend(design::validate_rooms(p, net, &pl.placements, &net.rooms));
+    }
+    v
+}
+
+/// A design's active edges as vertex pairs, in edge-id order (empty without a design).
+pub(crate) fn active_edge_pairs(p: &Problem, net: Option<&Network>) -> Vec<[u32; 2]> {
+    net.map_or(Vec::new(), |n| {
+        n.active_edges()
+            .into_iter()
+            .map(|e| {
+                let (a, b) = p.mesh.edge_vertices(e);
+                [a.0, b.0]
+            })
+            .collect()
+    })
+}
+
+/// The room part of a result, when `f` tiles rooms.
+pub(crate) fn rooms_result(p: &Problem, f: &Formulation, net: Option<&Network>) -> Option<RoomsResult> {
+    f.placements.as_ref().map(|pl| RoomsResult {
+        enumerated_per_template: pl.per_template.clone(),
+        truncated: pl.truncated,
+        seconds: pl.seconds,
+        block_graph: match (&p.rooms, net) {
+            (Some(r), Some(n)) if r.mode == crate::spec::RoomMode::Game => {
+                Some(design::block_graph(p, n, &pl.placements))
+            }
+            _ => None,
+        },
+        chosen: net.map_or(Vec::new(), |n| n.rooms.iter().map(|&k| pl.placements[k].clone()).collect()),
+    })
+}
+
