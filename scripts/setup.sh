@@ -5,18 +5,20 @@
 # A second run takes about a second. Stops loudly on any version drift.
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
+# Python packages are pinned in scripts/requirements.txt.
+pinned() { sed -n "s/^$1==\([^ #]*\).*/\1/p" "$here/scripts/requirements.txt"; }
 SCIP_VERSION=10.0.2
 SCIP_SYS_VERSION=0.1.28
-PYSCIPOPT_VERSION=6.3.0
+PYSCIPOPT_VERSION=$(pinned pyscipopt)
 CBC_VERSION_PREFIX=2.10
-SUMO_VERSION=1.28.0
+SUMO_VERSION=$(pinned eclipse-sumo)
 DEPS=${NETSPEC_DEPS:-${XDG_CACHE_HOME:-$HOME/.cache}/netspec}
 PREFIX=$DEPS/scip-$SCIP_VERSION
 log() { printf '[setup] %s\n' "$*" >&2; }
 die() { printf '[setup] ERROR: %s\n' "$*" >&2; exit 1; }
 
 # 1. Debian packages.
-pkgs=(cmake clang libclang-dev coinor-libcbc-dev coinor-cbc pkg-config unzip fonts-dejavu-core)
+pkgs=(cmake clang libclang-dev coinor-libcbc-dev coinor-cbc pkg-config unzip fonts-dejavu-core python3-venv python3-pip)
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
