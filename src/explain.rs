@@ -951,6 +951,35 @@ impl Explanation {
     }
 }
 
+/// The picture of a spec without a solution: its mesh, obstacles, sinks, forced elements and
+/// through routes ([`crate::design::picture::mesh_scene`]), with the elements of each
+/// conflicting set of requirements highlighted in the conflict's colour and every requirement
+/// listed in the legend ([`crate::render::network::conflict_svg`]).
+pub fn conflict_svg(p: &Problem, explanation: &Explanation, caption: &crate::render::Caption) -> String {
+    use crate::render::network::{ConflictMarks, ConflictScene, RequirementMarks};
+    let conflicts = ConflictScene {
+        conflicts: explanation
+            .conflicts
+            .iter()
+            .map(|c| ConflictMarks {
+                minimal: c.minimal,
+                requirements: c
+                    .requirements
+                    .iter()
+                    .map(|r| RequirementMarks {
+                        text: r.field_text(),
+                        vertices: r.vertices.clone(),
+                        edges: r.edges.clone(),
+                        faces: r.faces.clone(),
+                    })
+                    .collect(),
+            })
+            .collect(),
+        complete: explanation.complete,
+    };
+    crate::render::network::conflict_svg(&crate::design::picture::mesh_scene(p), &conflicts, caption)
+}
+
 /// Fields in a short list, indices of one list merged: `user.obstacle_edges[0, 1, 2] +
 /// user.forced_vertices[0]`.
 fn compact(fields: &[String]) -> String {

@@ -119,10 +119,10 @@ fn tiny_design_through_netconvert_and_sumo() {
     let departed: f64 = attr_values(&edgedata, "edge", "departed").iter().map(|d| d.parse::<f64>().unwrap()).sum();
     assert_eq!(departed, v.inserted as f64);
     // The pictures render.
-    let svg = netspec::render::traffic::volume_svg(&net, &r);
+    let svg = netspec::traffic::picture::volume_svg(&net, &r);
     assert_eq!(svg.matches("data-street=").count(), net.edges.len());
     netspec::render::png(&svg).unwrap();
-    netspec::render::png(&netspec::render::traffic::histogram_svg(&r)).unwrap();
+    netspec::render::png(&netspec::traffic::picture::histogram_svg(&r)).unwrap();
 }
 
 /// Parses a plain node or edge file into id → attributes.

@@ -2,8 +2,8 @@
 //! several are given.
 
 use anyhow::{Context, Result};
-use netspec::render::{self, traffic as pictures};
-use netspec::traffic::{self, network::LoadOptions, report, DemandSettings, Sumo, TrafficReport};
+use netspec::render;
+use netspec::traffic::{self, network::LoadOptions, picture as pictures, report, DemandSettings, Sumo, TrafficReport};
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;

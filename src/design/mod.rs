@@ -10,6 +10,7 @@
 mod blocks;
 mod metrics;
 mod objective;
+pub mod picture;
 mod validate;
 
 pub use blocks::{block_graph, BlockGraph, GraphShape};

@@ -1,10 +1,75 @@
 //! Pictures of traffic evaluations: the network coloured by traffic volume per street, a
 //! travel-time histogram, and a comparison of several designs (travel-time distributions and
-//! key numbers side by side). SVG by hand, like the rest of `render`.
+//! key numbers side by side). SVG by hand, like the rest of `render`. The input is plain data
+//! ([`VolumeScene`], [`TrafficNumbers`]; `traffic::picture` builds it from an evaluation).
 
-use crate::traffic::report::TrafficReport;
-use crate::traffic::RoadNetwork;
+use std::collections::BTreeMap;
 use std::fmt::Write as _;
+
+/// The numbers of one traffic evaluation that the pictures show.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct TrafficNumbers {
+    /// The design's name.
+    pub name: String,
+    /// `sumo --version`.
+    pub sumo_version: String,
+    /// Seconds during which trips departed.
+    pub duration: f64,
+    /// Through trips per hour.
+    pub through_per_hour: f64,
+    /// Local trips per hour.
+    pub local_per_hour: f64,
+    /// The demand's seed.
+    pub seed: u64,
+    /// Vehicles inserted.
+    pub inserted: u64,
+    /// Vehicles arrived.
+    pub arrived: u64,
+    /// Teleports.
+    pub teleported: u64,
+    /// Mean travel time of every vehicle that arrived, s.
+    pub travel_time_mean: Option<f64>,
+    /// Its 95th percentile, s.
+    pub travel_time_p95: Option<f64>,
+    /// Mean waiting time, s.
+    pub waiting_time_mean: Option<f64>,
+    /// Mean travel time of through traffic, s.
+    pub through_travel_time_mean: Option<f64>,
+    /// Mean travel time of local traffic, s.
+    pub local_travel_time_mean: Option<f64>,
+    /// Share of through traffic's distance on local streets.
+    pub through_local_distance_share: Option<f64>,
+    /// Through traffic's vehicle-kilometres on each level 1–4.
+    pub through_km_by_level: [f64; 4],
+    /// Travel times of the vehicles that arrived, s, per class (`through`, `local`).
+    pub travel_times: BTreeMap<String, Vec<f64>>,
+}
+
+/// A street of a [`VolumeScene`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct VolumeStreet {
+    /// Its id (`data-street`).
+    pub id: u32,
+    /// Its level (1 major road … 4 cul-de-sac): the stroke width.
+    pub level: u8,
+    /// Its polyline, metres.
+    pub shape: Vec<[f64; 2]>,
+}
+
+/// A network coloured by traffic volume.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct VolumeScene {
+    /// The evaluation's numbers (the title).
+    pub numbers: TrafficNumbers,
+    /// Lower-left and upper-right corners of what to frame.
+    pub bounds: ([f64; 2], [f64; 2]),
+    /// The region's boundary (drawn when it has at least three points).
+    pub boundary: Vec<[f64; 2]>,
+    /// The streets.
+    pub streets: Vec<VolumeStreet>,
+    /// Vehicles per street (both directions), by index into `streets` (a street without one: 0).
+    pub volumes: Vec<f64>,
+}
 
 /// Design colours in comparisons.
 const PALETTE: [&str; 8] = ["#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2", "#17becf"];
@@ -30,7 +95,8 @@ use super::writer::escape as xml;
 
 /// A round number ≥ `v` (1, 2 or 5 × 10ⁿ) for axis ends.
 fn nice_ceil(v: f64) -> f64 {
-    if !(v > 0.0) {
+    // Not above 0, or NaN.
+    if v.is_nan() || v <= 0.0 {
         return 1.0;
     }
     let p = 10f64.powf(v.log10().floor());
@@ -51,11 +117,9 @@ fn fmt_opt(v: Option<f64>, d: usize) -> String {
 
 /// The network, every street coloured by the vehicles that used it (both directions) and drawn
 /// as wide as its level; the title gives the demand and the main results.
-pub fn volume_svg(net: &RoadNetwork, r: &TrafficReport) -> String {
-    let pts = net.region.boundary.iter().chain(net.nodes.iter().map(|n| &n.pos));
-    let (lo, hi) = pts.fold(([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]), |(lo, hi), p| {
-        ([lo[0].min(p[0]), lo[1].min(p[1])], [hi[0].max(p[0]), hi[1].max(p[1])])
-    });
+pub fn volume_svg(scene: &VolumeScene) -> String {
+    let r = &scene.numbers;
+    let (lo, hi) = scene.bounds;
     let span = (hi[0] - lo[0]).max(hi[1] - lo[1]).max(1e-9);
     let scale = 720.0 / span;
     let (margin, title_h, legend_w) = (24.0, 76.0, 190.0);
@@ -72,7 +136,6 @@ pub fn volume_svg(net: &RoadNetwork, r: &TrafficReport) -> String {
     };
     let mut s = String::new();
     svg_open(&mut s, w, h);
-    let d = &r.demand.settings;
     let _ = writeln!(
         s,
         r#"<text x="{margin}" y="22" font-size="15" font-weight="bold">{} — traffic volume per street (SUMO {})</text>"#,
@@ -82,35 +145,29 @@ pub fn volume_svg(net: &RoadNetwork, r: &TrafficReport) -> String {
     let _ = writeln!(
         s,
         r#"<text x="{margin}" y="42" font-size="12">{:.0} s of departures: {:.0} through + {:.0} local trips/h, seed {}; inserted {}, arrived {}, teleported {}</text>"#,
-        d.duration,
-        d.through_per_hour,
-        d.local_per_hour,
-        d.seed,
-        r.vehicles.inserted,
-        r.vehicles.arrived,
-        r.vehicles.teleported
+        r.duration, r.through_per_hour, r.local_per_hour, r.seed, r.inserted, r.arrived, r.teleported
     );
     let _ = writeln!(
         s,
         r#"<text x="{margin}" y="60" font-size="12">travel time mean {} s, p95 {} s; through traffic on local streets: {} of its distance</text>"#,
-        fmt_opt(r.all.travel_time_mean, 1),
-        fmt_opt(r.all.travel_time_p95, 1),
-        r.through_on_local.distance_share.map_or("-".into(), |v| format!("{:.1}%", 100.0 * v))
+        fmt_opt(r.travel_time_mean, 1),
+        fmt_opt(r.travel_time_p95, 1),
+        r.through_local_distance_share.map_or("-".into(), |v| format!("{:.1}%", 100.0 * v))
     );
-    if net.region.boundary.len() >= 3 {
+    if scene.boundary.len() >= 3 {
         let _ = writeln!(
             s,
             r##"<path d="{} Z" fill="#f6f4ee" stroke="#cccccc" stroke-width="1"/>"##,
-            path(&net.region.boundary)
+            path(&scene.boundary)
         );
     }
-    let volume: Vec<f64> = r.edge_volumes.iter().map(|v| v.forward + v.backward).collect();
+    let volume = &scene.volumes;
     let vmax = volume.iter().copied().fold(0.0, f64::max);
-    let mut order: Vec<usize> = (0..net.edges.len()).collect();
+    let mut order: Vec<usize> = (0..scene.streets.len()).collect();
     // Quiet streets first, busy ones on top.
     order.sort_by(|&a, &b| volume.get(a).unwrap_or(&0.0).total_cmp(volume.get(b).unwrap_or(&0.0)).then(a.cmp(&b)));
     for k in order {
-        let e = &net.edges[k];
+        let e = &scene.streets[k];
         let v = volume.get(k).copied().unwrap_or(0.0);
         let colour = if v > 0.0 { heat((v / vmax).sqrt()) } else { "#c8c8c8".to_string() };
         let _ = writeln!(
@@ -175,7 +232,7 @@ fn histogram(v: &[f64], width: f64, bins: usize) -> Vec<usize> {
 
 /// Travel times of the vehicles that arrived, through and local traffic stacked, with the mean
 /// and the 95th percentile marked.
-pub fn histogram_svg(r: &TrafficReport) -> String {
+pub fn histogram_svg(r: &TrafficNumbers) -> String {
     let empty = Vec::new();
     let through = r.travel_times.get("through").unwrap_or(&empty);
     let local = r.travel_times.get("local").unwrap_or(&empty);
@@ -198,10 +255,10 @@ pub fn histogram_svg(r: &TrafficReport) -> String {
     let _ = writeln!(
         s,
         r#"<text x="20" y="44" font-size="12">mean {} s, p95 {} s (through: {} s, local: {} s); bins of {width} s</text>"#,
-        fmt_opt(r.all.travel_time_mean, 1),
-        fmt_opt(r.all.travel_time_p95, 1),
-        fmt_opt(r.through.travel_time_mean, 1),
-        fmt_opt(r.local.travel_time_mean, 1)
+        fmt_opt(r.travel_time_mean, 1),
+        fmt_opt(r.travel_time_p95, 1),
+        fmt_opt(r.through_travel_time_mean, 1),
+        fmt_opt(r.local_travel_time_mean, 1)
     );
     let bx = |t: f64| x0 + t / (bins as f64 * width) * pw;
     let by = |c: f64| y0 + ph - c / top * ph;
@@ -227,7 +284,7 @@ pub fn histogram_svg(r: &TrafficReport) -> String {
         }
     }
     axes(&mut s, x0, y0, pw, ph, bins as f64 * width, top, "travel time (s)", "vehicles");
-    for (label, v, dash) in [("mean", r.all.travel_time_mean, "5 3"), ("p95", r.all.travel_time_p95, "2 2")] {
+    for (label, v, dash) in [("mean", r.travel_time_mean, "5 3"), ("p95", r.travel_time_p95, "2 2")] {
         if let Some(v) = v {
             let x = bx(v);
             let _ = writeln!(
@@ -308,21 +365,20 @@ fn tick(v: f64) -> String {
 /// Several designs under one demand: the travel-time distribution of each (cumulative share of
 /// vehicles) next to bars of mean and 95th-percentile travel time, mean waiting time and the
 /// share of through traffic's distance on local streets.
-pub fn comparison_svg(rows: &[(String, &TrafficReport)]) -> String {
+pub fn comparison_svg(rows: &[(String, &TrafficNumbers)]) -> String {
     let (w, h) = (1220.0, 520.0);
     let mut s = String::new();
     svg_open(&mut s, w, h);
     let title = rows.iter().map(|(l, _)| l.as_str()).collect::<Vec<_>>().join(" vs ");
     let _ = writeln!(s, r#"<text x="20" y="24" font-size="15" font-weight="bold">{}</text>"#, xml(&title));
     if let Some((_, r)) = rows.first() {
-        let d = &r.demand.settings;
         let _ = writeln!(
             s,
             r#"<text x="20" y="44" font-size="12">same demand: {:.0} s of departures, {:.0} through + {:.0} local trips/h, seed {}; SUMO {}</text>"#,
-            d.duration,
-            d.through_per_hour,
-            d.local_per_hour,
-            d.seed,
+            r.duration,
+            r.through_per_hour,
+            r.local_per_hour,
+            r.seed,
             xml(&r.sumo_version)
         );
     }
@@ -357,13 +413,13 @@ pub fn comparison_svg(rows: &[(String, &TrafficReport)]) -> String {
     }
     axes(&mut s, x0, y0, pw, ph, tmax, 100.0, "travel time (s)", "% of vehicles");
     // Right: bar panels.
-    type Metric = fn(&TrafficReport) -> Option<f64>;
+    type Metric = fn(&TrafficNumbers) -> Option<f64>;
     let panels: [(&str, Metric); 4] = [
-        ("mean travel time (s)", |r| r.all.travel_time_mean),
-        ("p95 travel time (s)", |r| r.all.travel_time_p95),
-        ("mean waiting time (s)", |r| r.all.waiting_time_mean),
+        ("mean travel time (s)", |r| r.travel_time_mean),
+        ("p95 travel time (s)", |r| r.travel_time_p95),
+        ("mean waiting time (s)", |r| r.waiting_time_mean),
         ("through traffic inside the region (% of its km)", |r| {
-            let k = &r.through_on_local.km_by_level;
+            let k = &r.through_km_by_level;
             let total: f64 = k.iter().sum();
             (total > 0.0).then(|| 100.0 * (total - k[0]) / total)
         }),

@@ -126,7 +126,7 @@ pub fn generate(region: &Region, s: &DemandSettings) -> Vec<Trip> {
 /// Departure times of a Poisson process of `per_hour` in `[0, duration)`.
 fn poisson(rng: &mut Xoshiro256PlusPlus, per_hour: f64, duration: f64) -> Vec<f64> {
     let mut out = Vec::new();
-    if !(per_hour > 0.0) {
+    if per_hour.is_nan() || per_hour <= 0.0 {
         return out;
     }
     let mut t = 0.0;

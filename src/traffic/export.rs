@@ -1,5 +1,5 @@
 //! SUMO plain XML of a [`RoadNetwork`] (nodes, edges, one road type per level), for SUMO's own
-//! `netconvert`; and the GeoJSON of a `solve` design through the city GeoJSON writer.
+//! `netconvert`; and the GeoJSON of a `solve` design through the city's street GeoJSON writer.
 //!
 //! Every design vertex with a street is one node `n<id>`; every street is two edges, `e<id>`
 //! from its `a` to its `b` and `-e<id>` back (SUMO's convention for the opposite direction),
@@ -9,6 +9,7 @@
 use super::network::RoadNetwork;
 use super::{write, TrafficError};
 use crate::pipeline::DesignResult;
+use crate::urban::output::{streets_geojson, GeoAnchor};
 use crate::urban::smooth::{self, StreetEdge, StreetGraph};
 use serde::{Deserialize, Serialize};
 use std::fmt::Write as _;
@@ -167,10 +168,11 @@ pub fn write_plain(net: &RoadNetwork, dir: &Path, stem: &str) -> Result<PlainFil
     Ok(files)
 }
 
-/// The GeoJSON of a `solve` design, written by the city GeoJSON writer
-/// ([`crate::urban::output::geojson`]): the active edges as streets of `level`, in chains
+/// The GeoJSON of a `solve` design, written by the city's street writer
+/// ([`crate::urban::output::streets_geojson`]): the active edges as streets of `level`, in chains
 /// between junctions and ends, and the mesh boundary as the domain boundary. A spec has no
-/// scale, so coordinates are model units (`metres_per_unit` 1).
+/// scale, so coordinates are model units as metres from the default origin
+/// ([`GeoAnchor::model_units`]).
 pub fn design_geojson(res: &DesignResult, level: u8) -> String {
     let mesh = &res.mesh;
     let edges = res.active_edges.iter().map(|&[a, b]| StreetEdge { a, b, level }).collect();
@@ -184,15 +186,5 @@ pub fn design_geojson(res: &DesignResult, level: u8) -> String {
             [mesh.position(a), mesh.position(b)]
         })
         .collect();
-    // The writer reads the name, the scale and the geographic anchor of a city spec.
-    let spec: crate::urban::CitySpec = serde_json::from_value(serde_json::json!({
-        "name": res.spec.name,
-        "description": res.spec.description,
-        "metres_per_unit": 1.0,
-        "domain": { "outer": [] },
-        "mesh": { "spacing": 1.0 },
-        "levels": {},
-    }))
-    .expect("a minimal city spec deserialises");
-    crate::urban::output::geojson(&spec, &[], &boundary, &snakes)
+    streets_geojson(&res.spec.name, &GeoAnchor::model_units(), &[], &boundary, &snakes)
 }

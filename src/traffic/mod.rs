@@ -12,12 +12,14 @@
 //! 4. [`sumo`]: `sumo` headless with tripinfo, edge data, vehicle routes and statistics output;
 //! 5. [`parse`] and [`report`]: vehicles inserted / arrived / teleported, travel time (mean,
 //!    95th percentile), route length, waiting time, and how much of the through traffic runs on
-//!    local streets; traffic volume per street for the pictures (`render::traffic`).
+//!    local streets; traffic volume per street for the pictures ([`picture`], drawn by
+//!    `render::traffic`).
 
 pub mod demand;
 pub mod export;
 pub mod network;
 pub mod parse;
+pub mod picture;
 pub mod report;
 pub mod sumo;
 
@@ -103,7 +105,7 @@ pub(crate) fn write(path: &Path, text: &str) -> Result<(), TrafficError> {
 
 /// Runs one whole evaluation of `net` into `dir` (SUMO's files under `dir/sumo/`): export,
 /// `netconvert`, demand, `duarouter`, `sumo`, and the parsed report (write it with
-/// [`TrafficReport::write`]). Pictures are the caller's (see `render::traffic`).
+/// [`TrafficReport::write`]). Pictures are the caller's (see [`picture`]).
 pub fn evaluate(
     net: &RoadNetwork,
     demand: &DemandSettings,

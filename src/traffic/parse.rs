@@ -188,8 +188,7 @@ pub fn vehroutes(path: &Path) -> Result<BTreeMap<String, Vec<String>>, TrafficEr
         for v in elements(doc, "vehicle") {
             let route = v
                 .descendants()
-                .filter(|c| c.is_element() && c.tag_name().name() == "route")
-                .last()
+                .rfind(|c| c.is_element() && c.tag_name().name() == "route")
                 .ok_or_else(|| format!("vehicle {:?} has no route", v.attribute("id")))?;
             let edges: String = attr(route, "edges")?;
             out.insert(attr(v, "id")?, edges.split_whitespace().map(str::to_string).collect());

@@ -251,12 +251,66 @@ pub fn snap_to_major_roads(
     out
 }
 
-/// The smoothed streets (and sub-regions) as GeoJSON (RFC 7946): always WGS 84 longitude and
-/// latitude ([`CitySpec::to_wgs84`]), around `geo_origin` or, without one, around
-/// [`super::spec::DEFAULT_GEO_ORIGIN`]; the collection's `properties` say which origin and scale
-/// were used.
+/// Where GeoJSON's model coordinates sit on the Earth: the WGS 84 `[longitude, latitude]` of
+/// the model origin, and metres per model unit.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GeoAnchor {
+    /// The model origin's `[longitude, latitude]`.
+    pub origin: [f64; 2],
+    /// The origin is [`super::spec::DEFAULT_GEO_ORIGIN`], not a given anchor.
+    pub origin_is_default: bool,
+    /// Metres per model unit.
+    pub metres_per_unit: f64,
+}
+
+/// Metres per degree of longitude at the equator and per degree of latitude (the
+/// equirectangular projection of [`CitySpec::to_wgs84`], which [`GeoAnchor::to_wgs84`] repeats).
+const METRES_PER_DEGREE: [f64; 2] = [111_320.0, 110_540.0];
+
+impl GeoAnchor {
+    /// A city's: its `geo_origin` (else the default origin) and its scale.
+    pub fn of_city(spec: &CitySpec) -> GeoAnchor {
+        GeoAnchor {
+            origin: spec.origin_wgs84(),
+            origin_is_default: spec.geo_origin.is_none(),
+            metres_per_unit: spec.metres_per_unit,
+        }
+    }
+
+    /// Model units as metres from [`super::spec::DEFAULT_GEO_ORIGIN`] (a design spec has no
+    /// scale).
+    pub fn model_units() -> GeoAnchor {
+        GeoAnchor { origin: super::spec::DEFAULT_GEO_ORIGIN, origin_is_default: true, metres_per_unit: 1.0 }
+    }
+
+    /// A model point as WGS 84 `[longitude, latitude]` degrees: scaled by `metres_per_unit` and
+    /// projected equirectangularly around `origin` (as [`CitySpec::to_wgs84`]).
+    pub fn to_wgs84(&self, p: [f64; 2]) -> [f64; 2] {
+        let [lon0, lat0] = self.origin;
+        let (x, y) = (p[0] * self.metres_per_unit, p[1] * self.metres_per_unit);
+        [lon0 + x / (METRES_PER_DEGREE[0] * lat0.to_radians().cos()), lat0 + y / METRES_PER_DEGREE[1]]
+    }
+}
+
+/// The smoothed streets (and sub-regions) of a city as GeoJSON ([`streets_geojson`] around the
+/// city's anchor, [`GeoAnchor::of_city`]: `geo_origin` or, without one,
+/// [`super::spec::DEFAULT_GEO_ORIGIN`]).
 pub fn geojson(spec: &CitySpec, regions: &[RegionOutcome], major: &[[[f64; 2]; 2]], snakes: &[Snake]) -> String {
-    let proj = |p: [f64; 2]| spec.to_wgs84(p);
+    streets_geojson(&spec.name, &GeoAnchor::of_city(spec), regions, major, snakes)
+}
+
+/// Streets as GeoJSON (RFC 7946), always WGS 84 longitude and latitude
+/// ([`GeoAnchor::to_wgs84`]): the sub-regions (none for a single design), level 1 (`major`, the
+/// major roads and the domain boundary, as given) as one multi-line, then every street (a
+/// polyline with its level); the collection's `properties` say which origin and scale were used.
+pub fn streets_geojson(
+    name: &str,
+    anchor: &GeoAnchor,
+    regions: &[RegionOutcome],
+    major: &[[[f64; 2]; 2]],
+    streets: &[Snake],
+) -> String {
+    let proj = |p: [f64; 2]| anchor.to_wgs84(p);
     let coords = |pts: &[[f64; 2]]| -> serde_json::Value { pts.iter().map(|&p| serde_json::json!(proj(p))).collect() };
     let mut features = Vec::new();
     for r in regions {
@@ -280,7 +334,7 @@ pub fn geojson(spec: &CitySpec, regions: &[RegionOutcome], major: &[[[f64; 2]; 2
         "geometry": { "type": "MultiLineString", "coordinates": lines },
         "properties": { "kind": "street", "level": 1, "closed": false, "note": "major roads and the domain boundary, as given" },
     }));
-    for s in snakes {
+    for s in streets {
         features.push(serde_json::json!({
             "type": "Feature",
             "geometry": { "type": "LineString", "coordinates": coords(&s.points) },
@@ -289,12 +343,12 @@ pub fn geojson(spec: &CitySpec, regions: &[RegionOutcome], major: &[[[f64; 2]; 2
     }
     let doc = serde_json::json!({
         "type": "FeatureCollection",
-        "name": spec.name,
+        "name": name,
         "properties": {
             "crs": "WGS 84 longitude, latitude (RFC 7946)",
-            "geo_origin": spec.origin_wgs84(),
-            "geo_origin_is_default": spec.geo_origin.is_none(),
-            "metres_per_unit": spec.metres_per_unit,
+            "geo_origin": anchor.origin,
+            "geo_origin_is_default": anchor.origin_is_default,
+            "metres_per_unit": anchor.metres_per_unit,
         },
         "features": features,
     });
