@@ -1,4 +1,4 @@
-//! Emitting the network MILP (every family on) for a 1,200-edge mesh — target (issue #3): under
+//! Emitting the network MILP (every family on) for a 1,200-edge mesh — target: under
 //! 20 ms — and, per Table 1 instance, building and exporting its MILP. Run with
 //! `cargo bench --bench formulation`.
 

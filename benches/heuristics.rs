@@ -1,4 +1,4 @@
-//! The construction heuristic (issue 11): its first valid design on the 1,200-edge level-3
+//! The construction heuristic: its first valid design on the 1,200-edge level-3
 //! street mesh of Fig. 5 (`models/streets/fig5/L3`), the repair of a broken design there, and —
 //! for every paper-size spec under `models/` the test suite leaves out — the first valid
 //! design, asserted valid by the independent validator (a smoke run under `./dev test`).

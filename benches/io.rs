@@ -1,7 +1,7 @@
 //! Model building and file I/O at 10^6 nonzeros, with HiGHS's own writer as the peer measured in
 //! the same run.
 //!
-//! Targets (issue #2): build ≥ 5 M nonzeros/s; MPS/LP write ≥ 100 MB/s and ≥ 2× HiGHS's writer;
+//! Targets: build ≥ 5 M nonzeros/s; MPS/LP write ≥ 100 MB/s and ≥ 2× HiGHS's writer;
 //! read ≥ 50 MB/s. Run with `./dev bench` (or `cargo bench --bench io`).
 
 use criterion::{criterion_group, criterion_main, BatchSize, Criterion, Throughput};

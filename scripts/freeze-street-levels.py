@@ -34,13 +34,13 @@ def level_dir(fig, n):
 
 
 def freeze(fig, n):
-    """Copies one level; returns (spec path relative to models/, the city run's outcome), or
+    """Copies one level; returns (spec path relative to models/, the city run's report), or
     (None, why there is no instance)."""
     src = level_dir(fig, n)
     if not src:
         prev = level_dir(fig, n - 1)
         if prev:
-            o = json.load(open(os.path.join(prev, "state.json")))["outcome"]
+            o = json.load(open(os.path.join(prev, "state.json")))["report"]
             if o["state"] not in ("solved", "reused"):
                 return None, f"no level-{n} instance: level {n - 1} of the city run ended without a network ({o['termination'] or o['message']}, {o['wall_time']:.0f} s)"
         return None, f"no level-{n} instance yet: run `netspec city models/city/{fig}.toml --out out/city/{fig}`"
@@ -49,7 +49,7 @@ def freeze(fig, n):
     os.makedirs(dst, exist_ok=True)
     for f in ("spec.json", "mesh.json"):
         shutil.copy(os.path.join(src, f), os.path.join(dst, f))
-    return os.path.relpath(os.path.join(dst, "spec.json"), os.path.join(ROOT, "models")), state["outcome"]
+    return os.path.relpath(os.path.join(dst, "spec.json"), os.path.join(ROOT, "models")), state["report"]
 
 
 def main():

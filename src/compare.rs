@@ -227,6 +227,20 @@ impl Manifest {
         }
     }
 
+    /// The rows whose names match one of `patterns` (a name, or a glob with `*` and `?`:
+    /// `2*`, `*-L4`), in table order. A pattern that matches no row is an error naming it.
+    pub fn select(&self, patterns: &[String]) -> Result<Manifest, String> {
+        if patterns.is_empty() {
+            return Ok(self.clone());
+        }
+        if let Some(p) = patterns.iter().find(|p| !self.row.iter().any(|r| glob_match(p, &r.name))) {
+            let names: Vec<&str> = self.row.iter().map(|r| r.name.as_str()).collect();
+            return Err(format!("--rows: `{p}` matches no row (rows: {})", names.join(", ")));
+        }
+        let row = self.row.iter().filter(|r| patterns.iter().any(|p| glob_match(p, &r.name))).cloned().collect();
+        Ok(Manifest { row })
+    }
+
     /// The directory name of each row's runs (under `runs/`): its name with characters other
     /// than letters, digits, `.`, `_` and `-` replaced by `-` (`fig1b/L2/spec` →
     /// `fig1b-L2-spec`), plus a digest of the name where that would make two rows share one.
@@ -669,6 +683,31 @@ pub fn merge(dirs: &[PathBuf], manifest: Option<Manifest>) -> Result<Merged, Str
     Ok(Merged { manifest, columns: columns.into_iter().map(|(c, _)| c).collect(), records, time_limit, sources })
 }
 
+/// Whether `name` matches `pattern`, where `*` stands for any run of characters and `?` for
+/// one.
+pub fn glob_match(pattern: &str, name: &str) -> bool {
+    let (p, n): (Vec<char>, Vec<char>) = (pattern.chars().collect(), name.chars().collect());
+    // The classic two-pointer match with backtracking to the last `*`.
+    let (mut i, mut j, mut star, mut mark) = (0, 0, None, 0);
+    while j < n.len() {
+        if i < p.len() && (p[i] == '?' || p[i] == n[j]) {
+            i += 1;
+            j += 1;
+        } else if i < p.len() && p[i] == '*' {
+            star = Some(i);
+            mark = j;
+            i += 1;
+        } else if let Some(s) = star {
+            i = s + 1;
+            mark += 1;
+            j = mark;
+        } else {
+            return false;
+        }
+    }
+    p[i..].iter().all(|&c| c == '*')
+}
+
 /// Shifted geometric mean `exp(mean(ln(t + shift))) − shift` (the MIPLIB convention).
 pub fn shifted_geometric_mean(times: &[f64], shift: f64) -> f64 {
     if times.is_empty() {
@@ -940,4 +979,54 @@ pub fn bar_chart_svg(manifest: &Manifest, records: &[RunRecord], solvers: &[Stri
         reference_label: "paper (Gurobi 2014)".into(),
         not_shown: manifest.row.iter().filter(|r| r.spec.is_none()).map(|r| r.name.clone()).collect(),
     })
+}
+
+/// Writes a comparison's reports to `out` (`results.md`, `.csv`, `.json`, `profile.svg`,
+/// `bars.svg`) and returns the Markdown table. `what` describes the runs for the header,
+/// `command` is the command line that made them, and `settings` is stored in `results.json`.
+pub fn write_report(
+    out: &Path,
+    manifest: &Manifest,
+    records: &[RunRecord],
+    columns: &[String],
+    time_limit: f64,
+    what: &str,
+    command: &[String],
+    settings: serde_json::Value,
+) -> Result<String, String> {
+    std::fs::create_dir_all(out).map_err(|e| format!("creating {}: {e}", out.display()))?;
+    let summary = summarize(records, columns, time_limit);
+    let md = markdown(manifest, records, columns, &summary);
+    let cpu = std::fs::read_to_string("/proc/cpuinfo")
+        .ok()
+        .and_then(|t| {
+            t.lines()
+                .find(|l| l.starts_with("model name"))
+                .and_then(|l| l.split(':').nth(1))
+                .map(|s| s.trim().to_string())
+        })
+        .unwrap_or_else(|| "unknown CPU".into());
+    let header = format!(
+        "netspec {} compare, {what}; {cpu}, {} cores\n\nCommand: `{}`\n\n",
+        env!("CARGO_PKG_VERSION"),
+        std::thread::available_parallelism().map_or(0, |n| n.get()),
+        command.join(" ")
+    );
+    let write = |name: &str, text: String| {
+        std::fs::write(out.join(name), text).map_err(|e| format!("writing {}: {e}", out.join(name).display()))
+    };
+    write("results.md", header + &md)?;
+    write("results.csv", csv(records))?;
+    write("profile.svg", performance_profile_svg(records, columns, time_limit))?;
+    write("bars.svg", bar_chart_svg(manifest, records, columns, time_limit))?;
+    let all = serde_json::json!({
+        "netspec_version": env!("CARGO_PKG_VERSION"),
+        "command": command,
+        "cpu": cpu,
+        "settings": settings,
+        "records": records,
+        "summary": summary,
+    });
+    write("results.json", serde_json::to_string_pretty(&all).expect("records serialise") + "\n")?;
+    Ok(md)
 }

@@ -1,25 +1,24 @@
 //! The `netspec` command-line tool: a thin layer over the library.
 
-use anyhow::{bail, Context, Result};
-use clap::{Args, Parser, Subcommand};
+use anyhow::Result;
+use clap::{Parser, Subcommand};
 use netspec::pipeline::Method;
-use netspec::io::{read_model_file, write_model_file};
-use netspec::milp::Tolerances;
-use netspec::report::{SolveReport, SCHEMA_VERSION};
-use netspec::solvers::{InvalidOption, LogTarget, RawParam, SolveOptions, SolverKind, Termination};
+use netspec::solvers::SolverKind;
+use netspec::spec::Variant;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
 mod cli {
+    pub mod args;
     pub mod city;
-    pub mod design;
+    pub mod compare;
     pub mod interrupt;
-    pub mod search;
+    pub mod solve;
+    pub mod solve_file;
     pub mod traffic;
 }
 
-/// Exit code when the solver's answer fails netspec's independent check.
-const EXIT_CHECK_FAILED: u8 = 3;
+use cli::args::SolveArgs;
 
 #[derive(Parser)]
 #[command(name = "netspec", version, about = "Network design from functional specifications, by integer programming", long_about = None)]
@@ -52,7 +51,7 @@ enum Command {
         spec: PathBuf,
         #[command(flatten)]
         solve: SolveArgs,
-        /// Output directory (default: out/<spec name>).
+        /// Output directory (default: out/<the spec file's name>).
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
         /// Also write the MILP (`.lp` or `.mps`, by extension).
@@ -61,9 +60,11 @@ enum Command {
         /// Build and export the model without solving it.
         #[arg(long)]
         no_solve: bool,
-        /// Formulation recipe, replacing the spec's: paper, tight or strong.
-        #[arg(long, value_name = "RECIPE")]
-        formulation: Option<netspec::spec::RecipeName>,
+        /// Formulation, replacing the spec's: paper, tight or strong, optionally with parts and
+        /// switches (`strong:out_arcs=off`, `tight:connectivity=flow`) and the solve strategy's
+        /// switches (`strong:split_objective=off`).
+        #[arg(long, value_name = "RECIPE[:KEY=VALUE]…")]
+        formulation: Option<Variant>,
         /// Solve only the LP relaxation (with the recipe's cutting-plane rounds) and print its
         /// bound.
         #[arg(long, conflicts_with = "no_solve")]
@@ -114,10 +115,14 @@ enum Command {
         /// Give each row the paper's own time for it as its limit (capped at --time-limit).
         #[arg(long)]
         paper_limits: bool,
-        /// Formulation recipes, comma-separated (paper, tight, strong): every backend runs with
-        /// each, as its own column (`highs/strong`). Default: the spec's own.
+        /// Formulations, comma-separated (`paper`, `strong`, `strong:out_arcs=off`): every
+        /// backend runs with each, as its own column (`highs/strong`). Default: the spec's own.
         #[arg(long, value_delimiter = ',')]
-        formulations: Vec<netspec::spec::RecipeName>,
+        formulations: Vec<Variant>,
+        /// Only the manifest rows with these names (comma-separated; `*` and `?` match any run
+        /// of characters and one: `2*`, `*-L4`).
+        #[arg(long, value_delimiter = ',', value_name = "ROW")]
+        rows: Vec<String>,
         /// Solve without the heuristic's MIP start (each child gets `solve --no-start`).
         #[arg(long)]
         no_start: bool,
@@ -154,7 +159,7 @@ enum Command {
         /// Solve every level again even if an earlier run finished it.
         #[arg(long)]
         fresh: bool,
-        /// Output directory (default: out/<city name>).
+        /// Output directory (default: out/<the city file's name>).
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
     },
@@ -211,103 +216,6 @@ enum Command {
     },
 }
 
-/// Options shared by every command that solves.
-#[derive(Args, Clone, Default)]
-struct SolveArgs {
-    /// Backend: highs, cbc, scip, microlp or good_lp (default: the embedded HiGHS); for `solve`,
-    /// also a search without a solver: heuristic (construction and local search) or anneal (the
-    /// paper's stochastic search).
-    #[arg(long, value_name = "NAME")]
-    solver: Option<Method>,
-    /// Wall-clock time limit in seconds.
-    #[arg(long, value_name = "SECONDS")]
-    time_limit: Option<f64>,
-    /// Relative MIP gap at which to stop.
-    #[arg(long, value_name = "REL")]
-    gap: Option<f64>,
-    /// Absolute MIP gap at which to stop.
-    #[arg(long, value_name = "ABS")]
-    abs_gap: Option<f64>,
-    /// Number of threads.
-    #[arg(long)]
-    threads: Option<u32>,
-    /// Random seed.
-    #[arg(long)]
-    seed: Option<u64>,
-    /// Branch-and-bound node limit.
-    #[arg(long)]
-    node_limit: Option<u64>,
-    /// Show the solver's own log on stdout.
-    #[arg(long, conflicts_with = "log_file")]
-    verbose: bool,
-    /// Write the solver's own log to this file.
-    #[arg(long, value_name = "PATH")]
-    log_file: Option<PathBuf>,
-    /// A solver's own parameter, passed through: `highs.mip_heuristic_effort=0.3`,
-    /// `scip.limits/nodes=1000`, `cbc.cuts=off` (repeatable; each backend takes its own).
-    #[arg(long = "param", value_name = "BACKEND.NAME=VALUE")]
-    params: Vec<RawParam>,
-    /// Write the solution found (`name value` per variable) to this file; with `solve --relax`,
-    /// the LP relaxation's point after the cut rounds.
-    #[arg(long, value_name = "FILE.sol")]
-    sol: Option<PathBuf>,
-}
-
-/// The command-line flag of a [`SolveOptions`] field, for error messages.
-fn flag_of(option: &str) -> &str {
-    match option {
-        "time_limit" => "--time-limit",
-        "rel_gap" => "--gap",
-        "abs_gap" => "--abs-gap",
-        "threads" => "--threads",
-        "seed" => "--seed",
-        "node_limit" => "--node-limit",
-        other => other,
-    }
-}
-
-/// An option error that names the command-line flag.
-fn flag_error(e: InvalidOption) -> anyhow::Error {
-    anyhow::anyhow!("{} {}", flag_of(e.option), e.reason)
-}
-
-impl SolveArgs {
-    /// The options of the command line, validated (errors name the flag).
-    fn options(&self) -> Result<SolveOptions> {
-        let o = self.unchecked_options();
-        o.validate().map_err(flag_error)?;
-        Ok(o)
-    }
-
-    fn unchecked_options(&self) -> SolveOptions {
-        SolveOptions {
-            time_limit: self.time_limit,
-            rel_gap: self.gap,
-            abs_gap: self.abs_gap,
-            threads: self.threads,
-            seed: self.seed,
-            node_limit: self.node_limit,
-            log: match (&self.log_file, self.verbose) {
-                (Some(p), _) => LogTarget::File(p.clone()),
-                (None, true) => LogTarget::Stdout,
-                (None, false) => LogTarget::Quiet,
-            },
-            mip_start: None,
-            progress: None,
-            params: self.params.clone(),
-            interrupt: None,
-        }
-    }
-
-    fn solver(&self) -> Result<SolverKind> {
-        match self.solver {
-            Some(Method::Milp(k)) => Ok(k),
-            Some(m) => bail!("`{m}` is a design search, not a MILP backend: it needs a spec (`netspec solve`)"),
-            None => SolverKind::default_kind().context("no backend compiled in"),
-        }
-    }
-}
-
 fn main() -> ExitCode {
     // Behave like other Unix tools when the reader of our output goes away (`| head`): end
     // quietly instead of panicking on a broken pipe.
@@ -338,7 +246,7 @@ fn main() -> ExitCode {
 
 fn run(cli: Cli) -> Result<ExitCode> {
     match cli.command {
-        Command::SolveFile { file, solve, start, json } => solve_file(&file, &solve, start.as_deref(), json.as_deref()),
+        Command::SolveFile { file, solve, start, json } => cli::solve_file::run(file, &solve, start, json.as_deref()),
         Command::Solve {
             spec,
             solve,
@@ -353,21 +261,24 @@ fn run(cli: Cli) -> Result<ExitCode> {
             no_start,
         } => {
             let start = match (start, no_start) {
-                (_, true) => cli::design::StartArg::Nothing,
-                (Some(file), false) => cli::design::StartArg::File(file),
-                (None, false) => cli::design::StartArg::Heuristic,
+                (_, true) => netspec::run::StartChoice::Nothing,
+                (Some(file), false) => netspec::run::StartChoice::File(file),
+                (None, false) => netspec::run::StartChoice::Heuristic,
             };
-            cli::design::solve_spec(
-                &spec,
-                &solve,
+            cli::solve::solve(netspec::run::SolveRequest {
+                spec,
+                variant: formulation,
+                flags: solve.settings(),
                 out,
                 export,
-                no_solve || relax,
-                formulation,
+                no_solve,
                 relax,
-                (!no_explain).then_some(explain_time),
+                sol: solve.sol.clone(),
+                explain: (!no_explain).then_some(explain_time),
                 start,
-            )
+                interrupt: None,
+                progress: None,
+            })
         }
         Command::Compare {
             specs,
@@ -379,103 +290,28 @@ fn run(cli: Cli) -> Result<ExitCode> {
             threads,
             paper_limits,
             formulations,
+            rows,
             no_start,
             merge,
             out,
         } => {
             if !merge.is_empty() {
-                let manifest =
-                    manifest.map(|m| netspec::compare::Manifest::load(&m).map_err(anyhow::Error::msg)).transpose()?;
-                let merged = netspec::compare::merge(&merge, manifest).map_err(anyhow::Error::msg)?;
-                std::fs::create_dir_all(&out).with_context(|| format!("creating {}", out.display()))?;
-                let from: Vec<String> = merge.iter().map(|d| format!("`{}`", d.display())).collect();
-                let settings = serde_json::json!({ "manifest": merged.manifest, "time_limit": merged.time_limit, "merged_from": merged.sources });
-                let md = write_comparison(
-                    &out,
-                    &merged.manifest,
-                    &merged.records,
-                    &merged.columns,
-                    merged.time_limit,
-                    &format!("merged from {}", from.join(", ")),
-                    settings,
-                )?;
-                print!("{md}");
-                return Ok(ExitCode::SUCCESS);
+                return cli::compare::merge(&merge, manifest.as_deref(), &rows, &out);
             }
-            let manifest = match manifest {
-                Some(m) => netspec::compare::Manifest::load(&m).map_err(anyhow::Error::msg)?,
-                None => netspec::compare::Manifest::from_specs(&specs),
-            };
-            let solvers: Vec<String> = if solvers.is_empty() {
-                SolverKind::compiled()
-                    .into_iter()
-                    .filter(|k| *k != SolverKind::GoodLp)
-                    .map(|k| k.name().to_string())
-                    .collect()
-            } else {
-                solvers.iter().map(|k| k.name().to_string()).collect()
-            };
-            for (flag, v) in [("--time-limit", time_limit), ("--grace", grace)] {
-                if v.is_nan() || v < 0.0 {
-                    bail!("{flag} must be a number of seconds ≥ 0, got {v}");
-                }
-            }
-            if threads == Some(0) {
-                bail!("--threads must be ≥ 1, got 0");
-            }
-            let interrupt = Some(cli::interrupt::install()?);
-            let formulations: Vec<String> = formulations.iter().map(|f| f.name().to_string()).collect();
-            let settings = netspec::compare::CompareSettings {
+            cli::compare::run(cli::compare::CompareArgs {
+                specs,
                 manifest,
-                solvers: solvers.clone(),
-                formulations,
+                solvers,
                 time_limit,
                 grace,
                 seeds,
                 threads,
                 paper_limits,
+                formulations,
+                rows,
                 no_start,
-                interrupt,
-            };
-            // The columns of every table and chart: a backend, or a (backend, recipe) pair.
-            let solvers: Vec<String> = settings.methods().into_iter().map(|(label, _, _)| label).collect();
-            std::fs::create_dir_all(&out).with_context(|| format!("creating {}", out.display()))?;
-            let exe = std::env::current_exe().context("locating the netspec binary")?;
-            let records = netspec::compare::run_all(&exe, &settings, &out, |r, source| {
-                println!(
-                    "{:<24} {:<14} {:<16} {:>8.2} s {}{}",
-                    r.instance,
-                    r.solver,
-                    r.status,
-                    r.wall_time,
-                    if r.valid { "valid" } else { "-" },
-                    match source {
-                        netspec::compare::RunSource::Solved => String::new(),
-                        netspec::compare::RunSource::Resumed => " (resumed)".into(),
-                        netspec::compare::RunSource::Rerun(why) => format!(" (solved again: {})", why.join(", ")),
-                    }
-                );
+                out,
             })
-            .with_context(|| format!("running the comparison into {}", out.display()))?;
-            let what = format!(
-                "time limit {time_limit} s{}, grace {grace} s",
-                if paper_limits { " (each row at most the paper's time for it)" } else { "" }
-            );
-            let md = write_comparison(
-                &out,
-                &settings.manifest,
-                &records,
-                &solvers,
-                time_limit,
-                &what,
-                serde_json::to_value(&settings)?,
-            )?;
-            print!("\n{md}");
-            if settings.interrupt.as_ref().is_some_and(|i| i.is_triggered()) {
-                println!("interrupted: the runs recorded above are kept; rerun to resume");
-                return Ok(ExitCode::from(cli::interrupt::EXIT_INTERRUPTED));
-            }
-            Ok(ExitCode::SUCCESS)
         }
         Command::City { spec, solver, time_limit, threads, threads_per_solve, gap, fresh, out } => cli::city::run_city(
             &spec,
@@ -506,21 +342,12 @@ fn run(cli: Cli) -> Result<ExitCode> {
             out,
         }),
         Command::Convert { input, output } => {
-            let read = read_model_file(&input)?;
-            for w in &read.warnings {
+            let c = netspec::io::convert(&input, &output)?;
+            for w in &c.warnings {
                 eprintln!("warning: {}: {w}", input.display());
             }
-            let map = write_model_file(&read.model, &output)?;
-            println!(
-                "wrote {} ({}){}",
-                output.display(),
-                read.model.stats(),
-                if map.is_identity() {
-                    String::new()
-                } else {
-                    format!("; {} names sanitised", map.vars.len() + map.rows.len())
-                }
-            );
+            let renamed = if c.renamed == 0 { String::new() } else { format!("; {} names sanitised", c.renamed) };
+            println!("wrote {} ({}){renamed}", output.display(), c.stats);
             Ok(ExitCode::SUCCESS)
         }
         Command::Solvers { json } => {
@@ -539,103 +366,4 @@ fn run(cli: Cli) -> Result<ExitCode> {
             Ok(ExitCode::SUCCESS)
         }
     }
-}
-
-fn solve_file(
-    file: &std::path::Path,
-    args: &SolveArgs,
-    start: Option<&std::path::Path>,
-    json: Option<&std::path::Path>,
-) -> Result<ExitCode> {
-    let mut options = args.options()?;
-    let read = read_model_file(file)?;
-    for w in &read.warnings {
-        eprintln!("warning: {}: {w}", file.display());
-    }
-    if let Some(path) = start {
-        let sol = netspec::io::sol::read(&read.model, path)?;
-        if !sol.missing.is_empty() {
-            eprintln!(
-                "warning: {}: {} variables not in the file start at 0 (first: {})",
-                path.display(),
-                sol.missing.len(),
-                sol.missing[0]
-            );
-        }
-        options.mip_start = Some(sol.values);
-    }
-    let kind = args.solver()?;
-    let solver = kind.instance()?;
-    options.interrupt = Some(cli::interrupt::install()?);
-    let result = solver.solve(&read.model, &options).with_context(|| format!("solving {}", file.display()))?;
-    if let (Some(path), Some(x)) = (&args.sol, &result.primal) {
-        let header = format!("{} {}, {}", result.solver, result.solver_version, result.termination.label());
-        netspec::io::sol::write(&read.model, x, result.objective, &header, path)?;
-    }
-    let report = SolveReport::new(file.display().to_string(), &read.model, options, result, &Tolerances::default());
-    print!("{}", report.summary());
-    if let (Some(path), true) = (&args.sol, report.result.primal.is_some()) {
-        println!("solution   {}", path.display());
-    }
-    if let Some(path) = json {
-        let text = serde_json::to_string_pretty(&report)?;
-        if path.as_os_str() == "-" {
-            println!("{text}");
-        } else {
-            std::fs::write(path, text + "\n").with_context(|| format!("writing {}", path.display()))?;
-            println!("result     {} (schema v{SCHEMA_VERSION})", path.display());
-        }
-    }
-    if report.check.as_ref().is_some_and(|c| !c.is_feasible()) {
-        return Ok(ExitCode::from(EXIT_CHECK_FAILED));
-    }
-    match &report.result.termination {
-        Termination::Error(e) => bail!("the solver failed: {e}"),
-        Termination::Limit(netspec::solvers::LimitKind::Interrupt) => {
-            Ok(ExitCode::from(cli::interrupt::EXIT_INTERRUPTED))
-        }
-        _ => Ok(ExitCode::SUCCESS),
-    }
-}
-
-/// Writes a comparison's reports to `out` (results.md, .csv, .json, profile.svg, bars.svg) and
-/// returns the Markdown table. `what` describes the runs for the header; `settings` is stored
-/// in results.json.
-fn write_comparison(
-    out: &std::path::Path,
-    manifest: &netspec::compare::Manifest,
-    records: &[netspec::compare::RunRecord],
-    columns: &[String],
-    time_limit: f64,
-    what: &str,
-    settings: serde_json::Value,
-) -> Result<String> {
-    let summary = netspec::compare::summarize(records, columns, time_limit);
-    let md = netspec::compare::markdown(manifest, records, columns, &summary);
-    let cpu = std::fs::read_to_string("/proc/cpuinfo")
-        .ok()
-        .and_then(|t| {
-            t.lines()
-                .find(|l| l.starts_with("model name"))
-                .and_then(|l| l.split(':').nth(1))
-                .map(|s| s.trim().to_string())
-        })
-        .unwrap_or_else(|| "unknown CPU".into());
-    let command: Vec<String> = std::env::args().collect();
-    let header = format!(
-        "netspec {} compare, {what}; {cpu}, {} cores\n\nCommand: `{}`\n\n",
-        env!("CARGO_PKG_VERSION"),
-        std::thread::available_parallelism().map_or(0, |n| n.get()),
-        command.join(" ")
-    );
-    let write = |name: &str, text: String| {
-        std::fs::write(out.join(name), text).with_context(|| format!("writing {}", out.join(name).display()))
-    };
-    write("results.md", header + &md)?;
-    write("results.csv", netspec::compare::csv(records))?;
-    write("profile.svg", netspec::compare::performance_profile_svg(records, columns, time_limit))?;
-    write("bars.svg", netspec::compare::bar_chart_svg(manifest, records, columns, time_limit))?;
-    let all = serde_json::json!({ "netspec_version": env!("CARGO_PKG_VERSION"), "command": command, "cpu": cpu, "settings": settings, "records": records, "summary": summary });
-    write("results.json", serde_json::to_string_pretty(&all)? + "\n")?;
-    Ok(md)
 }

@@ -2,8 +2,11 @@
 //! and the listing of compiled backends. The schema is documented in `docs/result-schema.md`.
 
 use crate::milp::{CheckReport, Model, ModelStats, Tolerances};
-use crate::solvers::{Capabilities, SolveOptions, SolveResult, SolverKind, Termination};
+use crate::pipeline::settings::{resolve, Origin, Settings, SettingsError};
+use crate::pipeline::Method;
+use crate::solvers::{Capabilities, Interrupt, SolveOptions, SolveResult, SolverError, SolverKind, Termination};
 use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
 
 /// Version of the JSON result schema. Bump on any change that breaks a reader.
 pub const SCHEMA_VERSION: u32 = 1;
@@ -163,4 +166,85 @@ pub fn solver_list() -> Vec<SolverInfo> {
         .filter_map(|k| k.instance().ok())
         .map(|s| SolverInfo { name: s.kind().name().into(), version: s.version(), capabilities: s.capabilities() })
         .collect()
+}
+
+/// What `netspec solve-file` is asked to do.
+#[derive(Clone, Debug, Default)]
+pub struct SolveFileRequest {
+    /// The model file (`.mps`, `.lp`, either `.gz`).
+    pub file: PathBuf,
+    /// The command line's settings (the method must be a MILP backend).
+    pub settings: Settings,
+    /// A `.sol` start, checked before it is handed over.
+    pub start: Option<PathBuf>,
+    /// Write the solution found here.
+    pub sol: Option<PathBuf>,
+    /// A request to stop early.
+    pub interrupt: Option<Interrupt>,
+}
+
+/// Why `solve-file` could not run (a finished solve, whatever its termination, is not one).
+#[derive(Debug, thiserror::Error)]
+pub enum SolveFileError {
+    /// A setting is refused.
+    #[error(transparent)]
+    Settings(#[from] SettingsError),
+    /// The model file is unusable.
+    #[error(transparent)]
+    File(#[from] crate::io::FileError),
+    /// The start or solution file is unusable.
+    #[error(transparent)]
+    Sol(#[from] crate::io::sol::SolError),
+    /// The backend could not attempt the solve.
+    #[error("solving {path}: {source}")]
+    Solver {
+        /// The model file.
+        path: PathBuf,
+        /// Why.
+        #[source]
+        source: SolverError,
+    },
+    /// The method is a design search.
+    #[error("`{0}` is a design search, not a MILP backend: it needs a spec (`netspec solve`)")]
+    NotABackend(String),
+}
+
+/// A warning about an input file, for the caller to show.
+pub struct FileWarning<'a> {
+    /// The file.
+    pub path: &'a Path,
+    /// What.
+    pub message: String,
+}
+
+/// `netspec solve-file`: reads the model (and a start), solves it, writes the solution, and
+/// checks the answer independently. Warnings about the files go to `warn`.
+pub fn solve_file(req: &SolveFileRequest, warn: &mut dyn FnMut(FileWarning)) -> Result<SolveReport, SolveFileError> {
+    let (method, mut options) = resolve(&[(Origin::Flags, req.settings.clone())])?;
+    let kind = match method {
+        Method::Milp(k) => k,
+        m => return Err(SolveFileError::NotABackend(m.to_string())),
+    };
+    let read = crate::io::read_model_file(&req.file)?;
+    for w in &read.warnings {
+        warn(FileWarning { path: &req.file, message: w.to_string() });
+    }
+    if let Some(path) = &req.start {
+        let sol = crate::io::sol::read(&read.model, path)?;
+        if !sol.missing.is_empty() {
+            let message =
+                format!("{} variables not in the file start at 0 (first: {})", sol.missing.len(), sol.missing[0]);
+            warn(FileWarning { path, message });
+        }
+        options.mip_start = Some(sol.values);
+    }
+    options.interrupt = req.interrupt.clone();
+    let solver_err = |source| SolveFileError::Solver { path: req.file.clone(), source };
+    let solver = kind.instance().map_err(solver_err)?;
+    let result = solver.solve(&read.model, &options).map_err(solver_err)?;
+    if let (Some(path), Some(x)) = (&req.sol, &result.primal) {
+        let header = format!("{} {}, {}", result.solver, result.solver_version, result.termination.label());
+        crate::io::sol::write(&read.model, x, result.objective, &header, path)?;
+    }
+    Ok(SolveReport::new(req.file.display().to_string(), &read.model, options, result, &Tolerances::default()))
 }

@@ -264,17 +264,34 @@ paper = { edges = 657, time = "379/366/49" }
             s.resolve(spec.parent().unwrap()).unwrap_or_else(|e| panic!("{}: {e}", r.name));
         }
     }
-    // The manifests of parts of the table hold rows of the whole one, unchanged (same spec
-    // file and paper times), so their runs are the same runs.
-    for part in ["table1-short.toml", "table1-scip.toml"] {
-        let p = netspec::compare::Manifest::load(
-            &std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("models").join(part),
-        )
-        .unwrap();
-        assert!(!p.row.is_empty(), "{part}");
-        for r in &p.row {
-            assert!(m.row.contains(r), "{part}: row {} differs from table1.toml's", r.name);
-        }
+    // Parts of the table are selections of its rows (`compare --rows`), the same rows.
+    let fig2 = m.select(&["2*".to_string()]).unwrap();
+    assert_eq!(
+        fig2.row.iter().map(|r| r.name.as_str()).collect::<Vec<_>>(),
+        ["2a", "2b", "2c", "2d", "2e", "2f", "2g"]
+    );
+    let l4 = m.select(&["*-L4".to_string(), "5L4".to_string()]).unwrap();
+    assert!(l4.row.iter().all(|r| r.name.ends_with("L4")) && l4.row.len() >= 5, "{:?}", l4.row);
+    let e = m.select(&["2z".to_string()]).unwrap_err();
+    assert!(e.contains("`2z` matches no row"), "{e}");
+}
+
+#[test]
+fn row_patterns() {
+    use netspec::compare::glob_match;
+    for (p, n, want) in [
+        ("2*", "2a", true),
+        ("2*", "12a", false),
+        ("*-L4", "1a-L4", true),
+        ("*-L4", "1a-L3", false),
+        ("?a", "2a", true),
+        ("2a", "2a", true),
+        ("2a", "2ab", false),
+        ("*", "", true),
+        ("a*b*c", "axxbyyc", true),
+        ("a*b*c", "axxbyy", false),
+    ] {
+        assert_eq!(glob_match(p, n), want, "{p} {n}");
     }
 }
 

@@ -1,4 +1,4 @@
-//! Designs without a solver (issue 11): the construction heuristic and its local search, the
+//! Designs without a solver: the construction heuristic and its local search, the
 //! repair of broken designs, the paper's stochastic search, heuristic designs as MIP starts,
 //! and both searches as solver choices of `solve` and `compare`. Every design a search returns
 //! is judged here again by the independent validator and the design objective; budgets are
@@ -6,9 +6,9 @@
 
 use netspec::design::{self, Network, Objective};
 use netspec::formulations::{build_with, Recipe};
-use netspec::pipeline::search::{run_search, SearchMethod};
 use netspec::heuristics::{self, AnnealOptions, Inputs, Options, OwnedInputs, Stop};
 use netspec::pipeline;
+use netspec::pipeline::search::{run_search, SearchMethod};
 use netspec::spec::{Problem, RecipeName, Spec};
 use proptest::prelude::*;
 use std::path::Path;
@@ -32,7 +32,7 @@ fn assert_valid(p: &Problem, inputs: &Inputs, net: &Network) {
 }
 
 /// The first design of the heuristic (no local search), within a generous bound.
-fn first_design(p: &Problem, inputs: &Inputs) -> heuristics::Outcome {
+fn first_design(p: &Problem, inputs: &Inputs) -> heuristics::SearchOutput {
     heuristics::heuristic(
         p,
         inputs,

@@ -642,8 +642,7 @@ fn symmetric_grids_leave_connectivity_to_the_distance_flow_and_keep_the_optimum(
         kind.instance().unwrap().strategy_hints(&hints).iter().any(|h| h.name == "presolve" && h.value == "off")
     };
     assert!(presolve_off(&symmetric, SolverKind::Highs) && !presolve_off(&symmetric, SolverKind::Microlp));
-    let cutsets =
-        formulations::build_with(&p, &symmetric.recipe.with(&switch::SYMMETRIC_FLOW, false));
+    let cutsets = formulations::build_with(&p, &symmetric.recipe.with(&switch::SYMMETRIC_FLOW, false));
     assert!(
         cutsets.symmetry_order.is_none() && cutsets.cutsets.is_some() && !presolve_off(&cutsets, SolverKind::Highs)
     );
@@ -762,8 +761,7 @@ fn out_arcs_tighten_the_relaxation_and_keep_the_optimum() {
             &p,
             &with.recipe.with(&switch::OUT_ARCS, false).with(&switch::DIRECTED_CUTSETS, false),
         );
-        let undirected =
-            formulations::build_with(&p, &with.recipe.with(&switch::DIRECTED_CUTSETS, false));
+        let undirected = formulations::build_with(&p, &with.recipe.with(&switch::DIRECTED_CUTSETS, false));
         let family = with.families.get("out-arcs (§8)");
         let parents = with.vars.parent.iter().flatten().count();
         // Parent arcs with the directed cutsets are a forest's: one out of each active vertex.
@@ -850,7 +848,7 @@ fn designs_encode_as_checked_starts() {
     );
 }
 
-/// The issue's quick infeasibility case: one corner sink behind a wall on a 4×4 grid. The
+/// A quick infeasibility case: one corner sink behind a wall on a 4×4 grid. The
 /// strong recipe's flows and coverage rows make the LP itself infeasible, so every backend
 /// proves it (the timing is in docs/benchmarks.md, not asserted here).
 #[test]
@@ -887,7 +885,7 @@ fn check_name(v: &Violation) -> &'static str {
     }
 }
 
-/// Issue 15's guard: for every check the validator makes, a spec that drives the solver to the
+/// The validator guard: for every check the validator makes, a spec that drives the solver to the
 /// edge of it, solved under the `paper` and `strong` recipes by HiGHS and SCIP — a design that
 /// passes the MILP check but fails the validator would be a bug in the model.
 #[test]

@@ -1,4 +1,4 @@
-//! Room tiling (FORMULATION §4–§5): floor plans and game levels on small footprints, every
+//! Room tiling (docs/formulation.md §4–§5): floor plans and game levels on small footprints, every
 //! backend, the validator's item 6 on hand-built violations, infeasible tilings, bad specs.
 
 use netspec::design::{self, GraphShape, Network, Violation};
@@ -332,7 +332,7 @@ fn snapshot_branching_6x6() {
     );
 }
 
-/// Issue 15's strip, made small: a linear level between two boundary sinks with two block
+/// A strip, made small: a linear level between two boundary sinks with two block
 /// shapes and zig-zags penalised.
 const STRIP: &str = r#"
 name = "strip"
@@ -464,4 +464,3 @@ fn picture_marks_room_types_and_lists_what_is_drawn() {
     assert!(svg.contains("a &quot;quoted&quot; &lt;plan&gt;"), "{svg}");
     netspec::render::png(&svg).unwrap();
 }
-

@@ -1,4 +1,4 @@
-//! The everyday solve loop (issue 13): trivially infeasible models, honest "optimal", time limits
+//! The everyday solve loop: trivially infeasible models, honest "optimal", time limits
 //! CBC does not keep by itself, interrupts, option errors naming the field, `.gz` model files,
 //! solution files, MIP starts checked before use, raw solver parameters.
 
@@ -19,7 +19,7 @@ fn models_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("models")
 }
 
-/// The issue's 8×6 case, made small: a 5×5 grid, all boundary sinks, coverage 3, dead-ends
+/// An 8×6 case, made small: a 5×5 grid, all boundary sinks, coverage 3, dead-ends
 /// forbidden, length 1 and the paper's `0*` distance weight (1e-4). The optimum is 5.0004
 /// (SCIP and CBC agree); HiGHS's own default gap (1e-4 relative) stopped it at 5.0006 and called
 /// that optimal.
@@ -163,7 +163,7 @@ fn one_by_one_walled_grid_is_infeasible_on_every_backend() {
     }
 }
 
-/// The issue's third case: a mesh of two separate squares, the sink on one, coverage needing
+/// A third case: a mesh of two separate squares, the sink on one, coverage needing
 /// the other. No design exists (the far square would be an island); every backend, under every
 /// recipe, says infeasible, never "optimal".
 #[test]
@@ -396,7 +396,7 @@ fn option_errors_name_the_field() {
     assert!(stderr.contains("parameter `highs.no_such`: HiGHS has no such option"), "{stderr}");
 }
 
-/// The empty-row model of the issue, through the command line: infeasible, the row named.
+/// The empty-row model, through the command line: infeasible, the row named.
 #[test]
 fn empty_row_lp_is_infeasible_from_the_command_line() {
     let dir = tempfile::tempdir().unwrap();

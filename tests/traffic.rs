@@ -1,4 +1,4 @@
-//! Traffic evaluation in SUMO (issue 12): tiny designs through the real `netconvert`,
+//! Traffic evaluation in SUMO: tiny designs through the real `netconvert`,
 //! `duarouter` and `sumo` installed by scripts/setup.sh; the export checked against the design
 //! graph; the demand; errors that name the file and the cause.
 

@@ -99,7 +99,7 @@ fn two_region_city_on_every_backend() {
 
 /// Level 3's spec lists every level-2 road (split in two by the subdivision) as an existing
 /// edge; they are active in level 3's network.
-fn check_carried_over(out: &Path, reg: &netspec::urban::RegionOutcome) {
+fn check_carried_over(out: &Path, reg: &netspec::urban::RegionReport) {
     let dir = netspec::urban::city::region_dir(out, reg.index, &reg.name);
     let l3 = dir.join("L3");
     let spec = Spec::load(&l3.join("spec.json")).unwrap();
@@ -134,7 +134,7 @@ fn check_carried_over(out: &Path, reg: &netspec::urban::RegionOutcome) {
 
 /// An infeasible sub-region is reported and skipped; the other one is still designed.
 #[test]
-fn infeasible_region_is_an_outcome() {
+fn infeasible_region_is_a_result() {
     let text = std::fs::read_to_string(fixture()).unwrap()
         + "\n[region.levels.2.sinks]\nall_boundary = false\npoints = [[8, 0]]\n[region.levels.3]\nboundary = \"wall\"\n";
     let text = text.replace("[region.levels.2]\n", "[region.levels.2]\nboundary = \"wall\"\n");

@@ -2,6 +2,8 @@
 
 use anyhow::{Context, Result};
 use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
+use netspec::pipeline::settings::Settings;
+use netspec::pipeline::Method;
 use netspec::solvers::SolverKind;
 use netspec::urban::{self, CityEvent, CityRunOptions, CitySpec};
 use std::path::{Path, PathBuf};
@@ -28,31 +30,17 @@ pub struct CityArgs {
 
 pub fn run_city(path: &Path, args: CityArgs) -> Result<ExitCode> {
     let spec = CitySpec::load(path)?;
-    let mut opts = CityRunOptions::from_spec(&spec).context("no backend compiled in")?;
-    if let Some(k) = args.solver {
-        opts.solver = k;
-    }
-    opts.time_limit = args.time_limit;
-    opts.threads = args.threads.unwrap_or(opts.threads).max(1);
-    opts.threads_per_solve = args.threads_per_solve.unwrap_or(opts.threads_per_solve).max(1);
-    opts.gap = args.gap.or(opts.gap);
+    let flags = Settings {
+        method: args.solver.map(Method::Milp),
+        time_limit: args.time_limit,
+        gap: args.gap,
+        ..Settings::default()
+    };
+    let mut opts = CityRunOptions::resolve(&spec, path, &flags, args.threads, args.threads_per_solve)?;
     opts.resume = !args.fresh;
-    let check = netspec::solvers::SolveOptions { time_limit: opts.time_limit, rel_gap: opts.gap, ..Default::default() };
-    check.validate().map_err(|e| {
-        let (flag, field) = match e.option {
-            "time_limit" => ("--time-limit", "time_limit"),
-            _ => ("--gap", "solver.gap"),
-        };
-        let from = if e.option == "rel_gap" && args.gap.is_none() {
-            format!("{}: {field}", path.display())
-        } else {
-            flag.to_string()
-        };
-        anyhow::anyhow!("{from} {}", e.reason)
-    })?;
     let interrupt = crate::cli::interrupt::install()?;
     opts.interrupt = Some(interrupt.clone());
-    let out = args.out.unwrap_or_else(|| PathBuf::from("out").join(&spec.name));
+    let out = args.out.unwrap_or_else(|| netspec::run::default_out_dir(path));
     let regions = urban::city::regions(&spec).with_context(|| format!("{}", path.display()))?;
     println!("city       {} — {}", spec.name, spec.description);
     println!(
@@ -100,9 +88,9 @@ pub fn run_city(path: &Path, args: CityArgs) -> Result<ExitCode> {
                     f(progress.dual)
                 ));
             }
-            CityEvent::LevelDone { region, outcome } => {
+            CityEvent::LevelDone { region, report } => {
                 bars[*region].inc(1);
-                let line = format!("L{} {}", outcome.level, outcome.verdict());
+                let line = format!("L{} {}", report.level, report.verdict());
                 bars[*region].set_message(line.clone());
                 bars[*region].println(format!("{:<22} {line}", bars[*region].prefix()));
             }

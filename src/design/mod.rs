@@ -1,6 +1,6 @@
 //! Decoding a solution into a network, measuring it, and validating it independently.
 //!
-//! The validator ([`validate`], [`validate_rooms`]) checks FORMULATION §6 items 1–6 in plain
+//! The validator ([`validate`], [`validate_rooms`]) checks docs/formulation.md §6 items 1–6 in plain
 //! graph code that never reads the MILP: it takes the problem and a set of active edges. Item 7
 //! is the MILP checker (every row and bound at the returned point) together with
 //! [`Objective::of`], the objective recomputed from the design alone. Nothing here imports
@@ -11,6 +11,7 @@ mod blocks;
 mod metrics;
 mod objective;
 pub mod picture;
+pub mod streets;
 mod validate;
 
 pub use blocks::{block_graph, BlockGraph, GraphShape};

@@ -3,7 +3,7 @@
 //!
 //! **The paper's distance term.** At an optimum of the paper's model, a label into a sink is 0
 //! and otherwise `D(i→j) = Δ(i→j) + D(j→k)` for the successor `j→k`; exactly one half-edge of an
-//! active edge carries a label, pointing to the end whose label is smaller (FORMULATION §8). So
+//! active edge carries a label, pointing to the end whose label is smaller (docs/formulation.md §8). So
 //! for a network the term is `Σ_{active candidate edges {u,v}} min(D(u→v), D(v→u))` with
 //! `D(u→v) = 0` when `v` is a sink and `Δ(u,v) + h(v)` otherwise, where `h(v)` is the length of
 //! the shortest network path from `v` to a sink **minus the length of its last edge** (0 when `v`

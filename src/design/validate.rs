@@ -1,4 +1,4 @@
-//! The independent validator: FORMULATION §6 items 1–5, in plain graph code over the problem
+//! The independent validator: docs/formulation.md §6 items 1–5, in plain graph code over the problem
 //! and a set of active edges. It never reads the MILP.
 
 use super::Network;
@@ -178,7 +178,7 @@ pub(crate) fn components(mesh: &Mesh, net: &Network) -> Vec<usize> {
     comp
 }
 
-/// Checks items 1–5 of FORMULATION §6. `paths` are the enumerated point-to-point path sets (the
+/// Checks items 1–5 of docs/formulation.md §6. `paths` are the enumerated point-to-point path sets (the
 /// enumeration is deterministic, so they are the ones the model used).
 pub fn validate(p: &Problem, net: &Network, paths: Option<&PathSets>) -> Vec<Violation> {
     let mesh = &p.mesh;
@@ -204,7 +204,7 @@ pub fn validate(p: &Problem, net: &Network, paths: Option<&PathSets>) -> Vec<Vio
     }
 
     // 2. Coverage, by BFS from the active vertices (hops) or by distance (Euclidean). Room
-    // tiling replaces coverage (FORMULATION §4).
+    // tiling replaces coverage (docs/formulation.md §4).
     let r = if p.rooms.is_some() { f64::INFINITY } else { p.coverage_range };
     let covered: Vec<bool> = match p.coverage_model {
         CoverageModel::Hops => {
@@ -330,7 +330,7 @@ pub fn validate(p: &Problem, net: &Network, paths: Option<&PathSets>) -> Vec<Vio
     out
 }
 
-/// FORMULATION §6 item 6: exact cover, the mode's inner/boundary edge rules, room counts.
+/// docs/formulation.md §6 item 6: exact cover, the mode's inner/boundary edge rules, room counts.
 /// `chosen` are indices into `placements`.
 pub fn validate_rooms(
     p: &Problem,

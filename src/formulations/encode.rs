@@ -168,9 +168,11 @@ impl<'a> Encoding<'a> {
             if !d[v.index()].is_finite() {
                 return Err(EncodeError::Unreachable(v.0));
             }
-            tree[v.index()] = mesh.outgoing(v).iter().copied().filter(|&g| self.on(mesh.he_edge(g))).min_by(|&a, &b| {
-                (mesh.he_length(a) + d[mesh.he_head(a).index()]).total_cmp(&(mesh.he_length(b) + d[mesh.he_head(b).index()]))
-            });
+            tree[v.index()] =
+                mesh.outgoing(v).iter().copied().filter(|&g| self.on(mesh.he_edge(g))).min_by(|&a, &b| {
+                    (mesh.he_length(a) + d[mesh.he_head(a).index()])
+                        .total_cmp(&(mesh.he_length(b) + d[mesh.he_head(b).index()]))
+                });
         }
         Ok(tree)
     }

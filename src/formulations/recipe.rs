@@ -2,8 +2,8 @@
 //! (docs/formulation.md, "Recipes").
 
 use crate::spec::{
-    BigMForm, ConnectivityForm, CoverageForm, DeadEndForm, DistanceForm, FormulationSpec, PathForm, Problem, RecipeName,
-    Switch, SWITCHES,
+    BigMForm, ConnectivityForm, CoverageForm, DeadEndForm, DistanceForm, FormulationSpec, PathForm, Problem,
+    RecipeName, Switch, SWITCHES,
 };
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -63,12 +63,22 @@ impl Recipe {
                 PathForm::Paper,
                 BigMForm::Paper,
             ),
-            RecipeName::Tight => {
-                (C::Labels, DistanceForm::Labels, CoverageForm::Strong, DeadEndForm::Degree, PathForm::Tight, BigMForm::Tight)
-            }
-            RecipeName::Strong => {
-                (C::Cutset, DistanceForm::Flow, CoverageForm::Strong, DeadEndForm::Degree, PathForm::Select, BigMForm::Tight)
-            }
+            RecipeName::Tight => (
+                C::Labels,
+                DistanceForm::Labels,
+                CoverageForm::Strong,
+                DeadEndForm::Degree,
+                PathForm::Tight,
+                BigMForm::Tight,
+            ),
+            RecipeName::Strong => (
+                C::Cutset,
+                DistanceForm::Flow,
+                CoverageForm::Strong,
+                DeadEndForm::Degree,
+                PathForm::Select,
+                BigMForm::Tight,
+            ),
         };
         Recipe {
             name,

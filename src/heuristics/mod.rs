@@ -179,7 +179,7 @@ impl std::ops::AddAssign<&SearchStats> for SearchStats {
 
 /// What a search found.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct Outcome {
+pub struct SearchOutput {
     /// The best valid design (validated), if any.
     pub network: Option<Network>,
     /// Its objective, as [`crate::design::Objective::of`] computes it.
@@ -216,9 +216,9 @@ pub fn obvious_infeasibility(p: &Problem) -> Option<String> {
     })
 }
 
-impl Outcome {
-    fn infeasible(why: String, t0: Instant) -> Outcome {
-        Outcome {
+impl SearchOutput {
+    fn infeasible(why: String, t0: Instant) -> SearchOutput {
+        SearchOutput {
             network: None,
             objective: None,
             trace: Vec::new(),
@@ -229,8 +229,8 @@ impl Outcome {
         }
     }
 
-    fn none(stop: Stop, stats: SearchStats, t0: Instant) -> Outcome {
-        Outcome {
+    fn none(stop: Stop, stats: SearchStats, t0: Instant) -> SearchOutput {
+        SearchOutput {
             network: None,
             objective: None,
             trace: Vec::new(),
@@ -297,30 +297,30 @@ impl Best<'_, '_> {
 /// Construction and local search, restarted until the time limit (or the construction count):
 /// the best valid design found. With `opts.threads` > 1, that many independent searches run side
 /// by side and the best design of all is kept (ties: the lowest-numbered search's).
-pub fn heuristic(p: &Problem, inputs: &Inputs, opts: &Options) -> Outcome {
+pub fn heuristic(p: &Problem, inputs: &Inputs, opts: &Options) -> SearchOutput {
     let t0 = Instant::now();
     if let Some(why) = obvious_infeasibility(p) {
-        return Outcome::infeasible(why, t0);
+        return SearchOutput::infeasible(why, t0);
     }
     let found = AtomicBool::new(false);
     if opts.threads <= 1 {
         return search(p, inputs, opts, 0, &found, t0);
     }
-    let outcomes: Vec<Outcome> = std::thread::scope(|scope| {
+    let outputs: Vec<SearchOutput> = std::thread::scope(|scope| {
         let found = &found;
         let workers: Vec<_> =
             (0..opts.threads).map(|k| scope.spawn(move || search(p, inputs, opts, k, found, t0))).collect();
         workers.into_iter().map(|w| w.join().expect("a heuristic search thread panicked")).collect()
     });
-    merge_outcomes(outcomes, t0)
+    merge_outputs(outputs, t0)
 }
 
-/// The outcome of side-by-side searches: the best design (the first search's on ties), every
+/// The output of side-by-side searches: the best design (the first search's on ties), every
 /// counter summed, the running best over all traces, the first search's reason to stop.
-fn merge_outcomes(outcomes: Vec<Outcome>, t0: Instant) -> Outcome {
+fn merge_outputs(outputs: Vec<SearchOutput>, t0: Instant) -> SearchOutput {
     let mut stats = SearchStats::default();
     let mut points: Vec<TracePoint> = Vec::new();
-    for o in &outcomes {
+    for o in &outputs {
         stats += &o.stats;
         points.extend(&o.trace);
     }
@@ -331,18 +331,25 @@ fn merge_outcomes(outcomes: Vec<Outcome>, t0: Instant) -> Outcome {
             trace.push(pt);
         }
     }
-    let stop = outcomes[0].stop;
-    let best = outcomes
+    let stop = outputs[0].stop;
+    let best = outputs
         .into_iter()
         .filter(|o| o.network.is_some())
         .min_by(|a, b| a.objective.unwrap_or(f64::INFINITY).total_cmp(&b.objective.unwrap_or(f64::INFINITY)));
     let (network, objective) = best.map_or((None, None), |o| (o.network, o.objective));
-    Outcome { network, objective, trace, stop, infeasible: None, stats, seconds: t0.elapsed().as_secs_f64() }
+    SearchOutput { network, objective, trace, stop, infeasible: None, stats, seconds: t0.elapsed().as_secs_f64() }
 }
 
 /// One search of [`heuristic`]: search `worker` of `opts.threads`, which raises `found` once it
 /// has a design and stops waiting for a first design once `found` is up.
-fn search(p: &Problem, inputs: &Inputs, opts: &Options, worker: usize, found: &AtomicBool, t0: Instant) -> Outcome {
+fn search(
+    p: &Problem,
+    inputs: &Inputs,
+    opts: &Options,
+    worker: usize,
+    found: &AtomicBool,
+    t0: Instant,
+) -> SearchOutput {
     let deadline = t0 + Duration::from_secs_f64(opts.time_limit.max(0.0));
     // Without a design yet, constructions may go on until this later deadline.
     let first_deadline =
@@ -417,7 +424,7 @@ fn search(p: &Problem, inputs: &Inputs, opts: &Options, worker: usize, found: &A
         }
     }
     stats.rejected = best.rejected;
-    Outcome {
+    SearchOutput {
         objective: best.network.as_ref().map(|_| best.objective),
         network: best.network,
         trace: best.trace,
@@ -430,10 +437,10 @@ fn search(p: &Problem, inputs: &Inputs, opts: &Options, worker: usize, found: &A
 
 /// The paper's stochastic search (module `anneal`): several seeded passes from the all-active
 /// start, the best valid design over all passes.
-pub fn anneal(p: &Problem, inputs: &Inputs, opts: &AnnealOptions) -> Outcome {
+pub fn anneal(p: &Problem, inputs: &Inputs, opts: &AnnealOptions) -> SearchOutput {
     let t0 = Instant::now();
     if let Some(why) = obvious_infeasibility(p) {
-        return Outcome::infeasible(why, t0);
+        return SearchOutput::infeasible(why, t0);
     }
     let deadline = t0 + Duration::from_secs_f64(opts.time_limit.max(0.0));
     let mut best = Best { p, inputs, t0, network: None, objective: f64::INFINITY, trace: Vec::new(), rejected: 0 };
@@ -441,7 +448,7 @@ pub fn anneal(p: &Problem, inputs: &Inputs, opts: &AnnealOptions) -> Outcome {
     // Room problems: one tiling for every pass, one the construction can build a design on.
     let rules = if p.rooms.is_some() {
         let Some(placements) = inputs.placements else {
-            return Outcome::none(Stop::Exhausted, stats, t0);
+            return SearchOutput::none(Stop::Exhausted, stats, t0);
         };
         let mut rng = Rng::new(opts.seed);
         let tiling_deadline = t0 + Duration::from_secs_f64(opts.time_limit * 0.2);
@@ -452,7 +459,7 @@ pub fn anneal(p: &Problem, inputs: &Inputs, opts: &AnnealOptions) -> Outcome {
             stats.constructions += 1;
         }
         let Some(rooms) = found else {
-            return Outcome::none(Stop::TimeLimit, stats, t0);
+            return SearchOutput::none(Stop::TimeLimit, stats, t0);
         };
         Rules::new(p, inputs.paths, Some(placements), Some(Tiling { rooms }))
     } else {
@@ -486,7 +493,7 @@ pub fn anneal(p: &Problem, inputs: &Inputs, opts: &AnnealOptions) -> Outcome {
     if trace.is_empty() {
         trace = best.trace.clone();
     }
-    Outcome {
+    SearchOutput {
         objective: best.network.as_ref().map(|_| best.objective),
         network: best.network,
         trace,

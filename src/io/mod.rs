@@ -46,7 +46,7 @@ impl std::fmt::Display for Warning {
 
 /// A model read from a file, with the reader's warnings.
 #[derive(Clone, Debug)]
-pub struct ReadOutcome {
+pub struct ReadModel {
     /// The model.
     pub model: Model,
     /// Warnings, in file order.
@@ -131,15 +131,15 @@ fn file_err(path: &Path, kind: impl Into<FileErrorKind>) -> FileError {
 
 /// Reads a `.mps` or `.lp` file, or either gzip-compressed (chosen by extension), and validates
 /// the model.
-pub fn read_model_file(path: &Path) -> Result<ReadOutcome, FileError> {
+pub fn read_model_file(path: &Path) -> Result<ReadModel, FileError> {
     let format = Format::from_path(path).ok_or_else(|| file_err(path, FileErrorKind::UnknownFormat))?;
     let text = read_text(path).map_err(|e| file_err(path, e))?;
-    let outcome = match format {
+    let read = match format {
         Format::Mps => mps::read_str(&text).map_err(|e| file_err(path, e))?,
         Format::Lp => lp::read_str(&text).map_err(|e| file_err(path, e))?,
     };
-    outcome.model.validate().map_err(|e| file_err(path, e))?;
-    Ok(outcome)
+    read.model.validate().map_err(|e| file_err(path, e))?;
+    Ok(read)
 }
 
 /// Writes a model to a `.mps` or `.lp` file, or either gzip-compressed (chosen by extension),
@@ -196,4 +196,25 @@ pub(crate) fn digest(parts: &[&[u8]]) -> String {
         h = h.wrapping_mul(0x0000_0100_0000_01b3);
     }
     format!("{h:016x}")
+}
+
+/// What [`convert`] did.
+pub struct Converted {
+    /// The model's size.
+    pub stats: crate::milp::ModelStats,
+    /// Warnings from reading the input.
+    pub warnings: Vec<String>,
+    /// Names changed to fit the output format.
+    pub renamed: usize,
+}
+
+/// Reads a model file and writes it in the format of `output`'s extension.
+pub fn convert(input: &Path, output: &Path) -> Result<Converted, FileError> {
+    let read = read_model_file(input)?;
+    let map = write_model_file(&read.model, output)?;
+    Ok(Converted {
+        stats: read.model.stats(),
+        warnings: read.warnings.iter().map(|w| w.to_string()).collect(),
+        renamed: if map.is_identity() { 0 } else { map.vars.len() + map.rows.len() },
+    })
 }

@@ -1,4 +1,4 @@
-//! 2D polygon meshes: the domain `M` of the network formulation (FORMULATION.md §1).
+//! 2D polygon meshes: the domain `M` of the network formulation (docs/formulation.md §1).
 //!
 //! A [`Mesh`] is a planar polygon mesh (mostly quads, any n-gons allowed) with a half-edge
 //! structure built once by [`Mesh::from_polygons`], which also validates the input (see

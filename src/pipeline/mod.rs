@@ -7,10 +7,12 @@
 //! - [`strategy`]: how a model is solved, apart from what it is (objective split, lattice
 //!   rounding, backend hints, parallel search);
 //! - [`solve`]: a built formulation solved on a backend and its answer checked;
-//! - [`search`]: the heuristic and the stochastic search as solver choices, checked the same way.
+//! - [`search`]: the heuristic and the stochastic search as solver choices, checked the same way;
+//! - [`settings`]: one path from the command line, a spec and a city spec to solve options.
 
 pub mod result;
 pub mod search;
+pub mod settings;
 pub mod solve;
 pub mod start;
 pub mod strategy;

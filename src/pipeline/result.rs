@@ -25,7 +25,7 @@ pub const DESIGN_SCHEMA_VERSION: u32 = 2;
 pub struct Validity {
     /// `true` when a network exists and every check below passed.
     pub valid: bool,
-    /// FORMULATION §6 items 1–5, from plain graph code.
+    /// docs/formulation.md §6 items 1–5, from plain graph code.
     pub design_violations: Vec<Violation>,
     /// §6 item 7: every row and bound of the emitted MILP at the returned point.
     pub milp_check: Option<CheckReport>,
@@ -174,4 +174,3 @@ pub(crate) fn rooms_result(p: &Problem, f: &Formulation, net: Option<&Network>) 
         chosen: net.map_or(Vec::new(), |n| n.rooms.iter().map(|&k| pl.placements[k].clone()).collect()),
     })
 }
-

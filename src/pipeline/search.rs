@@ -6,11 +6,13 @@
 //! `netspec solve --solver heuristic|anneal` writes it as `result.json`, and `netspec compare`
 //! reads it like any other run.
 
-use super::result::{active_edge_pairs, design_point, design_violations, rooms_result, RoomsResult, Validity, DESIGN_SCHEMA_VERSION};
+use super::result::{
+    active_edge_pairs, design_point, design_violations, rooms_result, RoomsResult, Validity, DESIGN_SCHEMA_VERSION,
+};
 use crate::design::{Metrics, Network, Objective};
-use crate::heuristics::{self, AnnealOptions, Inputs, Options, Outcome, SearchStats, Stop, TracePoint};
 use crate::formulations::expr::FamilyStats;
 use crate::formulations::Formulation;
+use crate::heuristics::{self, AnnealOptions, Inputs, Options, SearchOutput, SearchStats, Stop, TracePoint};
 use crate::mesh::Mesh;
 use crate::milp::ModelStats;
 use crate::rules::paths::PathSets;
@@ -179,7 +181,7 @@ pub fn run_search(
     let t0 = Instant::now();
     let inputs =
         Inputs { paths: f.path_sets.as_ref(), placements: f.placements.as_ref().map(|r| r.placements.as_slice()) };
-    let outcome = match method {
+    let output = match method {
         SearchMethod::Heuristic => {
             heuristics::heuristic(p, &inputs, &Options { time_limit, seed, threads, ..Options::default() })
         }
@@ -187,16 +189,16 @@ pub fn run_search(
             heuristics::anneal(p, &inputs, &AnnealOptions { time_limit, seed, ..AnnealOptions::default() })
         }
     };
-    record(p, f, method, seed, outcome, t0)
+    record(p, f, method, seed, output, t0)
 }
 
-/// The record of a search's outcome, with the independent checks.
+/// The record of a search's output, with the independent checks.
 pub fn record(
     p: &Problem,
     f: &Formulation,
     method: SearchMethod,
     seed: u64,
-    outcome: Outcome,
+    output: SearchOutput,
     t0: Instant,
 ) -> SearchResult {
     let mut validity = Validity {
@@ -207,11 +209,11 @@ pub fn record(
         objective_agrees: None,
     };
     let (mut metrics, mut objective) = (None, None);
-    if let Some(net) = &outcome.network {
+    if let Some(net) = &output.network {
         validity.design_violations = design_violations(p, f, net);
         let obj = Objective::of(p, net);
         validity.objective_recomputed = Some(obj.total);
-        validity.objective_agrees = outcome.objective.map(|o| crate::milp::objectives_agree(o, obj.total, 1e-6));
+        validity.objective_agrees = output.objective.map(|o| crate::milp::objectives_agree(o, obj.total, 1e-6));
         // The design as a point of the formulation, checked row by row (and against the lazy
         // rows), exactly as a MIP start is.
         let point = design_point(f, p, net).ok();
@@ -221,9 +223,9 @@ pub fn record(
         metrics = Some(Metrics::of(p, net));
         objective = Some(obj);
     }
-    let active_edges = active_edge_pairs(p, outcome.network.as_ref());
-    let rooms = rooms_result(p, f, outcome.network.as_ref());
-    let termination = match outcome.stop {
+    let active_edges = active_edge_pairs(p, output.network.as_ref());
+    let rooms = rooms_result(p, f, output.network.as_ref());
+    let termination = match output.stop {
         Stop::TimeLimit => Termination::Limit(LimitKind::Time),
         Stop::Exhausted => Termination::Limit(LimitKind::Other),
         Stop::Infeasible => Termination::Infeasible,
@@ -243,19 +245,19 @@ pub fn record(
             solver: method.name().into(),
             solver_version: env!("CARGO_PKG_VERSION").into(),
             termination,
-            infeasible_because: outcome.infeasible.clone(),
-            objective: outcome.objective,
+            infeasible_because: output.infeasible.clone(),
+            objective: output.objective,
             dual_bound: None,
             gap: None,
             nodes: None,
-            solver_time: Some(outcome.seconds),
+            solver_time: Some(output.seconds),
             wall_time: t0.elapsed().as_secs_f64(),
             seed,
-            first_design_seconds: outcome.trace.first().map(|t| t.seconds),
-            trace: outcome.trace,
-            stats: outcome.stats,
+            first_design_seconds: output.trace.first().map(|t| t.seconds),
+            trace: output.trace,
+            stats: output.stats,
         },
-        network: outcome.network,
+        network: output.network,
         model_stats: f.model.stats(),
         families: f.families.clone(),
         formulation: f.recipe.label.clone(),

@@ -1,7 +1,9 @@
 //! Solving a built formulation: the backend (with the lazily separated rows through its
 //! callback or the solve–cut–resolve loop), the solve strategy, and every answer checked.
 
-use super::result::{active_edge_pairs, design_violations, rooms_result, DesignResult, Validity, DESIGN_SCHEMA_VERSION};
+use super::result::{
+    active_edge_pairs, design_violations, rooms_result, DesignResult, Validity, DESIGN_SCHEMA_VERSION,
+};
 use super::start::{start_for, StartFrom, StartReport};
 use super::strategy::{tuned_options, Strategy};
 use crate::design::{self, Metrics, Objective, Violation};
@@ -264,4 +266,3 @@ fn checked_result(
         primal_point,
     })
 }
-

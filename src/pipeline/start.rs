@@ -166,4 +166,3 @@ pub fn start_for(
     report.seconds = Some(t0.elapsed().as_secs_f64());
     Some((x, report))
 }
-

@@ -98,17 +98,24 @@ mod tests {
     #[test]
     fn hints_yield_to_the_users_parameters() {
         let hint = param(SolverKind::Highs, "mip_pscost_minreliable", "0");
-        let user = SolveOptions { params: vec![param(SolverKind::Highs, "mip_heuristic_effort", "0.1")], ..Default::default() };
+        let user = SolveOptions {
+            params: vec![param(SolverKind::Highs, "mip_heuristic_effort", "0.1")],
+            ..Default::default()
+        };
         let (o, used) = with_hints(&user, std::slice::from_ref(&hint));
         assert_eq!(o.params, vec![hint.clone(), user.params[0].clone()]);
         assert_eq!(used, vec!["highs.mip_pscost_minreliable=0".to_string()]);
 
-        let own = SolveOptions { params: vec![param(SolverKind::Highs, "mip_pscost_minreliable", "8")], ..Default::default() };
+        let own = SolveOptions {
+            params: vec![param(SolverKind::Highs, "mip_pscost_minreliable", "8")],
+            ..Default::default()
+        };
         let (o, used) = with_hints(&own, std::slice::from_ref(&hint));
         assert_eq!(o.params, own.params);
         assert!(used.is_empty());
 
-        let other = SolveOptions { params: vec![param(SolverKind::Scip, "mip_pscost_minreliable", "8")], ..Default::default() };
+        let other =
+            SolveOptions { params: vec![param(SolverKind::Scip, "mip_pscost_minreliable", "8")], ..Default::default() };
         let (o, used) = with_hints(&other, std::slice::from_ref(&hint));
         assert_eq!(o.params, vec![hint, other.params[0].clone()]);
         assert_eq!(used.len(), 1);

@@ -1,4 +1,4 @@
-//! Point-to-point path sets (FORMULATION §3.4): sample one vertex per part of the face
+//! Point-to-point path sets (docs/formulation.md §3.4): sample one vertex per part of the face
 //! partition, and for every pair of adjacent parts enumerate the simple paths between their
 //! vertices with at most (shortest + tolerance) edges. Enumeration is bounded in count and time,
 //! and reports what it enumerated.

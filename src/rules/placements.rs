@@ -1,4 +1,4 @@
-//! Room-template placements on quad meshes (FORMULATION.md §4, "Floor plans — room tiling").
+//! Room-template placements on quad meshes (docs/formulation.md §4, "Floor plans — room tiling").
 //!
 //! A [`Template`] is a polyomino of unit cells. [`enumerate_placements`] maps every symmetry
 //! image of every template onto the mesh by walking face adjacency from each quad anchor face in

@@ -42,7 +42,7 @@
 //! SIGINT at the deadline (or on the interrupt) and, if the worker has not ended 0.5 s later
 //! (CBC was in preprocessing or a long LP, which SIGINT cannot stop), kills it. CBC's own
 //! `seconds` is then only a backstop, set well past the deadline. The worker writes its
-//! outcome into memory shared with netspec. A killed worker leaves no solution of CBC's; the
+//! result into memory shared with netspec. A killed worker leaves no solution of CBC's; the
 //! result then carries the MIP start, if one was given (it passed netspec's check), as the best
 //! point known. CBC's SIGINT handler is reached through the `Cbc_Model` structure of CBC 2.10's
 //! C interface (`Coin_C_defines.h`) and the layout of `CbcSolverUsefulData`, checked before use;
@@ -266,7 +266,7 @@ fn apply_options(
 /// worker, which writes it into shared memory).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default)]
-struct Outcome {
+struct WorkerResult {
     status: c_int,
     secondary: c_int,
     optimal: c_int,
@@ -277,13 +277,13 @@ struct Outcome {
     bound: f64,
 }
 
-impl Outcome {
-    /// Reads the outcome of a solved model; copies the best solution (all columns) into `best`
+impl WorkerResult {
+    /// Reads the result of a solved model; copies the best solution (all columns) into `best`
     /// when there is one and `best` has room for it.
     ///
     /// # Safety
     /// `m` must be a live model after `Cbc_solve`; `best` is empty or has one slot per column.
-    unsafe fn read(m: *mut sys::Cbc_Model, best: &mut [f64]) -> Outcome {
+    unsafe fn read(m: *mut sys::Cbc_Model, best: &mut [f64]) -> WorkerResult {
         // SAFETY: as the caller promises.
         unsafe {
             let p = ffi::Cbc_bestSolution(m);
@@ -291,7 +291,7 @@ impl Outcome {
             if has_best {
                 best.copy_from_slice(std::slice::from_raw_parts(p, best.len()));
             }
-            Outcome {
+            WorkerResult {
                 status: sys::Cbc_status(m),
                 secondary: sys::Cbc_secondaryStatus(m),
                 optimal: sys::Cbc_isProvenOptimal(m),
@@ -306,7 +306,7 @@ impl Outcome {
 }
 
 /// CBC's `status()`/`secondaryStatus()` (see `CbcModel.hpp`) to a [`Termination`].
-fn termination(o: &Outcome, is_mip: bool) -> Termination {
+fn termination(o: &WorkerResult, is_mip: bool) -> Termination {
     match (o.status, o.secondary) {
         // "Linear relaxation not feasible (or worse than cutoff)" with an incumbent: the
         // search found nothing better than it (a MIP start that was already optimal), so the
@@ -394,7 +394,7 @@ fn native(model: &Model, o: &SolveOptions, ctl: &StopControl) -> Result<SolveRes
     } else {
         m.solve();
         // SAFETY: live, solved model; `best` has one slot per column.
-        worker::Ended::Finished(unsafe { Outcome::read(raw_ptr(&m), &mut best) })
+        worker::Ended::Finished(unsafe { WorkerResult::read(raw_ptr(&m), &mut best) })
     };
     let solver_time = t_solve.elapsed().as_secs_f64();
     drop(m);
@@ -443,7 +443,7 @@ fn native(model: &Model, o: &SolveOptions, ctl: &StopControl) -> Result<SolveRes
 
 /// CBC in a worker process (see the module docs).
 mod worker {
-    use super::{c_int, sys, Outcome, KIND as KIND_CBC};
+    use super::{c_int, sys, WorkerResult, KIND as KIND_CBC};
     use crate::solvers::stop::StopControl;
     use crate::solvers::SolverError;
     use std::time::{Duration, Instant};
@@ -453,11 +453,11 @@ mod worker {
 
     /// How a worker ended.
     pub(super) enum Ended {
-        /// CBC finished (on its own or after SIGINT) and wrote its outcome.
-        Finished(Outcome),
+        /// CBC finished (on its own or after SIGINT) and wrote its result.
+        Finished(WorkerResult),
         /// Killed by netspec (it did not stop in time).
         Killed,
-        /// It ended without an outcome (CBC crashed or aborted).
+        /// It ended without an result (CBC crashed or aborted).
         Died(String),
     }
 
@@ -503,14 +503,14 @@ mod worker {
         solver_data(m).is_some()
     }
 
-    /// Shared memory for the worker's outcome: a flag, the [`Outcome`], the best solution.
+    /// Shared memory for the worker's result: a flag, the [`WorkerResult`], the best solution.
     struct Shared {
         ptr: *mut u8,
         len: usize,
     }
 
     const HEADER: usize = 64;
-    const _: () = assert!(std::mem::size_of::<Outcome>() + 8 <= HEADER);
+    const _: () = assert!(std::mem::size_of::<WorkerResult>() + 8 <= HEADER);
 
     impl Shared {
         fn new(columns: usize) -> Result<Shared, SolverError> {
@@ -536,9 +536,9 @@ mod worker {
             self.ptr as *mut u64
         }
 
-        fn outcome(&self) -> *mut Outcome {
-            // SAFETY: inside the mapping (HEADER holds the flag and the outcome).
-            unsafe { self.ptr.add(8) as *mut Outcome }
+        fn result(&self) -> *mut WorkerResult {
+            // SAFETY: inside the mapping (HEADER holds the flag and the result).
+            unsafe { self.ptr.add(8) as *mut WorkerResult }
         }
 
         fn best(&mut self, columns: usize) -> &mut [f64] {
@@ -621,11 +621,11 @@ mod worker {
             }
             std::thread::sleep(Duration::from_millis(5));
         };
-        // SAFETY: the child has ended; the flag and outcome were written before `_exit`.
+        // SAFETY: the child has ended; the flag and result were written before `_exit`.
         let finished = unsafe { std::ptr::read_volatile(shared.done()) } == 1;
         if finished {
             // SAFETY: as above.
-            let out = unsafe { std::ptr::read_volatile(shared.outcome()) };
+            let out = unsafe { std::ptr::read_volatile(shared.result()) };
             if out.has_best != 0 {
                 best.copy_from_slice(shared.best(best.len()));
             }
@@ -655,7 +655,7 @@ mod worker {
         }
     }
 
-    /// The worker: solve, write the outcome, `_exit`.
+    /// The worker: solve, write the result, `_exit`.
     ///
     /// # Safety
     /// Only in the child of `fork`, with `m` the parent's loaded model.
@@ -686,8 +686,8 @@ mod worker {
                 }
             }
             sys::Cbc_solve(m);
-            let out = Outcome::read(m, shared.best(columns));
-            std::ptr::write_volatile(shared.outcome(), out);
+            let out = WorkerResult::read(m, shared.best(columns));
+            std::ptr::write_volatile(shared.result(), out);
             std::ptr::write_volatile(shared.done(), 1);
             libc::fflush(std::ptr::null_mut());
             libc::_exit(0)
@@ -840,7 +840,7 @@ pub fn solve_file_with_native_reader(path: &std::path::Path) -> Result<(Terminat
         (0..ncols - 1).any(|j| sys::Cbc_isInteger(ptr, j) != 0)
     };
     // SAFETY: live, solved model; no solution copied.
-    let out = unsafe { Outcome::read(ptr, &mut []) };
+    let out = unsafe { WorkerResult::read(ptr, &mut []) };
     let t = termination(&out, is_mip);
     let obj = (t == Termination::Optimal).then_some(out.objective);
     Ok((t, obj))

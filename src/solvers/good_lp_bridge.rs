@@ -76,7 +76,7 @@ fn version_of<S: good_lp::Solver>() -> String {
 /// Solves `model` with any good_lp solver (e.g. `good_lp::microlp`, or `good_lp::highs` when
 /// that good_lp feature is enabled). Same contract as [`Solver::solve`]: options are checked
 /// against the bridge's capabilities first (all unsupported), infeasible and unbounded are
-/// outcomes, not errors.
+/// results, not errors.
 pub fn solve_with<S>(solver: S, model: &Model, o: &SolveOptions) -> Result<SolveResult, SolverError>
 where
     S: good_lp::Solver,

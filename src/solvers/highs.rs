@@ -6,8 +6,8 @@
 
 use super::stop::StopControl;
 use super::{
-    guarded_solve, Capabilities, LazyRow, LimitKind, LogTarget, LpSession, Progress, ProgressSink, RawParam, SolveOptions,
-    SolveResult, Solver, SolverError, SolverErrorKind, SolverKind, StrategyHints, Termination,
+    guarded_solve, Capabilities, LazyRow, LimitKind, LogTarget, LpSession, Progress, ProgressSink, RawParam,
+    SolveOptions, SolveResult, Solver, SolverError, SolverErrorKind, SolverKind, StrategyHints, Termination,
 };
 use crate::milp::{Model, Sense};
 use highs_sys as sys;

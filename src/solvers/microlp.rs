@@ -21,7 +21,7 @@
 //! | `rel_gap` | `SolveOptions::mip_gap` (`(incumbent − bound) / |incumbent|`) |
 //! | `node_limit` | `SolveOptions::node_limit` (the root LP is not a node) |
 //! | `mip_start` | `SolveOptions::warm_start` (a hint for a MIP: an infeasible one is ignored; an LP has no use for it) |
-//! | `interrupt` | the search runs in slices of at most 0.1 s, resumed (`SolveOutcome::resume_with`) until done, out of budget, or interrupted |
+//! | `interrupt` | the search runs in slices of at most 0.1 s, resumed (microlp's `resume_with`) until done, out of budget, or interrupted |
 //! | `abs_gap`, `threads` > 1, `seed`, any log, `params` | unsupported: microlp has no such option and logs only through the `log` crate |
 //!
 //! The result reports microlp's best bound, its node count and its own elapsed time.
@@ -178,7 +178,7 @@ impl Solver for MicrolpSolver {
 }
 
 /// Runs microlp; with an interrupt, in slices of [`SLICE`], resuming until the search ends, a
-/// limit is reached or the interrupt comes. Returns the last outcome and whether the interrupt
+/// limit is reached or the interrupt comes. Returns the last solved and whether the interrupt
 /// stopped it.
 fn run_sliced(
     loaded: &Loaded,
@@ -186,12 +186,12 @@ fn run_sliced(
     ctl: &StopControl,
 ) -> (Result<microlp::SolveOutcome, microlp::Error>, bool) {
     let sliced = o.interrupt.is_some();
-    let mut outcome = loaded.problem.solve_with(options(loaded, o, ctl, sliced));
+    let mut solved = loaded.problem.solve_with(options(loaded, o, ctl, sliced));
     if !sliced {
-        return (outcome, false);
+        return (solved, false);
     }
     loop {
-        let out = match outcome {
+        let out = match solved {
             Ok(out) if out.termination_reason() == microlp::TerminationReason::TimeLimit => out,
             other => return (other, false),
         };
@@ -208,16 +208,16 @@ fn run_sliced(
         if resume.node_limit == Some(0) {
             return (Ok(out), false); // reported as the node limit below
         }
-        outcome = out.resume_with(resume);
+        solved = out.resume_with(resume);
     }
 }
 
 /// The solve itself, after netspec's common checks (`guarded_solve`).
 fn native(model: &Model, o: &SolveOptions, ctl: &StopControl) -> Result<SolveResult, SolverError> {
     let loaded = load(model)?;
-    let (outcome, interrupted) = run_sliced(&loaded, o, ctl);
+    let (solved, interrupted) = run_sliced(&loaded, o, ctl);
     let mut r = SolveResult::empty(KIND, MICROLP_VERSION.to_string(), Termination::Optimal);
-    match outcome {
+    match solved {
         Err(microlp::Error::Infeasible) => r.termination = Termination::Infeasible,
         Err(microlp::Error::Unbounded) => r.termination = Termination::Unbounded,
         Err(microlp::Error::InternalError(e)) => r.termination = Termination::Error(format!("microlp: {e}")),
@@ -225,9 +225,9 @@ fn native(model: &Model, o: &SolveOptions, ctl: &StopControl) -> Result<SolveRes
             return Err(SolverError::new(KIND, SolverErrorKind::Rejected(format!("microlp: {e}"))))
         }
         Err(e) => r.termination = Termination::Error(format!("microlp: {e}")),
-        Ok(outcome) => {
-            let stats = outcome.stats();
-            r.termination = match outcome.termination_reason() {
+        Ok(solved) => {
+            let stats = solved.stats();
+            r.termination = match solved.termination_reason() {
                 _ if interrupted => Termination::Limit(LimitKind::Interrupt),
                 microlp::TerminationReason::ProvenOptimal => Termination::Optimal,
                 // microlp stopped on the user's gap: `finish` says Limit(Gap) unless the gap is
@@ -242,7 +242,7 @@ fn native(model: &Model, o: &SolveOptions, ctl: &StopControl) -> Result<SolveRes
                 microlp::TerminationReason::NodeLimit => Termination::Limit(LimitKind::Node),
                 _ => Termination::Limit(LimitKind::Other),
             };
-            if let Some(sol) = outcome.solution() {
+            if let Some(sol) = solved.solution() {
                 r.primal = Some(loaded.vars.iter().map(|&v| sol.var_value(v)).collect());
                 r.objective = Some(sol.objective());
             }

@@ -2,7 +2,7 @@
 //!
 //! Every backend lives in its own file behind a cargo feature named after the solver. A solve
 //! returns a [`SolveResult`] that says *why* the solver stopped ([`Termination`]) separately from
-//! *whether* it has a solution: infeasible is an outcome, not an `Err`. An `Err` means the solve
+//! *whether* it has a solution: infeasible is a result, not an `Err`. An `Err` means the solve
 //! could not be attempted (an option the backend cannot honour, a model the backend rejects).
 
 #[cfg(feature = "cbc")]

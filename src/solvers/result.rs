@@ -69,7 +69,7 @@ impl std::fmt::Display for Termination {
     }
 }
 
-/// The outcome of one solve.
+/// The result of one solve.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct SolveResult {
     /// Why the solver stopped.
@@ -249,7 +249,7 @@ mod tests {
         r
     }
 
-    /// The case: the paper's 0* weight (1e-4) hidden in a solver's default gap.
+    /// The case of the paper's 0* weight (1e-4) hidden in a solver's default gap.
     #[test]
     fn optimal_only_within_the_tolerance() {
         let mut r = result(Termination::Optimal, 8.0003, 8.0002);

@@ -118,7 +118,7 @@ impl ObjectiveSplit {
     }
 }
 
-/// One phase's outcome, for the report.
+/// One phase's result, for the report.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct PhaseReport {
     /// Why the phase stopped.

@@ -118,7 +118,7 @@ pub enum PathForm {
     Tight,
     /// One path chosen per pair: `Σ_paths P = 1`, and for each candidate edge `e` of the pair's
     /// paths `Σ_{paths through e} P ≤ E_e`, for each of their vertices `y` (where not implied)
-    /// `Σ_{paths through y} P ≤ V_y` (FORMULATION §3.4 aggregated; see
+    /// `Σ_{paths through y} P ≤ V_y` (docs/formulation.md §3.4 aggregated; see
     /// `formulations::families::paths`).
     Select,
 }

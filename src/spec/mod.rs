@@ -129,7 +129,7 @@ pub struct JitterSpec {
     pub seed: u64,
 }
 
-/// Role of the mesh boundary's edges (FORMULATION §1).
+/// Role of the mesh boundary's edges (docs/formulation.md §1).
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum BoundaryRole {
@@ -223,7 +223,7 @@ pub struct WeightSpec {
     #[serde(default = "wnum1")]
     pub length: WeightValue,
     /// λD, on the paper's travel-distance term `Σ D(i→j)` (at an optimum: over active edges,
-    /// the smaller of the two ends' label distances; FORMULATION §8).
+    /// the smaller of the two ends' label distances; docs/formulation.md §8).
     #[serde(default)]
     pub distance: WeightValue,
     /// On total travel: the sum over active non-sink vertices of the network distance to the
@@ -371,13 +371,13 @@ pub struct UserSpec {
     #[serde(default)]
     pub through_routes: Vec<ThroughRoute>,
     /// Existing roads inside the domain (pairs of vertex ids): fixed active, not variables, and
-    /// their end vertices become sinks (FORMULATION §1). Street levels use this to carry the
+    /// their end vertices become sinks (docs/formulation.md §1). Street levels use this to carry the
     /// roads of earlier levels over.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub existing_edges: Vec<[u32; 2]>,
 }
 
-/// Floor plan or game level (FORMULATION §4–§5).
+/// Floor plan or game level (docs/formulation.md §4–§5).
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum RoomMode {

@@ -1,10 +1,10 @@
 //! From a [`Spec`] to a [`Problem`]: the mesh, edge roles, sinks and switches, checked.
 
+use super::Template;
 use super::*;
 use crate::mesh::{self, EdgeId, FaceId, Mesh, VertexId};
-use super::Template;
 
-/// What an edge is in the model (FORMULATION §1).
+/// What an edge is in the model (docs/formulation.md §1).
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum EdgeRole {

@@ -93,4 +93,3 @@ fn normalise(cells: impl Iterator<Item = (i64, i64)>) -> Vec<(i32, i32)> {
     out.dedup();
     out
 }
-

@@ -9,8 +9,6 @@
 use super::network::RoadNetwork;
 use super::{write, TrafficError};
 use crate::pipeline::DesignResult;
-use crate::urban::output::{streets_geojson, GeoAnchor};
-use crate::urban::smooth::{self, StreetEdge, StreetGraph};
 use serde::{Deserialize, Serialize};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -168,23 +166,7 @@ pub fn write_plain(net: &RoadNetwork, dir: &Path, stem: &str) -> Result<PlainFil
     Ok(files)
 }
 
-/// The GeoJSON of a `solve` design, written by the city's street writer
-/// ([`crate::urban::output::streets_geojson`]): the active edges as streets of `level`, in chains
-/// between junctions and ends, and the mesh boundary as the domain boundary. A spec has no
-/// scale, so coordinates are model units as metres from the default origin
-/// ([`GeoAnchor::model_units`]).
+/// The GeoJSON of a `solve` design ([`crate::design::streets::design_geojson`]).
 pub fn design_geojson(res: &DesignResult, level: u8) -> String {
-    let mesh = &res.mesh;
-    let edges = res.active_edges.iter().map(|&[a, b]| StreetEdge { a, b, level }).collect();
-    let graph = StreetGraph { positions: mesh.positions().to_vec(), edges };
-    let snakes = smooth::decompose(&graph);
-    let boundary: Vec<[[f64; 2]; 2]> = mesh
-        .boundary_edges()
-        .into_iter()
-        .map(|e| {
-            let (a, b) = mesh.edge_vertices(e);
-            [mesh.position(a), mesh.position(b)]
-        })
-        .collect();
-    streets_geojson(&res.spec.name, &GeoAnchor::model_units(), &[], &boundary, &snakes)
+    crate::design::streets::design_geojson(&res.mesh, &res.active_edges, &res.spec.name, level)
 }

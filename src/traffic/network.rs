@@ -21,8 +21,7 @@ use std::path::Path;
 /// Fig. 7 city specs use 20).
 pub const DEFAULT_METRES_PER_UNIT: f64 = 20.0;
 
-/// The level given to every street of a `solve` design when none is given: a local street.
-pub const DEFAULT_SOLVE_LEVEL: u8 = 3;
+pub use crate::design::streets::DEFAULT_SOLVE_LEVEL;
 
 /// A street network in metres.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]

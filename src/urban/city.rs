@@ -5,13 +5,14 @@
 use super::planar::{self, Region};
 use super::spec::{CitySpec, CitySpecErrorKind, LevelSpec};
 use crate::mesh::{self, Mesh};
-use crate::pipeline::{self, DesignResult};
+use crate::pipeline::settings::{resolve, Origin, Settings, SettingsError};
+use crate::pipeline::{self, DesignResult, Method};
 use crate::solvers::{Interrupt, ProgressSink, SolveOptions, SolverKind};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-/// Why a city could not be run at all (a sub-region's failure is an outcome, not this).
+/// Why a city could not be run at all (a sub-region's failure is an report, not this).
 #[derive(Debug, thiserror::Error)]
 pub enum CityError {
     /// The spec is unusable.
@@ -73,6 +74,46 @@ pub struct CityRunOptions {
 pub type CityObserver = Arc<dyn Fn(&CityEvent) + Send + Sync>;
 
 impl CityRunOptions {
+    /// Options from the command line's settings over a city spec's `[solver]` section (through
+    /// [`crate::pipeline::settings::resolve`], errors naming the flag or the file and field):
+    /// `flags.time_limit` replaces every level's own; `threads` and `threads_per_solve` replace
+    /// the spec's budget.
+    pub fn resolve(
+        spec: &CitySpec,
+        spec_path: &Path,
+        flags: &Settings,
+        threads: Option<u32>,
+        threads_per_solve: Option<u32>,
+    ) -> Result<CityRunOptions, SettingsError> {
+        let own = Settings {
+            method: spec.solver.name.map(Method::Milp),
+            gap: spec.solver.gap,
+            seed: spec.solver.seed,
+            ..Settings::default()
+        };
+        let (method, o) = resolve(&[(Origin::Flags, flags.clone()), (Origin::City(spec_path.to_path_buf()), own)])?;
+        let solver = method.milp().ok_or_else(|| SettingsError {
+            place: "--solver".into(),
+            reason: format!("`{method}` is a design search: a city's levels need a MILP backend"),
+        })?;
+        for (flag, v) in [("--threads", threads), ("--threads-per-solve", threads_per_solve)] {
+            if v == Some(0) {
+                return Err(SettingsError { place: flag.into(), reason: "must be ≥ 1, got 0".into() });
+            }
+        }
+        Ok(CityRunOptions {
+            solver,
+            time_limit: o.time_limit,
+            threads: threads.unwrap_or(spec.solver.threads).max(1),
+            threads_per_solve: threads_per_solve.unwrap_or(spec.solver.threads_per_solve).max(1),
+            gap: o.rel_gap,
+            seed: o.seed,
+            resume: true,
+            observer: None,
+            interrupt: None,
+        })
+    }
+
     /// Options from a city spec's `[solver]` section, with the embedded default backend.
     pub fn from_spec(spec: &CitySpec) -> Option<CityRunOptions> {
         Some(CityRunOptions {
@@ -114,14 +155,14 @@ pub enum CityEvent {
     LevelDone {
         /// Region index.
         region: usize,
-        /// The outcome.
-        outcome: LevelOutcome,
+        /// The report.
+        report: LevelReport,
     },
 }
 
 /// How one level of one region ended.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct LevelOutcome {
+pub struct LevelReport {
     /// The level.
     pub level: u8,
     /// `solved` (a network was found), `reused` (from an earlier run), `no_network`, `error`
@@ -151,9 +192,9 @@ pub struct LevelOutcome {
     pub message: Option<String>,
 }
 
-impl LevelOutcome {
-    fn bare(level: u8, state: &str, message: impl Into<String>) -> LevelOutcome {
-        LevelOutcome {
+impl LevelReport {
+    fn bare(level: u8, state: &str, message: impl Into<String>) -> LevelReport {
+        LevelReport {
             level,
             state: state.into(),
             termination: None,
@@ -202,11 +243,11 @@ impl LevelOutcome {
 /// One line over every level of every region: how many have a network, how many of those are
 /// proven optimal, and how far from it the others stopped: `3/3 levels with a network (1 proven
 /// optimal; 2 stopped early, gap up to 100 %)`.
-pub fn levels_summary(regions: &[RegionOutcome]) -> String {
-    let levels: Vec<&LevelOutcome> = regions.iter().flat_map(|r| &r.levels).collect();
+pub fn levels_summary(regions: &[RegionReport]) -> String {
+    let levels: Vec<&LevelReport> = regions.iter().flat_map(|r| &r.levels).collect();
     let with = levels.iter().filter(|l| l.has_network()).count();
     let optimal = levels.iter().filter(|l| l.proven_optimal()).count();
-    let early: Vec<&&LevelOutcome> = levels.iter().filter(|l| l.has_network() && !l.proven_optimal()).collect();
+    let early: Vec<&&LevelReport> = levels.iter().filter(|l| l.has_network() && !l.proven_optimal()).collect();
     let mut s = format!("{with}/{} levels with a network ({optimal} proven optimal", levels.len());
     if !early.is_empty() {
         let worst = early.iter().filter_map(|l| l.gap).fold(None, |m: Option<f64>, g| Some(m.map_or(g, |m| m.max(g))));
@@ -243,7 +284,7 @@ impl RegionRoads {
 
 /// Everything about one sub-region.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct RegionOutcome {
+pub struct RegionReport {
     /// Index (regions sorted by their lowest, then leftmost corner).
     pub index: usize,
     /// Name (from `[[region]]`, or `region-N`).
@@ -259,7 +300,7 @@ pub struct RegionOutcome {
     /// A point inside (for labels).
     pub label_point: [f64; 2],
     /// One entry per level run (or attempted).
-    pub levels: Vec<LevelOutcome>,
+    pub levels: Vec<LevelReport>,
     /// The roads after the last level with a network (`None` if the region could not be
     /// meshed). Not in `city.json`: each level's `state.json` has them.
     #[serde(skip)]
@@ -271,15 +312,15 @@ pub struct RegionOutcome {
 struct LevelState {
     /// Digest of every input of this level.
     fingerprint: String,
-    outcome: LevelOutcome,
+    report: LevelReport,
     roads: Option<RegionRoads>,
 }
 
-/// The roads a finished run left in a region ([`RegionOutcome::roads`], which `city.json`
+/// The roads a finished run left in a region ([`RegionReport::roads`], which `city.json`
 /// omits), read back from the output directory `out`: those of the `state.json` of its last
 /// level with a network, or the sub-region's boundary alone (meshed again, as the run did) when
 /// no level found one. `None` if the sub-region cannot be meshed.
-pub fn saved_roads(spec: &CitySpec, out: &Path, region: &RegionOutcome) -> Result<Option<RegionRoads>, CityError> {
+pub fn saved_roads(spec: &CitySpec, out: &Path, region: &RegionReport) -> Result<Option<RegionRoads>, CityError> {
     if let Some(last) = region.levels.iter().rev().find(|l| l.has_network()) {
         let path = region_dir(out, region.index, &region.name).join(format!("L{}", last.level)).join("state.json");
         let text = std::fs::read_to_string(&path).map_err(io_err(&path))?;
@@ -342,7 +383,7 @@ fn write_atomic(path: &Path, text: &str) -> Result<(), CityError> {
     crate::io::write_atomic(path, text).map_err(io_err(path))
 }
 
-/// Runs every sub-region's levels (in parallel) and returns the outcomes in region order;
+/// Runs every sub-region's levels (in parallel) and returns the reports in region order;
 /// `regs` are the city's sub-regions from [`regions`].
 /// Finished levels are written under `out/regions/` as they end.
 pub fn run_regions(
@@ -350,7 +391,7 @@ pub fn run_regions(
     regs: Vec<(Region, Option<usize>)>,
     out: &Path,
     opts: &CityRunOptions,
-) -> Result<Vec<RegionOutcome>, CityError> {
+) -> Result<Vec<RegionReport>, CityError> {
     // One lattice for the whole city, through the domain's lower-left corner.
     let origin = spec.domain_bounds().0;
     let workers = (opts.threads / opts.threads_per_solve.max(1)).max(1) as usize;
@@ -374,11 +415,11 @@ fn run_region(
     index: usize,
     reg: Region,
     entry: Option<usize>,
-) -> Result<RegionOutcome, CityError> {
+) -> Result<RegionReport, CityError> {
     let name = spec.region_name(index, entry);
     let dir = region_dir(out, index, &name);
     std::fs::create_dir_all(&dir).map_err(io_err(&dir))?;
-    let mut outcome = RegionOutcome {
+    let mut report = RegionReport {
         index,
         name: name.clone(),
         spec_entry: entry,
@@ -399,15 +440,15 @@ fn run_region(
         Ok(m) => m,
         Err(e) => {
             for &n in &levels {
-                let o = LevelOutcome::bare(
+                let o = LevelReport::bare(
                     n,
                     "error",
                     format!("the sub-region cannot be meshed at spacing {}: {e}", spec.mesh.spacing),
                 );
-                emit(CityEvent::LevelDone { region: index, outcome: o.clone() });
-                outcome.levels.push(o);
+                emit(CityEvent::LevelDone { region: index, report: o.clone() });
+                report.levels.push(o);
             }
-            return Ok(outcome);
+            return Ok(report);
         }
     };
     let mut roads = RegionRoads::boundary_only(mesh0);
@@ -417,14 +458,14 @@ fn run_region(
             blocked = Some("interrupted".into());
         }
         if let Some(why) = &blocked {
-            let o = LevelOutcome::bare(n, "skipped", why.clone());
-            emit(CityEvent::LevelDone { region: index, outcome: o.clone() });
-            outcome.levels.push(o);
+            let o = LevelReport::bare(n, "skipped", why.clone());
+            emit(CityEvent::LevelDone { region: index, report: o.clone() });
+            report.levels.push(o);
             continue;
         }
         let level = spec.level(entry, n)?;
         let (o, next) = run_level(spec, &dir, opts, index, &name, n, &level, &roads, &emit)?;
-        emit(CityEvent::LevelDone { region: index, outcome: o.clone() });
+        emit(CityEvent::LevelDone { region: index, report: o.clone() });
         if let Some(r) = next {
             roads = r;
         } else {
@@ -436,10 +477,10 @@ fn run_region(
         if o.termination.as_deref() == Some("interrupted") {
             blocked = Some("interrupted".into());
         }
-        outcome.levels.push(o);
+        report.levels.push(o);
     }
-    outcome.roads = Some(roads);
-    Ok(outcome)
+    report.roads = Some(roads);
+    Ok(report)
 }
 
 /// The input of one level: the mesh (subdivided if asked) with earlier roads, and its spec.
@@ -487,7 +528,7 @@ fn run_level(
     level: &LevelSpec,
     prev: &RegionRoads,
     emit: &dyn Fn(CityEvent),
-) -> Result<(LevelOutcome, Option<RegionRoads>), CityError> {
+) -> Result<(LevelReport, Option<RegionRoads>), CityError> {
     let input = level_input(&city.name, name, n, level, prev);
     let time_limit = opts.time_limit.or(level.time_limit);
     let solve_opts = SolveOptions {
@@ -508,7 +549,7 @@ fn run_level(
             std::fs::read_to_string(&state_path).ok().and_then(|t| serde_json::from_str::<LevelState>(&t).ok())
         {
             if state.fingerprint == fingerprint {
-                let mut o = state.outcome;
+                let mut o = state.report;
                 if o.has_network() {
                     o.state = "reused".into();
                 }
@@ -527,7 +568,7 @@ fn run_level(
     emit(CityEvent::LevelStarted { region, level: n, time_limit });
     let problem = match input.spec.resolve_on_mesh(input.roads.mesh.clone()) {
         Ok(p) => p,
-        Err(e) => return Ok((LevelOutcome::bare(n, "error", format!("level {n} spec: {e}")), None)),
+        Err(e) => return Ok((LevelReport::bare(n, "error", format!("level {n} spec: {e}")), None)),
     };
     let nm = pipeline::build(&problem);
     let mut solve_opts = solve_opts;
@@ -538,14 +579,22 @@ fn run_level(
             observer(&CityEvent::LevelProgress { region, level: n, progress })
         })));
     }
-    // Every level starts from the construction heuristic's design (checked before it is used).
-    let from = pipeline::default_start(solve_opts.finite_time_limit());
-    let res: DesignResult = match pipeline::solve_from(&problem, &nm, opts.solver, &solve_opts, &from) {
-        Ok(r) => r,
-        Err(e) => return Ok((LevelOutcome::bare(n, "error", e.to_string()), None)),
+    // Every level starts from the construction heuristic's design (checked before it is used),
+    // and is solved and written like `netspec solve` (result.json, network.svg/png, .geojson).
+    let run = crate::run::Run {
+        method: Method::Milp(opts.solver),
+        start: pipeline::default_start(solve_opts.finite_time_limit()),
+        options: solve_opts,
+        explain: None,
+        sol: None,
+    };
+    let res: DesignResult = match crate::run::solve_problem(&problem, &nm, &run, &ldir, &mut |_| {}) {
+        Ok(crate::run::Solved { design: Some(crate::run::Design::Milp(r)), .. }) => *r,
+        Ok(_) => unreachable!("a MILP run gives a MILP result"),
+        Err(e) => return Ok((LevelReport::bare(n, "error", e.to_string()), None)),
     };
     let stats = res.model_stats;
-    let mut o = LevelOutcome {
+    let mut o = LevelReport {
         level: n,
         state: "no_network".into(),
         termination: Some(res.solve.termination.label()),
@@ -574,13 +623,11 @@ fn run_level(
         o.state = "solved".into();
         roads
     });
-    let result_path = ldir.join("result.json");
-    write_atomic(&result_path, &(serde_json::to_string_pretty(&res).expect("results serialise") + "\n"))?;
     if res.solve.termination == crate::solvers::Termination::Limit(crate::solvers::LimitKind::Interrupt) {
         // Not finished: no state, so a rerun solves it again; the levels after it are skipped.
         return Ok((o, next));
     }
-    let state = LevelState { fingerprint, outcome: o.clone(), roads: next.clone() };
+    let state = LevelState { fingerprint, report: o.clone(), roads: next.clone() };
     write_atomic(&state_path, &serde_json::to_string(&state).expect("states serialise"))?;
     Ok((o, next))
 }

@@ -10,6 +10,6 @@ pub mod planar;
 pub mod smooth;
 pub mod spec;
 
-pub use city::{run_regions, CityError, CityEvent, CityRunOptions, LevelOutcome, RegionOutcome, RegionRoads};
+pub use city::{run_regions, CityError, CityEvent, CityRunOptions, LevelReport, RegionReport, RegionRoads};
 pub use output::{run_city, run_city_on, CityResult};
 pub use spec::{CitySpec, CitySpecError, CitySpecErrorKind, LevelSpec, DEFAULT_GEO_ORIGIN};

@@ -1,11 +1,12 @@
 //! A finished city: the street graph of all sub-regions, smoothed; its metrics; and the files
 //! (`city.json`, `streets.geojson`, `city.svg`, `city.png`).
 
-use super::city::{self, CityError, CityRunOptions, RegionOutcome};
+use super::city::{self, CityError, CityRunOptions, RegionReport};
 use super::metrics::{street_metrics, StreetMetrics};
 use super::planar::{PlanarGraph, Region};
 use super::smooth::{self, Snake, StreetEdge, StreetGraph};
 use super::spec::{CitySpec, SmoothingMethod};
+use crate::design::streets::{streets_geojson, GeoAnchor, GeoRegion};
 use crate::mesh::geom;
 use crate::render::city::{CityPicture, RegionShape};
 use indexmap::IndexMap;
@@ -53,7 +54,7 @@ pub struct CityResult {
     pub threads: [u32; 2],
     /// Sub-regions and their levels (the per-level design results are in
     /// `regions/NN-name/L<n>/result.json`).
-    pub regions: Vec<RegionOutcome>,
+    pub regions: Vec<RegionReport>,
     /// Every level of every sub-region produced a network.
     pub complete: bool,
     /// Every network produced passed every independent check.
@@ -71,7 +72,7 @@ pub struct CityResult {
 /// boundaries, the major roads; the lowest where regions share an edge); the same graph without
 /// levels (for the metrics); and per merged vertex whether streets may join the major road there
 /// (see [`super::city::RegionRoads::joins_major`]).
-pub fn street_graph(regions: &[RegionOutcome], spacing: f64) -> (StreetGraph, PlanarGraph, Vec<bool>) {
+pub fn street_graph(regions: &[RegionReport], spacing: f64) -> (StreetGraph, PlanarGraph, Vec<bool>) {
     // Both ends of every road edge, each edge with its level, each end with whether it joins.
     let (mut ends, mut pairs, mut levels, mut joinable) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     for roads in regions.iter().filter_map(|r| r.roads.as_ref()) {
@@ -172,7 +173,7 @@ pub fn run_city_on(
 
 /// Level 1 as given: the sub-regions' polygons (the domain boundary and the major roads,
 /// clipped and split by the arrangement), each shared side once.
-pub fn major_road_segments(regions: &[RegionOutcome]) -> Vec<[[f64; 2]; 2]> {
+pub fn major_road_segments(regions: &[RegionReport]) -> Vec<[[f64; 2]; 2]> {
     let key = |p: [f64; 2]| ((p[0] * 1e6).round() as i64, (p[1] * 1e6).round() as i64);
     let mut seen = IndexMap::new();
     for r in regions {
@@ -251,22 +252,6 @@ pub fn snap_to_major_roads(
     out
 }
 
-/// Where GeoJSON's model coordinates sit on the Earth: the WGS 84 `[longitude, latitude]` of
-/// the model origin, and metres per model unit.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct GeoAnchor {
-    /// The model origin's `[longitude, latitude]`.
-    pub origin: [f64; 2],
-    /// The origin is [`super::spec::DEFAULT_GEO_ORIGIN`], not a given anchor.
-    pub origin_is_default: bool,
-    /// Metres per model unit.
-    pub metres_per_unit: f64,
-}
-
-/// Metres per degree of longitude at the equator and per degree of latitude (the
-/// equirectangular projection of [`CitySpec::to_wgs84`], which [`GeoAnchor::to_wgs84`] repeats).
-const METRES_PER_DEGREE: [f64; 2] = [111_320.0, 110_540.0];
-
 impl GeoAnchor {
     /// A city's: its `geo_origin` (else the default origin) and its scale.
     pub fn of_city(spec: &CitySpec) -> GeoAnchor {
@@ -276,83 +261,23 @@ impl GeoAnchor {
             metres_per_unit: spec.metres_per_unit,
         }
     }
-
-    /// Model units as metres from [`super::spec::DEFAULT_GEO_ORIGIN`] (a design spec has no
-    /// scale).
-    pub fn model_units() -> GeoAnchor {
-        GeoAnchor { origin: super::spec::DEFAULT_GEO_ORIGIN, origin_is_default: true, metres_per_unit: 1.0 }
-    }
-
-    /// A model point as WGS 84 `[longitude, latitude]` degrees: scaled by `metres_per_unit` and
-    /// projected equirectangularly around `origin` (as [`CitySpec::to_wgs84`]).
-    pub fn to_wgs84(&self, p: [f64; 2]) -> [f64; 2] {
-        let [lon0, lat0] = self.origin;
-        let (x, y) = (p[0] * self.metres_per_unit, p[1] * self.metres_per_unit);
-        [lon0 + x / (METRES_PER_DEGREE[0] * lat0.to_radians().cos()), lat0 + y / METRES_PER_DEGREE[1]]
-    }
 }
 
 /// The smoothed streets (and sub-regions) of a city as GeoJSON ([`streets_geojson`] around the
 /// city's anchor, [`GeoAnchor::of_city`]: `geo_origin` or, without one,
 /// [`super::spec::DEFAULT_GEO_ORIGIN`]).
-pub fn geojson(spec: &CitySpec, regions: &[RegionOutcome], major: &[[[f64; 2]; 2]], snakes: &[Snake]) -> String {
-    streets_geojson(&spec.name, &GeoAnchor::of_city(spec), regions, major, snakes)
-}
-
-/// Streets as GeoJSON (RFC 7946), always WGS 84 longitude and latitude
-/// ([`GeoAnchor::to_wgs84`]): the sub-regions (none for a single design), level 1 (`major`, the
-/// major roads and the domain boundary, as given) as one multi-line, then every street (a
-/// polyline with its level); the collection's `properties` say which origin and scale were used.
-pub fn streets_geojson(
-    name: &str,
-    anchor: &GeoAnchor,
-    regions: &[RegionOutcome],
-    major: &[[[f64; 2]; 2]],
-    streets: &[Snake],
-) -> String {
-    let proj = |p: [f64; 2]| anchor.to_wgs84(p);
-    let coords = |pts: &[[f64; 2]]| -> serde_json::Value { pts.iter().map(|&p| serde_json::json!(proj(p))).collect() };
-    let mut features = Vec::new();
-    for r in regions {
-        let mut ring = r.outer.clone();
-        ring.push(r.outer[0]);
-        let mut rings = vec![coords(&ring)];
-        for h in &r.holes {
-            let mut hr = h.clone();
-            hr.push(h[0]);
-            rings.push(coords(&hr));
-        }
-        features.push(serde_json::json!({
-            "type": "Feature",
-            "geometry": { "type": "Polygon", "coordinates": rings },
-            "properties": { "kind": "sub-region", "index": r.index, "name": r.name, "levels": r.levels.iter().map(|l| format!("L{}: {}", l.level, l.state)).collect::<Vec<_>>() },
-        }));
-    }
-    let lines: Vec<serde_json::Value> = major.iter().map(|seg| coords(seg)).collect();
-    features.push(serde_json::json!({
-        "type": "Feature",
-        "geometry": { "type": "MultiLineString", "coordinates": lines },
-        "properties": { "kind": "street", "level": 1, "closed": false, "note": "major roads and the domain boundary, as given" },
-    }));
-    for s in streets {
-        features.push(serde_json::json!({
-            "type": "Feature",
-            "geometry": { "type": "LineString", "coordinates": coords(&s.points) },
-            "properties": { "kind": "street", "level": s.level, "closed": s.closed },
-        }));
-    }
-    let doc = serde_json::json!({
-        "type": "FeatureCollection",
-        "name": name,
-        "properties": {
-            "crs": "WGS 84 longitude, latitude (RFC 7946)",
-            "geo_origin": anchor.origin,
-            "geo_origin_is_default": anchor.origin_is_default,
-            "metres_per_unit": anchor.metres_per_unit,
-        },
-        "features": features,
-    });
-    serde_json::to_string(&doc).expect("GeoJSON serialises") + "\n"
+pub fn geojson(spec: &CitySpec, regions: &[RegionReport], major: &[[[f64; 2]; 2]], snakes: &[Snake]) -> String {
+    let regions: Vec<GeoRegion> = regions
+        .iter()
+        .map(|r| GeoRegion {
+            index: r.index,
+            name: r.name.clone(),
+            outer: r.outer.clone(),
+            holes: r.holes.clone(),
+            levels: r.levels.iter().map(|l| format!("L{}: {}", l.level, l.state)).collect(),
+        })
+        .collect();
+    streets_geojson(&spec.name, &GeoAnchor::of_city(spec), &regions, major, snakes)
 }
 
 /// What the city picture shows ([`crate::render::city`]): sub-regions tinted, streets by level

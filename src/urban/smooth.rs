@@ -21,46 +21,10 @@
 //! stiffness against inertia is `(β/γ)^¼` original edges.
 //!
 //! End points of snakes never move; they are copied bit for bit into the output.
-use crate::mesh::geom::{dist, dot, sub, P};
+use crate::design::streets::{chains, Topology};
+pub use crate::design::streets::{decompose, Snake, StreetEdge, StreetGraph};
+use crate::mesh::geom::{dot, sub, P};
 use serde::{Deserialize, Serialize};
-use std::collections::BTreeSet;
-
-/// A street network drawn on a mesh: positions and undirected edges with a level (1 = major
-/// roads, 2 = collector, 3 = local, 4 = cul-de-sacs).
-#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
-pub struct StreetGraph {
-    /// Vertex positions.
-    pub positions: Vec<[f64; 2]>,
-    /// Undirected edges. Self-loops and edges with unknown vertices are ignored; of duplicate
-    /// edges (either orientation) only the first is kept.
-    pub edges: Vec<StreetEdge>,
-}
-
-/// One street segment between two vertices of a [`StreetGraph`].
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-pub struct StreetEdge {
-    /// One end.
-    pub a: u32,
-    /// The other end.
-    pub b: u32,
-    /// Hierarchy level (1 = major road … 4 = cul-de-sac).
-    pub level: u8,
-}
-
-/// A snake: a chain of edges of one level whose interior vertices have valence 2.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct Snake {
-    /// Level of all its edges.
-    pub level: u8,
-    /// Graph vertices along the chain, in order; closed loops repeat the first at the end.
-    pub vertices: Vec<u32>,
-    /// An isolated cycle (every vertex of valence 2, one level): only its first vertex is fixed.
-    /// A loop hanging from a junction is an open snake whose two ends coincide.
-    pub closed: bool,
-    /// The polyline, starting and ending at the chain's end vertices: from [`decompose`] the
-    /// vertex positions, from [`smooth`] / [`fair`] the subdivided, smoothed points.
-    pub points: Vec<[f64; 2]>,
-}
 
 /// Smoothed snakes plus a summary of the optimisation.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -170,107 +134,6 @@ impl Default for FairOptions {
     fn default() -> Self {
         FairOptions { subdivisions: 4, fairness: 4.0, closeness: 1.0, iterations: 10, junction_tangents: true }
     }
-}
-
-/// Deduplicated edges `(a, b, level)` in order of first occurrence, and adjacency lists
-/// `(edge, other end)` in edge order.
-struct Topology {
-    edges: Vec<(u32, u32, u8)>,
-    adj: Vec<Vec<(usize, u32)>>,
-}
-
-impl Topology {
-    fn new(g: &StreetGraph) -> Self {
-        let n = g.positions.len();
-        let mut seen = BTreeSet::new();
-        let mut edges = Vec::new();
-        let mut adj = vec![Vec::new(); n];
-        for e in &g.edges {
-            let (a, b) = (e.a as usize, e.b as usize);
-            if a == b || a >= n || b >= n || !seen.insert((a.min(b), a.max(b))) {
-                continue;
-            }
-            adj[a].push((edges.len(), e.b));
-            adj[b].push((edges.len(), e.a));
-            edges.push((e.a, e.b, e.level));
-        }
-        Topology { edges, adj }
-    }
-
-    /// A chain cannot pass through `v`: valence ≠ 2, or a level change.
-    fn is_break(&self, v: u32) -> bool {
-        let adj = &self.adj[v as usize];
-        adj.len() != 2 || self.edges[adj[0].0].2 != self.edges[adj[1].0].2
-    }
-
-    /// The vertices after `from` along edge `via` up to a break (or an already used edge).
-    fn walk(&self, used: &mut [bool], from: u32, via: usize) -> Vec<u32> {
-        let (a, b, _) = self.edges[via];
-        let (mut cur, mut e) = (if a == from { b } else { a }, via);
-        let mut out = vec![cur];
-        while !self.is_break(cur) {
-            let &(next, other) = self.adj[cur as usize].iter().find(|&&(x, _)| x != e).unwrap();
-            if used[next] {
-                break;
-            }
-            used[next] = true;
-            (cur, e) = (other, next);
-            out.push(cur);
-        }
-        out
-    }
-
-    /// Mean edge length, or 1 if that is not a positive number.
-    fn length_scale(&self, g: &StreetGraph) -> f64 {
-        let total: f64 =
-            self.edges.iter().map(|&(a, b, _)| dist(g.positions[a as usize], g.positions[b as usize])).sum();
-        let l = total / self.edges.len().max(1) as f64;
-        if l.is_finite() && l > 0.0 {
-            l
-        } else {
-            1.0
-        }
-    }
-}
-
-/// Splits the network into snakes (paper appendix): maximal chains between vertices of valence
-/// ≠ 2, also split where the level changes at a valence-2 vertex; isolated cycles of one level
-/// become one closed snake starting at their lowest vertex id. Every (deduplicated) edge lies in
-/// exactly one snake. Snakes are ordered by their lowest edge index; an open snake runs from its
-/// lower end vertex id to the higher. `points` are the vertex positions.
-pub fn decompose(g: &StreetGraph) -> Vec<Snake> {
-    chains(g, &Topology::new(g))
-}
-
-fn chains(g: &StreetGraph, t: &Topology) -> Vec<Snake> {
-    let mut used = vec![false; t.edges.len()];
-    let mut snakes = Vec::new();
-    for e0 in 0..t.edges.len() {
-        if used[e0] {
-            continue;
-        }
-        used[e0] = true;
-        let (a, b, level) = t.edges[e0];
-        let fwd = t.walk(&mut used, a, e0);
-        let bwd = t.walk(&mut used, b, e0);
-        let mut vs: Vec<u32> = bwd.into_iter().rev().chain(fwd).collect();
-        let n = vs.len();
-        let closed = vs[0] == vs[n - 1] && !t.is_break(vs[0]);
-        if closed {
-            vs.pop();
-            let start = (0..vs.len()).min_by_key(|&i| vs[i]).unwrap();
-            vs.rotate_left(start);
-            if vs[1] > vs[vs.len() - 1] {
-                vs[1..].reverse();
-            }
-            vs.push(vs[0]);
-        } else if vs[0] > vs[n - 1] || (vs[0] == vs[n - 1] && vs[1] > vs[n - 2]) {
-            vs.reverse();
-        }
-        let points = vs.iter().map(|&v| g.positions[v as usize]).collect();
-        snakes.push(Snake { level, vertices: vs, closed, points });
-    }
-    snakes
 }
 
 /// One squared term `c·|Σ a_k q[idx_k] − anchor|²` of a snake energy.
@@ -677,6 +540,7 @@ fn cholesky_solve(a: &mut [f64], n: usize, w: usize, x: &mut [P]) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::mesh::geom::dist;
 
     fn edge(a: u32, b: u32, level: u8) -> StreetEdge {
         StreetEdge { a, b, level }

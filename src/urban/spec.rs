@@ -55,10 +55,7 @@ fn default_scale() -> f64 {
     1.0
 }
 
-/// Where the model origin goes on the globe when a city spec gives no `geo_origin`: longitude 0,
-/// latitude 0 (GeoJSON stays valid WGS 84; GIS tools show the city at the right size, off the
-/// coast of Africa).
-pub const DEFAULT_GEO_ORIGIN: [f64; 2] = [0.0, 0.0];
+pub use crate::design::streets::DEFAULT_GEO_ORIGIN;
 
 /// Metres per degree of longitude at the equator and per degree of latitude (the
 /// equirectangular projection of [`CitySpec::to_wgs84`]).

@@ -385,7 +385,7 @@ impl netspec::solvers::Separator for SubtourSeparator {
     }
 }
 
-/// A row without coefficients that must be ≥ 1 (issue 13: HiGHS called it optimal): no columns
+/// A row without coefficients that must be ≥ 1 (HiGHS once called it optimal): no columns
 /// at all, as in `c: >= 1` in an LP file.
 pub fn empty_row_no_columns() -> Model {
     let mut m = Model::new("empty_row_no_columns");

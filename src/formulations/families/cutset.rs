@@ -24,10 +24,10 @@
 use super::coverage::girth;
 use crate::formulations::expr::Value;
 use crate::formulations::family::{Ctx, Family};
-use crate::spec::Allow;
 use crate::mesh::VertexId;
 use crate::milp::VarId;
 use crate::solvers::{LazyRow, Lock, Separator};
+use crate::spec::Allow;
 use crate::spec::Problem;
 use serde::{Deserialize, Serialize};
 use std::collections::VecDeque;

@@ -45,10 +45,9 @@ impl Family for DistanceFlow {
             let mut ex = Expr::new();
             for h in mesh.edge_half_edges(e) {
                 let head_is_sink = p.is_sink[mesh.he_head(h).index()];
-                let d = c.em.model.add_binary(
-                    format!("H_{}", he_name(mesh, h)),
-                    if head_is_sink { 0.0 } else { lambda * len },
-                );
+                let d =
+                    c.em.model
+                        .add_binary(format!("H_{}", he_name(mesh, h)), if head_is_sink { 0.0 } else { lambda * len });
                 c.vars.half_edge[h.index()] = Some(d);
                 ex.add(d, 1.0);
             }

@@ -72,10 +72,13 @@ pub fn vertex_flow(c: &mut Ctx, prefix: &str, cost: impl Fn(f64) -> f64) -> Vec<
 
 /// Sets a [`vertex_flow`] at the design: every active non-sink vertex sends its unit along a
 /// shortest-path tree (true distances).
-pub fn encode_vertex_flow(e: &Encoding, x: &mut [f64], flow: &[Option<VarId>]) -> Result<(), crate::formulations::EncodeError> {
+pub fn encode_vertex_flow(
+    e: &Encoding,
+    x: &mut [f64],
+    flow: &[Option<VarId>],
+) -> Result<(), crate::formulations::EncodeError> {
     let tree = e.tree()?;
-    let mut supply: Vec<f64> =
-        e.p.mesh.vertices().map(|v| if e.active_non_sink(v) { 1.0 } else { 0.0 }).collect();
+    let mut supply: Vec<f64> = e.p.mesh.vertices().map(|v| if e.active_non_sink(v) { 1.0 } else { 0.0 }).collect();
     e.route(x, flow, &mut supply, &tree, e.travel());
     Ok(())
 }

@@ -88,7 +88,7 @@ impl Family for OutArcs {
                 c.em.ge(format!("out_{}", vname(v)), &ex, 0.0);
             }
         }
-}
+    }
 
     /// Each active non-sink vertex owns the edge to its parent in a shortest-path tree.
     fn encode(&self, e: &Encoding, x: &mut [f64]) -> Result<(), EncodeError> {

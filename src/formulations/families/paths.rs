@@ -29,7 +29,9 @@ pub struct PointToPoint {
 impl PointToPoint {
     /// When the spec has point-to-point pairs.
     pub fn entry(c: &Ctx) -> Option<Box<dyn Family>> {
-        c.path_sets.is_some().then(|| Box::new(PointToPoint { form: c.recipe.paths, vars: Vec::new() }) as Box<dyn Family>)
+        c.path_sets
+            .is_some()
+            .then(|| Box::new(PointToPoint { form: c.recipe.paths, vars: Vec::new() }) as Box<dyn Family>)
     }
 
     /// The path variables, per pair and path, parallel to the formulation's path sets.
@@ -93,8 +95,9 @@ impl Family for PointToPoint {
                 nine.add(pv, 1.0);
             }
             // `Σ ps − carrier ≤ 0`: the carrier (an edge's or a vertex's variable) holds the paths.
-            let carry =
-                |ps: &[VarId], carrier: VarId| ps.iter().map(|&pv| (pv, 1.0)).chain([(carrier, -1.0)]).collect::<Vec<_>>();
+            let carry = |ps: &[VarId], carrier: VarId| {
+                ps.iter().map(|&pv| (pv, 1.0)).chain([(carrier, -1.0)]).collect::<Vec<_>>()
+            };
             for (e, (x, ps)) in &through {
                 c.em.model.add_le(format!("p2p8_p{pi}_e{}", e.0), carry(ps, *x), 0.0);
             }

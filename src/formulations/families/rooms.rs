@@ -198,7 +198,13 @@ impl Family for Rooms {
 /// twice, `Σ crossings ≥ 2R` (`levelenter_…`): its active inner edges are paths (no branches)
 /// with no end inside (no dead-ends) and no cycle (a cycle inside would hold no sink), so each
 /// path has both ends on the boundary.
-fn level_shape(c: &mut Ctx, rooms: &RoomsSpec, report: &PlacementReport, vars: &[VarId], strong: bool) -> Vec<Crossing> {
+fn level_shape(
+    c: &mut Ctx,
+    rooms: &RoomsSpec,
+    report: &PlacementReport,
+    vars: &[VarId],
+    strong: bool,
+) -> Vec<Crossing> {
     let mut crossings = Vec::new();
     let p = c.p;
     let mesh = &p.mesh;
@@ -225,7 +231,12 @@ fn level_shape(c: &mut Ctx, rooms: &RoomsSpec, report: &PlacementReport, vars: &
                 _ => {
                     let outs: Vec<EdgeId> = mesh.incident_edges(v).filter(|e| !own.contains(e)).collect();
                     let x = c.em.model.add_continuous(format!("X_{k}_v{}", v.0), 0.0, 2.0, 0.0);
-                    crossings.push(Crossing { var: x, inner: ins.clone(), outer: outs.clone(), sink: p.is_sink[v.index()] });
+                    crossings.push(Crossing {
+                        var: x,
+                        inner: ins.clone(),
+                        outer: outs.clone(),
+                        sink: p.is_sink[v.index()],
+                    });
                     let mut cross = Expr::new();
                     cross.add(x, 1.0);
                     for &e in &ins {

@@ -165,7 +165,7 @@ impl Default for WriteOptions {
 
 /// Reads a model in CPLEX LP format (see the [module documentation](self) for the accepted
 /// syntax).
-pub fn read_str(text: &str) -> Result<crate::io::ReadOutcome, ParseError> {
+pub fn read_str(text: &str) -> Result<crate::io::ReadModel, ParseError> {
     read::read_str(text)
 }
 

@@ -3,7 +3,7 @@
 use super::lexer::{Cmp, Directive, Lexer, Tok, Token};
 use super::names::{keyword, value_word, Keyword, ValueWord};
 use super::{ParseError, ParseErrorKind, MAX_WARNINGS};
-use crate::io::{ReadOutcome, Warning};
+use crate::io::{ReadModel, Warning};
 use crate::milp::{Model, RowId, Sense, VarId, VarKind};
 use std::collections::HashMap;
 use std::hash::{BuildHasherDefault, Hasher};
@@ -174,7 +174,7 @@ struct Parser<'a> {
 }
 
 /// Reads an LP file.
-pub(super) fn read_str(text: &str) -> Result<ReadOutcome, ParseError> {
+pub(super) fn read_str(text: &str) -> Result<ReadModel, ParseError> {
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let eof = Token { tok: Tok::Eof, line: 1, idx: 0 };
     let mut p = Parser {
@@ -1014,7 +1014,7 @@ impl<'a> Parser<'a> {
 
     // ----- the end -----
 
-    fn finish(mut self) -> ReadOutcome {
+    fn finish(mut self) -> ReadModel {
         // Integrality.
         for j in 0..self.flags.len() {
             if self.flags[j] & (GENERAL | BINARY) == GENERAL {
@@ -1080,6 +1080,6 @@ impl<'a> Parser<'a> {
             let n = self.dropped_warnings;
             self.warnings.push(Warning { line: 0, message: format!("{n} more warnings not shown") });
         }
-        ReadOutcome { model: self.model, warnings: self.warnings }
+        ReadModel { model: self.model, warnings: self.warnings }
     }
 }

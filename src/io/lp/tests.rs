@@ -6,7 +6,7 @@ use proptest::prelude::*;
 
 const INF: f64 = f64::INFINITY;
 
-fn read(text: &str) -> crate::io::ReadOutcome {
+fn read(text: &str) -> crate::io::ReadModel {
     match read_str(text) {
         Ok(o) => o,
         Err(e) => panic!("unexpected error: {e}\n--- input ---\n{text}"),

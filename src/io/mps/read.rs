@@ -2,7 +2,7 @@
 
 use super::names::{make_unique, FxHashMap};
 use super::{ParseError, ParseErrorKind, BINARY_COMMENT_PREFIX, NEGATED_MAX_COMMENT, RANGE_COMMENT_PREFIX};
-use crate::io::{ReadOutcome, Warning};
+use crate::io::{ReadModel, Warning};
 use crate::milp::{Model, Sense, VarId, VarKind};
 
 /// Values with at least this magnitude in RHS, RANGES and BOUNDS are infinite.
@@ -16,13 +16,13 @@ const MAX_FIELDS: usize = 7;
 
 /// Reads an MPS model from text: free format first, fixed format as a fallback (see the module
 /// documentation). Never panics.
-pub fn read_str(text: &str) -> Result<ReadOutcome, ParseError> {
+pub fn read_str(text: &str) -> Result<ReadModel, ParseError> {
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     match Parser::new(Mode::Free).run(text) {
-        Ok(outcome) => Ok(outcome),
+        Ok(read) => Ok(read),
         Err(free_err) if fixed_may_help(&free_err.kind) => match Parser::new(Mode::Fixed).run(text) {
-            Ok(mut outcome) => {
-                outcome.warnings.insert(
+            Ok(mut read) => {
+                read.warnings.insert(
                     0,
                     Warning {
                         line: free_err.line,
@@ -32,7 +32,7 @@ pub fn read_str(text: &str) -> Result<ReadOutcome, ParseError> {
                         ),
                     },
                 );
-                Ok(outcome)
+                Ok(read)
             }
             Err(_) => Err(free_err),
         },
@@ -341,7 +341,7 @@ impl<'a> Parser<'a> {
         self.warnings.push(Warning { line, message });
     }
 
-    fn run(mut self, text: &'a str) -> Result<ReadOutcome, ParseError> {
+    fn run(mut self, text: &'a str) -> Result<ReadModel, ParseError> {
         // A rough size hint: one nonzero per ~20 bytes.
         let hint = text.len() / 24;
         self.entry_row.reserve(hint);
@@ -369,12 +369,12 @@ impl<'a> Parser<'a> {
                     None => (line, ""),
                 };
                 match self.header(word, rest, line_no)? {
-                    HeaderOutcome::Handled => continue,
-                    HeaderOutcome::End => {
+                    HeaderRead::Handled => continue,
+                    HeaderRead::End => {
                         ended = true;
                         break;
                     }
-                    HeaderOutcome::NotHeader => {}
+                    HeaderRead::NotHeader => {}
                 }
             } else {
                 let trimmed = line.trim_start_matches([' ', '\t']);
@@ -441,7 +441,7 @@ impl<'a> Parser<'a> {
         }
     }
 
-    fn header(&mut self, word: &'a str, rest: &'a str, line_no: usize) -> Result<HeaderOutcome, ParseError> {
+    fn header(&mut self, word: &'a str, rest: &'a str, line_no: usize) -> Result<HeaderRead, ParseError> {
         let section = match word {
             "NAME" => Section::Name,
             "OBJSENSE" => Section::ObjSense,
@@ -453,7 +453,7 @@ impl<'a> Parser<'a> {
             "BOUNDS" => Section::Bounds,
             "ENDATA" => {
                 self.leave_section(line_no);
-                return Ok(HeaderOutcome::End);
+                return Ok(HeaderRead::End);
             }
             w if UNSUPPORTED_SECTIONS.contains(&w) => {
                 return Err(err(line_no, ParseErrorKind::UnsupportedSection(w.to_string())));
@@ -461,7 +461,7 @@ impl<'a> Parser<'a> {
             _ if self.section == Section::None || self.section == Section::Name => {
                 return Err(err(line_no, ParseErrorKind::ExpectedSection(truncate(word, 40))));
             }
-            _ => return Ok(HeaderOutcome::NotHeader),
+            _ => return Ok(HeaderRead::NotHeader),
         };
         if self.seen & section.bit() != 0 {
             return Err(err(line_no, ParseErrorKind::DuplicateSection(section.label().to_string())));
@@ -508,7 +508,7 @@ impl<'a> Parser<'a> {
             }
             _ => {}
         }
-        Ok(HeaderOutcome::Handled)
+        Ok(HeaderRead::Handled)
     }
 
     /// Called when a section ends.
@@ -955,7 +955,7 @@ impl<'a> Parser<'a> {
     }
 
     /// Builds the model once the whole file is read.
-    fn build(mut self, last_line: usize) -> Result<ReadOutcome, ParseError> {
+    fn build(mut self, last_line: usize) -> Result<ReadModel, ParseError> {
         let nrows = self.row_names.len();
         let ncols = self.cols.len();
         self.rhs.resize(nrows, 0.0);
@@ -1133,11 +1133,11 @@ impl<'a> Parser<'a> {
                 v.obj = -v.obj;
             }
         }
-        Ok(ReadOutcome { model, warnings: self.warnings })
+        Ok(ReadModel { model, warnings: self.warnings })
     }
 }
 
-enum HeaderOutcome {
+enum HeaderRead {
     Handled,
     End,
     NotHeader,

@@ -1,14 +1,14 @@
 //! Unit and property tests of the MPS reader and writer.
 
 use super::*;
-use crate::io::ReadOutcome;
+use crate::io::ReadModel;
 use crate::milp::{RowId, RowKind, Sense, VarId, VarKind};
 use proptest::prelude::*;
 use std::path::PathBuf;
 
 const INF: f64 = f64::INFINITY;
 
-fn read(text: &str) -> ReadOutcome {
+fn read(text: &str) -> ReadModel {
     match read_str(text) {
         Ok(o) => o,
         Err(e) => panic!("unexpected parse error: {e}\n{text}"),

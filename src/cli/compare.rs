@@ -1,0 +1,131 @@
+//! `netspec compare`: runs [`netspec::compare::run_all`] and writes its report, printing each
+//! run as it ends.
+
+use anyhow::{bail, Context, Result};
+use netspec::compare::{CompareSettings, Manifest, RunSource};
+use netspec::pipeline::Method;
+use netspec::solvers::SolverKind;
+use netspec::spec::Variant;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+/// The command line of a comparison.
+pub struct CompareArgs {
+    pub specs: Vec<PathBuf>,
+    pub manifest: Option<PathBuf>,
+    pub solvers: Vec<Method>,
+    pub time_limit: f64,
+    pub grace: f64,
+    pub seeds: Vec<u64>,
+    pub threads: Option<u32>,
+    pub paper_limits: bool,
+    pub formulations: Vec<Variant>,
+    pub rows: Vec<String>,
+    pub no_start: bool,
+    pub out: PathBuf,
+}
+
+fn command() -> Vec<String> {
+    std::env::args().collect()
+}
+
+/// Combines finished comparisons into one report.
+pub fn merge(dirs: &[PathBuf], manifest: Option<&Path>, rows: &[String], out: &Path) -> Result<ExitCode> {
+    let manifest =
+        manifest.map(|m| Manifest::load(m).and_then(|m| m.select(rows))).transpose().map_err(anyhow::Error::msg)?;
+    let merged = netspec::compare::merge(dirs, manifest).map_err(anyhow::Error::msg)?;
+    let from: Vec<String> = dirs.iter().map(|d| format!("`{}`", d.display())).collect();
+    let settings = serde_json::json!({ "manifest": merged.manifest, "time_limit": merged.time_limit, "merged_from": merged.sources });
+    let md = netspec::compare::write_report(
+        out,
+        &merged.manifest,
+        &merged.records,
+        &merged.columns,
+        merged.time_limit,
+        &format!("merged from {}", from.join(", ")),
+        &command(),
+        settings,
+    )
+    .map_err(anyhow::Error::msg)?;
+    print!("{md}");
+    Ok(ExitCode::SUCCESS)
+}
+
+/// Runs a comparison.
+pub fn run(a: CompareArgs) -> Result<ExitCode> {
+    let manifest = match &a.manifest {
+        Some(m) => Manifest::load(m).map_err(anyhow::Error::msg)?,
+        None => Manifest::from_specs(&a.specs),
+    };
+    let manifest = manifest.select(&a.rows).map_err(anyhow::Error::msg)?;
+    let solvers: Vec<String> = if a.solvers.is_empty() {
+        SolverKind::compiled().into_iter().filter(|k| *k != SolverKind::GoodLp).map(|k| k.name().to_string()).collect()
+    } else {
+        a.solvers.iter().map(|k| k.name().to_string()).collect()
+    };
+    for (flag, v) in [("--time-limit", a.time_limit), ("--grace", a.grace)] {
+        if v.is_nan() || v < 0.0 {
+            bail!("{flag} must be a number of seconds ≥ 0, got {v}");
+        }
+    }
+    if a.threads == Some(0) {
+        bail!("--threads must be ≥ 1, got 0");
+    }
+    let interrupt = Some(super::interrupt::install()?);
+    let formulations: Vec<String> = a.formulations.iter().map(|f| f.to_string()).collect();
+    let settings = CompareSettings {
+        manifest,
+        solvers,
+        formulations,
+        time_limit: a.time_limit,
+        grace: a.grace,
+        seeds: a.seeds,
+        threads: a.threads,
+        paper_limits: a.paper_limits,
+        no_start: a.no_start,
+        interrupt,
+    };
+    // The columns of every table and chart: a backend, or a (backend, formulation) pair.
+    let columns: Vec<String> = settings.methods().into_iter().map(|(label, _, _)| label).collect();
+    std::fs::create_dir_all(&a.out).with_context(|| format!("creating {}", a.out.display()))?;
+    let exe = std::env::current_exe().context("locating the netspec binary")?;
+    let records = netspec::compare::run_all(&exe, &settings, &a.out, |r, source| {
+        println!(
+            "{:<24} {:<14} {:<16} {:>8.2} s {}{}",
+            r.instance,
+            r.solver,
+            r.status,
+            r.wall_time,
+            if r.valid { "valid" } else { "-" },
+            match source {
+                RunSource::Solved => String::new(),
+                RunSource::Resumed => " (resumed)".into(),
+                RunSource::Rerun(why) => format!(" (solved again: {})", why.join(", ")),
+            }
+        );
+    })
+    .with_context(|| format!("running the comparison into {}", a.out.display()))?;
+    let what = format!(
+        "time limit {} s{}, grace {} s",
+        a.time_limit,
+        if a.paper_limits { " (each row at most the paper's time for it)" } else { "" },
+        a.grace
+    );
+    let md = netspec::compare::write_report(
+        &a.out,
+        &settings.manifest,
+        &records,
+        &columns,
+        a.time_limit,
+        &what,
+        &command(),
+        serde_json::to_value(&settings)?,
+    )
+    .map_err(anyhow::Error::msg)?;
+    print!("\n{md}");
+    if settings.interrupt.as_ref().is_some_and(|i| i.is_triggered()) {
+        println!("interrupted: the runs recorded above are kept; rerun to resume");
+        return Ok(ExitCode::from(super::interrupt::EXIT_INTERRUPTED));
+    }
+    Ok(ExitCode::SUCCESS)
+}
