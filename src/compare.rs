@@ -981,19 +981,28 @@ pub fn bar_chart_svg(manifest: &Manifest, records: &[RunRecord], solvers: &[Stri
     })
 }
 
+/// What a comparison's report is made of ([`write_report`]).
+pub struct Report<'a> {
+    /// The rows.
+    pub manifest: &'a Manifest,
+    /// Every run's record.
+    pub records: &'a [RunRecord],
+    /// The columns (a backend, or a backend and a formulation).
+    pub columns: &'a [String],
+    /// The time limit (the longest, when rows had their own).
+    pub time_limit: f64,
+    /// The runs, for the header (`time limit 60 s, grace 10 s`).
+    pub what: &'a str,
+    /// The command line that made them.
+    pub command: &'a [String],
+    /// Stored in `results.json`.
+    pub settings: serde_json::Value,
+}
+
 /// Writes a comparison's reports to `out` (`results.md`, `.csv`, `.json`, `profile.svg`,
-/// `bars.svg`) and returns the Markdown table. `what` describes the runs for the header,
-/// `command` is the command line that made them, and `settings` is stored in `results.json`.
-pub fn write_report(
-    out: &Path,
-    manifest: &Manifest,
-    records: &[RunRecord],
-    columns: &[String],
-    time_limit: f64,
-    what: &str,
-    command: &[String],
-    settings: serde_json::Value,
-) -> Result<String, String> {
+/// `bars.svg`) and returns the Markdown table.
+pub fn write_report(out: &Path, r: Report) -> Result<String, String> {
+    let Report { manifest, records, columns, time_limit, what, command, settings } = r;
     std::fs::create_dir_all(out).map_err(|e| format!("creating {}: {e}", out.display()))?;
     let summary = summarize(records, columns, time_limit);
     let md = markdown(manifest, records, columns, &summary);

@@ -403,8 +403,13 @@ fn milp(
     run: &Run,
     on: &mut dyn FnMut(Event),
 ) -> Result<DesignResult, RunError> {
-    let o = &run.options;
-    let from = match kind.instance()?.capabilities().mip_start {
+    let caps = kind.instance()?.capabilities();
+    let mut o = run.options.clone();
+    if !caps.reports_progress {
+        o.progress = None;
+    }
+    let o = &o;
+    let from = match caps.mip_start {
         true => match pipeline::start_for(p, f, &run.start, o.seed.unwrap_or(0), o.heuristic_threads()) {
             Some((point, report)) => StartFrom::Prepared { point, report },
             None => run.start.clone(),
@@ -432,7 +437,8 @@ fn search(
     {
         if set {
             return Err(RunError::Unsupported(format!(
-                "option `{name}` is not supported by the {} search: it has no bound and no nodes",
+                "option `--{}` is not supported by the {} search (nor `solver.{name}` in a spec): it has no bound and no nodes",
+                name.replace('_', "-"),
                 method.name()
             )));
         }

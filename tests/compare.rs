@@ -59,7 +59,7 @@ fn compare_runs_tables_and_resumes() {
     assert_eq!(profile.matches(r#"class="profile""#).count(), backends.len(), "one curve per backend");
     // Everything solved: every curve ends at 100 % (y = top of the plot, 30).
     for line in profile.lines().filter(|l| l.contains(r#"class="profile""#)) {
-        let last = line.split("points=\"").nth(1).unwrap().split('"').next().unwrap().split(' ').last().unwrap();
+        let last = line.split("points=\"").nth(1).unwrap().split('"').next().unwrap().split(' ').next_back().unwrap();
         assert!(last.ends_with(",30.0"), "{line}");
     }
     // The bar chart: one group per instance, one bar per (instance, backend), all solved.

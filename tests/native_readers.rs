@@ -11,14 +11,14 @@ use std::path::Path;
 type NativeReader = fn(&Path) -> Result<(Termination, Option<f64>), netspec::solvers::SolverError>;
 
 fn readers() -> Vec<(&'static str, NativeReader)> {
-    let mut v: Vec<(&'static str, NativeReader)> = Vec::new();
-    #[cfg(feature = "highs")]
-    v.push(("highs", netspec::solvers::highs::solve_file_with_native_reader));
-    #[cfg(feature = "cbc")]
-    v.push(("cbc", netspec::solvers::cbc::solve_file_with_native_reader));
-    #[cfg(feature = "scip")]
-    v.push(("scip", netspec::solvers::scip::solve_file_with_native_reader));
-    v
+    vec![
+        #[cfg(feature = "highs")]
+        ("highs", netspec::solvers::highs::solve_file_with_native_reader as NativeReader),
+        #[cfg(feature = "cbc")]
+        ("cbc", netspec::solvers::cbc::solve_file_with_native_reader as NativeReader),
+        #[cfg(feature = "scip")]
+        ("scip", netspec::solvers::scip::solve_file_with_native_reader as NativeReader),
+    ]
 }
 
 fn models_to_check() -> Vec<(Model, f64)> {

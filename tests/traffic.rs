@@ -424,10 +424,14 @@ fn cli_compares_designs_and_solve_writes_geojson() {
     }
 }
 
-/// The version the library names is the one scripts/setup.sh installs.
+/// The version the library names is the one scripts/setup.sh installs (pinned in
+/// scripts/requirements.txt).
 #[test]
 fn setup_installs_the_named_sumo_version() {
-    let setup = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("scripts/setup.sh")).unwrap();
-    let line = setup.lines().find(|l| l.starts_with("SUMO_VERSION=")).unwrap();
-    assert_eq!(line.trim_start_matches("SUMO_VERSION="), netspec::traffic::sumo::SETUP_SUMO_VERSION);
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let pins = std::fs::read_to_string(root.join("scripts/requirements.txt")).unwrap();
+    let line = pins.lines().find(|l| l.starts_with("eclipse-sumo==")).unwrap();
+    assert_eq!(line.trim_start_matches("eclipse-sumo==").trim(), netspec::traffic::sumo::SETUP_SUMO_VERSION);
+    let setup = std::fs::read_to_string(root.join("scripts/setup.sh")).unwrap();
+    assert!(setup.contains("SUMO_VERSION=$(pinned eclipse-sumo)"), "setup.sh reads the pin");
 }

@@ -2,7 +2,7 @@
 //! run as it ends.
 
 use anyhow::{bail, Context, Result};
-use netspec::compare::{CompareSettings, Manifest, RunSource};
+use netspec::compare::{CompareSettings, Manifest, Report, RunSource};
 use netspec::pipeline::Method;
 use netspec::solvers::SolverKind;
 use netspec::spec::Variant;
@@ -38,13 +38,15 @@ pub fn merge(dirs: &[PathBuf], manifest: Option<&Path>, rows: &[String], out: &P
     let settings = serde_json::json!({ "manifest": merged.manifest, "time_limit": merged.time_limit, "merged_from": merged.sources });
     let md = netspec::compare::write_report(
         out,
-        &merged.manifest,
-        &merged.records,
-        &merged.columns,
-        merged.time_limit,
-        &format!("merged from {}", from.join(", ")),
-        &command(),
-        settings,
+        Report {
+            manifest: &merged.manifest,
+            records: &merged.records,
+            columns: &merged.columns,
+            time_limit: merged.time_limit,
+            what: &format!("merged from {}", from.join(", ")),
+            command: &command(),
+            settings,
+        },
     )
     .map_err(anyhow::Error::msg)?;
     print!("{md}");
@@ -113,13 +115,15 @@ pub fn run(a: CompareArgs) -> Result<ExitCode> {
     );
     let md = netspec::compare::write_report(
         &a.out,
-        &settings.manifest,
-        &records,
-        &columns,
-        a.time_limit,
-        &what,
-        &command(),
-        serde_json::to_value(&settings)?,
+        Report {
+            manifest: &settings.manifest,
+            records: &records,
+            columns: &columns,
+            time_limit: a.time_limit,
+            what: &what,
+            command: &command(),
+            settings: serde_json::to_value(&settings)?,
+        },
     )
     .map_err(anyhow::Error::msg)?;
     print!("\n{md}");

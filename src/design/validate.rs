@@ -195,12 +195,9 @@ pub fn validate(p: &Problem, net: &Network, paths: Option<&PathSets>) -> Vec<Vio
             has_sink[comp[v.index()]] = true;
         }
     }
-    for c in 0..ncomp {
-        if !has_sink[c] {
-            let edges =
-                net.active_edges().into_iter().filter(|&e| comp[mesh.edge_vertices(e).0.index()] == c).collect();
-            out.push(Violation::Island { edges });
-        }
+    for (c, _) in has_sink.iter().enumerate().filter(|(_, &s)| !s) {
+        let edges = net.active_edges().into_iter().filter(|&e| comp[mesh.edge_vertices(e).0.index()] == c).collect();
+        out.push(Violation::Island { edges });
     }
 
     // 2. Coverage, by BFS from the active vertices (hops) or by distance (Euclidean). Room

@@ -151,7 +151,7 @@ pub(crate) fn construct<'a>(
         }
     }
     let mut corridors: Option<Vec<bool>> = None;
-    if rooms_spec.mode == RoomMode::Floorplan && attempt % 2 == 0 {
+    if rooms_spec.mode == RoomMode::Floorplan && attempt.is_multiple_of(2) {
         let range = [2.0, 3.0][(attempt / 2 % 2) as usize];
         // Every other time rooms need not touch a corridor yet (the rule steps add one).
         let touch = attempt % 8 < 4;
@@ -449,8 +449,11 @@ struct Routes<'r, 'a> {
     scratch: State,
     ps: PathSearch,
     rng: Rng,
-    cache: HashMap<(usize, VertexId, VertexId, Option<VertexId>), Option<(f64, Vec<EdgeId>)>>,
+    cache: HashMap<RouteKey, Option<(f64, Vec<EdgeId>)>>,
 }
+
+/// A cached route: block, from, to, and the vertex it must avoid.
+type RouteKey = (usize, VertexId, VertexId, Option<VertexId>);
 
 impl Routes<'_, '_> {
     /// The route in block `b` from `a` to `z` (through `via` if given): its cost and edges.

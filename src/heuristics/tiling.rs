@@ -151,11 +151,9 @@ pub(crate) fn tile(tp: &TilingProblem, seed: u64, node_limit: u64) -> Option<Vec
     // Columns: one per face to cover.
     let mut col_of_face = vec![usize::MAX; nf];
     let mut ncols = 0;
-    for f in 0..nf {
-        if tp.cover[f] {
-            ncols += 1;
-            col_of_face[f] = ncols;
-        }
+    for (f, _) in tp.cover.iter().enumerate().filter(|(_, &c)| c) {
+        ncols += 1;
+        col_of_face[f] = ncols;
     }
     let ntemplates = tp.counts.len();
     let mut area = vec![0usize; ntemplates];

@@ -76,7 +76,7 @@ pub fn enumerate_path_sets(p: &Problem) -> PathSets {
             members[part[f.index()] as usize].extend(mesh.face_vertices(f).iter().copied());
         }
     }
-    let mut rng = pp.seed ^ 0x6E65_7473_7065_63; // "netspec"
+    let mut rng = pp.seed ^ 0x006E_6574_7370_6563; // "netspec"
     let mut samples = Vec::new();
     for (k, vs) in members.iter().enumerate() {
         let ok: Vec<VertexId> =

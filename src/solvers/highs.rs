@@ -183,7 +183,7 @@ unsafe extern "C" fn callback(
     // (HiGHS calls back from its main search thread).
     let (out, state) = unsafe { (&*out, &mut *(data as *mut CallbackState)) };
     if kind == sys::kHighsCallbackCallbackMipUserSolution as std::os::raw::c_int {
-        if START_QUERY_ORIGINS.contains(&(out.external_solution_query_origin as i32)) {
+        if START_QUERY_ORIGINS.contains(&{ out.external_solution_query_origin }) {
             if let (Some(x), false) = (state.start.take(), data_in.is_null()) {
                 // SAFETY: a valid input block in a user-solution callback; `x` has one value per column.
                 // The C wrapper copies the C block back into HiGHS's input after the call, so the

@@ -542,7 +542,7 @@ impl Spec {
         if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("json")) {
             serde_json::from_str(&text).map_err(|e| err(e.into()))
         } else {
-            Spec::from_toml(&text).map_err(|k| err(k))
+            Spec::from_toml(&text).map_err(err)
         }
     }
 

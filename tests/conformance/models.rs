@@ -257,9 +257,12 @@ pub fn multi_knapsack(n: usize, k: usize, seed: u64) -> Model {
     m
 }
 
+/// An edge of a tour model: its two cities and its variable.
+pub type TourEdge = (usize, usize, VarId);
+
 /// Six cities in two far-apart triangles; `x_e` per pair with the distance as cost; degree 2 at
 /// every city. Returns the model, the edges (i, j, var) and the cities.
-pub fn two_cluster_tour() -> (Model, Vec<(usize, usize, VarId)>, Vec<[f64; 2]>) {
+pub fn two_cluster_tour() -> (Model, Vec<TourEdge>, Vec<[f64; 2]>) {
     let cities = vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.5], [10.0, 0.0], [11.0, 0.5], [10.0, 2.0]];
     let mut m = Model::new("two_cluster_tour");
     let mut edges = Vec::new();

@@ -419,8 +419,11 @@ pub struct CutsetSeparator<'a> {
     pub max_fractional_rows: usize,
     /// Cap on the cover cutsets returned per fractional call (beside the rows above).
     pub max_group_rows: usize,
-    repair: Option<Box<dyn FnMut(&[f64]) -> Option<Vec<f64>> + 'a>>,
+    repair: Option<Repair<'a>>,
 }
+
+/// A function that turns a disconnected integral point into a feasible one, if it can.
+pub type Repair<'a> = Box<dyn FnMut(&[f64]) -> Option<Vec<f64>> + 'a>;
 
 impl<'a> CutsetSeparator<'a> {
     /// A separator over `graph`.
@@ -431,7 +434,7 @@ impl<'a> CutsetSeparator<'a> {
 
     /// Sets the function that turns a disconnected integral point into a feasible one (used by
     /// the solve–cut–resolve loop for its next start).
-    pub fn with_repair(mut self, f: Box<dyn FnMut(&[f64]) -> Option<Vec<f64>> + 'a>) -> Self {
+    pub fn with_repair(mut self, f: Repair<'a>) -> Self {
         self.repair = Some(f);
         self
     }
