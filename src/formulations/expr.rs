@@ -45,6 +45,34 @@ impl Expr {
     pub fn is_constant(&self) -> bool {
         self.terms.is_empty()
     }
+
+    /// The terms with every variable once: repeated variables merged at their first place,
+    /// coefficients summed (a game level's crossing count holds an inner edge twice when both its
+    /// ends are on the block's boundary). Terms that cancel to zero stay, with coefficient 0.
+    pub fn merged_terms(&self) -> Vec<(VarId, f64)> {
+        let n = self.terms.len();
+        let repeated = if n <= 16 {
+            (0..n).any(|i| self.terms[..i].iter().any(|t| t.0 == self.terms[i].0))
+        } else {
+            let mut seen = std::collections::HashSet::with_capacity(n);
+            !self.terms.iter().all(|t| seen.insert(t.0))
+        };
+        if !repeated {
+            return self.terms.clone();
+        }
+        let mut out: Vec<(VarId, f64)> = Vec::with_capacity(n);
+        let mut at: std::collections::HashMap<VarId, usize> = std::collections::HashMap::with_capacity(n);
+        for &(v, a) in &self.terms {
+            match at.get(&v) {
+                Some(&k) => out[k].1 += a,
+                None => {
+                    at.insert(v, out.len());
+                    out.push((v, a));
+                }
+            }
+        }
+        out
+    }
 }
 
 /// A quantity that is a variable or a constant.
@@ -93,7 +121,7 @@ impl Emitter {
 
     /// Adds `lo ≤ expr ≤ hi`, moving the constant to the sides.
     pub fn row(&mut self, name: String, lo: f64, e: &Expr, hi: f64) -> RowId {
-        self.model.add_row(name, lo - e.constant, hi - e.constant, e.terms.iter().copied())
+        self.model.add_row(name, lo - e.constant, hi - e.constant, e.merged_terms())
     }
 
     /// Adds `expr ≤ hi`.
