@@ -75,6 +75,9 @@ impl SolveReport {
         let num = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.10}"));
         let _ = writeln!(s, "model      {} ({})", self.source, self.model_stats);
         let _ = writeln!(s, "solver     {} {}", r.solver, r.solver_version);
+        for w in &r.warnings {
+            let _ = writeln!(s, "warning    {w}");
+        }
         if let Some(st) = &r.mip_start {
             if st.accepted {
                 let _ = writeln!(

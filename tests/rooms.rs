@@ -496,7 +496,11 @@ fn every_generated_tiling_builds_a_valid_model() {
         };
         let mut sinks: Vec<u64> = (0..want).map(|_| next(w + 1)).collect();
         sinks.dedup();
-        let level = if game { ["", "level = \"branching\"\n", "level = \"linear\"\n", "level = \"circular\"\n"][level] } else { "" };
+        let level = if game {
+            ["", "level = \"branching\"\n", "level = \"linear\"\n", "level = \"circular\"\n"][level]
+        } else {
+            ""
+        };
         let text = format!(
             "name = \"gen\"\nboundary = \"wall\"\n[mesh]\ngrid = {{ width = {w}, height = {h} }}\n[sinks]\nvertices = {sinks:?}\n[rooms]\nmode = \"{}\"\n{level}max_placements = 2000\ntemplates = [{}]\n",
             if game { "game" } else { "floorplan" },
@@ -535,8 +539,13 @@ templates = [ { name = "b", shape = "L 3x2", max = 2 } ]
     );
     let f = pipeline::build(&p);
     f.model.validate().unwrap();
-    let r = pipeline::solve_built(&p, &f, SolverKind::Highs, &SolveOptions { time_limit: Some(30.0), ..Default::default() })
-        .unwrap();
+    let r = pipeline::solve_built(
+        &p,
+        &f,
+        SolverKind::Highs,
+        &SolveOptions { time_limit: Some(30.0), ..Default::default() },
+    )
+    .unwrap();
     assert!(matches!(r.solve.termination, Termination::Optimal | Termination::Infeasible), "{}", r.solve.status_line());
     assert!(r.network.is_none() || r.validity.valid, "{:?}", r.validity);
 }

@@ -160,6 +160,9 @@ fn print_milp(r: &DesignResult, verdict: &str) {
     let s = &r.solve;
     let num = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.6}"));
     println!("solver     {} {}", s.solver, s.solver_version);
+    for w in &s.warnings {
+        println!("warning    {w}");
+    }
     println!("status     {}", status_line(r));
     println!("objective  {}", num(s.objective));
     println!("bound      {}", num(s.dual_bound));

@@ -67,6 +67,7 @@ use super::{
     guarded_solve, Capabilities, LimitKind, LogTarget, SolveOptions, SolveResult, Solver, SolverError, SolverErrorKind,
     SolverKind, Termination,
 };
+use crate::milp::NumericLimits;
 use crate::milp::{Model, Sense};
 use coin_cbc::raw::Model as CbcModel;
 use coin_cbc_sys as sys;
@@ -369,6 +370,7 @@ impl Solver for CbcSolver {
             lazy_constraints: false,
             interrupt: true,
             raw_params: true,
+            numeric: NumericLimits::uniform(1e20, Some(1e30)),
         }
     }
 

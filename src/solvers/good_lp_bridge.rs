@@ -34,6 +34,7 @@
 use super::{
     preflight, Capabilities, LimitKind, SolveOptions, SolveResult, Solver, SolverError, SolverKind, Termination,
 };
+use crate::milp::NumericLimits;
 use crate::milp::{Model, RowKind, Sense};
 use good_lp::{variable, Expression, ProblemVariables, ResolutionError, Solution, SolutionStatus, SolverModel};
 use std::time::Instant;
@@ -65,6 +66,7 @@ fn capabilities() -> Capabilities {
         lazy_constraints: false,
         interrupt: false,
         raw_params: false,
+        numeric: NumericLimits::uniform(1e20, None),
     }
 }
 

@@ -9,6 +9,7 @@ use super::{
     guarded_solve, Capabilities, LazyRow, LimitKind, LogTarget, LpSession, Progress, ProgressSink, RawParam,
     SolveOptions, SolveResult, Solver, SolverError, SolverErrorKind, SolverKind, StrategyHints, Termination,
 };
+use crate::milp::NumericLimits;
 use crate::milp::{Model, Sense};
 use highs_sys as sys;
 use std::ffi::{CStr, CString};
@@ -335,6 +336,7 @@ impl Solver for HighsSolver {
             lazy_constraints: false,
             interrupt: true,
             raw_params: true,
+            numeric: NumericLimits { max_matrix: 1e15, max_objective: 1e20, infinity: Some(1e20) },
         }
     }
 

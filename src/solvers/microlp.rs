@@ -31,6 +31,7 @@ use super::{
     guarded_solve, Capabilities, LimitKind, SolveOptions, SolveResult, Solver, SolverError, SolverErrorKind,
     SolverKind, Termination,
 };
+use crate::milp::NumericLimits;
 use crate::milp::{Model, RowKind, Sense, VarKind};
 use microlp::{ComparisonOp, OptimizationDirection, Problem, Variable};
 use std::time::Duration;
@@ -169,6 +170,7 @@ impl Solver for MicrolpSolver {
             lazy_constraints: false,
             interrupt: true,
             raw_params: false,
+            numeric: NumericLimits::uniform(1e20, None),
         }
     }
 

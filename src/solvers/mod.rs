@@ -18,6 +18,7 @@ pub mod scip;
 #[cfg(feature = "scip")]
 mod scip_lazy;
 
+mod guard;
 pub mod lattice;
 pub mod lazy;
 mod options;
@@ -158,20 +159,22 @@ impl SolverKind {
 
     /// An instance of this backend, or an error if it was not compiled in.
     pub fn instance(self) -> Result<Box<dyn Solver + Send + Sync>, SolverError> {
-        match self {
+        let inner: Box<dyn Solver + Send + Sync> = match self {
             #[cfg(feature = "highs")]
-            SolverKind::Highs => Ok(Box::new(highs::HighsSolver)),
+            SolverKind::Highs => Box::new(highs::HighsSolver),
             #[cfg(feature = "cbc")]
-            SolverKind::Cbc => Ok(Box::new(cbc::CbcSolver)),
+            SolverKind::Cbc => Box::new(cbc::CbcSolver),
             #[cfg(feature = "scip")]
-            SolverKind::Scip => Ok(Box::new(scip::ScipSolver)),
+            SolverKind::Scip => Box::new(scip::ScipSolver),
             #[cfg(feature = "microlp")]
-            SolverKind::Microlp => Ok(Box::new(microlp::MicrolpSolver)),
+            SolverKind::Microlp => Box::new(microlp::MicrolpSolver),
             #[cfg(feature = "good_lp")]
-            SolverKind::GoodLp => Ok(Box::new(good_lp_bridge::GoodLpSolver)),
+            SolverKind::GoodLp => Box::new(good_lp_bridge::GoodLpSolver),
             #[allow(unreachable_patterns)]
-            other => Err(SolverError::new(other, SolverErrorKind::NotCompiled)),
-        }
+            other => return Err(SolverError::new(other, SolverErrorKind::NotCompiled)),
+        };
+        // A panic inside a backend's library becomes an error naming it.
+        Ok(Box::new(guard::Guarded(inner)))
     }
 }
 
@@ -235,6 +238,12 @@ pub enum SolverErrorKind {
     /// Writing the log file failed.
     #[error("log file: {0}")]
     Io(#[from] std::io::Error),
+    /// A coefficient the backend cannot load ([`crate::milp::numeric`]).
+    #[error("{0}")]
+    Numeric(String),
+    /// The backend's library panicked; netspec caught it.
+    #[error("the backend failed inside its library (a panic, caught by netspec): {0}")]
+    Panicked(String),
 }
 
 /// An error from a backend: which one, and what.
@@ -264,6 +273,9 @@ pub(crate) fn preflight(
 ) -> Result<(), SolverError> {
     model.validate().map_err(|e| SolverError::new(kind, e))?;
     caps.check(kind, options).map_err(|k| SolverError::new(kind, k))?;
+    if let Some(why) = crate::milp::numeric_screen(model, &caps.numeric, kind.name()).refused {
+        return Err(SolverError::new(kind, SolverErrorKind::Numeric(why)));
+    }
     if model.is_mip() && !caps.integer_variables {
         return Err(SolverError::new(kind, SolverErrorKind::ModelUnsupported("integer variables".into())));
     }
@@ -328,13 +340,30 @@ pub(crate) fn guarded_solve(
         r.wall_time = t0.elapsed().as_secs_f64();
         return Ok(r);
     }
+    let caps = solver.capabilities();
+    let warnings: Vec<String> = crate::milp::numeric_screen(model, &caps.numeric, kind.name())
+        .warning(kind.name(), &caps.numeric)
+        .into_iter()
+        .collect();
     let (o, start) = check_start(model, options);
     let ctl = StopControl::new(&o, t0);
     let mut r = if ctl.interrupted() {
         SolveResult::empty(kind, solver.version(), Termination::Limit(LimitKind::Interrupt))
+    } else if model.num_vars() == 0 {
+        // No column: netspec answers itself, the same for every backend (the screen above has
+        // refused rows whose sides exclude 0).
+        let mut r = SolveResult::empty(kind, solver.version(), Termination::Optimal);
+        r.primal = Some(Vec::new());
+        r.objective = Some(model.objective_value(&[]));
+        r.dual_bound = r.objective;
+        r.nodes = Some(0);
+        r.solver_time = Some(0.0);
+        r.finish(model.sense);
+        r
     } else {
         native(&o, &ctl)?
     };
+    r.warnings = warnings;
     if r.termination == Termination::Limit(LimitKind::Interrupt) {
         if let Some(why) = ctl.reason() {
             r.termination = Termination::Limit(why);

@@ -1,6 +1,7 @@
 //! Solve options and backend capabilities.
 
 use super::{SolverErrorKind, SolverKind};
+use crate::milp::NumericLimits;
 use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -243,6 +244,10 @@ pub struct Capabilities {
     /// [`SolveOptions::params`]: the solver's own parameters, passed through.
     #[serde(default)]
     pub raw_params: bool,
+    /// The magnitudes it loads ([`crate::milp::numeric`]): coefficients at or above its limits
+    /// are refused before it sees the model; finite bounds at or above its infinity are passed
+    /// with a warning.
+    pub numeric: NumericLimits,
 }
 
 fn unsupported(option: &'static str, reason: &str) -> SolverErrorKind {

@@ -101,6 +101,10 @@ pub struct SolveResult {
     /// The MIP start's check by netspec's checker, when one was given.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub mip_start: Option<StartCheck>,
+    /// What netspec noticed about the input before the solve (finite bounds the backend treats
+    /// as infinite, [`crate::milp::numeric`]).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub warnings: Vec<String>,
 }
 
 /// What netspec's independent checker said of a MIP start before the solve: a start that fails
@@ -151,6 +155,7 @@ impl SolveResult {
             solver_version: version,
             infeasibility: None,
             mip_start: None,
+            warnings: Vec::new(),
         }
     }
 

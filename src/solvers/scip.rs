@@ -27,6 +27,7 @@ use super::{
     guarded_solve, Capabilities, LazyMode, LazyReport, LazySolve, LimitKind, LogTarget, Separator, SolveOptions,
     SolveResult, Solver, SolverError, SolverErrorKind, SolverKind, Termination,
 };
+use crate::milp::NumericLimits;
 use crate::milp::{Model, Sense, VarKind};
 use russcip::{ffi, ObjSense, ProblemOrSolving, VarType, Variable, WithSolutions};
 use std::ffi::CString;
@@ -358,6 +359,7 @@ impl Solver for ScipSolver {
             lazy_constraints: true,
             interrupt: true,
             raw_params: true,
+            numeric: NumericLimits::uniform(1e20, Some(1e20)),
         }
     }
 

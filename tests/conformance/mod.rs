@@ -137,6 +137,39 @@ pub fn empty_model(kind: SolverKind) {
     // And without a constant: objective 0 (not missing).
     let r = assert_optimal(kind, &Model::new("empty0"), 0.0);
     assert_eq!(r.primal.as_deref(), Some(&[][..]));
+    // With a MIP start (of no values), the same answer: netspec answers a model without columns
+    // itself, the same for every backend.
+    let o = SolveOptions { mip_start: Some(Vec::new()), ..Default::default() };
+    let r = assert_optimal_with(kind, &models::empty(), &o, 7.0);
+    assert_eq!(r.primal.as_deref(), Some(&[][..]));
+}
+
+/// A coefficient beyond what the backend loads is refused by netspec before the backend sees
+/// the model (no panic, no abort, no unexplained rejection), naming the row and column; a finite
+/// bound at or above the backend's infinity is solved with a warning saying it is no bound.
+pub fn numeric_limits_are_screened(kind: SolverKind) {
+    let limits = kind.instance().unwrap().capabilities().numeric;
+    let mut m = Model::new("big");
+    let x = m.add_continuous("X", 0.0, 10.0, -1.0);
+    m.add_le("R1", [(x, limits.max_matrix)], 1.0);
+    let e = kind.instance().unwrap().solve(&m, &SolveOptions::default()).unwrap_err().to_string();
+    assert!(e.contains("row `R1`, column `X`") && e.contains(kind.name()), "{kind}: {e}");
+    let mut m = Model::new("bigobj");
+    let x = m.add_continuous("X", 0.0, 10.0, -limits.max_objective);
+    m.add_le("R1", [(x, 1.0)], 1.0);
+    let e = kind.instance().unwrap().solve(&m, &SolveOptions::default()).unwrap_err().to_string();
+    assert!(e.contains("objective coefficient of `X`"), "{kind}: {e}");
+    if let Some(inf) = limits.infinity {
+        let mut m = Model::new("wide");
+        let x = m.add_continuous("X", 0.0, inf * 10.0, -1.0);
+        m.add_le("R1", [(x, 1.0)], 2.0);
+        let r = assert_optimal(kind, &m, -2.0);
+        assert!(
+            r.warnings.iter().any(|w| w.contains("treated as no bound") && w.contains("`X`")),
+            "{kind}: {:?}",
+            r.warnings
+        );
+    }
 }
 
 fn assert_termination_in(kind: SolverKind, model: &Model, allowed: &[Termination]) {
@@ -592,7 +625,7 @@ macro_rules! conformance_suite {
                 time_limit_zero, mip_start_is_used, mip_start_is_only_a_start, nan_mip_start_is_refused,
                 gap_limit_stops_early, node_limit, two_threads, invalid_model_is_an_error,
                 unsupported_options_are_refused, lazy_subtour_elimination, lazy_solve_from_a_start, optimal_mip_start_is_proven_optimal,
-                lp_session_adds_rows);
+                lp_session_adds_rows, numeric_limits_are_screened);
         }
     )*};
     (@cases $kind:expr; $($case:ident),*) => {$(
