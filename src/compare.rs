@@ -62,6 +62,9 @@ pub struct RunRecord {
     /// The time limit this run had, seconds (with `--paper-limits`, the row's own).
     #[serde(default)]
     pub time_limit: Option<f64>,
+    /// Why the run failed (`failed`: the child's error message, from its `stderr.txt`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub error: Option<String>,
     /// Everything that produced this record; a rerun with other settings solves again.
     /// (`None` in records written before settings were recorded: they are always solved again.)
     #[serde(default)]
@@ -520,6 +523,20 @@ fn run_one(
         std::thread::sleep(Duration::from_millis(20));
     };
     let wall_time = t0.elapsed().as_secs_f64();
+    Ok(record_from_dir(dir, solver, seed, limit, wall_time, status.and_then(|s| s.code()), killed))
+}
+
+/// The record of a finished run from what its process left in `dir` (`result.json`, and
+/// `stderr.txt` when it failed), whoever ran it.
+pub fn record_from_dir(
+    dir: &Path,
+    solver: &str,
+    seed: Option<u64>,
+    limit: f64,
+    wall_time: f64,
+    exit_code: Option<i32>,
+    killed: bool,
+) -> RunRecord {
     let result: Option<ResultView> =
         std::fs::read_to_string(dir.join("result.json")).ok().and_then(|t| serde_json::from_str(&t).ok());
     let mut r = RunRecord {
@@ -540,25 +557,47 @@ fn run_one(
         valid: false,
         killed,
         solver_version: None,
-        exit_code: status.and_then(|s| s.code()),
+        exit_code,
         time_limit: Some(limit),
+        error: None,
         settings: None,
     };
-    if let (Some(res), false) = (result, killed) {
-        r.edges = Some(res.mesh.num_edges());
-        r.vars = Some(res.model_stats.vars);
-        r.rows = Some(res.model_stats.rows);
-        r.nonzeros = Some(res.model_stats.nonzeros);
-        r.status = res.solve.termination.label();
-        r.objective = res.solve.objective;
-        r.dual_bound = res.solve.dual_bound;
-        r.gap = res.solve.gap;
-        r.nodes = res.solve.nodes;
-        r.solver_time = res.solve.solver_time;
-        r.valid = res.validity.valid;
-        r.solver_version = Some(res.solve.solver_version);
+    match (result, killed) {
+        (Some(res), false) => {
+            r.edges = Some(res.mesh.num_edges());
+            r.vars = Some(res.model_stats.vars);
+            r.rows = Some(res.model_stats.rows);
+            r.nonzeros = Some(res.model_stats.nonzeros);
+            r.status = res.solve.termination.label();
+            r.objective = res.solve.objective;
+            r.dual_bound = res.solve.dual_bound;
+            r.gap = res.solve.gap;
+            r.nodes = res.solve.nodes;
+            r.solver_time = res.solve.solver_time;
+            r.valid = res.validity.valid;
+            r.solver_version = Some(res.solve.solver_version);
+        }
+        (None, false) => r.error = Some(failure_cause(dir, exit_code)),
+        _ => {}
     }
-    Ok(r)
+    r
+}
+
+/// Why a run left no result: its `error:` line and the causes under it, from `stderr.txt`.
+fn failure_cause(dir: &Path, exit_code: Option<i32>) -> String {
+    let text = std::fs::read_to_string(dir.join("stderr.txt")).unwrap_or_default();
+    let lines: Vec<&str> = text
+        .lines()
+        .skip_while(|l| !l.starts_with("error:"))
+        .take_while(|l| l.starts_with("error:") || l.starts_with("  caused by:"))
+        .map(|l| l.trim_start_matches("error:").trim_start_matches("  caused by:").trim())
+        .collect();
+    if lines.is_empty() {
+        let tail = text.lines().rev().find(|l| !l.trim().is_empty()).unwrap_or("no message");
+        format!("exit code {}: {tail}", exit_code.map_or("none".into(), |c| c.to_string()))
+    } else {
+        lines.join(": ")
+    }
 }
 
 /// Makes the child die when this process dies (Linux: `PR_SET_PDEATHSIG` with `SIGKILL`, set in
@@ -744,8 +783,9 @@ fn solved(r: &RunRecord) -> bool {
 
 /// Summaries per backend, in the order of `solvers`.
 pub fn summarize(records: &[RunRecord], solvers: &[String], limit: f64) -> Vec<BackendSummary> {
-    let mut instances: Vec<&str> = records.iter().map(|r| r.instance.as_str()).collect();
-    instances.dedup();
+    // Each instance once, in first-seen order (merged comparisons list a row once per source).
+    let mut seen = std::collections::BTreeSet::new();
+    let instances: Vec<&str> = records.iter().map(|r| r.instance.as_str()).filter(|i| seen.insert(*i)).collect();
     solvers
         .iter()
         .map(|s| {
@@ -843,6 +883,13 @@ pub fn markdown(manifest: &Manifest, records: &[RunRecord], solvers: &[String], 
     for b in summary {
         let _ = writeln!(s, "| {} | {:.2} s | {}/{} | {} |", b.solver, b.sgm_time, b.solved, b.runs, b.wins);
     }
+    let failed: Vec<&RunRecord> = records.iter().filter(|r| r.error.is_some()).collect();
+    if !failed.is_empty() {
+        s.push_str("\nRuns that failed (no result):\n\n");
+        for r in failed {
+            let _ = writeln!(s, "- {} / {}: {}", r.instance, r.solver, r.error.as_deref().unwrap_or_default());
+        }
+    }
     s.push_str(
         "\nFigures: `profile.svg`, the performance profile (fraction solved within time, per backend); \
          `bars.svg`, solver time per instance and backend (log scale; hatched: not solved, with the \
@@ -853,13 +900,13 @@ pub fn markdown(manifest: &Manifest, records: &[RunRecord], solvers: &[String], 
 
 /// The records as CSV.
 pub fn csv(records: &[RunRecord]) -> String {
-    let mut s = String::from("instance,solver,seed,edges,vars,rows,nonzeros,status,objective,dual_bound,gap,nodes,solver_time,wall_time,valid,killed\n");
+    let mut s = String::from("instance,solver,seed,edges,vars,rows,nonzeros,status,objective,dual_bound,gap,nodes,solver_time,wall_time,valid,killed,error\n");
     for r in records {
         let o = |v: Option<f64>| v.map_or(String::new(), |v| v.to_string());
         let u = |v: Option<usize>| v.map_or(String::new(), |v| v.to_string());
         let _ = writeln!(
             s,
-            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
+            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
             r.instance,
             r.solver,
             r.seed.map_or(String::new(), |v| v.to_string()),
@@ -875,10 +922,20 @@ pub fn csv(records: &[RunRecord]) -> String {
             o(r.solver_time),
             r.wall_time,
             r.valid,
-            r.killed
+            r.killed,
+            csv_field(r.error.as_deref().unwrap_or_default())
         );
     }
     s
+}
+
+/// A CSV field: quoted (quotes doubled) when it holds a comma, quote or line break.
+fn csv_field(text: &str) -> String {
+    if text.contains([',', '"', '\n', '\r']) {
+        format!("\"{}\"", text.replace('"', "\"\""))
+    } else {
+        text.to_string()
+    }
 }
 
 /// A performance profile as SVG ([`render::chart::performance_profile_svg`]): for each backend,

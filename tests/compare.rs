@@ -89,7 +89,7 @@ fn compare_runs_tables_and_resumes() {
     assert!(md.contains("`bars.svg`"), "{md}");
     let csv = std::fs::read_to_string(out.join("results.csv")).unwrap();
     assert_eq!(csv.lines().count(), 1 + records.len());
-    assert!(csv.lines().skip(1).all(|l| l.ends_with(",true,false")), "{csv}");
+    assert!(csv.lines().skip(1).all(|l| l.ends_with(",true,false,")), "{csv}");
     // Rerun: nothing is solved again.
     let stamp = std::fs::metadata(out.join("runs/a__highs__default/run.json")).unwrap().modified().unwrap();
     let second = run();
@@ -126,6 +126,7 @@ fn record(instance: &str, solver: &str, status: &str, t: f64) -> RunRecord {
         solver_version: None,
         exit_code: Some(0),
         time_limit: None,
+        error: None,
         settings: None,
     }
 }
@@ -575,4 +576,39 @@ fn merge_combines_finished_comparisons() {
     assert!(err.contains("nowhere/results.json"), "{err}");
     // Merging solves nothing: no run directories in the merged output.
     assert!(!out.join("runs").exists());
+}
+
+/// A row whose spec cannot be used: the run's cause is printed with it and listed in
+/// results.md, and compare exits non-zero; a backend named twice is refused before any run.
+#[test]
+fn failed_runs_say_why_and_duplicate_columns_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let bad = dir.path().join("bad.toml");
+    std::fs::write(&bad, "name = \"bad\"\n[mesh]\ngrid = { width = 3, height = 3 }\n[sinks]\nvertices = [99]\n")
+        .unwrap();
+    let out = dir.path().join("out");
+    let o = Command::new(env!("CARGO_BIN_EXE_netspec"))
+        .args(["compare", "--solvers", "highs", "--time-limit", "5", "--out"])
+        .arg(&out)
+        .arg(&bad)
+        .output()
+        .unwrap();
+    let (stdout, stderr) = (String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
+    assert!(!o.status.success(), "{stdout}");
+    assert!(stdout.contains("failed") && stdout.contains("sinks.vertices"), "{stdout}");
+    assert!(stderr.contains("1 of 1 runs could not run"), "{stderr}");
+    let md = std::fs::read_to_string(out.join("results.md")).unwrap();
+    assert!(md.contains("Runs that failed") && md.contains("sinks.vertices"), "{md}");
+    let records: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("results.json")).unwrap()).unwrap();
+    assert!(records["records"][0]["error"].as_str().is_some_and(|e| e.contains("sinks.vertices")), "{records}");
+
+    let o = Command::new(env!("CARGO_BIN_EXE_netspec"))
+        .args(["compare", "--solvers", "highs,highs", "--out"])
+        .arg(&out)
+        .arg(&bad)
+        .output()
+        .unwrap();
+    assert!(!o.status.success());
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--solvers names `highs` twice"));
 }

@@ -60,6 +60,14 @@ pub fn run(a: CompareArgs) -> Result<ExitCode> {
         None => Manifest::from_specs(&a.specs),
     };
     let manifest = manifest.select(&a.rows).map_err(anyhow::Error::msg)?;
+    for (flag, names) in [
+        ("--solvers", a.solvers.iter().map(|m| m.to_string()).collect::<Vec<_>>()),
+        ("--formulations", a.formulations.iter().map(|f| f.to_string()).collect()),
+    ] {
+        if let Some(dup) = names.iter().enumerate().find_map(|(i, n)| names[..i].contains(n).then_some(n)) {
+            bail!("{flag} names `{dup}` twice: each column must differ");
+        }
+    }
     let solvers: Vec<String> = if a.solvers.is_empty() {
         SolverKind::compiled().into_iter().filter(|k| *k != SolverKind::GoodLp).map(|k| k.name().to_string()).collect()
     } else {
@@ -93,7 +101,7 @@ pub fn run(a: CompareArgs) -> Result<ExitCode> {
     let exe = std::env::current_exe().context("locating the netspec binary")?;
     let records = netspec::compare::run_all(&exe, &settings, &a.out, |r, source| {
         println!(
-            "{:<24} {:<14} {:<16} {:>8.2} s {}{}",
+            "{:<24} {:<14} {:<16} {:>8.2} s {}{}{}",
             r.instance,
             r.solver,
             r.status,
@@ -103,7 +111,8 @@ pub fn run(a: CompareArgs) -> Result<ExitCode> {
                 RunSource::Solved => String::new(),
                 RunSource::Resumed => " (resumed)".into(),
                 RunSource::Rerun(why) => format!(" (solved again: {})", why.join(", ")),
-            }
+            },
+            r.error.as_ref().map_or(String::new(), |e| format!("\n    {e}"))
         );
     })
     .with_context(|| format!("running the comparison into {}", a.out.display()))?;
@@ -130,6 +139,14 @@ pub fn run(a: CompareArgs) -> Result<ExitCode> {
     if settings.interrupt.as_ref().is_some_and(|i| i.is_triggered()) {
         println!("interrupted: the runs recorded above are kept; rerun to resume");
         return Ok(ExitCode::from(super::interrupt::EXIT_INTERRUPTED));
+    }
+    let failed = records.iter().filter(|r| r.error.is_some()).count();
+    if failed > 0 {
+        eprintln!(
+            "error: {failed} of {} runs could not run (their causes are listed above and in results.md)",
+            records.len()
+        );
+        return Ok(ExitCode::FAILURE);
     }
     Ok(ExitCode::SUCCESS)
 }
