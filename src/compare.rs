@@ -191,7 +191,7 @@ pub struct Manifest {
 impl Manifest {
     /// Reads a TOML manifest; spec paths become relative to the current directory.
     pub fn load(path: &Path) -> Result<Manifest, String> {
-        let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+        let text = crate::io::read_utf8(path).map_err(|e| format!("{}: {e}", path.display()))?;
         let mut m: Manifest = toml::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
         let base = path.parent().unwrap_or(Path::new("."));
         for (i, r) in m.row.iter().enumerate() {

@@ -84,6 +84,9 @@ enum Command {
         /// Solve without a MIP start.
         #[arg(long)]
         no_start: bool,
+        /// Refuse a mesh of more cells than this (default 250,000), before building it.
+        #[arg(long, value_name = "CELLS")]
+        max_cells: Option<usize>,
     },
     /// Compare backends on spec files: each run in its own process, killed at the time limit
     /// plus a grace period, recorded as it ends (rerun to resume); writes results.md,
@@ -159,6 +162,9 @@ enum Command {
         /// Solve every level again even if an earlier run finished it.
         #[arg(long)]
         fresh: bool,
+        /// Refuse a city whose level meshes could exceed this many cells (default 250,000).
+        #[arg(long, value_name = "CELLS")]
+        max_cells: Option<usize>,
         /// Output directory (default: out/<the city file's name>).
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
@@ -259,6 +265,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
             explain_time,
             start,
             no_start,
+            max_cells,
         } => {
             let start = match (start, no_start) {
                 (_, true) => netspec::run::StartChoice::Nothing,
@@ -278,6 +285,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 start,
                 interrupt: None,
                 progress: None,
+                max_cells,
             })
         }
         Command::Compare {
@@ -313,10 +321,11 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 out,
             })
         }
-        Command::City { spec, solver, time_limit, threads, threads_per_solve, gap, fresh, out } => cli::city::run_city(
-            &spec,
-            cli::city::CityArgs { solver, time_limit, threads, threads_per_solve, gap, fresh, out },
-        ),
+        Command::City { spec, solver, time_limit, threads, threads_per_solve, gap, fresh, max_cells, out } => {
+            let args =
+                cli::city::CityArgs { solver, time_limit, threads, threads_per_solve, gap, fresh, out, max_cells };
+            cli::city::run_city(&spec, args)
+        }
         Command::Traffic {
             designs,
             labels,

@@ -112,6 +112,8 @@ pub struct SolveRequest {
     pub interrupt: Option<Interrupt>,
     /// Receives the backend's progress while it solves.
     pub progress: Option<ProgressSink>,
+    /// The cap on the mesh's cells (default [`crate::spec::DEFAULT_MAX_CELLS`]).
+    pub max_cells: Option<usize>,
 }
 
 /// What happens during a run, in order.
@@ -284,25 +286,27 @@ pub fn safe_component(name: &str) -> String {
     }
 }
 
-/// Loads a spec file, applies a variant, and resolves it against its mesh.
-pub fn load(path: &Path, variant: Option<&Variant>) -> Result<Problem, SpecError> {
+/// Loads a spec file, applies a variant, and resolves it against its mesh (of at most
+/// `max_cells` cells).
+pub fn load(path: &Path, variant: Option<&Variant>, max_cells: usize) -> Result<Problem, SpecError> {
     let mut spec = Spec::load(path)?;
     if let Some(v) = variant {
         v.apply(&mut spec.formulation, &mut spec.solver);
     }
     let base = path.parent().unwrap_or(Path::new("."));
-    spec.resolve(base).map_err(|kind| SpecError { path: path.to_path_buf(), kind })
+    spec.resolve_within(base, max_cells).map_err(|kind| SpecError { path: path.to_path_buf(), kind })
 }
 
 /// `netspec solve`: loads, builds, and (unless told only to build) designs, explains an
 /// infeasible spec, and writes the outputs. Events go to `on` as they happen.
 pub fn solve_spec(req: &SolveRequest, on: &mut dyn FnMut(Event)) -> Result<Solved, RunError> {
-    let problem = load(&req.spec, req.variant.as_ref())?;
+    // The time limit covers loading the spec, building the mesh and the model.
+    let t0 = Instant::now();
+    let problem = load(&req.spec, req.variant.as_ref(), req.max_cells.unwrap_or(crate::spec::DEFAULT_MAX_CELLS))?;
     // Every setting is checked before any work: the flags over the spec's [solver] section.
     let layers =
         [(Origin::Flags, req.flags.clone()), (Origin::Spec(req.spec.clone()), Settings::of_spec(&problem.spec.solver))];
     let (method, mut options) = resolve(&layers)?;
-    let t0 = Instant::now();
     let f = pipeline::build(&problem);
     on(Event::Built { problem: &problem, formulation: &f, millis: t0.elapsed().as_secs_f64() * 1e3 });
     if let Some(path) = &req.export {
@@ -326,6 +330,9 @@ pub fn solve_spec(req: &SolveRequest, on: &mut dyn FnMut(Event)) -> Result<Solve
     }
     options.interrupt = req.interrupt.clone();
     options.progress = req.progress.clone();
+    if let Some(limit) = options.finite_time_limit() {
+        options.time_limit = Some((limit - t0.elapsed().as_secs_f64()).max(0.0));
+    }
     let start = match &req.start {
         StartChoice::Nothing => StartFrom::Nothing,
         StartChoice::Heuristic => pipeline::default_start(options.finite_time_limit()),
@@ -335,7 +342,25 @@ pub fn solve_spec(req: &SolveRequest, on: &mut dyn FnMut(Event)) -> Result<Solve
     };
     let run = Run { method, options, start, explain: req.explain, sol: req.sol.clone() };
     let out = req.out.clone().unwrap_or_else(|| default_out_dir(&req.spec));
-    solve_problem(&problem, &f, &run, &out, on)
+    solve_problem(&problem, &f, &run, &out, on).map_err(|e| name_origin(e, &layers))
+}
+
+/// An option a backend refuses, named as the layer that set it gives it (`--seed`, or the spec
+/// file and `solver.seed`).
+fn name_origin(e: RunError, layers: &[(Origin, Settings)]) -> RunError {
+    match e {
+        RunError::Solver(SolverError {
+            solver,
+            kind: crate::solvers::SolverErrorKind::Unsupported { option, reason },
+        }) => match crate::pipeline::settings::provenance(layers, option) {
+            Some(place) => RunError::Unsupported(format!("{place}: {solver} does not support it: {reason}")),
+            None => RunError::Solver(SolverError::new(
+                solver,
+                crate::solvers::SolverErrorKind::Unsupported { option, reason },
+            )),
+        },
+        other => other,
+    }
 }
 
 /// How [`solve_problem`] designs.
@@ -499,7 +524,7 @@ pub fn start_design(file: &Path, problem: &Problem, f: &Formulation) -> Result<N
         schema: Option<String>,
         network: Option<Network>,
     }
-    let text = std::fs::read_to_string(file).map_err(|e| err(format!("reading the start: {e}")))?;
+    let text = crate::io::read_utf8(file).map_err(|e| err(format!("reading the start: {e}")))?;
     let view: View = serde_json::from_str(&text).map_err(|e| err(format!("not a netspec result.json: {e}")))?;
     if view.schema.as_deref() != Some("netspec.design") {
         return Err(err("not a netspec result.json (no `\"schema\": \"netspec.design\"`)".into()));

@@ -26,6 +26,7 @@ pub struct CityArgs {
     pub gap: Option<f64>,
     pub fresh: bool,
     pub out: Option<PathBuf>,
+    pub max_cells: Option<usize>,
 }
 
 pub fn run_city(path: &Path, args: CityArgs) -> Result<ExitCode> {
@@ -36,7 +37,8 @@ pub fn run_city(path: &Path, args: CityArgs) -> Result<ExitCode> {
         gap: args.gap,
         ..Settings::default()
     };
-    let mut opts = CityRunOptions::resolve(&spec, path, &flags, args.threads, args.threads_per_solve)?;
+    let max_cells = args.max_cells.unwrap_or(netspec::spec::DEFAULT_MAX_CELLS);
+    let mut opts = CityRunOptions::resolve(&spec, path, &flags, args.threads, args.threads_per_solve, max_cells)?;
     opts.resume = !args.fresh;
     let interrupt = crate::cli::interrupt::install()?;
     opts.interrupt = Some(interrupt.clone());

@@ -81,17 +81,39 @@ pub fn is_gzip(path: &Path) -> bool {
     path.extension().is_some_and(|e| e.eq_ignore_ascii_case("gz"))
 }
 
-/// Reads a whole text file, decompressing it if its name ends in `.gz`.
+/// Reads a whole text file, decompressing it if its name ends in `.gz`; text that is not UTF-8
+/// is an error naming the line and column ([`utf8`]).
 fn read_text(path: &Path) -> std::io::Result<String> {
     if !is_gzip(path) {
-        return std::fs::read_to_string(path);
+        return read_utf8(path);
     }
-    let mut text = String::new();
-    std::io::Read::read_to_string(
+    let mut bytes = Vec::new();
+    std::io::Read::read_to_end(
         &mut flate2::read::MultiGzDecoder::new(std::io::BufReader::new(std::fs::File::open(path)?)),
-        &mut text,
+        &mut bytes,
     )?;
-    Ok(text)
+    utf8(bytes)
+}
+
+/// Reads a whole text file; text that is not UTF-8 is an error naming the line and column
+/// ([`utf8`]).
+pub fn read_utf8(path: &Path) -> std::io::Result<String> {
+    utf8(std::fs::read(path)?)
+}
+
+/// Bytes as text, or an error (`InvalidData`) naming the line and column of the first byte that
+/// is not UTF-8.
+pub fn utf8(bytes: Vec<u8>) -> std::io::Result<String> {
+    String::from_utf8(bytes).map_err(|e| {
+        let at = e.utf8_error().valid_up_to();
+        let b = e.as_bytes();
+        let line = 1 + b[..at].iter().filter(|&&c| c == b'\n').count();
+        let column = 1 + at - b[..at].iter().rposition(|&c| c == b'\n').map_or(0, |p| p + 1);
+        std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            format!("line {line}, column {column}: not valid UTF-8 (byte 0x{:02x})", b[at]),
+        )
+    })
 }
 
 /// Why a file could not be read or written.
@@ -196,6 +218,16 @@ pub(crate) fn digest(parts: &[&[u8]]) -> String {
         h = h.wrapping_mul(0x0000_0100_0000_01b3);
     }
     format!("{h:016x}")
+}
+
+#[cfg(test)]
+mod text_tests {
+    #[test]
+    fn utf8_errors_name_the_line_and_column() {
+        let e = super::utf8(b"NAME x\nROWS\n N  c\xff\n".to_vec()).unwrap_err().to_string();
+        assert_eq!(e, "line 3, column 6: not valid UTF-8 (byte 0xff)");
+        assert_eq!(super::utf8(b"ok\n".to_vec()).unwrap(), "ok\n");
+    }
 }
 
 /// What [`convert`] did.

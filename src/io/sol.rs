@@ -99,7 +99,7 @@ pub fn write(model: &Model, x: &[f64], objective: Option<f64>, header: &str, pat
 
 /// Reads a solution file for `model` (see the module docs).
 pub fn read(model: &Model, path: &Path) -> Result<SolutionFile, SolError> {
-    let text = std::fs::read_to_string(path).map_err(|e| SolError { path: path.to_path_buf(), kind: e.into() })?;
+    let text = super::read_utf8(path).map_err(|e| SolError { path: path.to_path_buf(), kind: e.into() })?;
     parse(model, &text).map_err(|kind| SolError { path: path.to_path_buf(), kind })
 }
 

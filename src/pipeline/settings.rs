@@ -125,12 +125,48 @@ impl Settings {
         }
     }
 
-    /// Checks every value, naming it as `origin` gives it.
+    /// Checks every value, naming it as `origin` gives it: the options' ranges, and that a log
+    /// file's folder exists (the same answer for every backend, before any runs).
     pub fn check(&self, origin: &Origin) -> Result<(), SettingsError> {
         self.options()
             .validate()
-            .map_err(|e: InvalidOption| SettingsError { place: origin.place(e.option), reason: e.reason })
+            .map_err(|e: InvalidOption| SettingsError { place: origin.place(e.option), reason: e.reason })?;
+        if let Some(LogTarget::File(path)) = &self.log {
+            let folder = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(std::path::Path::new("."));
+            if !folder.is_dir() {
+                return Err(SettingsError {
+                    place: origin.place("log"),
+                    reason: format!("{}: the folder {} does not exist", path.display(), folder.display()),
+                });
+            }
+        }
+        Ok(())
     }
+
+    /// The fields this layer sets, as [`SolveOptions`] names them.
+    fn set_fields(&self) -> Vec<&'static str> {
+        let mut out = Vec::new();
+        for (name, set) in [
+            ("time_limit", self.time_limit.is_some()),
+            ("rel_gap", self.gap.is_some()),
+            ("abs_gap", self.abs_gap.is_some()),
+            ("threads", self.threads.is_some()),
+            ("seed", self.seed.is_some()),
+            ("node_limit", self.node_limit.is_some()),
+            ("log", self.log.is_some()),
+        ] {
+            if set {
+                out.push(name);
+            }
+        }
+        out
+    }
+}
+
+/// Where an option of the resolved settings came from: `option` named as the layer that set it
+/// gives it (`--seed`, `fig.toml: solver.seed`), for messages about it; `None` when no layer set it.
+pub fn provenance(layers: &[(Origin, Settings)], option: &str) -> Option<String> {
+    layers.iter().find(|(_, l)| l.set_fields().contains(&option)).map(|(o, _)| o.place(option))
 }
 
 /// Resolves layers given most important first (flags, then a spec's `[solver]`…) into the
@@ -173,5 +209,18 @@ mod tests {
         let bad_flag = Settings { threads: Some(0), ..Default::default() };
         let e = resolve(&[(Origin::Flags, bad_flag)]).unwrap_err();
         assert_eq!(e.to_string(), "--threads must be ≥ 1, got 0");
+        let many = Settings { threads: Some(100_000), ..Default::default() };
+        let e = resolve(&[(Origin::Flags, many)]).unwrap_err();
+        assert_eq!(e.to_string(), "--threads must be at most 256, got 100000");
+        let log = Settings { log: Some(LogTarget::File("/no/such/folder/x.log".into())), ..Default::default() };
+        let e = resolve(&[(Origin::Flags, log)]).unwrap_err();
+        assert!(
+            e.to_string().starts_with("--log-file /no/such/folder/x.log: the folder /no/such/folder does not exist"),
+            "{e}"
+        );
+        let layers = [(Origin::Flags, flags), (file, Settings::of_spec(&spec))];
+        assert_eq!(provenance(&layers, "seed").as_deref(), Some("fig.toml: solver.seed"));
+        assert_eq!(provenance(&layers, "rel_gap").as_deref(), Some("--gap"));
+        assert_eq!(provenance(&layers, "node_limit"), None);
     }
 }

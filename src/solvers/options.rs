@@ -74,6 +74,10 @@ impl std::str::FromStr for RawParam {
     }
 }
 
+/// The most threads a solve may ask for (a backend given far more threads than cores can spend
+/// minutes starting them).
+pub const MAX_THREADS: u32 = 256;
+
 /// An option value netspec refuses before any backend sees it: which option, and why.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 #[error("`{option}` {reason}")]
@@ -176,8 +180,10 @@ impl SolveOptions {
                 }
             }
         }
-        if self.threads == Some(0) {
-            return bad("threads", "must be ≥ 1, got 0".into());
+        match self.threads {
+            Some(0) => return bad("threads", "must be ≥ 1, got 0".into()),
+            Some(t) if t > MAX_THREADS => return bad("threads", format!("must be at most {MAX_THREADS}, got {t}")),
+            _ => {}
         }
         Ok(())
     }

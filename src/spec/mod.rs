@@ -15,7 +15,7 @@ pub use formulation::{
 };
 
 pub(crate) use resolve::OrdF64;
-pub use resolve::{EdgeRole, PointToPoint, Problem, Rooms, Weight};
+pub use resolve::{EdgeRole, PointToPoint, Problem, Rooms, Weight, DEFAULT_MAX_CELLS};
 pub use symmetry::{symmetries, Symmetry};
 pub use template::Template;
 
@@ -498,6 +498,28 @@ pub struct SolverSpec {
     pub parallel_search: Option<bool>,
 }
 
+/// A text field without control characters (they break pictures and file formats later).
+pub fn check_text(field: &str, text: &str) -> Result<(), SpecErrorKind> {
+    match text.chars().find(|c| c.is_control()) {
+        Some(c) => Err(SpecErrorKind::Field {
+            field: field.into(),
+            message: format!("contains the control character U+{:04X}", c as u32),
+        }),
+        None => Ok(()),
+    }
+}
+
+/// Every coordinate of `points` finite.
+pub fn check_points(field: &str, points: &[[f64; 2]]) -> Result<(), SpecErrorKind> {
+    match points.iter().position(|p| !(p[0].is_finite() && p[1].is_finite())) {
+        Some(i) => Err(SpecErrorKind::Field {
+            field: format!("{field}[{i}]"),
+            message: format!("coordinates must be finite numbers, got [{}, {}]", points[i][0], points[i][1]),
+        }),
+        None => Ok(()),
+    }
+}
+
 /// Why a spec file could not be used.
 #[derive(Debug, thiserror::Error)]
 pub enum SpecErrorKind {
@@ -538,16 +560,60 @@ impl Spec {
     /// Reads a `.toml` or `.json` spec file.
     pub fn load(path: &Path) -> Result<Spec, SpecError> {
         let err = |kind| SpecError { path: path.to_path_buf(), kind };
-        let text = std::fs::read_to_string(path).map_err(|e| err(e.into()))?;
+        let text = crate::io::read_utf8(path).map_err(|e| err(e.into()))?;
         if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("json")) {
-            serde_json::from_str(&text).map_err(|e| err(e.into()))
+            Spec::from_json(&text).map_err(err)
         } else {
             Spec::from_toml(&text).map_err(err)
         }
     }
 
-    /// Parses TOML text.
+    /// Parses TOML text and checks its values ([`Spec::check_values`]).
     pub fn from_toml(text: &str) -> Result<Spec, SpecErrorKind> {
-        toml::from_str(text).map_err(|e| SpecErrorKind::Toml(e.to_string()))
+        let spec: Spec = toml::from_str(text).map_err(|e| SpecErrorKind::Toml(e.to_string()))?;
+        spec.check_values()?;
+        Ok(spec)
+    }
+
+    /// Parses JSON text and checks its values ([`Spec::check_values`]).
+    pub fn from_json(text: &str) -> Result<Spec, SpecErrorKind> {
+        let spec: Spec = serde_json::from_str(text)?;
+        spec.check_values()?;
+        Ok(spec)
+    }
+
+    /// Checks every value where it is read, before any work: text without control characters
+    /// (`name`, `description`, template names), every coordinate finite. Errors name the field.
+    pub fn check_values(&self) -> Result<(), SpecErrorKind> {
+        check_text("name", &self.name)?;
+        check_text("description", &self.description)?;
+        if let Some(c) = &self.mesh.clipped {
+            check_points("mesh.clipped.outer", &c.outer)?;
+            for (i, h) in c.holes.iter().enumerate() {
+                check_points(&format!("mesh.clipped.holes[{i}]"), h)?;
+            }
+        }
+        check_points("sinks.points", &self.sinks.points)?;
+        for (i, poly) in self.user.obstacle_polygons.iter().enumerate() {
+            check_points(&format!("user.obstacle_polygons[{i}]"), poly)?;
+        }
+        for (i, p) in self.user.forced_vertices.iter().enumerate() {
+            if let Place::Point(pt) = p {
+                check_points(&format!("user.forced_vertices[{i}]"), std::slice::from_ref(pt))?;
+            }
+        }
+        for (i, r) in self.user.through_routes.iter().enumerate() {
+            for (end, p) in [("from", &r.from), ("to", &r.to)] {
+                if let Place::Point(pt) = p {
+                    check_points(&format!("user.through_routes[{i}].{end}"), std::slice::from_ref(pt))?;
+                }
+            }
+        }
+        if let Some(rooms) = &self.rooms {
+            for (i, t) in rooms.templates.iter().enumerate() {
+                check_text(&format!("rooms.templates[{i}].name"), &t.name)?;
+            }
+        }
+        Ok(())
     }
 }

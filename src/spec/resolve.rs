@@ -232,7 +232,13 @@ impl Spec {
     /// Builds the mesh and resolves every field. `base` is the directory relative to which
     /// mesh files are found.
     pub fn resolve(&self, base: &Path) -> Result<Problem, SpecErrorKind> {
-        self.resolve_on_mesh(self.build_mesh(base)?)
+        self.resolve_within(base, DEFAULT_MAX_CELLS)
+    }
+
+    /// [`Spec::resolve`] with a cap on the mesh's size: a mesh whose cells (faces) would exceed
+    /// `max_cells` is refused before it is built, with the estimate in the message.
+    pub fn resolve_within(&self, base: &Path, max_cells: usize) -> Result<Problem, SpecErrorKind> {
+        self.resolve_on_mesh(self.build_mesh(base, max_cells)?)
     }
 
     /// Resolves every field against a mesh built elsewhere (the spec's `mesh` section is not
@@ -487,18 +493,27 @@ impl Spec {
         })
     }
 
-    fn build_mesh(&self, base: &Path) -> Result<Mesh, SpecErrorKind> {
+    fn build_mesh(&self, base: &Path, max_cells: usize) -> Result<Mesh, SpecErrorKind> {
+        let too_big = |field: &str, cells: f64, what: String| {
+            SpecErrorKind::Field {
+                field: field.into(),
+                message: format!(
+                    "{what} gives about {cells:.0} cells, above the limit of {max_cells} (raise it with --max-cells if the machine can take it)"
+                ),
+            }
+        };
         let m = &self.mesh;
         let given = [m.grid.is_some(), m.clipped.is_some(), m.file.is_some()].iter().filter(|&&b| b).count();
         if given != 1 {
             return Err(field("mesh", "give exactly one of `grid`, `clipped` or `file`"));
         }
         let mesh = if let Some(g) = &m.grid {
-            if g.width == 0 || g.height == 0 || g.width * g.height > 1_000_000 {
-                return Err(field(
-                    "mesh.grid",
-                    format!("size {}×{} must be between 1×1 and 10^6 cells", g.width, g.height),
-                ));
+            if g.width == 0 || g.height == 0 {
+                return Err(field("mesh.grid", format!("size {}×{} must be at least 1×1", g.width, g.height)));
+            }
+            let cells = g.width as f64 * g.height as f64;
+            if cells > max_cells as f64 {
+                return Err(too_big("mesh.grid", cells, format!("{}×{}", g.width, g.height)));
             }
             if !(g.spacing > 0.0 && g.spacing.is_finite()) {
                 return Err(field("mesh.grid.spacing", "must be a positive number"));
@@ -508,17 +523,34 @@ impl Spec {
             if !(c.spacing > 0.0 && c.spacing.is_finite()) {
                 return Err(field("mesh.clipped.spacing", "must be a positive number"));
             }
+            // The cells of the grid over the outer polygon's bounding box: an upper bound.
+            let span = |k: usize| {
+                let (lo, hi) =
+                    c.outer.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| (lo.min(p[k]), hi.max(p[k])));
+                if hi > lo {
+                    ((hi - lo) / c.spacing).ceil()
+                } else {
+                    0.0
+                }
+            };
+            let cells = span(0) * span(1);
+            if cells > max_cells as f64 {
+                return Err(too_big("mesh.clipped.spacing", cells, format!("spacing {}", c.spacing)));
+            }
             mesh::clipped_grid(&c.outer, &c.holes, c.spacing).map_err(|e| SpecErrorKind::Mesh(e.to_string()))?
         } else {
             let path = base.join(m.file.as_ref().expect("one source"));
             let text =
-                std::fs::read_to_string(&path).map_err(|e| SpecErrorKind::Mesh(format!("{}: {e}", path.display())))?;
+                crate::io::read_utf8(&path).map_err(|e| SpecErrorKind::Mesh(format!("{}: {e}", path.display())))?;
             if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("json")) {
                 serde_json::from_str(&text).map_err(|e| SpecErrorKind::Mesh(format!("{}: {e}", path.display())))?
             } else {
                 mesh::from_obj(&text).map_err(|e| SpecErrorKind::Mesh(format!("{}: {e}", path.display())))?
             }
         };
+        if mesh.num_faces() > max_cells {
+            return Err(too_big("mesh.file", mesh.num_faces() as f64, "the file".into()));
+        }
         Ok(match &m.jitter {
             Some(j) if j.amount > 0.0 && j.amount < 0.5 => mesh::jitter(&mesh, j.amount, j.seed),
             Some(j) if j.amount == 0.0 => mesh,
@@ -608,6 +640,10 @@ pub(crate) fn shortest_path(mesh: &Mesh, roles: &[EdgeRole], a: VertexId, b: Ver
     path.reverse();
     Some(path)
 }
+
+/// The default cap on a mesh's cells (faces): 250,000, a 500 × 500 grid — far above the paper's
+/// examples (the largest has a few thousand), below what makes a model too big for memory.
+pub const DEFAULT_MAX_CELLS: usize = 250_000;
 
 /// A totally ordered f64 for heaps (no NaN ever enters).
 #[derive(Copy, Clone, PartialEq)]

@@ -96,7 +96,7 @@ impl TrafficError {
 }
 
 pub(crate) fn read(path: &Path) -> Result<String, TrafficError> {
-    std::fs::read_to_string(path).map_err(|e| TrafficError::new(path, e.into()))
+    crate::io::read_utf8(path).map_err(|e| TrafficError::new(path, e.into()))
 }
 
 pub(crate) fn write(path: &Path, text: &str) -> Result<(), TrafficError> {

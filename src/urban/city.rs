@@ -77,13 +77,14 @@ impl CityRunOptions {
     /// Options from the command line's settings over a city spec's `[solver]` section (through
     /// [`crate::pipeline::settings::resolve`], errors naming the flag or the file and field):
     /// `flags.time_limit` replaces every level's own; `threads` and `threads_per_solve` replace
-    /// the spec's budget.
+    /// the spec's budget; a city whose level meshes could exceed `max_cells` cells is refused.
     pub fn resolve(
         spec: &CitySpec,
         spec_path: &Path,
         flags: &Settings,
         threads: Option<u32>,
         threads_per_solve: Option<u32>,
+        max_cells: usize,
     ) -> Result<CityRunOptions, SettingsError> {
         let own = Settings {
             method: spec.solver.name.map(Method::Milp),
@@ -96,6 +97,16 @@ impl CityRunOptions {
             place: "--solver".into(),
             reason: format!("`{method}` is a design search: a city's levels need a MILP backend"),
         })?;
+        let cells = spec.estimated_cells();
+        if cells > max_cells as f64 {
+            return Err(SettingsError {
+                place: format!("{}: mesh.spacing", spec_path.display()),
+                reason: format!(
+                    "{} gives up to about {cells:.0} cells per level mesh, above the limit of {max_cells} (raise it with --max-cells if the machine can take it)",
+                    spec.mesh.spacing
+                ),
+            });
+        }
         for (flag, v) in [("--threads", threads), ("--threads-per-solve", threads_per_solve)] {
             if v == Some(0) {
                 return Err(SettingsError { place: flag.into(), reason: "must be ≥ 1, got 0".into() });
@@ -323,7 +334,7 @@ struct LevelState {
 pub fn saved_roads(spec: &CitySpec, out: &Path, region: &RegionReport) -> Result<Option<RegionRoads>, CityError> {
     if let Some(last) = region.levels.iter().rev().find(|l| l.has_network()) {
         let path = region_dir(out, region.index, &region.name).join(format!("L{}", last.level)).join("state.json");
-        let text = std::fs::read_to_string(&path).map_err(io_err(&path))?;
+        let text = crate::io::read_utf8(&path).map_err(io_err(&path))?;
         let state: LevelState =
             serde_json::from_str(&text).map_err(|e| CityError::State { path: path.clone(), message: e.to_string() })?;
         return match state.roads {

@@ -296,7 +296,7 @@ impl CitySpec {
     /// Reads a city TOML file and checks it.
     pub fn load(path: &Path) -> Result<CitySpec, CitySpecError> {
         let err = |kind| CitySpecError { path: path.to_path_buf(), kind };
-        let text = std::fs::read_to_string(path).map_err(|e| err(e.into()))?;
+        let text = crate::io::read_utf8(path).map_err(|e| err(e.into()))?;
         CitySpec::from_toml(&text).map_err(err)
     }
 
@@ -368,7 +368,19 @@ impl CitySpec {
         }
     }
 
-    /// The domain's bounding box (lower-left, upper-right corners).
+    /// An upper bound on the cells of a level's mesh: the grid over the domain's bounding box,
+    /// times 4 for each level that subdivides.
+    pub fn estimated_cells(&self) -> f64 {
+        let (lo, hi) = self.domain_bounds();
+        let cells = ((hi[0] - lo[0]) / self.mesh.spacing).ceil().max(0.0)
+            * ((hi[1] - lo[1]) / self.mesh.spacing).ceil().max(0.0);
+        // Each level that subdivides the mesh quadruples its faces.
+        let subdivisions =
+            self.levels.values().filter(|l| l.get("subdivide").and_then(|v| v.as_bool()) == Some(true)).count() as i32;
+        cells * 4f64.powi(subdivisions)
+    }
+
+    /// The bounding box of the domain's outer polygon.
     pub fn domain_bounds(&self) -> ([f64; 2], [f64; 2]) {
         self.domain.outer.iter().fold(([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]), |(lo, hi), p| {
             ([lo[0].min(p[0]), lo[1].min(p[1])], [hi[0].max(p[0]), hi[1].max(p[1])])
