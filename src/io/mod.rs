@@ -220,16 +220,6 @@ pub(crate) fn digest(parts: &[&[u8]]) -> String {
     format!("{h:016x}")
 }
 
-#[cfg(test)]
-mod text_tests {
-    #[test]
-    fn utf8_errors_name_the_line_and_column() {
-        let e = super::utf8(b"NAME x\nROWS\n N  c\xff\n".to_vec()).unwrap_err().to_string();
-        assert_eq!(e, "line 3, column 6: not valid UTF-8 (byte 0xff)");
-        assert_eq!(super::utf8(b"ok\n".to_vec()).unwrap(), "ok\n");
-    }
-}
-
 /// What [`convert`] did.
 pub struct Converted {
     /// The model's size.
@@ -249,4 +239,14 @@ pub fn convert(input: &Path, output: &Path) -> Result<Converted, FileError> {
         warnings: read.warnings.iter().map(|w| w.to_string()).collect(),
         renamed: if map.is_identity() { 0 } else { map.vars.len() + map.rows.len() },
     })
+}
+
+#[cfg(test)]
+mod text_tests {
+    #[test]
+    fn utf8_errors_name_the_line_and_column() {
+        let e = super::utf8(b"NAME x\nROWS\n N  c\xff\n".to_vec()).unwrap_err().to_string();
+        assert_eq!(e, "line 3, column 6: not valid UTF-8 (byte 0xff)");
+        assert_eq!(super::utf8(b"ok\n".to_vec()).unwrap(), "ok\n");
+    }
 }
