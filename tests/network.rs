@@ -346,6 +346,9 @@ fn bad_specs_name_the_field() {
         ("name = \"x\"\n[mesh]\ngrid = { width = 2, height = 2 }\n[sinks]\nall_boundary = true\n[weights]\nlength = \"forbid\"", "weights.length"),
         ("name = \"x\"\n[mesh]\ngrid = { width = 2, height = 2 }\n[sinks]\nall_boundary = true\n[user]\nforced_edges = [[0, 4]]", "not joined"),
         ("name = \"x\"\n[mesh]\n[sinks]\nall_boundary = true", "mesh"),
+        // Found by the fuzzing campaign: positions beyond f64, and cells too small to tell apart.
+        ("name = \"x\"\n[mesh]\ngrid = { width = 3, height = 3, spacing = 1e308 }\n[sinks]\nall_boundary = true", "mesh.grid"),
+        ("name = \"x\"\n[mesh]\ngrid = { width = 3, height = 3, spacing = 4.9e-324 }\n[sinks]\nall_boundary = true", "mesh.grid"),
     ];
     for (toml, needle) in cases {
         let msg = spec_error(toml);

@@ -18,10 +18,25 @@ const MAX_CLIP_CELLS: usize = 1 << 26;
 ///
 /// # Panics
 ///
-/// If `w` or `h` is 0, or `spacing` is not finite and positive.
+/// If the grid is not a valid mesh ([`try_grid`] says why): `w` or `h` 0, `spacing` not finite
+/// and positive, or so large or small that positions overflow or coincide.
 pub fn grid(w: usize, h: usize, spacing: f64) -> Mesh {
-    assert!(w > 0 && h > 0, "grid: w and h must be positive (got {w} × {h})");
-    assert!(spacing.is_finite() && spacing > 0.0, "grid: spacing must be finite and positive (got {spacing})");
+    try_grid(w, h, spacing).unwrap_or_else(|e| panic!("grid {w} × {h}, spacing {spacing}: {e}"))
+}
+
+/// [`grid`], or why it cannot be built: `w` or `h` 0, `spacing` not finite and positive, an
+/// extent `max(w, h) · spacing` beyond f64, or a spacing so small that vertices coincide.
+pub fn try_grid(w: usize, h: usize, spacing: f64) -> Result<Mesh, MeshError> {
+    let invalid = |reason: String| Err(MeshError::InvalidInput { reason });
+    if w == 0 || h == 0 {
+        return invalid(format!("grid: w and h must be positive (got {w} × {h})"));
+    }
+    if !(spacing.is_finite() && spacing > 0.0) {
+        return invalid(format!("grid: spacing must be finite and positive (got {spacing})"));
+    }
+    if !(w.max(h) as f64 * spacing).is_finite() {
+        return invalid(format!("grid: {w} × {h} cells of side {spacing} reach beyond the largest number"));
+    }
     let mut positions = Vec::with_capacity((w + 1) * (h + 1));
     for row in 0..=h {
         for col in 0..=w {
@@ -35,7 +50,7 @@ pub fn grid(w: usize, h: usize, spacing: f64) -> Mesh {
             faces.push(vec![id(row, col), id(row, col + 1), id(row + 1, col + 1), id(row + 1, col)]);
         }
     }
-    Mesh::from_polygons(positions, faces).expect("a regular grid is a valid mesh")
+    Mesh::from_polygons(positions, faces)
 }
 
 /// The cells of a regular grid that lie inside a polygon with holes.

@@ -50,7 +50,7 @@ pub mod subdivide;
 mod tests;
 
 pub use self::error::{DegenerateReason, MeshError};
-pub use self::generate::{clipped_grid, clipped_grid_on_lattice, grid, jitter};
+pub use self::generate::{clipped_grid, clipped_grid_on_lattice, grid, jitter, try_grid};
 pub use self::halfedge::Mesh;
 pub use self::ids::{EdgeId, FaceId, HalfEdgeId, VertexId};
 pub use self::obj::{from_obj, to_obj, ObjError, ObjErrorKind};

@@ -518,7 +518,7 @@ impl Spec {
             if !(g.spacing > 0.0 && g.spacing.is_finite()) {
                 return Err(field("mesh.grid.spacing", "must be a positive number"));
             }
-            mesh::grid(g.width, g.height, g.spacing)
+            mesh::try_grid(g.width, g.height, g.spacing).map_err(|e| field("mesh.grid", e.to_string()))?
         } else if let Some(c) = &m.clipped {
             if !(c.spacing > 0.0 && c.spacing.is_finite()) {
                 return Err(field("mesh.clipped.spacing", "must be a positive number"));
