@@ -60,7 +60,9 @@ pub fn run_traffic(args: TrafficArgs) -> Result<ExitCode> {
         let t0 = Instant::now();
         let net = traffic::network::load(path, &args.load)?;
         let load = t0.elapsed().as_secs_f64();
-        let dir = if args.designs.len() == 1 { args.out.clone() } else { args.out.join(label) };
+        // A label names a folder: made one safe path component.
+        let dir =
+            if args.designs.len() == 1 { args.out.clone() } else { args.out.join(netspec::run::safe_component(label)) };
         std::fs::create_dir_all(&dir).with_context(|| format!("creating {}", dir.display()))?;
         let mut rep = traffic::evaluate(&net, &args.demand, &sumo, &dir)
             .with_context(|| format!("evaluating {}", path.display()))?;
