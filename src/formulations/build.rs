@@ -3,7 +3,8 @@
 
 use super::expr::{Emitter, FamilyStats};
 use super::families::cutset;
-use super::family::{Ctx, Family, VarMap, REGISTRY};
+use super::families::REGISTRY;
+use super::family::{Ctx, Family, VarMap};
 use super::recipe::Recipe;
 use crate::design::Network;
 use crate::milp::{Model, Sense};

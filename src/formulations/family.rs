@@ -3,16 +3,13 @@
 //! A family is one file under `families/`: a type implementing [`Family`] that emits its
 //! variables and rows (citing the equations of docs/formulation.md), sets its own variables at
 //! the point that stands for a design (a MIP start), and reads its part of a design back from a
-//! point. Whether a family is in a problem's model is decided by its entry in [`REGISTRY`] from
+//! point. Whether a family is in a problem's model is decided by its entry in [`super::REGISTRY`] from
 //! the problem, the recipe and its plan; the registry's order is the model's emission order, so
 //! the same problem and recipe give the same model, byte for byte.
 
 use super::encode::{EncodeError, Encoding};
 use super::expr::{Emitter, Expr, Value};
-use super::families::{
-    branches, connectivity_flow, coverage, cutset, dead_ends, distance_flow, edges, label_bounds, local_configs,
-    no_island, out_arcs, paths, rooms, t_junctions, travel_flow, user,
-};
+use super::families::cutset;
 use super::recipe::{Plan, Recipe};
 use crate::design::Network;
 use crate::mesh::{EdgeId, HalfEdgeId, Mesh, VertexId};
@@ -50,27 +47,6 @@ pub trait Family: Send + Sync {
 
 /// A family's entry in the registry: the family, ready to emit, when the problem's model has it.
 pub type Entry = fn(&Ctx) -> Option<Box<dyn Family>>;
-
-/// Every family, in emission order.
-pub const REGISTRY: &[Entry] = &[
-    edges::Edges::entry,
-    no_island::NoIsland::entry,
-    label_bounds::LabelBounds::entry,
-    coverage::Coverage::entry,
-    distance_flow::DistanceFlow::entry,
-    travel_flow::TravelFlow::entry,
-    connectivity_flow::ConnectivityFlow::entry,
-    out_arcs::OutArcs::entry,
-    dead_ends::DeadEnds::entry,
-    branches::Branches::entry,
-    local_configs::LocalConfigs::zigzags,
-    local_configs::LocalConfigs::too_close,
-    t_junctions::TJunctions::entry,
-    paths::PointToPoint::entry,
-    rooms::Rooms::entry,
-    user::UserSpecs::entry,
-    cutset::Cutsets::entry,
-];
 
 /// The variables several families share: the network's skeleton.
 #[derive(Clone, Debug, Default, PartialEq)]

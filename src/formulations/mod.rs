@@ -25,5 +25,6 @@ mod recipe;
 pub use build::{build, build_compact, build_with, Formulation};
 pub use encode::{EncodeError, Encoding};
 pub use families::cutset::{CoverGroup, CutsetGraph, CutsetSeparator};
-pub use family::{he_name, vname, Ctx, Entry, Family, VarMap, REGISTRY};
+pub use families::REGISTRY;
+pub use family::{he_name, vname, Ctx, Entry, Family, VarMap};
 pub use recipe::{Plan, Recipe, SYMMETRIC_FLOW_MIN_ORDER};
