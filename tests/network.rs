@@ -271,6 +271,20 @@ t_junction = 1
     insta::assert_snapshot!("tiny_lp", String::from_utf8(text).unwrap());
 }
 
+fn gzip(bytes: &[u8]) -> Vec<u8> {
+    use std::io::Write;
+    let mut enc = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::best());
+    enc.write_all(bytes).unwrap();
+    enc.finish().unwrap()
+}
+
+fn gunzip(bytes: &[u8]) -> Vec<u8> {
+    use std::io::Read;
+    let mut out = Vec::new();
+    flate2::read::GzDecoder::new(bytes).read_to_end(&mut out).unwrap();
+    out
+}
+
 #[test]
 fn fig2_models_export_and_read_back() {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR"));
@@ -281,15 +295,16 @@ fn fig2_models_export_and_read_back() {
         assert_eq!(p.mesh.num_edges(), 312, "Fig. 2 meshes have the paper's 312 edges");
         // The paper's own recipe: these fixtures pin its rows, names and order byte for byte.
         let nm = formulations::build_with(&p, &formulations::Recipe::named(RecipeName::Paper));
-        let fixture = dir.join(format!("fixtures/fig2/fig2{f}.mps"));
-        // The committed fixture must equal what we emit now (byte for byte), and read back.
+        let fixture = dir.join(format!("fixtures/fig2/fig2{f}.mps.gz"));
+        // The committed fixture, unpacked, must equal what we emit now (byte for byte), and read
+        // back through the gzip reader.
         let mut now = Vec::new();
         netspec::io::mps::write(&nm.model, &mut now, &Default::default()).unwrap();
-        let committed = std::fs::read(&fixture).unwrap_or_default();
+        let committed = std::fs::read(&fixture).map(|b| gunzip(&b)).unwrap_or_default();
         if committed != now {
             if std::env::var_os("NETSPEC_BLESS").is_some() {
                 std::fs::create_dir_all(fixture.parent().unwrap()).unwrap();
-                std::fs::write(&fixture, &now).unwrap();
+                std::fs::write(&fixture, gzip(&now)).unwrap();
             } else {
                 panic!("{} is stale: rerun with NETSPEC_BLESS=1", fixture.display());
             }
