@@ -24,6 +24,7 @@ pub mod render;
 pub mod report;
 pub mod rules;
 pub mod run;
+pub mod slurm;
 pub mod solvers;
 pub mod spec;
 pub mod traffic;

@@ -18,7 +18,7 @@ mod cli {
     pub mod traffic;
 }
 
-use cli::args::SolveArgs;
+use cli::args::{ExecutorArgs, SolveArgs};
 
 #[derive(Parser)]
 #[command(name = "netspec", version, about = "Network design from functional specifications, by integer programming", long_about = None)]
@@ -129,6 +129,13 @@ enum Command {
         /// Solve without the heuristic's MIP start (each child gets `solve --no-start`).
         #[arg(long)]
         no_start: bool,
+        #[command(flatten)]
+        executor: ExecutorArgs,
+        /// Estimate how long these runs take on clusters of K nodes with C cores each
+        /// (comma-separated `KxC`: `1x2,20x2`), by list scheduling their recorded wall times;
+        /// printed and added to results.md.
+        #[arg(long, value_delimiter = ',', value_name = "KxC")]
+        makespan: Vec<netspec::compare::makespan::Shape>,
         /// Combine finished comparisons (each DIR's results.json) into one report in --out
         /// without solving: every column of every DIR, in the order given (column labels must
         /// differ). With --manifest, its rows are the table's; else the first DIR's.
@@ -137,6 +144,14 @@ enum Command {
         /// Output directory.
         #[arg(long, default_value = "out/compare")]
         out: PathBuf,
+    },
+    /// One task of a `compare --executor slurm` job array (run by Slurm, not by hand).
+    #[command(name = "compare-task", hide = true)]
+    CompareTask {
+        /// The array's plan (`slurm/plan-*.json` in the comparison's folder).
+        plan: PathBuf,
+        /// The task's index in it.
+        index: usize,
     },
     /// Lay out a city's streets (§5.1): sub-regions from the major roads, levels 2–4 per
     /// sub-region (in parallel), smoothing; writes city.json, streets.geojson, city.svg/png and
@@ -300,11 +315,13 @@ fn run(cli: Cli) -> Result<ExitCode> {
             formulations,
             rows,
             no_start,
+            executor,
+            makespan,
             merge,
             out,
         } => {
             if !merge.is_empty() {
-                return cli::compare::merge(&merge, manifest.as_deref(), &rows, &out);
+                return cli::compare::merge(&merge, manifest.as_deref(), &rows, &out, &makespan);
             }
             cli::compare::run(cli::compare::CompareArgs {
                 specs,
@@ -318,9 +335,12 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 formulations,
                 rows,
                 no_start,
+                executor: executor.slurm()?.map_or(netspec::compare::Executor::Local, netspec::compare::Executor::Slurm),
+                makespan,
                 out,
             })
         }
+        Command::CompareTask { plan, index } => cli::compare::task(&plan, index),
         Command::City { spec, solver, time_limit, threads, threads_per_solve, gap, fresh, max_cells, out } => {
             let args =
                 cli::city::CityArgs { solver, time_limit, threads, threads_per_solve, gap, fresh, out, max_cells };

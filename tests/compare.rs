@@ -128,6 +128,8 @@ fn record(instance: &str, solver: &str, status: &str, t: f64) -> RunRecord {
         time_limit: None,
         error: None,
         settings: None,
+        binary_digest: None,
+        slurm_state: None,
     }
 }
 
@@ -318,6 +320,7 @@ fn paper_limits_per_row() {
         paper_limits: true,
         no_start: false,
         interrupt: None,
+        executor: Default::default(),
     };
     assert_eq!(s.limit_for(&row("35")), 35.0);
     assert_eq!(s.limit_for(&row("1018")), 100.0);

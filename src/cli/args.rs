@@ -68,3 +68,65 @@ impl SolveArgs {
         }
     }
 }
+
+/// Where a command's solves run.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum ExecutorKind {
+    /// Child processes on this machine.
+    #[default]
+    Local,
+    /// Jobs on a Slurm cluster (see docs/cluster.md).
+    Slurm,
+}
+
+/// The executor flags `compare` and `city` share.
+#[derive(Args, Clone, Default)]
+pub struct ExecutorArgs {
+    /// Where the solves run: `local` (this machine) or `slurm` (jobs on a Slurm cluster, found
+    /// through SLURM_CONF or the site's configuration; see docs/cluster.md).
+    #[arg(long, value_enum, default_value_t = ExecutorKind::Local)]
+    pub executor: ExecutorKind,
+    /// Slurm partition (default: the cluster's).
+    #[arg(long, value_name = "NAME")]
+    pub slurm_partition: Option<String>,
+    /// Slurm account (default: yours).
+    #[arg(long, value_name = "NAME")]
+    pub slurm_account: Option<String>,
+    /// Memory per Slurm job, in Slurm's notation.
+    #[arg(long, value_name = "SIZE", default_value = "4G")]
+    pub slurm_mem: String,
+    /// Seconds added to each Slurm job's time limit for start-up and writing outputs.
+    #[arg(long, value_name = "SECONDS", default_value_t = 120.0)]
+    pub slurm_startup: f64,
+    /// A further sbatch argument, passed as given (repeatable: `--slurm-arg=--qos=long`).
+    #[arg(long = "slurm-arg", value_name = "ARG", allow_hyphen_values = true)]
+    pub slurm_args: Vec<String>,
+}
+
+impl ExecutorArgs {
+    /// The Slurm options, or `None` for the local executor; Slurm flags without
+    /// `--executor slurm` are an error.
+    pub fn slurm(&self) -> anyhow::Result<Option<netspec::slurm::SlurmOptions>> {
+        if self.executor == ExecutorKind::Local {
+            let given = self.slurm_partition.is_some()
+                || self.slurm_account.is_some()
+                || !self.slurm_args.is_empty()
+                || self.slurm_mem != "4G"
+                || self.slurm_startup != 120.0;
+            anyhow::ensure!(!given, "the --slurm-* flags need --executor slurm");
+            return Ok(None);
+        }
+        anyhow::ensure!(
+            self.slurm_startup.is_finite() && self.slurm_startup >= 0.0,
+            "--slurm-startup must be a number of seconds ≥ 0, got {}",
+            self.slurm_startup
+        );
+        Ok(Some(netspec::slurm::SlurmOptions {
+            partition: self.slurm_partition.clone(),
+            account: self.slurm_account.clone(),
+            mem: self.slurm_mem.clone(),
+            startup: self.slurm_startup,
+            extra: self.slurm_args.clone(),
+        }))
+    }
+}

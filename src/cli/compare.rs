@@ -2,7 +2,8 @@
 //! run as it ends.
 
 use anyhow::{bail, Context, Result};
-use netspec::compare::{CompareSettings, Manifest, Report, RunSource};
+use netspec::compare::makespan::{self, Shape};
+use netspec::compare::{CompareSettings, Event, Executor, Manifest, Report, RunSource};
 use netspec::pipeline::Method;
 use netspec::solvers::SolverKind;
 use netspec::spec::Variant;
@@ -22,6 +23,8 @@ pub struct CompareArgs {
     pub formulations: Vec<Variant>,
     pub rows: Vec<String>,
     pub no_start: bool,
+    pub executor: Executor,
+    pub makespan: Vec<Shape>,
     pub out: PathBuf,
 }
 
@@ -30,7 +33,7 @@ fn command() -> Vec<String> {
 }
 
 /// Combines finished comparisons into one report.
-pub fn merge(dirs: &[PathBuf], manifest: Option<&Path>, rows: &[String], out: &Path) -> Result<ExitCode> {
+pub fn merge(dirs: &[PathBuf], manifest: Option<&Path>, rows: &[String], out: &Path, shapes: &[Shape]) -> Result<ExitCode> {
     let manifest =
         manifest.map(|m| Manifest::load(m).and_then(|m| m.select(rows))).transpose().map_err(anyhow::Error::msg)?;
     let merged = netspec::compare::merge(dirs, manifest).map_err(anyhow::Error::msg)?;
@@ -46,6 +49,7 @@ pub fn merge(dirs: &[PathBuf], manifest: Option<&Path>, rows: &[String], out: &P
             what: &format!("merged from {}", from.join(", ")),
             command: &command(),
             settings,
+            makespan: &makespan::estimate(&merged.records, shapes),
         },
     )
     .map_err(anyhow::Error::msg)?;
@@ -94,12 +98,23 @@ pub fn run(a: CompareArgs) -> Result<ExitCode> {
         paper_limits: a.paper_limits,
         no_start: a.no_start,
         interrupt,
+        executor: a.executor,
     };
     // The columns of every table and chart: a backend, or a (backend, formulation) pair.
     let columns: Vec<String> = settings.methods().into_iter().map(|(label, _, _)| label).collect();
-    std::fs::create_dir_all(&a.out).with_context(|| format!("creating {}", a.out.display()))?;
     let exe = std::env::current_exe().context("locating the netspec binary")?;
-    let records = netspec::compare::run_all(&exe, &settings, &a.out, |r, source| {
+    let records = netspec::compare::run_all(&exe, &settings, &a.out, |event| {
+        let (r, source) = match event {
+            Event::Run(r, source) => (r, source),
+            Event::Submitted { job, tasks } => {
+                println!("submitted Slurm job array {job} ({tasks} tasks)");
+                return;
+            }
+            Event::Queue { pending, running } => {
+                println!("slurm: {running} running, {pending} pending");
+                return;
+            }
+        };
         println!(
             "{:<24} {:<14} {:<16} {:>8.2} s {}{}{}",
             r.instance,
@@ -132,6 +147,7 @@ pub fn run(a: CompareArgs) -> Result<ExitCode> {
             what: &what,
             command: &command(),
             settings: serde_json::to_value(&settings)?,
+            makespan: &makespan::estimate(&records, &a.makespan),
         },
     )
     .map_err(anyhow::Error::msg)?;
@@ -148,5 +164,14 @@ pub fn run(a: CompareArgs) -> Result<ExitCode> {
         );
         return Ok(ExitCode::FAILURE);
     }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// One task of a Slurm job array: solves the plan's run `index` and writes its record.
+pub fn task(plan: &Path, index: usize) -> Result<ExitCode> {
+    let exe = std::env::current_exe().context("locating the netspec binary")?;
+    let r = netspec::compare::cluster::run_task(&exe, plan, index)
+        .with_context(|| format!("task {index} of {}", plan.display()))?;
+    println!("{} {} {} {:.2} s", r.instance, r.solver, r.status, r.wall_time);
     Ok(ExitCode::SUCCESS)
 }

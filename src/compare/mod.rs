@@ -14,6 +14,9 @@ use crate::render::{
     chart::{Bar, BarChart, BarGroup, ProfileSeries},
 };
 use crate::solvers::Termination;
+
+pub mod cluster;
+pub mod makespan;
 use serde::{Deserialize, Serialize};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -69,6 +72,13 @@ pub struct RunRecord {
     /// (`None` in records written before settings were recorded: they are always solved again.)
     #[serde(default)]
     pub settings: Option<RunSettings>,
+    /// Digest of the netspec binary that ran it, for runs on a cluster (the staged copy).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub binary_digest: Option<String>,
+    /// The Slurm state of a cluster task that ended without a record (`TIMEOUT`, `NODE_FAIL`,
+    /// `OUT_OF_MEMORY`, `CANCELLED`, `PREEMPTED`, …); such a run is solved again on resume.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub slurm_state: Option<String>,
 }
 
 /// The settings that produced a run: a record is reused only when all of them are the same.
@@ -360,6 +370,9 @@ pub struct CompareSettings {
     /// writes its best design, recorded as `interrupted`), and no further run starts.
     #[serde(skip)]
     pub interrupt: Option<crate::solvers::Interrupt>,
+    /// Where the runs execute (not part of the results: a run is the same wherever it ran).
+    #[serde(skip)]
+    pub executor: Executor,
 }
 
 impl CompareSettings {
@@ -398,69 +411,209 @@ pub enum RunSource {
     Rerun(Vec<String>),
 }
 
-/// Runs every (instance, backend, seed) combination that has no record with the same settings;
-/// returns all records, in a fixed order. `exe` is the `netspec` binary; `progress` is called
-/// after each run.
-pub fn run_all(
-    exe: &Path,
-    settings: &CompareSettings,
-    out: &Path,
-    mut progress: impl FnMut(&RunRecord, &RunSource),
-) -> std::io::Result<Vec<RunRecord>> {
+/// What a comparison reports as it goes.
+#[derive(Clone, Debug)]
+pub enum Event<'a> {
+    /// A run has its record (solved now, or reused).
+    Run(&'a RunRecord, &'a RunSource),
+    /// The runs without a reusable record were submitted to Slurm as one job array.
+    Submitted {
+        /// The array's job id.
+        job: &'a str,
+        /// Its tasks, one per run.
+        tasks: usize,
+    },
+    /// The array's tasks by Slurm state (`squeue`), when the counts change.
+    Queue {
+        /// Tasks waiting to start.
+        pending: usize,
+        /// Tasks running.
+        running: usize,
+    },
+}
+
+/// Why a comparison could not run.
+#[derive(Debug, thiserror::Error)]
+pub enum CompareError {
+    /// Reading or writing the output folder failed.
+    #[error(transparent)]
+    Io(#[from] std::io::Error),
+    /// Slurm refused or is not there.
+    #[error(transparent)]
+    Slurm(#[from] crate::slurm::SlurmError),
+}
+
+/// Where the runs execute.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub enum Executor {
+    /// Child processes on this machine, one at a time (the default).
+    #[default]
+    Local,
+    /// Tasks of a Slurm job array ([`cluster`]).
+    Slurm(crate::slurm::SlurmOptions),
+}
+
+/// One run of a comparison: what produces it and where its record goes.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct PlannedRun {
+    /// The manifest row's name.
+    pub instance: String,
+    /// The column's label (`highs`, `highs/strong`).
+    pub label: String,
+    /// The backend.
+    pub solver: String,
+    /// The recipe, if the column has one.
+    pub formulation: Option<String>,
+    /// The seed.
+    pub seed: Option<u64>,
+    /// The spec file.
+    pub spec: PathBuf,
+    /// The time limit, seconds.
+    pub limit: f64,
+    /// The run's folder (its `run.json`, `result.json`, `stdout.txt`, `stderr.txt`).
+    pub dir: PathBuf,
+    /// The settings its record must carry to be reused.
+    pub wanted: RunSettings,
+}
+
+/// Every run of a comparison, in table order, each with its earlier record when that can be
+/// reused, else why it runs.
+pub fn plan(settings: &CompareSettings, out: &Path) -> Vec<(PlannedRun, Result<RunRecord, RunSource>)> {
     let seeds: Vec<Option<u64>> =
         if settings.seeds.is_empty() { vec![None] } else { settings.seeds.iter().map(|&s| Some(s)).collect() };
-    let mut records = Vec::new();
-    let interrupted = || settings.interrupt.as_ref().is_some_and(|i| i.is_triggered());
+    let mut runs = Vec::new();
     for (row, key) in settings.manifest.row.iter().zip(settings.manifest.run_keys()) {
         let Some(spec) = &row.spec else { continue };
         for (label, solver, formulation) in settings.methods() {
             for &seed in &seeds {
-                if interrupted() {
-                    return Ok(records);
-                }
                 let dir = out.join("runs").join(format!(
                     "{key}__{}__{}",
                     label.replace('/', "+"),
                     seed.map_or("default".into(), |s| s.to_string())
                 ));
-                let record_path = dir.join("run.json");
-                let mut wanted = RunSettings::new(spec, &label, seed, settings.threads, settings.limit_for(row));
+                let limit = settings.limit_for(row);
+                let mut wanted = RunSettings::new(spec, &label, seed, settings.threads, limit);
                 if formulation.is_some() {
                     wanted.formulation = formulation.clone();
                 }
                 if !SEARCHES.contains(&solver.as_str()) {
                     wanted.start = Some(if settings.no_start { "none" } else { "heuristic" }.to_string());
                 }
-                let old =
-                    std::fs::read_to_string(&record_path).ok().and_then(|t| serde_json::from_str::<RunRecord>(&t).ok());
-                let source = match old {
-                    // An interrupted run is not finished: it runs again.
-                    Some(r) if r.status == "interrupted" => Some(vec!["interrupted".to_string()]),
-                    Some(r) if r.settings.as_ref() == Some(&wanted) && r.instance == row.name => {
-                        progress(&r, &RunSource::Resumed);
-                        records.push(r);
-                        continue;
-                    }
-                    Some(r) => Some(match &r.settings {
-                        Some(had) if *had != wanted => wanted.changes_from(had),
-                        Some(_) => vec![format!("instance {} → {}", r.instance, row.name)],
-                        None => vec!["no settings recorded".into()],
-                    }),
-                    None => None,
+                let run = PlannedRun {
+                    instance: row.name.clone(),
+                    label: label.clone(),
+                    solver: solver.clone(),
+                    formulation: formulation.clone(),
+                    seed,
+                    spec: spec.clone(),
+                    limit,
+                    dir,
+                    wanted,
                 };
-                std::fs::create_dir_all(&dir)?;
-                let mut r =
-                    run_one(exe, spec, &solver, formulation.as_deref(), seed, settings, settings.limit_for(row), &dir)?;
-                r.solver = label.clone();
-                r.instance = row.name.clone();
-                r.settings = Some(wanted);
-                crate::io::write_atomic(&record_path, &(serde_json::to_string_pretty(&r)? + "\n"))?;
-                progress(&r, &source.map_or(RunSource::Solved, RunSource::Rerun));
-                records.push(r);
+                let decision = decide(&run);
+                runs.push((run, decision));
             }
         }
     }
+    runs
+}
+
+/// The earlier record of `run` if it can be reused, else why the run happens.
+fn decide(run: &PlannedRun) -> Result<RunRecord, RunSource> {
+    let old = std::fs::read_to_string(run.dir.join("run.json"))
+        .ok()
+        .and_then(|t| serde_json::from_str::<RunRecord>(&t).ok());
+    let wanted = &run.wanted;
+    Err(match old {
+        None => return Err(RunSource::Solved),
+        // An interrupted run is not finished, nor is a cluster task that ended without a record.
+        Some(r) if r.status == "interrupted" => RunSource::Rerun(vec!["interrupted".to_string()]),
+        Some(r) if r.slurm_state.is_some() => {
+            RunSource::Rerun(vec![format!("its Slurm task ended {}", r.slurm_state.unwrap_or_default())])
+        }
+        Some(r) if r.settings.as_ref() == Some(wanted) && r.instance == run.instance => return Ok(r),
+        Some(r) => RunSource::Rerun(match &r.settings {
+            Some(had) if had != wanted => wanted.changes_from(had),
+            Some(_) => vec![format!("instance {} → {}", r.instance, run.instance)],
+            None => vec!["no settings recorded".into()],
+        }),
+    })
+}
+
+/// Runs every (instance, backend, seed) combination that has no record with the same settings,
+/// with the settings' executor; returns all records, in table order. `exe` is the `netspec`
+/// binary; `progress` hears of each record as it is made or reused (and of the cluster's queue).
+/// With Slurm, nothing is written before the cluster is found able to take the jobs.
+pub fn run_all(
+    exe: &Path,
+    settings: &CompareSettings,
+    out: &Path,
+    progress: impl FnMut(Event),
+) -> Result<Vec<RunRecord>, CompareError> {
+    match &settings.executor {
+        Executor::Local => Ok(run_local(exe, settings, out, progress)?),
+        Executor::Slurm(opts) => cluster::run_slurm(exe, settings, opts, out, progress),
+    }
+}
+
+/// The local executor: each run a child process of this one, in table order.
+fn run_local(
+    exe: &Path,
+    settings: &CompareSettings,
+    out: &Path,
+    mut progress: impl FnMut(Event),
+) -> std::io::Result<Vec<RunRecord>> {
+    std::fs::create_dir_all(out)?;
+    let mut records = Vec::new();
+    for (run, decision) in plan(settings, out) {
+        if settings.interrupt.as_ref().is_some_and(|i| i.is_triggered()) {
+            break;
+        }
+        let source = match decision {
+            Ok(r) => {
+                progress(Event::Run(&r, &RunSource::Resumed));
+                records.push(r);
+                continue;
+            }
+            Err(source) => source,
+        };
+        let r = solve_and_record(exe, settings, &run, None)?;
+        progress(Event::Run(&r, &source));
+        records.push(r);
+    }
     Ok(records)
+}
+
+/// Solves one planned run in a child process and writes its record (`run.json`), marked with
+/// the digest of the binary that ran it when one is given.
+pub fn solve_and_record(
+    exe: &Path,
+    settings: &CompareSettings,
+    run: &PlannedRun,
+    binary_digest: Option<String>,
+) -> std::io::Result<RunRecord> {
+    std::fs::create_dir_all(&run.dir)?;
+    let mut r = run_one(
+        exe,
+        &run.spec,
+        &run.solver,
+        run.formulation.as_deref(),
+        run.seed,
+        settings,
+        run.limit,
+        &run.dir,
+    )?;
+    r.binary_digest = binary_digest;
+    save_record(run, r)
+}
+
+/// Names a record after its planned run, gives it the run's settings and writes it.
+fn save_record(run: &PlannedRun, mut r: RunRecord) -> std::io::Result<RunRecord> {
+    r.solver = run.label.clone();
+    r.instance = run.instance.clone();
+    r.settings = Some(run.wanted.clone());
+    crate::io::write_atomic(&run.dir.join("run.json"), &(serde_json::to_string_pretty(&r)? + "\n"))?;
+    Ok(r)
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -561,6 +714,8 @@ pub fn record_from_dir(
         time_limit: Some(limit),
         error: None,
         settings: None,
+        binary_digest: None,
+        slurm_state: None,
     };
     match (result, killed) {
         (Some(res), false) => {
@@ -1054,15 +1209,17 @@ pub struct Report<'a> {
     pub command: &'a [String],
     /// Stored in `results.json`.
     pub settings: serde_json::Value,
+    /// Makespan estimates to add (`--makespan`), if any.
+    pub makespan: &'a [makespan::Estimate],
 }
 
 /// Writes a comparison's reports to `out` (`results.md`, `.csv`, `.json`, `profile.svg`,
 /// `bars.svg`) and returns the Markdown table.
 pub fn write_report(out: &Path, r: Report) -> Result<String, String> {
-    let Report { manifest, records, columns, time_limit, what, command, settings } = r;
+    let Report { manifest, records, columns, time_limit, what, command, settings, makespan } = r;
     std::fs::create_dir_all(out).map_err(|e| format!("creating {}: {e}", out.display()))?;
     let summary = summarize(records, columns, time_limit);
-    let md = markdown(manifest, records, columns, &summary);
+    let md = markdown(manifest, records, columns, &summary) + &makespan::markdown(makespan);
     let cpu = std::fs::read_to_string("/proc/cpuinfo")
         .ok()
         .and_then(|t| {
@@ -1085,7 +1242,7 @@ pub fn write_report(out: &Path, r: Report) -> Result<String, String> {
     write("results.csv", csv(records))?;
     write("profile.svg", performance_profile_svg(records, columns, time_limit))?;
     write("bars.svg", bar_chart_svg(manifest, records, columns, time_limit))?;
-    let all = serde_json::json!({
+    let mut all = serde_json::json!({
         "netspec_version": env!("CARGO_PKG_VERSION"),
         "command": command,
         "cpu": cpu,
@@ -1093,6 +1250,9 @@ pub fn write_report(out: &Path, r: Report) -> Result<String, String> {
         "records": records,
         "summary": summary,
     });
+    if !makespan.is_empty() {
+        all["makespan"] = serde_json::to_value(makespan).expect("estimates serialise");
+    }
     write("results.json", serde_json::to_string_pretty(&all).expect("records serialise") + "\n")?;
     Ok(md)
 }
