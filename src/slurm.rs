@@ -102,7 +102,7 @@ pub fn check(opts: &SlurmOptions) -> Result<(), SlurmError> {
     match run("scontrol", &["ping".into()]) {
         Ok(text) if text.contains("is UP") => {}
         Ok(text) | Err(SlurmError::Command { detail: text, .. }) => {
-            return Err(SlurmError::Unreachable { detail: text.trim().replace('\n', "; ") })
+            return Err(SlurmError::Unreachable { detail: text.trim().lines().next().unwrap_or("no answer").to_string() })
         }
         Err(e) => return Err(e),
     }

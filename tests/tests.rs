@@ -27,3 +27,5 @@ mod solve_loop;
 mod fuzz;
 // Infeasibility explained: minimal conflicting sets of a spec's requirements.
 mod explain;
+// `compare` and `city` on a real single-node Slurm cluster (scripts/slurm-local.sh).
+mod slurm;
