@@ -180,6 +180,11 @@ enum Command {
         /// Refuse a city whose level meshes could exceed this many cells (default 250,000).
         #[arg(long, value_name = "CELLS")]
         max_cells: Option<usize>,
+        #[command(flatten)]
+        executor: ExecutorArgs,
+        /// Solve one sub-region's level as a cluster job does (`REGION:LEVEL`; run by Slurm).
+        #[arg(long, hide = true, value_name = "REGION:LEVEL")]
+        level_job: Option<String>,
         /// Output directory (default: out/<the city file's name>).
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
@@ -335,15 +340,39 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 formulations,
                 rows,
                 no_start,
-                executor: executor.slurm()?.map_or(netspec::compare::Executor::Local, netspec::compare::Executor::Slurm),
+                executor: executor
+                    .slurm()?
+                    .map_or(netspec::compare::Executor::Local, netspec::compare::Executor::Slurm),
                 makespan,
                 out,
             })
         }
         Command::CompareTask { plan, index } => cli::compare::task(&plan, index),
-        Command::City { spec, solver, time_limit, threads, threads_per_solve, gap, fresh, max_cells, out } => {
-            let args =
-                cli::city::CityArgs { solver, time_limit, threads, threads_per_solve, gap, fresh, out, max_cells };
+        Command::City {
+            spec,
+            solver,
+            time_limit,
+            threads,
+            threads_per_solve,
+            gap,
+            fresh,
+            max_cells,
+            executor,
+            level_job,
+            out,
+        } => {
+            let args = cli::city::CityArgs {
+                solver,
+                time_limit,
+                threads,
+                threads_per_solve,
+                gap,
+                fresh,
+                out,
+                max_cells,
+                slurm: executor.slurm()?,
+                level_job,
+            };
             cli::city::run_city(&spec, args)
         }
         Command::Traffic {

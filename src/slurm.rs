@@ -102,7 +102,9 @@ pub fn check(opts: &SlurmOptions) -> Result<(), SlurmError> {
     match run("scontrol", &["ping".into()]) {
         Ok(text) if text.contains("is UP") => {}
         Ok(text) | Err(SlurmError::Command { detail: text, .. }) => {
-            return Err(SlurmError::Unreachable { detail: text.trim().lines().next().unwrap_or("no answer").to_string() })
+            return Err(SlurmError::Unreachable {
+                detail: text.trim().lines().next().unwrap_or("no answer").to_string(),
+            })
         }
         Err(e) => return Err(e),
     }
@@ -120,7 +122,9 @@ fn on_path(program: &str) -> bool {
     std::env::var_os("PATH").is_some_and(|p| {
         std::env::split_paths(&p).any(|d| {
             let f = d.join(program);
-            f.is_file() && std::fs::metadata(&f).is_ok_and(|m| std::os::unix::fs::PermissionsExt::mode(&m.permissions()) & 0o111 != 0)
+            f.is_file()
+                && std::fs::metadata(&f)
+                    .is_ok_and(|m| std::os::unix::fs::PermissionsExt::mode(&m.permissions()) & 0o111 != 0)
         })
     })
 }
@@ -250,6 +254,22 @@ pub fn cancel(ids: &[String]) -> Result<(), SlurmError> {
     run("scancel", ids).map(|_| ())
 }
 
+/// Copies `exe` to `stage/netspec-<digest>` unless it is there (jobs run this copy, so a
+/// rebuild during a run changes nothing); returns the copy and the digest.
+pub fn stage_binary(exe: &Path, stage: &Path) -> std::io::Result<(PathBuf, String)> {
+    let bytes = std::fs::read(exe)?;
+    let digest = crate::io::digest(&[&bytes]);
+    let staged = stage.join(format!("netspec-{digest}"));
+    if !staged.exists() {
+        std::fs::create_dir_all(stage)?;
+        let tmp = stage.join(format!(".netspec-{digest}.tmp"));
+        std::fs::write(&tmp, &bytes)?;
+        std::fs::set_permissions(&tmp, std::os::unix::fs::PermissionsExt::from_mode(0o755))?;
+        std::fs::rename(&tmp, &staged)?;
+    }
+    Ok((staged, digest))
+}
+
 /// Writes an executable batch script that runs `argv` (each word quoted for the shell).
 pub fn write_script(path: &Path, argv: &[String]) -> Result<(), SlurmError> {
     let quoted: Vec<String> = argv.iter().map(|a| shell_quote(a)).collect();
@@ -298,7 +318,8 @@ mod tests {
         };
         let opts = SlurmOptions { partition: Some("p".into()), startup: 60.0, ..SlurmOptions::default() };
         let a = sbatch_args(&opts, &job);
-        for want in ["--array=0-2", "--cpus-per-task=2", "--time=3", "--mem=4G", "--dependency=afterok:7", "--partition=p"]
+        for want in
+            ["--array=0-2", "--cpus-per-task=2", "--time=3", "--mem=4G", "--dependency=afterok:7", "--partition=p"]
         {
             assert!(a.contains(&want.to_string()), "{want}: {a:?}");
         }

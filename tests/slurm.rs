@@ -186,8 +186,14 @@ fn missing_slurm_is_a_clear_error_and_writes_nothing() {
     let spec = root().join("fixtures/specs/tiny_network.toml");
     let fail = |cmd: &mut Command, extra: &[&str]| {
         let out = dir.path().join("out");
-        let o =
-            cmd.arg("compare").arg(&spec).args(extra).args(["--executor", "slurm", "--out"]).arg(&out).output().unwrap();
+        let o = cmd
+            .arg("compare")
+            .arg(&spec)
+            .args(extra)
+            .args(["--executor", "slurm", "--out"])
+            .arg(&out)
+            .output()
+            .unwrap();
         assert!(!o.status.success());
         assert!(!out.exists(), "nothing written");
         String::from_utf8_lossy(&o.stderr).into_owned()
@@ -215,4 +221,56 @@ fn missing_slurm_is_a_clear_error_and_writes_nothing() {
     // Slurm flags without the Slurm executor.
     let o = netspec(&conf).arg("compare").arg(&spec).args(["--slurm-partition", "debug"]).output().unwrap();
     assert!(String::from_utf8_lossy(&o.stderr).contains("need --executor slurm"));
+}
+
+/// A two-region city through Slurm (one job per region's level, each after its predecessor):
+/// the same levels, states and objectives as the local run, and the same streets.
+#[test]
+fn slurm_city_equals_the_local_city() {
+    let (_lock, conf) = cluster();
+    let dir = tempfile::tempdir().unwrap();
+    let city = root().join("fixtures/city/two-regions.toml");
+    let run = |executor: &str| {
+        let out = dir.path().join(executor);
+        ok(&netspec(&conf)
+            .arg("city")
+            .arg(&city)
+            .args(["--threads", "2", "--threads-per-solve", "1", "--time-limit", "60", "--gap", "0"])
+            .args(["--executor", executor, "--out"])
+            .arg(&out)
+            .output()
+            .unwrap());
+        let json: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("city.json")).unwrap()).unwrap();
+        let levels: Vec<_> = json["regions"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .flat_map(|r| {
+                r["levels"].as_array().unwrap().iter().map(move |l| {
+                    let obj = l["objective"].as_f64().map(|v| (v * 1e6).round());
+                    (
+                        r["name"].clone(),
+                        l["level"].clone(),
+                        l["state"].clone(),
+                        l["termination"].clone(),
+                        obj,
+                        l["new_edges"].clone(),
+                    )
+                })
+            })
+            .collect();
+        (levels, std::fs::read_to_string(out.join("streets.geojson")).unwrap(), out)
+    };
+    let (local, local_streets, _) = run("local");
+    let (slurm, slurm_streets, out) = run("slurm");
+    assert_eq!(local.len(), 4, "{local:?}");
+    assert!(local.iter().all(|l| l.2 == "solved" && l.3 == "optimal"), "{local:?}");
+    assert_eq!(local, slurm);
+    assert_eq!(local_streets, slurm_streets);
+    let logs: Vec<String> = std::fs::read_dir(out.join("slurm/logs"))
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(logs.len(), 4, "one job per region's level: {logs:?}");
 }

@@ -195,6 +195,8 @@ fn city_export_is_exactly_the_street_graph() {
         resume: true,
         observer: None,
         interrupt: None,
+        only: None,
+        reuse_only: false,
     };
     let city = run_city(&spec, out.path(), &opts).unwrap();
     assert!(city.complete && city.valid);

@@ -26,6 +26,8 @@ fn options(kind: SolverKind) -> CityRunOptions {
         resume: true,
         observer: None,
         interrupt: None,
+        only: None,
+        reuse_only: false,
     }
 }
 

@@ -27,6 +27,43 @@ pub struct CityArgs {
     pub fresh: bool,
     pub out: Option<PathBuf>,
     pub max_cells: Option<usize>,
+    pub slurm: Option<netspec::slurm::SlurmOptions>,
+    pub level_job: Option<String>,
+}
+
+/// The flags every cluster job of a city gets, so that it resolves the same options.
+fn job_flags(args: &CityArgs, opts: &CityRunOptions) -> Vec<String> {
+    let mut f = vec![
+        "--solver".to_string(),
+        opts.solver.name().to_string(),
+        "--threads".into(),
+        opts.threads.to_string(),
+        "--threads-per-solve".into(),
+        opts.threads_per_solve.to_string(),
+    ];
+    if let Some(t) = opts.time_limit {
+        f.extend(["--time-limit".into(), t.to_string()]);
+    }
+    if let Some(g) = args.gap {
+        f.extend(["--gap".into(), g.to_string()]);
+    }
+    if let Some(c) = args.max_cells {
+        f.extend(["--max-cells".into(), c.to_string()]);
+    }
+    if args.fresh {
+        f.push("--fresh".into());
+    }
+    f
+}
+
+/// One level as a cluster job: exit 0 when it has a network (its next level may start).
+fn level_job(spec: &CitySpec, out: &Path, opts: &CityRunOptions, job: &str) -> Result<ExitCode> {
+    let parsed = job.split_once(':').and_then(|(r, l)| Some((r.parse::<usize>().ok()?, l.parse::<u8>().ok()?)));
+    let (region, level) = parsed.with_context(|| format!("--level-job {job}: give REGION:LEVEL"))?;
+    let report = urban::cluster::run_level_job(spec, out, opts, region, level)?
+        .with_context(|| format!("--level-job {job}: the city has no such region and level"))?;
+    println!("region {region} L{level}: {}", report.verdict());
+    Ok(if report.has_network() { ExitCode::SUCCESS } else { ExitCode::FAILURE })
 }
 
 pub fn run_city(path: &Path, args: CityArgs) -> Result<ExitCode> {
@@ -42,7 +79,10 @@ pub fn run_city(path: &Path, args: CityArgs) -> Result<ExitCode> {
     opts.resume = !args.fresh;
     let interrupt = crate::cli::interrupt::install()?;
     opts.interrupt = Some(interrupt.clone());
-    let out = args.out.unwrap_or_else(|| netspec::run::default_out_dir(path));
+    let out = args.out.clone().unwrap_or_else(|| netspec::run::default_out_dir(path));
+    if let Some(job) = &args.level_job {
+        return level_job(&spec, &out, &opts, job);
+    }
     let regions = urban::city::regions(&spec).with_context(|| format!("{}", path.display()))?;
     println!("city       {} — {}", spec.name, spec.description);
     println!(
@@ -98,7 +138,15 @@ pub fn run_city(path: &Path, args: CityArgs) -> Result<ExitCode> {
             }
         }
     }));
-    let result = urban::run_city_on(&spec, regions, &out, &opts);
+    let result = match &args.slurm {
+        None => urban::run_city_on(&spec, regions, &out, &opts).map_err(anyhow::Error::from),
+        Some(slurm) => {
+            let exe = std::env::current_exe().context("locating the netspec binary")?;
+            let flags = job_flags(&args, &opts);
+            urban::cluster::run_city_slurm(&exe, &spec, path, regions, &out, &opts, &flags, slurm)
+                .map_err(anyhow::Error::from)
+        }
+    };
     for b in &bars {
         b.finish();
     }

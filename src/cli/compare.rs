@@ -33,7 +33,13 @@ fn command() -> Vec<String> {
 }
 
 /// Combines finished comparisons into one report.
-pub fn merge(dirs: &[PathBuf], manifest: Option<&Path>, rows: &[String], out: &Path, shapes: &[Shape]) -> Result<ExitCode> {
+pub fn merge(
+    dirs: &[PathBuf],
+    manifest: Option<&Path>,
+    rows: &[String],
+    out: &Path,
+    shapes: &[Shape],
+) -> Result<ExitCode> {
     let manifest =
         manifest.map(|m| Manifest::load(m).and_then(|m| m.select(rows))).transpose().map_err(anyhow::Error::msg)?;
     let merged = netspec::compare::merge(dirs, manifest).map_err(anyhow::Error::msg)?;

@@ -15,7 +15,7 @@ use super::{
 use crate::slurm::{self, Job, JobState, SlurmError, SlurmOptions};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::time::{Duration, Instant};
 
 /// What every task of one array needs: the runs (task `i` is `runs[i]`) and the settings they
@@ -118,7 +118,7 @@ fn submit(
     let cwd = std::env::current_dir()?;
     let stage = cwd.join(out).join("slurm");
     std::fs::create_dir_all(stage.join("logs"))?;
-    let (binary, digest) = stage_binary(exe, &stage)?;
+    let (binary, digest) = slurm::stage_binary(exe, &stage)?;
     let plan = TaskPlan {
         grace: settings.grace,
         threads: settings.threads,
@@ -152,20 +152,6 @@ fn submit(
         after_ok: Vec::new(),
     };
     Ok(slurm::submit(opts, &job)?)
-}
-
-/// Copies `exe` to `stage/netspec-<digest>` unless it is there; returns the copy and the digest.
-fn stage_binary(exe: &Path, stage: &Path) -> std::io::Result<(PathBuf, String)> {
-    let bytes = std::fs::read(exe)?;
-    let digest = crate::io::digest(&[&bytes]);
-    let staged = stage.join(format!("netspec-{digest}"));
-    if !staged.exists() {
-        let tmp = stage.join(format!(".netspec-{digest}.tmp"));
-        std::fs::write(&tmp, &bytes)?;
-        std::fs::set_permissions(&tmp, std::os::unix::fs::PermissionsExt::from_mode(0o755))?;
-        std::fs::rename(&tmp, &staged)?;
-    }
-    Ok((staged, digest))
 }
 
 /// Follows the array until every task has a record or has ended without one; cancels it on an

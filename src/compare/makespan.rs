@@ -80,7 +80,10 @@ pub fn estimate(records: &[RunRecord], shapes: &[Shape]) -> Vec<Estimate> {
         .map(|r| (r.wall_time.max(0.0), r.settings.as_ref().and_then(|s| s.threads).unwrap_or(1)))
         .collect();
     let serial_seconds = runs.iter().map(|r| r.0).sum();
-    shapes.iter().map(|&shape| Estimate { shape, seconds: makespan(&runs, shape), runs: runs.len(), serial_seconds }).collect()
+    shapes
+        .iter()
+        .map(|&shape| Estimate { shape, seconds: makespan(&runs, shape), runs: runs.len(), serial_seconds })
+        .collect()
 }
 
 /// A duration in words: `42 s`, `12.5 min`, `3.2 h`.

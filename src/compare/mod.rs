@@ -520,9 +520,8 @@ pub fn plan(settings: &CompareSettings, out: &Path) -> Vec<(PlannedRun, Result<R
 
 /// The earlier record of `run` if it can be reused, else why the run happens.
 fn decide(run: &PlannedRun) -> Result<RunRecord, RunSource> {
-    let old = std::fs::read_to_string(run.dir.join("run.json"))
-        .ok()
-        .and_then(|t| serde_json::from_str::<RunRecord>(&t).ok());
+    let old =
+        std::fs::read_to_string(run.dir.join("run.json")).ok().and_then(|t| serde_json::from_str::<RunRecord>(&t).ok());
     let wanted = &run.wanted;
     Err(match old {
         None => return Err(RunSource::Solved),
@@ -593,16 +592,8 @@ pub fn solve_and_record(
     binary_digest: Option<String>,
 ) -> std::io::Result<RunRecord> {
     std::fs::create_dir_all(&run.dir)?;
-    let mut r = run_one(
-        exe,
-        &run.spec,
-        &run.solver,
-        run.formulation.as_deref(),
-        run.seed,
-        settings,
-        run.limit,
-        &run.dir,
-    )?;
+    let mut r =
+        run_one(exe, &run.spec, &run.solver, run.formulation.as_deref(), run.seed, settings, run.limit, &run.dir)?;
     r.binary_digest = binary_digest;
     save_record(run, r)
 }

@@ -68,6 +68,12 @@ pub struct CityRunOptions {
     /// A request to stop (Ctrl-C): running levels stop and keep their best network, levels
     /// not yet started are skipped; finished levels stay on disk for a rerun to reuse.
     pub interrupt: Option<Interrupt>,
+    /// Run one level only, as a cluster job does: `(region, level)`; the region's earlier levels
+    /// are reused from their saved state (solved first only when it is missing).
+    pub only: Option<(usize, u8)>,
+    /// Solve nothing: levels without a saved state of the same inputs are skipped (the
+    /// assembly after cluster jobs).
+    pub reuse_only: bool,
 }
 
 /// A receiver of [`CityEvent`]s, called from the worker threads.
@@ -122,6 +128,8 @@ impl CityRunOptions {
             resume: true,
             observer: None,
             interrupt: None,
+            only: None,
+            reuse_only: false,
         })
     }
 
@@ -137,6 +145,8 @@ impl CityRunOptions {
             resume: true,
             observer: None,
             interrupt: None,
+            only: None,
+            reuse_only: false,
         })
     }
 }
@@ -412,6 +422,7 @@ pub fn run_regions(
     pool.install(|| {
         regs.into_par_iter()
             .enumerate()
+            .filter(|(i, _)| opts.only.is_none_or(|(r, _)| r == *i))
             .map(|(i, (reg, entry))| run_region(spec, out, opts, origin, i, reg, entry))
             .collect()
     })
@@ -465,6 +476,9 @@ fn run_region(
     let mut roads = RegionRoads::boundary_only(mesh0);
     let mut blocked: Option<String> = None;
     for &n in &levels {
+        if opts.only.is_some_and(|(_, last)| n > last) {
+            break;
+        }
         if blocked.is_none() && opts.interrupt.as_ref().is_some_and(|i| i.is_triggered()) {
             blocked = Some("interrupted".into());
         }
@@ -555,18 +569,26 @@ fn run_level(
     let fingerprint = crate::io::digest(&[spec_json.as_bytes(), mesh_json.as_bytes(), opts_json.as_bytes()]);
     let ldir = dir.join(format!("L{n}"));
     let state_path = ldir.join("state.json");
-    if opts.resume {
+    // A cluster job for a later level reuses this one (its own job solved it).
+    if opts.resume || opts.reuse_only || opts.only.is_some_and(|(_, last)| n < last) {
         if let Some(state) =
             std::fs::read_to_string(&state_path).ok().and_then(|t| serde_json::from_str::<LevelState>(&t).ok())
         {
             if state.fingerprint == fingerprint {
                 let mut o = state.report;
-                if o.has_network() {
+                // Assembled after cluster jobs, a level keeps the state its job gave it.
+                if o.has_network() && !opts.reuse_only {
                     o.state = "reused".into();
                 }
                 return Ok((o, state.roads));
             }
         }
+    }
+    if opts.reuse_only {
+        return Ok((
+            LevelReport::bare(n, "skipped", "no finished state of these inputs (its cluster job did not finish it)"),
+            None,
+        ));
     }
     std::fs::create_dir_all(&ldir).map_err(io_err(&ldir))?;
     let _ = std::fs::remove_file(&state_path);

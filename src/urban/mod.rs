@@ -4,6 +4,7 @@
 //! street metrics, and the outputs (picture, GeoJSON, per-level JSON).
 
 pub mod city;
+pub mod cluster;
 pub mod metrics;
 pub mod output;
 pub mod planar;
