@@ -101,6 +101,11 @@ fn wait(jobs: &[LevelJob], opts: &CityRunOptions) -> Result<(), SlurmError> {
         for (k, j) in jobs.iter().enumerate() {
             let states = slurm::states(&j.id)?;
             let Some(st) = states.get(&None) else { continue };
+            if st.reason == "DependencyNeverSatisfied" && !st.is_finished() {
+                // Its predecessor failed, on a cluster that keeps such jobs pending.
+                slurm::cancel(std::slice::from_ref(&j.id))?;
+                continue;
+            }
             if !st.is_finished() {
                 open += 1;
             }
