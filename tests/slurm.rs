@@ -211,6 +211,18 @@ fn missing_slurm_is_a_clear_error_and_writes_nothing() {
     .unwrap();
     let e = fail(&mut netspec(&dead), &[]);
     assert!(e.contains("controller does not answer") && e.contains("scripts/slurm-local.sh start"), "{e}");
+    // A city too: nothing of it is written.
+    let out = dir.path().join("city");
+    let o = netspec(&dead)
+        .arg("city")
+        .arg(root().join("fixtures/city/two-regions.toml"))
+        .args(["--executor", "slurm", "--out"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success() && e.contains("controller does not answer"), "{e}");
+    assert!(!out.exists(), "nothing written");
     // No sbatch on PATH.
     let empty = tempfile::tempdir().unwrap();
     let e = fail(netspec(&conf).env("PATH", empty.path()), &[]);
