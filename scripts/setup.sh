@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Idempotent machine setup for netspec: Debian packages for HiGHS (build) and CBC,
 # SCIP 10.0.2 from the pyscipopt==6.3.0 wheel, wired into Cargo via a `links` override,
-# and SUMO 1.28.0 (traffic simulation, `netspec traffic`) from the eclipse-sumo wheel.
+# SUMO 1.28.0 (traffic simulation, `netspec traffic`) from the eclipse-sumo wheel, and
+# Chromium with its WebDriver (the browser test of `netspec serve`).
 # A second run takes about a second. Stops loudly on any version drift.
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
@@ -18,7 +19,8 @@ log() { printf '[setup] %s\n' "$*" >&2; }
 die() { printf '[setup] ERROR: %s\n' "$*" >&2; exit 1; }
 
 # 1. Debian packages.
-pkgs=(cmake clang libclang-dev coinor-libcbc-dev coinor-cbc pkg-config unzip fonts-dejavu-core python3-venv python3-pip)
+pkgs=(cmake clang libclang-dev coinor-libcbc-dev coinor-cbc pkg-config unzip fonts-dejavu-core python3-venv python3-pip
+  chromium chromium-driver)
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")

@@ -8,7 +8,8 @@
 //! [`rules`] (what a spec's rules mean on a mesh, enumerated), [`formulations`] (recipes of
 //! constraint families: the paper's integer program and stronger ones), [`design`] (decoding, metrics and the
 //! independent validator), [`render`] (pictures), and [`pipeline`] (spec → checked design). [`urban`] lays out cities;
-//! [`traffic`] evaluates designed street networks in SUMO.
+//! [`traffic`] evaluates designed street networks in SUMO; [`serve`] is the browser application
+//! over all of it.
 #![deny(missing_docs)]
 
 pub mod compare;
@@ -25,6 +26,7 @@ pub mod report;
 pub mod rules;
 pub mod run;
 pub mod slurm;
+pub mod serve;
 pub mod solvers;
 pub mod spec;
 pub mod traffic;

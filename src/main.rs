@@ -227,6 +227,25 @@ enum Command {
         #[arg(long, value_name = "DIR", default_value = "out/traffic")]
         out: PathBuf,
     },
+    /// Design in the browser: a local web application to open, edit and solve specs, watch the
+    /// solve, and compare and export designs (docs/serve.md).
+    Serve {
+        /// The folder whose specs are listed, and where runs (`runs/`) and saved specs go.
+        #[arg(long, value_name = "DIR", default_value = ".")]
+        root: PathBuf,
+        /// The port to listen on (0: any free port).
+        #[arg(long, default_value_t = 8080)]
+        port: u16,
+        /// The address to listen on; the default keeps the server to this machine.
+        #[arg(long, default_value = "127.0.0.1")]
+        bind: std::net::IpAddr,
+        /// Solves running at once (more wait in a queue).
+        #[arg(long, default_value_t = 2)]
+        max_solves: usize,
+        /// Threads all running solves share (default: the cores).
+        #[arg(long)]
+        threads: Option<u32>,
+    },
     /// Convert a model between MPS and LP (formats chosen by extension; `.gz` compressed).
     Convert {
         /// Input file (`.mps`, `.lp`, `.mps.gz` or `.lp.gz`).
@@ -306,6 +325,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 interrupt: None,
                 progress: None,
                 max_cells,
+                incumbents: None,
             })
         }
         Command::Compare {
@@ -399,6 +419,12 @@ fn run(cli: Cli) -> Result<ExitCode> {
             sumo_home,
             out,
         }),
+        Command::Serve { root, port, bind, max_solves, threads } => {
+            let mut opts = netspec::serve::ServeOptions { root, port, bind, max_solves, ..Default::default() };
+            opts.threads = threads.unwrap_or(opts.threads);
+            netspec::serve::run(opts, |addr| println!("netspec serve: http://{addr}/ (Ctrl-C stops)"))?;
+            Ok(ExitCode::SUCCESS)
+        }
         Command::Convert { input, output } => {
             let c = netspec::io::convert(&input, &output)?;
             for w in &c.warnings {

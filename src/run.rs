@@ -17,9 +17,10 @@ use crate::pipeline::settings::{resolve, Origin, Settings, SettingsError};
 use crate::pipeline::{self, DesignResult, Method, StartFrom, StartReport, Validity};
 use crate::render::Caption;
 use crate::solvers::lazy::LpBound;
-use crate::solvers::{Interrupt, ProgressSink, SolveOptions, SolverError, SolverKind, Termination};
+use crate::solvers::{Interrupt, PointSink, ProgressSink, SolveOptions, SolverError, SolverKind, Termination};
 use crate::spec::{Problem, Spec, SpecError, Variant};
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 use std::time::Instant;
 
 /// Default time limits of the searches, seconds.
@@ -114,6 +115,41 @@ pub struct SolveRequest {
     pub progress: Option<ProgressSink>,
     /// The cap on the mesh's cells (default [`crate::spec::DEFAULT_MAX_CELLS`]).
     pub max_cells: Option<usize>,
+    /// Receives the designs found on the way: the checked MIP start, then every improving
+    /// incumbent of a backend that reports progress.
+    pub incumbents: Option<IncumbentSink>,
+}
+
+/// A design found on the way to the answer, as its active edges: the checked MIP start, or a
+/// backend's improving incumbent (which the independent checks have not seen yet).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Incumbent {
+    /// Whether each edge of the mesh is active.
+    pub active: Vec<bool>,
+    /// The objective the solver (or the start's check) gives it.
+    pub objective: Option<f64>,
+}
+
+/// Receives [`Incumbent`]s, from whichever thread finds them.
+#[derive(Clone)]
+pub struct IncumbentSink(pub Arc<dyn Fn(Incumbent) + Send + Sync>);
+
+/// The backend's point sink that turns points into [`Incumbent`]s by the formulation's edge
+/// variables (an edge without one is active when it is an existing road).
+fn point_sink(p: &Problem, f: &Formulation, sink: IncumbentSink) -> PointSink {
+    let edges: Vec<Result<usize, bool>> = p
+        .mesh
+        .edges()
+        .map(|e| match f.vars.edge[e.index()] {
+            Some(v) => Ok(v.index()),
+            None => Err(p.roles[e.index()] == crate::spec::EdgeRole::Existing),
+        })
+        .collect();
+    PointSink(Arc::new(move |objective: f64, x: &[f64]| {
+        let active =
+            edges.iter().map(|e| e.map_or_else(|fixed| fixed, |i| x.get(i).is_some_and(|&v| v > 0.5))).collect();
+        (sink.0)(Incumbent { active, objective: objective.is_finite().then_some(objective) })
+    }))
 }
 
 /// What happens during a run, in order.
@@ -330,6 +366,7 @@ pub fn solve_spec(req: &SolveRequest, on: &mut dyn FnMut(Event)) -> Result<Solve
     }
     options.interrupt = req.interrupt.clone();
     options.progress = req.progress.clone();
+    options.incumbents = req.incumbents.clone().map(|sink| point_sink(&problem, &f, sink));
     if let Some(limit) = options.finite_time_limit() {
         options.time_limit = Some((limit - t0.elapsed().as_secs_f64()).max(0.0));
     }
@@ -432,6 +469,7 @@ fn milp(
     let mut o = run.options.clone();
     if !caps.reports_progress {
         o.progress = None;
+        o.incumbents = None;
     }
     let o = &o;
     let from = match caps.mip_start {
@@ -445,6 +483,9 @@ fn milp(
         StartFrom::Prepared { report, .. } => Some(report),
         _ => None,
     };
+    if let (Some(sink), StartFrom::Prepared { point: Some(x), report }) = (&run.options.incumbents, &from) {
+        (sink.0)(report.objective.unwrap_or(f64::NAN), x);
+    }
     on(Event::SolveStarted { kind, time_limit: o.time_limit, start: report });
     Ok(pipeline::solve_from(p, f, kind, o, &from)?)
 }

@@ -29,3 +29,5 @@ mod fuzz;
 mod explain;
 // `compare` and `city` on a real single-node Slurm cluster (scripts/slurm-local.sh).
 mod slurm;
+// `netspec serve`: its HTTP API, runs, and a real browser on its page.
+mod serve;

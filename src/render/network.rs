@@ -291,6 +291,13 @@ fn point_legend(scene: &NetworkScene, samples: bool) -> Vec<(&'static str, &'sta
     items
 }
 
+/// Where each vertex of the scene lands in the picture [`svg`] draws (picture coordinates), for
+/// pointing at vertices and edges of the drawing.
+pub fn picture_points(scene: &NetworkScene) -> Vec<[f64; 2]> {
+    let fr = Frame::new(scene, 150.0);
+    (0..scene.positions.len() as u32).map(|v| fr.at(v)).map(|(x, y)| [x, y]).collect()
+}
+
 /// Draws the network as SVG text: rooms filled with their type's colour and marked with its
 /// letter ([`template_letter`]), active edges on the distance ramp, the points. The legend lists
 /// only what is drawn.

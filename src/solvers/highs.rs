@@ -6,7 +6,7 @@
 
 use super::stop::StopControl;
 use super::{
-    guarded_solve, Capabilities, LazyRow, LimitKind, LogTarget, LpSession, Progress, ProgressSink, RawParam,
+    guarded_solve, Capabilities, LazyRow, LimitKind, LogTarget, LpSession, PointSink, Progress, ProgressSink, RawParam,
     SolveOptions, SolveResult, Solver, SolverError, SolverErrorKind, SolverKind, StrategyHints, Termination,
 };
 use crate::milp::NumericLimits;
@@ -161,6 +161,7 @@ const START_QUERY_ORIGINS: [i32; 2] = [1, 6];
 /// still to hand over.
 struct CallbackState<'a> {
     sink: Option<ProgressSink>,
+    incumbents: Option<PointSink>,
     last: f64,
     stop: &'a StopControl,
     start: Option<&'a [f64]>,
@@ -197,6 +198,15 @@ unsafe extern "C" fn callback(
                     }
                 }
             }
+        }
+        return;
+    }
+    if kind == sys::kHighsCallbackMipImprovingSolution as std::os::raw::c_int {
+        if let (Some(sink), false) = (&state.incumbents, out.mip_solution.is_null()) {
+            // SAFETY: in an improving-solution callback HiGHS points `mip_solution` at the new
+            // incumbent, one value per column of the original model, alive during the call.
+            let x = unsafe { std::slice::from_raw_parts(out.mip_solution, out.mip_solution_size.max(0) as usize) };
+            (sink.0)(out.objective_function_value, x);
         }
         return;
     }
@@ -489,8 +499,9 @@ fn native(model: &Model, o: &SolveOptions, ctl: &StopControl) -> Result<SolveRes
     // The state lives on this stack frame for the whole solve; HiGHS only calls back during
     // `Highs_run`.
     let start = o.mip_start.as_deref().filter(|_| model.is_mip());
-    let mut state = CallbackState { sink: o.progress.clone(), last: f64::NEG_INFINITY, stop: ctl, start };
-    if state.sink.is_some() || ctl.is_armed() || state.start.is_some() {
+    let incumbents = o.incumbents.clone().filter(|_| model.is_mip());
+    let mut state = CallbackState { sink: o.progress.clone(), incumbents, last: f64::NEG_INFINITY, stop: ctl, start };
+    if state.sink.is_some() || state.incumbents.is_some() || ctl.is_armed() || state.start.is_some() {
         // SAFETY: live instance; the data pointer outlives the solve (see above).
         unsafe {
             sys::Highs_setCallback(
@@ -499,6 +510,9 @@ fn native(model: &Model, o: &SolveOptions, ctl: &StopControl) -> Result<SolveRes
                 &mut state as *mut CallbackState as *mut std::ffi::c_void,
             );
             sys::Highs_startCallback(m.as_mut_ptr(), sys::kHighsCallbackMipInterrupt);
+            if state.incumbents.is_some() {
+                sys::Highs_startCallback(m.as_mut_ptr(), sys::kHighsCallbackMipImprovingSolution);
+            }
             if state.start.is_some() {
                 sys::Highs_startCallback(m.as_mut_ptr(), sys::kHighsCallbackCallbackMipUserSolution);
             }

@@ -28,7 +28,8 @@ mod stop;
 
 pub use lazy::{LazyMode, LazyReport, LazyRow, LazySolve, Lock, Separator};
 pub use options::{
-    Capabilities, Interrupt, InvalidOption, LogTarget, Progress, ProgressSink, RawParam, SolveOptions, MAX_THREADS,
+    Capabilities, Interrupt, InvalidOption, LogTarget, PointSink, Progress, ProgressSink, RawParam, SolveOptions,
+    MAX_THREADS,
 };
 pub use result::{
     gap, percent, within_optimality_tolerance, LimitKind, SolveResult, StartCheck, Termination, OPTIMALITY_TOLERANCE,

@@ -118,6 +118,27 @@ impl PartialEq for ProgressSink {
     }
 }
 
+/// Receives every improving point a backend finds while it solves: the point's objective (in
+/// the model's sense) and one value per variable, from the solver's thread. Only backends whose
+/// [`Capabilities::reports_progress`] is set call it.
+#[derive(Clone)]
+pub struct PointSink(pub Arc<PointFn>);
+
+/// What a [`PointSink`] calls: objective, then the point.
+pub type PointFn = dyn Fn(f64, &[f64]) + Send + Sync;
+
+impl std::fmt::Debug for PointSink {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("PointSink")
+    }
+}
+
+impl PartialEq for PointSink {
+    fn eq(&self, other: &Self) -> bool {
+        Arc::ptr_eq(&self.0, &other.0)
+    }
+}
+
 /// Where the solver's own log goes.
 #[derive(Clone, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -155,6 +176,9 @@ pub struct SolveOptions {
     /// Progress reports while the solve runs (not serialised).
     #[serde(skip)]
     pub progress: Option<ProgressSink>,
+    /// Every improving point while the solve runs (not serialised).
+    #[serde(skip)]
+    pub incumbents: Option<PointSink>,
     /// Solver parameters passed through as they are (see [`RawParam`]).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub params: Vec<RawParam>,
@@ -237,7 +261,8 @@ pub struct Capabilities {
     pub reports_nodes: bool,
     /// The result carries the solver's own run time.
     pub reports_solver_time: bool,
-    /// [`SolveOptions::progress`]: reports incumbent, bound and nodes while solving.
+    /// [`SolveOptions::progress`]: reports incumbent, bound and nodes while solving, and
+    /// [`SolveOptions::incumbents`]: hands over every improving point.
     #[serde(default)]
     pub reports_progress: bool,
     /// Lazy rows are separated inside the solver's own branch and cut (a callback); without
@@ -294,6 +319,9 @@ impl Capabilities {
         }
         if o.progress.is_some() && !self.reports_progress {
             return Err(unsupported("progress", "the backend reports no progress while solving"));
+        }
+        if o.incumbents.is_some() && !self.reports_progress {
+            return Err(unsupported("incumbents", "the backend reports no incumbents while solving"));
         }
         if o.mip_start.is_some() && !self.mip_start {
             return Err(unsupported("mip_start", "the backend does not accept a starting solution"));

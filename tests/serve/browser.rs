@@ -1,0 +1,181 @@
+//! A real browser on the page: headless Chromium driven over WebDriver (`chromium-driver`, both
+//! installed by scripts/setup.sh). Every wait is on the page's state, never a fixed sleep.
+
+use super::{cli_objective, runtime, server};
+use fantoccini::{Client, ClientBuilder, Locator};
+use serde_json::{json, Value};
+use std::net::TcpListener;
+use std::process::{Child, Command, Stdio};
+use std::time::{Duration, Instant};
+
+/// chromedriver on a free port, ended with the test.
+struct Driver {
+    child: Child,
+    port: u16,
+    profile: tempfile::TempDir,
+}
+
+impl Drop for Driver {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+fn start_driver() -> Driver {
+    let port = TcpListener::bind("127.0.0.1:0").unwrap().local_addr().unwrap().port();
+    let child = Command::new("chromedriver")
+        .arg(format!("--port={port}"))
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap_or_else(|e| {
+            panic!("chromedriver could not be started ({e}): run scripts/setup.sh (Debian packages chromium and chromium-driver)")
+        });
+    Driver { child, port, profile: tempfile::tempdir().unwrap() }
+}
+
+async fn connect(d: &Driver) -> Client {
+    let args = [
+        "--headless",
+        "--no-sandbox",
+        "--disable-gpu",
+        "--disable-quic",
+        "--no-first-run",
+        "--disable-background-networking",
+        "--disable-component-update",
+        "--disable-sync",
+        "--disable-dev-shm-usage",
+        "--window-size=1500,1100",
+    ];
+    let mut args: Vec<String> = args.iter().map(|s| s.to_string()).collect();
+    args.push(format!("--user-data-dir={}", d.profile.path().display()));
+    let caps = json!({ "goog:chromeOptions": { "args": args } });
+    let caps = caps.as_object().unwrap().clone();
+    let url = format!("http://127.0.0.1:{}", d.port);
+    let deadline = Instant::now() + Duration::from_secs(30);
+    loop {
+        let connector = hyper_util::client::legacy::connect::HttpConnector::new();
+        match ClientBuilder::new(connector).capabilities(caps.clone()).connect(&url).await {
+            Ok(c) => return c,
+            Err(e) if Instant::now() > deadline => panic!("no WebDriver session with chromedriver at {url}: {e}"),
+            Err(_) => tokio::time::sleep(Duration::from_millis(200)).await,
+        }
+    }
+}
+
+/// Waits until the JavaScript expression `cond` is true on the page (at most `secs`).
+async fn wait_for(c: &Client, cond: &str, secs: u64) {
+    let deadline = Instant::now() + Duration::from_secs(secs);
+    loop {
+        let v = c.execute(&format!("return !!({cond});"), vec![]).await.unwrap();
+        if v == Value::Bool(true) {
+            return;
+        }
+        if Instant::now() > deadline {
+            let state = c.execute("return document.querySelector('#result').innerText + ' | ' + document.querySelector('#error').innerText + ' | ' + document.querySelector('#run-state').innerText;", vec![]).await.unwrap();
+            panic!("waited {secs} s for `{cond}`; the page shows: {state}");
+        }
+        tokio::time::sleep(Duration::from_millis(100)).await;
+    }
+}
+
+async fn text(c: &Client, css: &str) -> String {
+    c.find(Locator::Css(css)).await.unwrap().text().await.unwrap()
+}
+
+async fn checks(c: &Client) -> u64 {
+    c.execute("return Number(document.body.dataset.checks || 0);", vec![]).await.unwrap().as_u64().unwrap()
+}
+
+/// Types `value` into the field and leaves it, then waits for the server's check.
+async fn set_field(c: &Client, field: &str, value: &str) {
+    let before = checks(c).await;
+    let input = c.find(Locator::Css(&format!("input[data-field='{field}']"))).await.unwrap();
+    input.clear().await.unwrap();
+    input.send_keys(&format!("{value}\u{E004}")).await.unwrap();
+    wait_for(c, &format!("Number(document.body.dataset.checks || 0) > {before}"), 30).await;
+}
+
+/// Clicks vertex `v` of the drawn spec and waits for the server's check.
+async fn click_vertex(c: &Client, v: usize) {
+    let before = checks(c).await;
+    c.find(Locator::Css(&format!("#picture .hit-v[data-v='{v}']"))).await.unwrap().click().await.unwrap();
+    wait_for(c, &format!("Number(document.body.dataset.checks || 0) > {before}"), 30).await;
+}
+
+async fn solve_and_wait(c: &Client, secs: u64) {
+    c.find(Locator::Css("#solve")).await.unwrap().click().await.unwrap();
+    wait_for(c, "document.querySelector('#result').dataset.state !== 'none'", 30).await;
+    wait_for(c, "document.querySelector('#result').dataset.state === 'done'", secs).await;
+}
+
+#[test]
+fn a_browser_edits_solves_stops_explains_and_reloads() {
+    let root = tempfile::tempdir().unwrap();
+    let srv = server(root.path(), 1);
+    let base = format!("http://{}", srv.addr());
+    let driver = start_driver();
+    runtime().block_on(async {
+        let c = connect(&driver).await;
+        c.goto(&base).await.unwrap();
+        // Pick the small spec; its 25 vertices become clickable.
+        wait_for(&c, "document.querySelector(\"#specs li[data-id='small.toml']\")", 30).await;
+        c.find(Locator::Css("#specs li[data-id='small.toml']")).await.unwrap().click().await.unwrap();
+        wait_for(&c, "document.querySelectorAll('#picture .hit-v').length === 25", 30).await;
+        // A bad value is shown next to its field with the spec code's message.
+        set_field(&c, "weights.zigzag", "sometimes").await;
+        wait_for(&c, "document.querySelector(\".field-error[data-for='weights.zigzag']\")", 5).await;
+        set_field(&c, "weights.zigzag", "0").await;
+        wait_for(&c, "!document.querySelector('.field-error')", 5).await;
+        // Change a weight and solve: progress, the final design, the CLI's objective.
+        set_field(&c, "weights.distance", "2").await;
+        solve_and_wait(&c, 60).await;
+        let updates: u64 = text(&c, "#updates").await.parse().unwrap();
+        assert!(updates >= 1, "no progress update shown");
+        assert_eq!(text(&c, "#verdict").await, "valid");
+        assert!(text(&c, "#status").await.starts_with("optimal"));
+        let svg = c.execute("return document.querySelector('#picture svg').outerHTML;", vec![]).await.unwrap();
+        assert!(svg.as_str().unwrap().contains("<line"), "no design drawn");
+        let spec_file = root.path().join("runs/r0001/spec.toml");
+        assert!(std::fs::read_to_string(&spec_file).unwrap().contains("distance = 2.0"));
+        let shown: f64 = text(&c, "#objective").await.parse().unwrap();
+        let cli = cli_objective(&spec_file);
+        assert!((shown - cli).abs() < 1e-4, "page {shown}, CLI {cli}");
+        // An infeasible edit: the only sink in a walled corner. The conflict is shown.
+        click_vertex(&c, 0).await;
+        click_vertex(&c, 6).await;
+        click_vertex(&c, 18).await;
+        solve_and_wait(&c, 90).await;
+        assert!(text(&c, "#status").await.starts_with("infeasible"), "{}", text(&c, "#status").await);
+        let conflicts = text(&c, "#conflicts").await;
+        assert!(conflicts.contains("conflict") && conflicts.contains("coverage"), "{conflicts}");
+        // Stop a longer solve once a design is drawn: the best design is kept and valid.
+        c.find(Locator::Css("#specs li[data-id='fig2e']")).await.unwrap().click().await.unwrap();
+        wait_for(&c, "document.querySelectorAll('#picture .hit-v').length === 169", 30).await;
+        set_field(&c, "solver.time_limit", "120").await;
+        set_field(&c, "solver.threads", "1").await;
+        c.find(Locator::Css("#solve")).await.unwrap().click().await.unwrap();
+        wait_for(&c, "Number(document.querySelector('#updates').innerText) >= 1", 60).await;
+        c.find(Locator::Css("#stop")).await.unwrap().click().await.unwrap();
+        wait_for(&c, "document.querySelector('#result').dataset.state === 'done'", 60).await;
+        assert!(text(&c, "#status").await.starts_with("interrupted"), "{}", text(&c, "#status").await);
+        assert_eq!(text(&c, "#verdict").await, "valid");
+        let png = c.screenshot().await.unwrap();
+        assert_eq!(&png[..4], b"\x89PNG");
+        if let Ok(path) = std::env::var("NETSPEC_SERVE_SCREENSHOT") {
+            std::fs::write(path, &png).unwrap();
+        }
+        // A reload shows the earlier runs; two of them side by side.
+        c.refresh().await.unwrap();
+        wait_for(&c, "document.querySelectorAll('#runs li').length === 3", 30).await;
+        for id in ["r0001", "r0003"] {
+            c.find(Locator::Css(&format!("#runs li[data-id='{id}'] input"))).await.unwrap().click().await.unwrap();
+        }
+        c.find(Locator::Css("#compare")).await.unwrap().click().await.unwrap();
+        wait_for(&c, "document.querySelectorAll('#compare-view img').length === 2", 30).await;
+        let table = text(&c, "#compare-view table").await;
+        assert!(table.contains("objective") && table.contains("valid"), "{table}");
+        c.close().await.unwrap();
+    });
+}
