@@ -121,6 +121,8 @@ pub fn router(app: Arc<App>, max_body: usize) -> Router {
         .route("/api/spec", get(open_spec))
         .route("/api/thumb", get(thumb))
         .route("/api/new", post(new_spec))
+        .route("/api/outputs", get(list_outputs))
+        .route("/api/output", get(output))
         .route("/api/check", post(check))
         .route("/api/save", post(save))
         .route("/api/solve", post(solve))
@@ -165,6 +167,33 @@ async fn list_specs(State(app): State<Arc<App>>) -> ApiResult<Json<Value>> {
     let root = app.root.clone();
     let list = blocking(move || Ok(specs::list(&root))).await?;
     Ok(Json(json!({ "specs": list })))
+}
+
+async fn list_outputs(State(app): State<Arc<App>>) -> ApiResult<Json<Value>> {
+    let root = app.root.clone();
+    let list = blocking(move || Ok(specs::outputs(&root))).await?;
+    Ok(Json(json!({ "outputs": list })))
+}
+
+#[derive(Deserialize)]
+struct OutputQuery {
+    path: String,
+}
+
+/// A city or traffic picture under the root (only those file names).
+async fn output(State(app): State<Arc<App>>, Query(q): Query<OutputQuery>) -> ApiResult<Response> {
+    blocking(move || {
+        let path = under_root(&app.root, &q.path, "path")?;
+        let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+        if !specs::OUTPUT_PICTURES.iter().any(|(n, _)| *n == name) {
+            let known: Vec<&str> = specs::OUTPUT_PICTURES.iter().map(|(n, _)| *n).collect();
+            return Err(ApiError::bad("path", format!("`{}`: only {} are shown", q.path, known.join(", "))));
+        }
+        let svg = std::fs::read_to_string(&path)
+            .map_err(|_| ApiError::not_found("path", format!("no picture `{}` under --root", q.path)))?;
+        Ok(([(header::CONTENT_TYPE, "image/svg+xml")], svg).into_response())
+    })
+    .await
 }
 
 /// Where a spec comes from: an example's name or a path under the root.

@@ -73,14 +73,47 @@ pub fn list(root: &Path) -> Vec<Listed> {
     out
 }
 
+/// The pictures of `netspec city` and `netspec traffic` outputs that the page shows.
+pub const OUTPUT_PICTURES: &[(&str, &str)] =
+    &[("city.svg", "city"), ("volume.svg", "traffic"), ("traveltime.svg", "traffic"), ("comparison.svg", "traffic")];
+
+/// One city or traffic picture under the root.
+#[derive(Serialize)]
+pub struct Output {
+    /// `city` or `traffic`.
+    pub kind: &'static str,
+    /// The picture's path under the root.
+    pub path: String,
+}
+
+/// Every city and traffic picture under the root (four folders deep, runs left out), in path
+/// order.
+pub fn outputs(root: &Path) -> Vec<Output> {
+    let mut found = Vec::new();
+    walk_files(root, root, 0, &|name| OUTPUT_PICTURES.iter().any(|(n, _)| *n == name), &mut found);
+    found.sort();
+    found
+        .into_iter()
+        .filter_map(|path| {
+            let name = Path::new(&path).file_name()?.to_string_lossy().into_owned();
+            let kind = OUTPUT_PICTURES.iter().find(|(n, _)| *n == name)?.1;
+            Some(Output { kind, path })
+        })
+        .collect()
+}
+
 fn walk(root: &Path, dir: &Path, depth: usize, found: &mut Vec<String>) {
+    walk_files(root, dir, depth, &|name| name.ends_with(".toml"), found)
+}
+
+fn walk_files(root: &Path, dir: &Path, depth: usize, keep: &dyn Fn(&str) -> bool, found: &mut Vec<String>) {
     let Ok(entries) = std::fs::read_dir(dir) else { return };
     for e in entries.flatten() {
         let (path, Ok(kind)) = (e.path(), e.file_type()) else { continue };
         // Symbolic links are not followed: the list never leads outside the root.
         if kind.is_dir() && depth < 4 && !(depth == 0 && e.file_name() == RUNS) {
-            walk(root, &path, depth + 1, found);
-        } else if kind.is_file() && path.extension().is_some_and(|x| x == "toml") {
+            walk_files(root, &path, depth + 1, keep, found);
+        } else if kind.is_file() && keep(&e.file_name().to_string_lossy()) {
             if let Ok(rel) = path.strip_prefix(root) {
                 found.push(rel.to_string_lossy().into_owned());
             }

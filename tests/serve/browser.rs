@@ -113,6 +113,10 @@ async fn solve_and_wait(c: &Client, secs: u64) {
 #[test]
 fn a_browser_edits_solves_stops_explains_and_reloads() {
     let root = tempfile::tempdir().unwrap();
+    // A city picture as `netspec city` draws its streets: a path per street, with its level.
+    std::fs::create_dir_all(root.path().join("out")).unwrap();
+    let city = r#"<svg xmlns="http://www.w3.org/2000/svg" width="100" height="100"><path d="M0 0L90 90" stroke="black" data-level="1"/><path d="M0 90L90 0" stroke="red" data-level="3"/></svg>"#;
+    std::fs::write(root.path().join("out/city.svg"), city).unwrap();
     let srv = server(root.path(), 1);
     let base = format!("http://{}", srv.addr());
     let driver = start_driver();
@@ -176,6 +180,12 @@ fn a_browser_edits_solves_stops_explains_and_reloads() {
         wait_for(&c, "document.querySelectorAll('#compare-view img').length === 2", 30).await;
         let table = text(&c, "#compare-view table").await;
         assert!(table.contains("objective") && table.contains("valid"), "{table}");
+        // A city output opens with its levels, each toggled on and off.
+        c.find(Locator::Css("#outputs li[data-path='out/city.svg'] a")).await.unwrap().click().await.unwrap();
+        wait_for(&c, "document.querySelectorAll('#levels input').length === 2", 30).await;
+        c.find(Locator::Css("#levels input[data-level-toggle='3']")).await.unwrap().click().await.unwrap();
+        wait_for(&c, "document.querySelector(\"#picture [data-level='3']\").style.display === 'none'", 5).await;
+        wait_for(&c, "document.querySelector(\"#picture [data-level='1']\").style.display === ''", 5).await;
         c.close().await.unwrap();
     });
 }

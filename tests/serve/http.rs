@@ -280,3 +280,50 @@ fn stop_and_a_closed_page_keep_the_best_design() {
         assert_eq!(record["summary"]["verdict"], "valid", "{record}");
     });
 }
+
+#[test]
+fn city_and_traffic_pictures_are_listed_and_served_only_under_the_root() {
+    let root = tempfile::tempdir().unwrap();
+    let city = r#"<svg xmlns="http://www.w3.org/2000/svg"><path d="M0 0L1 1" data-level="1"/><path d="M1 1L2 2" data-level="3"/></svg>"#;
+    for (dir, name, text) in [
+        ("out/fig7a", "city.svg", city),
+        ("out/traffic/a", "volume.svg", "<svg></svg>"),
+        ("out/traffic", "comparison.svg", "<svg></svg>"),
+        ("out/other", "notes.svg", "<svg></svg>"),
+        ("runs/r0001", "city.svg", city),
+    ] {
+        std::fs::create_dir_all(root.path().join(dir)).unwrap();
+        std::fs::write(root.path().join(dir).join(name), text).unwrap();
+    }
+    let srv = server(root.path(), 1);
+    let base = format!("http://{}", srv.addr());
+    runtime().block_on(async {
+        let c = Client::new();
+        let (s, list) = get(&c, format!("{base}/api/outputs")).await;
+        assert_eq!(s, 200);
+        let list: Value = serde_json::from_str(&list).unwrap();
+        let got: Vec<(String, String)> = list["outputs"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|o| (o["kind"].as_str().unwrap().to_string(), o["path"].as_str().unwrap().to_string()))
+            .collect();
+        let want = [
+            ("city", "out/fig7a/city.svg"),
+            ("traffic", "out/traffic/a/volume.svg"),
+            ("traffic", "out/traffic/comparison.svg"),
+        ];
+        assert_eq!(got, want.map(|(k, p)| (k.to_string(), p.to_string())));
+        let (s, svg) = get(&c, format!("{base}/api/output?path=out/fig7a/city.svg")).await;
+        assert!(s == 200 && svg.contains("data-level=\"3\""), "{s} {svg}");
+        for (path, status) in [
+            ("out/other/notes.svg", 400),
+            ("../city.svg", 403),
+            ("runs/r0001/city.svg", 403),
+            ("out/missing/city.svg", 404),
+        ] {
+            let (s, body) = get(&c, format!("{base}/api/output?path={path}")).await;
+            assert_eq!(s.as_u16(), status, "{path}: {body}");
+        }
+    });
+}

@@ -103,6 +103,7 @@ async function newSpec() {
 // --- editing ---------------------------------------------------------------------------------
 
 function setSpec(data) {
+  $("#levels").innerHTML = "";
   spec = data.spec;
   view = data.view;
   showError(null);
@@ -377,6 +378,42 @@ async function compare() {
   }
 }
 
+// --- city and traffic outputs ----------------------------------------------------------------
+
+async function loadOutputs() {
+  const data = await api("GET", "/api/outputs");
+  const ul = $("#outputs");
+  ul.innerHTML = "";
+  for (const o of data.outputs) {
+    const li = document.createElement("li");
+    li.dataset.path = o.path;
+    li.innerHTML = "<a></a>";
+    li.querySelector("a").textContent = `${o.kind}: ${o.path}`;
+    li.querySelector("a").onclick = () => showOutput(o);
+    ul.appendChild(li);
+  }
+}
+
+// A city picture (streets by level, each level toggled) or a traffic picture (streets coloured
+// by volume, travel times, a comparison), as `netspec city` / `netspec traffic` drew it.
+async function showOutput(o) {
+  const r = await fetch("/api/output?path=" + encodeURIComponent(o.path));
+  if (!r.ok) return showError(await r.json());
+  view = null;
+  $("#picture").innerHTML = await r.text();
+  const levels = $("#levels");
+  levels.innerHTML = "";
+  const present = new Set($$("#picture [data-level]").map((e) => e.dataset.level));
+  for (const level of Array.from(present).sort()) {
+    const label = document.createElement("label");
+    label.innerHTML = `<input type="checkbox" checked data-level-toggle="${level}"> level ${level}`;
+    label.querySelector("input").onchange = (e) => {
+      for (const el of $$(`#picture [data-level="${level}"]`)) el.style.display = e.target.checked ? "" : "none";
+    };
+    levels.appendChild(label);
+  }
+}
+
 // --- wiring ----------------------------------------------------------------------------------
 
 for (const input of $$("[data-field]")) {
@@ -401,3 +438,4 @@ $("#compare").onclick = compare;
 drawChart();
 loadSpecs();
 loadRuns();
+loadOutputs();
