@@ -104,9 +104,16 @@ async fn click_vertex(c: &Client, v: usize) {
     wait_for(c, &format!("Number(document.body.dataset.checks || 0) > {before}"), 30).await;
 }
 
-async fn solve_and_wait(c: &Client, secs: u64) {
+/// Clicks Solve and waits until the page watches run `id` (so nothing shown is left from the
+/// run before).
+async fn start_run(c: &Client, id: &str) {
     c.find(Locator::Css("#solve")).await.unwrap().click().await.unwrap();
-    wait_for(c, "document.querySelector('#result').dataset.state !== 'none'", 30).await;
+    wait_for(c, &format!("document.querySelector('#run-state').textContent.startsWith('run {id}:')"), 30).await;
+}
+
+/// Solves as run `id` and waits for its end (at most `secs`).
+async fn solve_and_wait(c: &Client, id: &str, secs: u64) {
+    start_run(c, id).await;
     wait_for(c, "document.querySelector('#result').dataset.state === 'done'", secs).await;
 }
 
@@ -134,7 +141,7 @@ fn a_browser_edits_solves_stops_explains_and_reloads() {
         wait_for(&c, "!document.querySelector('.field-error')", 5).await;
         // Change a weight and solve: progress, the final design, the CLI's objective.
         set_field(&c, "weights.distance", "2").await;
-        solve_and_wait(&c, 60).await;
+        solve_and_wait(&c, "r0001", 60).await;
         let updates: u64 = text(&c, "#updates").await.parse().unwrap();
         assert!(updates >= 1, "no progress update shown");
         assert_eq!(text(&c, "#verdict").await, "valid");
@@ -150,7 +157,7 @@ fn a_browser_edits_solves_stops_explains_and_reloads() {
         click_vertex(&c, 0).await;
         click_vertex(&c, 6).await;
         click_vertex(&c, 18).await;
-        solve_and_wait(&c, 90).await;
+        solve_and_wait(&c, "r0002", 90).await;
         assert!(text(&c, "#status").await.starts_with("infeasible"), "{}", text(&c, "#status").await);
         let conflicts = text(&c, "#conflicts").await;
         assert!(conflicts.contains("conflict") && conflicts.contains("coverage"), "{conflicts}");
@@ -159,8 +166,8 @@ fn a_browser_edits_solves_stops_explains_and_reloads() {
         wait_for(&c, "document.querySelectorAll('#picture .hit-v').length === 169", 30).await;
         set_field(&c, "solver.time_limit", "120").await;
         set_field(&c, "solver.threads", "1").await;
-        c.find(Locator::Css("#solve")).await.unwrap().click().await.unwrap();
-        wait_for(&c, "Number(document.querySelector('#updates').innerText) >= 1", 60).await;
+        start_run(&c, "r0003").await;
+        wait_for(&c, "Number(document.querySelector('#updates').textContent) >= 1", 60).await;
         c.find(Locator::Css("#stop")).await.unwrap().click().await.unwrap();
         wait_for(&c, "document.querySelector('#result').dataset.state === 'done'", 60).await;
         assert!(text(&c, "#status").await.starts_with("interrupted"), "{}", text(&c, "#status").await);
