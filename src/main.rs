@@ -13,6 +13,7 @@ mod cli {
     pub mod city;
     pub mod compare;
     pub mod interrupt;
+    pub mod level;
     pub mod solve;
     pub mod solve_file;
     pub mod traffic;
@@ -246,6 +247,34 @@ enum Command {
         #[arg(long)]
         threads: Option<u32>,
     },
+    /// Lay out a game level from its connectivity graph (Ma et al. 2014): blocks, a door width,
+    /// nodes and edges in LEVEL.toml (format in docs/levels.md). Writes level.json with
+    /// `--out`. Exit code 0 for a layout or a proof that none exists, 4 for neither.
+    Level {
+        /// The level file.
+        spec: PathBuf,
+        /// Method: the exact MILP.
+        #[arg(long, value_enum, default_value = "milp")]
+        method: LevelMethod,
+        /// Distinct layouts wanted.
+        #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..))]
+        count: u64,
+        /// Backend of the exact model (default: highs when compiled in).
+        #[arg(long)]
+        solver: Option<SolverKind>,
+        /// Seconds per method.
+        #[arg(long, value_name = "SECONDS", default_value_t = 60.0)]
+        time_limit: f64,
+        /// Solver threads.
+        #[arg(long)]
+        threads: Option<u32>,
+        /// When no layout exists, do not look for the edges that conflict.
+        #[arg(long)]
+        no_explain: bool,
+        /// Output directory (level.json).
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+    },
     /// Convert a model between MPS and LP (formats chosen by extension; `.gz` compressed).
     Convert {
         /// Input file (`.mps`, `.lp`, `.mps.gz` or `.lp.gz`).
@@ -259,6 +288,21 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+}
+
+/// `--method` of `netspec level`.
+#[derive(Copy, Clone, Debug, clap::ValueEnum)]
+enum LevelMethod {
+    /// The exact placement MILP.
+    Milp,
+}
+
+impl From<LevelMethod> for netspec::levels::Method {
+    fn from(m: LevelMethod) -> Self {
+        match m {
+            LevelMethod::Milp => netspec::levels::Method::Milp,
+        }
+    }
 }
 
 fn main() -> ExitCode {
@@ -424,6 +468,23 @@ fn run(cli: Cli) -> Result<ExitCode> {
             opts.threads = threads.unwrap_or(opts.threads);
             netspec::serve::run(opts, |addr| println!("netspec serve: http://{addr}/ (Ctrl-C stops)"))?;
             Ok(ExitCode::SUCCESS)
+        }
+        Command::Level { spec, method, count, solver, time_limit, threads, no_explain, out } => {
+            let solver =
+                solver.or_else(SolverKind::default_kind).ok_or_else(|| anyhow::anyhow!("no backend compiled in"))?;
+            if !(time_limit > 0.0 && time_limit.is_finite()) {
+                anyhow::bail!("--time-limit must be a positive number of seconds, got {time_limit}");
+            }
+            cli::level::run(netspec::levels::LevelRequest {
+                spec,
+                method: method.into(),
+                count: count as usize,
+                solver,
+                time_limit,
+                threads,
+                out,
+                explain: !no_explain,
+            })
         }
         Command::Convert { input, output } => {
             let c = netspec::io::convert(&input, &output)?;

@@ -31,3 +31,5 @@ mod explain;
 mod slurm;
 // `netspec serve`: its HTTP API, runs, and a real browser on its page.
 mod serve;
+// Game levels from a connectivity graph (Ma et al. 2014): configuration spaces, the exact model.
+mod levels;

@@ -1,0 +1,205 @@
+//! Game levels from a connectivity graph, after Ma, Vining, Lefebvre and Sheffer, "Game Level
+//! Layout from Design Specification" (Eurographics 2014).
+//!
+//! A level is a set of block shapes (polygons), a door width and a graph: every node gets a
+//! block and a position so that no two blocks overlap and every graph edge is a wall the two
+//! blocks share over at least the door width. [`cspace`] computes the configuration spaces of
+//! block pairs (the paper's §3.1); [`milp`] and [`exact`] place the blocks exactly, proving when
+//! no layout exists; [`validate`] checks every layout with plain geometry. [`run`] is the one
+//! entry point of `netspec level`.
+
+pub mod cspace;
+pub mod exact;
+pub mod geometry;
+pub mod milp;
+pub mod output;
+pub mod spec;
+pub mod validate;
+
+use crate::solvers::{SolverError, SolverKind};
+use geometry::Pt;
+use serde::Serialize;
+use spec::{BlockId, Level, NodeId};
+use std::path::PathBuf;
+use std::time::Instant;
+
+/// Why a level could not be laid out (an answer of "no layout" is not an error).
+#[derive(Debug, thiserror::Error)]
+pub enum LevelError {
+    /// The file could not be read.
+    #[error("{path}: {reason}")]
+    Io {
+        /// The file.
+        path: String,
+        /// The reason.
+        reason: String,
+    },
+    /// The TOML parser's message (with line and column).
+    #[error("{0}")]
+    Toml(String),
+    /// A field's value is unusable.
+    #[error("{field}: {reason}")]
+    Field {
+        /// The field, e.g. `block[2] ("ell").polygon`.
+        field: String,
+        /// Why.
+        reason: String,
+    },
+    /// An error in a named file.
+    #[error("{path}: {source}")]
+    InFile {
+        /// The file.
+        path: String,
+        /// The error.
+        #[source]
+        source: Box<LevelError>,
+    },
+    /// The solve could not be attempted.
+    #[error(transparent)]
+    Solver(#[from] SolverError),
+    /// An answer failed netspec's own checks (a solver bug or a tolerance problem).
+    #[error("{0}")]
+    Rejected(String),
+    /// Writing an output failed.
+    #[error("writing {path}: {reason}")]
+    Write {
+        /// The file.
+        path: String,
+        /// The reason.
+        reason: String,
+    },
+}
+
+/// One node's block and position.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Placement {
+    /// The node.
+    pub node: String,
+    /// The block's name.
+    pub block_name: String,
+    /// The block.
+    #[serde(skip)]
+    pub block: BlockId,
+    /// The translation applied to the block's polygon.
+    pub position: Pt,
+}
+
+impl Placement {
+    /// Node `n` as block `block` at `position`.
+    pub fn new(level: &Level, n: NodeId, block: BlockId, position: Pt) -> Placement {
+        Placement {
+            node: level.node_name(n).to_string(),
+            block_name: level.blocks[block.0 as usize].name.clone(),
+            block,
+            position,
+        }
+    }
+}
+
+/// A layout: every node placed, in node order.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Layout {
+    /// Placements, in node order.
+    pub nodes: Vec<Placement>,
+}
+
+/// The method(s) to run.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Method {
+    /// The exact model.
+    Milp,
+}
+
+/// What `netspec level` asks for.
+#[derive(Clone, Debug)]
+pub struct LevelRequest {
+    /// The level file.
+    pub spec: PathBuf,
+    /// Method.
+    pub method: Method,
+    /// Layouts wanted.
+    pub count: usize,
+    /// Backend of the exact model.
+    pub solver: SolverKind,
+    /// Seconds per method.
+    pub time_limit: f64,
+    /// Threads for the backend.
+    pub threads: Option<u32>,
+    /// Output directory (nothing written when `None`).
+    pub out: Option<PathBuf>,
+    /// Look for conflicting edges when the level is infeasible.
+    pub explain: bool,
+}
+
+/// The overall answer.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Status {
+    /// Layouts found (each validated).
+    Feasible,
+    /// Proven that none exists (the exact model only).
+    Infeasible,
+    /// Neither.
+    Unknown,
+}
+
+/// Everything `netspec level` found.
+#[derive(Clone, Debug, Serialize)]
+pub struct LevelOutcome {
+    /// The answer.
+    pub status: Status,
+    /// The method(s) run.
+    pub method: Method,
+    /// Door width.
+    pub door_width: f64,
+    /// Layouts, distinct, each validated.
+    pub layouts: Vec<Layout>,
+    /// Seconds to build the configuration spaces.
+    pub cspace_time: f64,
+    /// The exact search, when run.
+    pub milp: Option<exact::ExactReport>,
+    /// Files written.
+    pub files: Vec<PathBuf>,
+}
+
+/// Reads the level file, lays it out with the chosen method, validates every layout and
+/// writes the outputs.
+pub fn run(req: &LevelRequest) -> Result<LevelOutcome, LevelError> {
+    let level = Level::read(&req.spec)?;
+    let mut outcome = solve_level(&level, req)?;
+    if let Some(dir) = &req.out {
+        outcome.files = output::write(dir, &level, &outcome)?;
+    }
+    Ok(outcome)
+}
+
+/// Lays out a checked level (no files).
+pub fn solve_level(level: &Level, req: &LevelRequest) -> Result<LevelOutcome, LevelError> {
+    let t0 = Instant::now();
+    let cs = cspace::CSpaces::new(level);
+    let cspace_time = t0.elapsed().as_secs_f64();
+    let opts = exact::ExactOptions {
+        solver: req.solver,
+        time_limit: req.time_limit,
+        count: req.count.max(1),
+        threads: req.threads,
+        explain: req.explain,
+    };
+    let rep = exact::solve(level, &cs, &opts, &[])?;
+    let status = match rep.status {
+        exact::ExactStatus::Feasible => Status::Feasible,
+        exact::ExactStatus::Infeasible => Status::Infeasible,
+        exact::ExactStatus::Unknown => Status::Unknown,
+    };
+    let layouts = rep.layouts.clone();
+    Ok(LevelOutcome {
+        status,
+        method: req.method,
+        door_width: level.door_width,
+        layouts,
+        cspace_time,
+        milp: Some(rep),
+        files: Vec::new(),
+    })
+}
