@@ -253,9 +253,12 @@ enum Command {
     Level {
         /// The level file.
         spec: PathBuf,
-        /// Method: the exact MILP.
-        #[arg(long, value_enum, default_value = "milp")]
+        /// Method: the paper's annealer, the exact MILP, or both (annealed layouts as MIP starts).
+        #[arg(long, value_enum, default_value = "both")]
         method: LevelMethod,
+        /// Seed of the annealer.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
         /// Distinct layouts wanted.
         #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..))]
         count: u64,
@@ -293,14 +296,20 @@ enum Command {
 /// `--method` of `netspec level`.
 #[derive(Copy, Clone, Debug, clap::ValueEnum)]
 enum LevelMethod {
+    /// The paper's incremental simulated annealing.
+    Anneal,
     /// The exact placement MILP.
     Milp,
+    /// The annealer, then the MILP with its layouts as MIP starts.
+    Both,
 }
 
 impl From<LevelMethod> for netspec::levels::Method {
     fn from(m: LevelMethod) -> Self {
         match m {
+            LevelMethod::Anneal => netspec::levels::Method::Anneal,
             LevelMethod::Milp => netspec::levels::Method::Milp,
+            LevelMethod::Both => netspec::levels::Method::Both,
         }
     }
 }
@@ -469,7 +478,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
             netspec::serve::run(opts, |addr| println!("netspec serve: http://{addr}/ (Ctrl-C stops)"))?;
             Ok(ExitCode::SUCCESS)
         }
-        Command::Level { spec, method, count, solver, time_limit, threads, no_explain, out } => {
+        Command::Level { spec, method, seed, count, solver, time_limit, threads, no_explain, out } => {
             let solver =
                 solver.or_else(SolverKind::default_kind).ok_or_else(|| anyhow::anyhow!("no backend compiled in"))?;
             if !(time_limit > 0.0 && time_limit.is_finite()) {
@@ -484,6 +493,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 threads,
                 out,
                 explain: !no_explain,
+                seed,
             })
         }
         Command::Convert { input, output } => {

@@ -1,6 +1,7 @@
 //! Game levels from a connectivity graph (Ma et al. 2014): configuration spaces, the exact
 //! placement model on every backend, the validator, spec errors, the command.
 
+use netspec::levels::anneal::{self, AnnealOptions};
 use netspec::levels::cspace::{contact_segments, CSpaces};
 use netspec::levels::exact::{self, ExactOptions, ExactStatus};
 use netspec::levels::spec::{Block, Level};
@@ -214,7 +215,7 @@ fn command_writes_level_json_with_the_status() {
     }
     std::fs::write(&spec, &text).unwrap();
     let out = dir.path().join("out");
-    let run = netspec().arg("level").arg(&spec).arg("--out").arg(&out).output().unwrap();
+    let run = netspec().arg("level").arg(&spec).args(["--method", "milp", "--out"]).arg(&out).output().unwrap();
     assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("level.json")).unwrap()).unwrap();
@@ -228,6 +229,9 @@ fn command_writes_level_json_with_the_status() {
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("level.json")).unwrap()).unwrap();
     assert_eq!(json["status"], "feasible");
+    // The default method anneals first and hands the layout to the MILP as a checked start.
+    assert_eq!(json["method"], "both");
+    assert_eq!(json["milp"]["start_accepted"], true);
     let nodes = json["layouts"][0]["nodes"].as_array().unwrap();
     assert_eq!(nodes.len(), 5);
     assert_eq!(nodes[0]["block_name"], "square");
@@ -242,4 +246,59 @@ fn command_writes_level_json_with_the_status() {
     assert_eq!(run.status.code(), Some(1));
     let err = String::from_utf8_lossy(&run.stderr);
     assert!(err.contains("star.toml") && err.contains("block[0] (\"x\").polygon"), "{err}");
+}
+
+fn quick(seed: u64, count: usize) -> AnnealOptions {
+    // A short schedule: the tests check what is found, never how fast.
+    AnnealOptions { seed, count, time_limit: 1e6, cycles: 10, trials: 200, ..AnnealOptions::default() }
+}
+
+#[test]
+fn chains_start_with_the_smallest_cycle_and_end_with_trees() {
+    // A square 0-1-2-3 with a triangle 3-4-0 on one side and a tail 1-5-6.
+    let level = squares(0.3, 7, &[(0, 1), (1, 2), (2, 3), (3, 0), (3, 4), (4, 0), (1, 5), (5, 6)]);
+    let c = anneal::chains(&level);
+    let names = |i: usize| c[i].iter().map(|n| n.0).collect::<Vec<_>>();
+    assert_eq!(names(0), vec![0, 3, 4]);
+    assert_eq!(names(1), vec![1, 2]);
+    assert_eq!(names(2), vec![5, 6]);
+    assert_eq!(c.len(), 3);
+}
+
+#[test]
+fn annealer_finds_distinct_valid_layouts_and_nothing_where_none_exists() {
+    let level = star(4);
+    let cs = CSpaces::new(&level);
+    let r = anneal::anneal(&level, &cs, &quick(7, 3));
+    assert_eq!(r.layouts.len(), 3, "{r:?}");
+    assert_eq!(r.stopped, "count");
+    for l in &r.layouts {
+        assert!(validate(&level, l).is_valid());
+    }
+    assert_ne!(r.layouts[0], r.layouts[1]);
+    let triangle = squares(0.4, 3, &[(0, 1), (1, 2), (0, 2)]);
+    let r = anneal::anneal(&triangle, &CSpaces::new(&triangle), &quick(3, 1));
+    assert_eq!(r.layouts.len(), 1);
+    assert!(validate(&triangle, &r.layouts[0]).is_valid());
+    // No layout exists: the stack runs empty, nothing is returned.
+    let five = star(5);
+    let o = AnnealOptions { partial_variations: 2, ..quick(1, 1) };
+    let r = anneal::anneal(&five, &CSpaces::new(&five), &o);
+    assert!(r.layouts.is_empty());
+    assert_eq!(r.stopped, "exhausted");
+}
+
+#[test]
+fn annealed_layouts_are_mip_starts_the_checker_accepts_on_every_backend() {
+    for level in [star(4), squares(0.4, 3, &[(0, 1), (1, 2), (0, 2)])] {
+        let cs = CSpaces::new(&level);
+        let a = anneal::anneal(&level, &cs, &quick(5, 1));
+        assert_eq!(a.layouts.len(), 1);
+        for kind in backends() {
+            let o = ExactOptions { solver: kind, time_limit: 60.0, count: 1, threads: Some(1), explain: false };
+            let r = exact::solve(&level, &cs, &o, &a.layouts).unwrap();
+            assert_eq!(r.status, ExactStatus::Feasible, "{kind}");
+            assert_eq!(r.start_accepted, Some(true), "{kind}");
+        }
+    }
 }

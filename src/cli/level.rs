@@ -13,6 +13,16 @@ pub fn run(req: LevelRequest) -> Result<ExitCode> {
     println!("status     {}", serde_json::to_value(out.status)?.as_str().unwrap_or("?"));
     println!("layouts    {} (each checked by the validator)", out.layouts.len());
     println!("cspaces    {:.3} s", out.cspace_time);
+    if let Some(a) = &out.anneal {
+        println!(
+            "anneal     {} layout(s) · {} chains · {} trials · stopped: {}{}",
+            a.layouts.len(),
+            a.chains.len(),
+            a.trials,
+            a.stopped,
+            a.time_to_first.map_or(String::new(), |t| format!(" · first layout {t:.3} s")),
+        );
+    }
     if let Some(m) = &out.milp {
         println!(
             "milp       {} · {} vars, {} rows · {} solve(s){}{}",
@@ -23,6 +33,9 @@ pub fn run(req: LevelRequest) -> Result<ExitCode> {
             m.time_to_first.map_or(String::new(), |t| format!(" · first layout {t:.3} s")),
             m.time_to_proof.map_or(String::new(), |t| format!(" · proof {t:.3} s")),
         );
+        if let Some(ok) = m.start_accepted {
+            println!("           MIP start {}", if ok { "accepted" } else { "rejected by the checker" });
+        }
         if let Some(note) = &m.note {
             println!("           {note}");
         }

@@ -8,6 +8,7 @@
 //! no layout exists; [`validate`] checks every layout with plain geometry. [`run`] is the one
 //! entry point of `netspec level`.
 
+pub mod anneal;
 pub mod cspace;
 pub mod exact;
 pub mod geometry;
@@ -107,8 +108,12 @@ pub struct Layout {
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Method {
+    /// The paper's incremental simulated annealing.
+    Anneal,
     /// The exact model.
     Milp,
+    /// The annealer, then the exact model with the annealed layouts as MIP starts.
+    Both,
 }
 
 /// What `netspec level` asks for.
@@ -130,6 +135,8 @@ pub struct LevelRequest {
     pub out: Option<PathBuf>,
     /// Look for conflicting edges when the level is infeasible.
     pub explain: bool,
+    /// Seed of the annealer.
+    pub seed: u64,
 }
 
 /// The overall answer.
@@ -157,6 +164,8 @@ pub struct LevelOutcome {
     pub layouts: Vec<Layout>,
     /// Seconds to build the configuration spaces.
     pub cspace_time: f64,
+    /// The annealer, when run.
+    pub anneal: Option<anneal::AnnealReport>,
     /// The exact search, when run.
     pub milp: Option<exact::ExactReport>,
     /// Files written.
@@ -179,27 +188,54 @@ pub fn solve_level(level: &Level, req: &LevelRequest) -> Result<LevelOutcome, Le
     let t0 = Instant::now();
     let cs = cspace::CSpaces::new(level);
     let cspace_time = t0.elapsed().as_secs_f64();
-    let opts = exact::ExactOptions {
-        solver: req.solver,
-        time_limit: req.time_limit,
-        count: req.count.max(1),
-        threads: req.threads,
-        explain: req.explain,
+    let count = req.count.max(1);
+    if req.method != Method::Milp && !level.euler_bound_ok() {
+        return Err(LevelError::Field {
+            field: "edge".into(),
+            reason: format!(
+                "the annealer needs a planar graph; {} edges on {} nodes exceed Euler's bound 3V − 6",
+                level.edges.len(),
+                level.nodes.len()
+            ),
+        });
+    }
+    let annealed = (req.method != Method::Milp).then(|| {
+        let o = anneal::AnnealOptions { seed: req.seed, count, time_limit: req.time_limit, ..Default::default() };
+        anneal::anneal(level, &cs, &o)
+    });
+    let mut layouts: Vec<Layout> = annealed.as_ref().map(|a| a.layouts.clone()).unwrap_or_default();
+    let milp = if req.method == Method::Anneal {
+        None
+    } else {
+        let opts = exact::ExactOptions {
+            solver: req.solver,
+            time_limit: req.time_limit,
+            count,
+            threads: req.threads,
+            explain: req.explain,
+        };
+        Some(exact::solve(level, &cs, &opts, &layouts)?)
     };
-    let rep = exact::solve(level, &cs, &opts, &[])?;
-    let status = match rep.status {
-        exact::ExactStatus::Feasible => Status::Feasible,
-        exact::ExactStatus::Infeasible => Status::Infeasible,
-        exact::ExactStatus::Unknown => Status::Unknown,
+    if let Some(m) = &milp {
+        for l in &m.layouts {
+            if !layouts.contains(l) {
+                layouts.push(l.clone());
+            }
+        }
+    }
+    let status = match (&milp, layouts.is_empty()) {
+        (_, false) => Status::Feasible,
+        (Some(m), true) if m.status == exact::ExactStatus::Infeasible => Status::Infeasible,
+        _ => Status::Unknown,
     };
-    let layouts = rep.layouts.clone();
     Ok(LevelOutcome {
         status,
         method: req.method,
         door_width: level.door_width,
         layouts,
         cspace_time,
-        milp: Some(rep),
+        anneal: annealed,
+        milp,
         files: Vec::new(),
     })
 }
