@@ -232,6 +232,10 @@ fn command_writes_level_json_with_the_status() {
     // The default method anneals first and hands the layout to the MILP as a checked start.
     assert_eq!(json["method"], "both");
     assert_eq!(json["milp"]["start_accepted"], true);
+    let svg = std::fs::read_to_string(out.join("layout-1.svg")).unwrap();
+    assert_eq!(svg.matches("<polygon").count(), 5);
+    assert_eq!(svg.matches("<polyline").count(), 4, "one door and graph edge per edge");
+    assert!(std::fs::metadata(out.join("layout-1.png")).unwrap().len() > 0);
     let nodes = json["layouts"][0]["nodes"].as_array().unwrap();
     assert_eq!(nodes.len(), 5);
     assert_eq!(nodes[0]["block_name"], "square");
