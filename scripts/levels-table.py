@@ -3,6 +3,7 @@
 reconstructed inputs of Ma et al. 2014, Table 1 (models/levels/).
 
     python3 scripts/levels-table.py --netspec "$CARGO_TARGET_DIR/release/netspec" [--seeds 50] [--time-limit 20]
+    python3 scripts/levels-table.py --netspec "$CARGO_TARGET_DIR/release/netspec" --scaling
 
 Writes docs/levels/results.json and prints the markdown table."""
 import argparse, json, statistics, subprocess, tempfile, pathlib
@@ -29,6 +30,35 @@ def avg_med(xs):
     return f"{statistics.mean(xs):.2g}/{statistics.median(xs):.2g}" if xs else "–"
 
 
+SQUARE = 'door_width = 0.6\n[[block]]\nname = "square"\npolygon = [[0, 0], [1, 0], [1, 1], [0, 1]]\n'
+
+
+def star_with_tail(leaves, tail):
+    """A hub of unit squares with `leaves` leaves (infeasible from 5 at w = 0.6), the last leaf
+    continued by a path of `tail` more squares."""
+    n = 1 + leaves + tail
+    t = SQUARE + "".join(f'[[node]]\nname = "n{i}"\n' for i in range(n))
+    edges = [(0, i) for i in range(1, leaves + 1)] + [(i, i + 1) for i in range(leaves, leaves + tail)]
+    return t + "".join(f'[[edge]]\nnodes = ["n{a}", "n{b}"]\n' for a, b in edges)
+
+
+def scaling(netspec, limit):
+    """The MILP on growing graphs: 4-leaf stars (feasible) and 5-leaf stars (infeasible) with tails."""
+    print("| graph | nodes | MILP answer (HiGHS, 60 s) |")
+    print("|---|---|---|")
+    for leaves in (4, 5):
+        for tail in (0, 5, 10, 15, 20, 30):
+            with tempfile.TemporaryDirectory() as d:
+                spec = pathlib.Path(d) / "g.toml"
+                spec.write_text(star_with_tail(leaves, tail))
+                subprocess.run([netspec, "level", str(spec), "--method", "milp", "--time-limit", str(limit),
+                                "--no-explain", "--out", d], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+                m = json.loads((pathlib.Path(d) / "level.json").read_text())["milp"]
+            t = m["time_to_first"] if m["status"] == "feasible" else m["time_to_proof"]
+            ans = m["status"] + (f" in {t:.2g} s" if t is not None else "")
+            print(f"| star of {leaves} + path of {tail} | {1 + leaves + tail} | {ans} |", flush=True)
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--netspec", required=True)
@@ -36,7 +66,11 @@ def main():
     ap.add_argument("--time-limit", type=float, default=20.0)
     ap.add_argument("--milp-time-limit", type=float, default=60.0)
     ap.add_argument("--models", nargs="*", default=MODELS)
+    ap.add_argument("--scaling", action="store_true", help="only the MILP on growing star graphs")
     a = ap.parse_args()
+    if a.scaling:
+        scaling(a.netspec, a.milp_time_limit)
+        return
     results = {}
     for m in a.models:
         runs = []

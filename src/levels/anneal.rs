@@ -211,6 +211,13 @@ impl Shapes {
 
 type Slot = Option<(BlockId, Pt)>;
 
+/// A valid extension and when it was found.
+struct Found {
+    slots: Vec<Slot>,
+    seconds: f64,
+    trials: u64,
+}
+
 /// The search's fixed data.
 struct Search<'a> {
     level: &'a Level,
@@ -354,6 +361,10 @@ impl Search<'_> {
         ssd > self.shapes.threshold
     }
 
+    fn found(&self, s: &[Slot]) -> Found {
+        Found { slots: s.to_vec(), seconds: self.t0.elapsed().as_secs_f64(), trials: self.trials }
+    }
+
     fn out_of_time(&self) -> bool {
         self.t0.elapsed().as_secs_f64() >= self.o.time_limit
     }
@@ -401,17 +412,17 @@ impl Search<'_> {
     }
 
     /// Extends the partial layout `s` by `chain` (Pseudocode 2): valid extensions that differ,
-    /// up to `want`.
-    fn add_chain(&mut self, s0: &[Slot], chain: &[NodeId], want: usize) -> Vec<Vec<Slot>> {
+    /// up to `want`, each with the seconds and trials at which it was found.
+    fn add_chain(&mut self, s0: &[Slot], chain: &[NodeId], want: usize) -> Vec<Found> {
         let mut s = s0.to_vec();
         self.initialise(&mut s, chain);
         let (mut a, mut d) = self.totals(&s);
-        let mut found: Vec<Vec<Slot>> = Vec::new();
+        let mut found: Vec<Found> = Vec::new();
         let members: BTreeSet<NodeId> = chain.iter().copied().collect();
         let ratio = (self.o.t1 / self.o.t0).powf(1.0 / (self.o.cycles.max(2) - 1) as f64);
         let (mut t, mut k_sum, mut k_n) = (self.o.t0, 0.0, 0usize);
         if a <= AREA_TOL && d == 0.0 {
-            found.push(s.clone());
+            found.push(self.found(&s));
             if found.len() >= want {
                 return found;
             }
@@ -460,8 +471,8 @@ impl Search<'_> {
                     // Recount to be sure (the running sums drift).
                     let (ac, dc) = self.totals(&s);
                     (a, d) = (ac, dc);
-                    if ac <= AREA_TOL && dc == 0.0 && found.iter().all(|f| self.distinct(f, &s)) {
-                        found.push(s.clone());
+                    if ac <= AREA_TOL && dc == 0.0 && found.iter().all(|f| self.distinct(&f.slots, &s)) {
+                        found.push(self.found(&s));
                         if found.len() >= want {
                             return found;
                         }
@@ -505,16 +516,15 @@ pub fn anneal(level: &Level, cs: &CSpaces, o: &AnnealOptions) -> AnnealReport {
         let ext = search.add_chain(&s, &chains[k], want);
         if last {
             for e in ext {
-                if full.iter().all(|f| search.distinct(f, &e)) {
-                    let layout = to_layout(level, &e);
+                if full.iter().all(|f| search.distinct(f, &e.slots)) {
+                    let layout = to_layout(level, &e.slots);
                     // Every layout passes the independent validator; one that does not is dropped.
                     if validate(level, &layout).is_valid() {
-                        let t = search.t0.elapsed().as_secs_f64();
-                        rep.time_to_first.get_or_insert(t);
-                        rep.time_to_last = Some(t);
-                        rep.trials_to_last = search.trials;
+                        rep.time_to_first.get_or_insert(e.seconds);
+                        rep.time_to_last = Some(e.seconds);
+                        rep.trials_to_last = e.trials;
                         rep.layouts.push(layout);
-                        full.push(e);
+                        full.push(e.slots);
                     }
                 }
             }
@@ -523,7 +533,7 @@ pub fn anneal(level: &Level, cs: &CSpaces, o: &AnnealOptions) -> AnnealReport {
                 break;
             }
         } else {
-            stack.extend(ext.into_iter().rev().map(|e| (e, k + 1)));
+            stack.extend(ext.into_iter().rev().map(|e| (e.slots, k + 1)));
         }
     }
     rep.trials = search.trials;
