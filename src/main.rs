@@ -249,7 +249,9 @@ enum Command {
     },
     /// Lay out a game level from its connectivity graph (Ma et al. 2014): blocks, a door width,
     /// nodes and edges in LEVEL.toml (format in docs/levels.md). Writes level.json with
-    /// `--out`. Exit code 0 for a layout or a proof that none exists, 4 for neither.
+    /// `--out`. Exit code 0 for a layout or a proof that none exists, 4 for neither. With
+    /// `--export-spec`, also writes the first layout as mesh.json and network.toml (a spec for
+    /// `netspec solve` whose network passes between rooms only through doors).
     Level {
         /// The level file.
         spec: PathBuf,
@@ -277,6 +279,19 @@ enum Command {
         /// Output directory (level.json).
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
+        /// Export the first layout as mesh.json and network.toml into the output directory.
+        #[arg(long, requires = "out")]
+        export_spec: bool,
+        /// Grid spacing inside the rooms of the export (default: the door width).
+        #[arg(long, requires = "export_spec")]
+        spacing: Option<f64>,
+        /// The node whose room gets the sink (default: the first node).
+        #[arg(long, value_name = "NODE", requires = "export_spec")]
+        entrance: Option<String>,
+        /// Coverage range of the export, in level units, at least 1 (default: the smallest the
+        /// rooms' forced vertices satisfy, so the network is the shortest through every room).
+        #[arg(long, value_name = "R", requires = "export_spec")]
+        coverage: Option<f64>,
     },
     /// Convert a model between MPS and LP (formats chosen by extension; `.gz` compressed).
     Convert {
@@ -478,7 +493,21 @@ fn run(cli: Cli) -> Result<ExitCode> {
             netspec::serve::run(opts, |addr| println!("netspec serve: http://{addr}/ (Ctrl-C stops)"))?;
             Ok(ExitCode::SUCCESS)
         }
-        Command::Level { spec, method, seed, count, solver, time_limit, threads, no_explain, out } => {
+        Command::Level {
+            spec,
+            method,
+            seed,
+            count,
+            solver,
+            time_limit,
+            threads,
+            no_explain,
+            out,
+            export_spec,
+            spacing,
+            entrance,
+            coverage,
+        } => {
             let solver =
                 solver.or_else(SolverKind::default_kind).ok_or_else(|| anyhow::anyhow!("no backend compiled in"))?;
             if !(time_limit > 0.0 && time_limit.is_finite()) {
@@ -494,6 +523,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 out,
                 explain: !no_explain,
                 seed,
+                export: export_spec.then_some(netspec::levels::bridge::BridgeOptions { spacing, entrance, coverage }),
             })
         }
         Command::Convert { input, output } => {

@@ -1,7 +1,7 @@
 //! `netspec level LEVEL.toml`: lay out a game level from its connectivity graph.
 
 use anyhow::Result;
-use netspec::levels::{self, LevelRequest, Status};
+use netspec::levels::{self, LevelError, LevelRequest, Status};
 use std::process::ExitCode;
 
 /// Exit code when neither a layout nor a proof was found within the limits.
@@ -9,7 +9,15 @@ const EXIT_UNKNOWN: u8 = 4;
 
 /// Runs the library entry point and prints a summary.
 pub fn run(req: LevelRequest) -> Result<ExitCode> {
-    let out = levels::run(&req)?;
+    let out = match levels::run(&req) {
+        Ok(out) => out,
+        Err(e @ LevelError::NoLayout { .. }) => {
+            // Nothing to export is the same outcome as neither a layout nor a proof.
+            eprintln!("error: {e}");
+            return Ok(ExitCode::from(EXIT_UNKNOWN));
+        }
+        Err(e) => return Err(e.into()),
+    };
     println!("status     {}", serde_json::to_value(out.status)?.as_str().unwrap_or("?"));
     println!("layouts    {} (each checked by the validator)", out.layouts.len());
     println!("cspaces    {:.3} s", out.cspace_time);

@@ -9,6 +9,7 @@
 //! entry point of `netspec level`.
 
 pub mod anneal;
+pub mod bridge;
 pub mod cspace;
 pub mod exact;
 pub mod geometry;
@@ -61,6 +62,14 @@ pub enum LevelError {
     /// An answer failed netspec's own checks (a solver bug or a tolerance problem).
     #[error("{0}")]
     Rejected(String),
+    /// An export was asked for, but there is no layout to export.
+    #[error("{path}: no layout to export (status {status}); the export needs a feasible level")]
+    NoLayout {
+        /// The level file.
+        path: String,
+        /// `infeasible` or `unknown`.
+        status: String,
+    },
     /// Writing an output failed.
     #[error("writing {path}: {reason}")]
     Write {
@@ -137,6 +146,8 @@ pub struct LevelRequest {
     pub explain: bool,
     /// Seed of the annealer.
     pub seed: u64,
+    /// Export the first layout as a mesh and a network spec into `out` ([`bridge`]).
+    pub export: Option<bridge::BridgeOptions>,
 }
 
 /// The overall answer.
@@ -180,7 +191,31 @@ pub fn run(req: &LevelRequest) -> Result<LevelOutcome, LevelError> {
     if let Some(dir) = &req.out {
         outcome.files = output::write(dir, &level, &outcome)?;
     }
+    if let Some(opts) = &req.export {
+        outcome.files.extend(export(req, &level, &outcome, opts)?);
+    }
     Ok(outcome)
+}
+
+/// The export of the first layout into the output directory.
+fn export(
+    req: &LevelRequest,
+    level: &Level,
+    outcome: &LevelOutcome,
+    opts: &bridge::BridgeOptions,
+) -> Result<Vec<PathBuf>, LevelError> {
+    let path = req.spec.display().to_string();
+    let dir = req.out.as_ref().ok_or_else(|| LevelError::Field {
+        field: "out".into(),
+        reason: "the export needs an output directory".into(),
+    })?;
+    let Some(layout) = outcome.layouts.first() else {
+        let status = serde_json::to_value(outcome.status).ok().and_then(|v| v.as_str().map(String::from));
+        return Err(LevelError::NoLayout { path, status: status.unwrap_or_default() });
+    };
+    let name = req.spec.file_stem().map_or("level".into(), |s| s.to_string_lossy().into_owned());
+    let b = bridge::bridge(level, layout, &name, opts).map_err(|e| LevelError::InFile { path, source: Box::new(e) })?;
+    bridge::write(dir, &b)
 }
 
 /// Lays out a checked level (no files).
