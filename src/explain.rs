@@ -273,10 +273,59 @@ impl Default for ExplainOptions {
 
 /// The answer of one feasibility check.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
-enum Verdict {
+pub enum Verdict {
+    /// A solution exists (one was found and checked).
     Feasible,
+    /// Proven infeasible.
     Infeasible,
+    /// Neither, within the limits.
     Unknown,
+}
+
+/// The deletion filter's inner loop, for any kind of requirement: `kept` is known infeasible
+/// (`check` says whether a set can hold); the `members` of `kept` are dropped in chunks, halving
+/// from half the list down to single elements, each drop kept when the rest is still infeasible.
+/// On return `kept` has lost every member it could lose. Returns whether the result is proven
+/// minimal among `members` (no single-element check came back unknown). The whole of `members`
+/// is never dropped at once (the caller knows it is needed).
+pub fn deletion_filter<T: Ord + Clone>(
+    kept: &mut BTreeSet<T>,
+    mut members: Vec<T>,
+    mut check: impl FnMut(&BTreeSet<T>) -> Verdict,
+) -> bool {
+    let mut minimal = true;
+    if members.len() < 2 {
+        return minimal;
+    }
+    let mut chunk = members.len().div_ceil(2);
+    loop {
+        let mut i = 0;
+        while i < members.len() {
+            let end = (i + chunk).min(members.len());
+            if end - i == members.len() {
+                i = end; // the whole list: already known to be needed
+                continue;
+            }
+            let without: BTreeSet<T> = kept.iter().filter(|r| !members[i..end].contains(r)).cloned().collect();
+            match check(&without) {
+                Verdict::Infeasible => {
+                    *kept = without;
+                    members.drain(i..end);
+                }
+                v => {
+                    if v == Verdict::Unknown && chunk == 1 {
+                        minimal = false;
+                    }
+                    i = end;
+                }
+            }
+        }
+        if chunk == 1 {
+            break;
+        }
+        chunk = chunk.div_ceil(2);
+    }
+    minimal
 }
 
 type Set = BTreeSet<Requirement>;
@@ -606,39 +655,8 @@ impl Search<'_> {
         let mut families: Vec<Family> = k.iter().map(|r| r.family()).collect();
         families.dedup();
         for f in families {
-            let mut members: Vec<Requirement> = k.iter().copied().filter(|r| r.family() == f).collect();
-            if members.len() < 2 {
-                continue;
-            }
-            let mut chunk = members.len().div_ceil(2);
-            loop {
-                let mut i = 0;
-                while i < members.len() {
-                    let end = (i + chunk).min(members.len());
-                    if end - i == members.len() {
-                        i = end; // the whole family: already known to be needed
-                        continue;
-                    }
-                    let drop: Set = members[i..end].iter().copied().collect();
-                    let without: Set = k.iter().copied().filter(|r| !drop.contains(r)).collect();
-                    match self.check(&without) {
-                        Verdict::Infeasible => {
-                            k = without;
-                            members.drain(i..end);
-                        }
-                        v => {
-                            if v == Verdict::Unknown && chunk == 1 {
-                                minimal = false;
-                            }
-                            i = end;
-                        }
-                    }
-                }
-                if chunk == 1 {
-                    break;
-                }
-                chunk = chunk.div_ceil(2);
-            }
+            let members: Vec<Requirement> = k.iter().copied().filter(|r| r.family() == f).collect();
+            minimal &= deletion_filter(&mut k, members, |s| self.check(s));
         }
         (k, minimal && !self.out_of_time)
     }

@@ -18,6 +18,7 @@ pub mod explain;
 pub mod formulations;
 pub mod heuristics;
 pub mod io;
+pub mod levels;
 pub mod mesh;
 pub mod milp;
 pub mod pipeline;

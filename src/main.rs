@@ -13,6 +13,7 @@ mod cli {
     pub mod city;
     pub mod compare;
     pub mod interrupt;
+    pub mod level;
     pub mod solve;
     pub mod solve_file;
     pub mod traffic;
@@ -246,6 +247,52 @@ enum Command {
         #[arg(long)]
         threads: Option<u32>,
     },
+    /// Lay out a game level from its connectivity graph (Ma et al. 2014): blocks, a door width,
+    /// nodes and edges in LEVEL.toml (format in docs/levels.md). Writes level.json with
+    /// `--out`. Exit code 0 for a layout or a proof that none exists, 4 for neither. With
+    /// `--export-spec`, also writes the first layout as mesh.json and network.toml (a spec for
+    /// `netspec solve` whose network passes between rooms only through doors).
+    Level {
+        /// The level file.
+        spec: PathBuf,
+        /// Method: the paper's annealer, the exact MILP, or both (annealed layouts as MIP starts).
+        #[arg(long, value_enum, default_value = "both")]
+        method: LevelMethod,
+        /// Seed of the annealer.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Distinct layouts wanted.
+        #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..))]
+        count: u64,
+        /// Backend of the exact model (default: highs when compiled in).
+        #[arg(long)]
+        solver: Option<SolverKind>,
+        /// Seconds per method.
+        #[arg(long, value_name = "SECONDS", default_value_t = 60.0)]
+        time_limit: f64,
+        /// Solver threads.
+        #[arg(long)]
+        threads: Option<u32>,
+        /// When no layout exists, do not look for the edges that conflict.
+        #[arg(long)]
+        no_explain: bool,
+        /// Output directory (level.json).
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+        /// Export the first layout as mesh.json and network.toml into the output directory.
+        #[arg(long, requires = "out")]
+        export_spec: bool,
+        /// Grid spacing inside the rooms of the export (default: the door width).
+        #[arg(long, requires = "export_spec")]
+        spacing: Option<f64>,
+        /// The node whose room gets the sink (default: the first node).
+        #[arg(long, value_name = "NODE", requires = "export_spec")]
+        entrance: Option<String>,
+        /// Coverage range of the export, in level units, at least 1 (default: the smallest the
+        /// rooms' forced vertices satisfy, so the network is the shortest through every room).
+        #[arg(long, value_name = "R", requires = "export_spec")]
+        coverage: Option<f64>,
+    },
     /// Convert a model between MPS and LP (formats chosen by extension; `.gz` compressed).
     Convert {
         /// Input file (`.mps`, `.lp`, `.mps.gz` or `.lp.gz`).
@@ -259,6 +306,27 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+}
+
+/// `--method` of `netspec level`.
+#[derive(Copy, Clone, Debug, clap::ValueEnum)]
+enum LevelMethod {
+    /// The paper's incremental simulated annealing.
+    Anneal,
+    /// The exact placement MILP.
+    Milp,
+    /// The annealer, then the MILP with its layouts as MIP starts.
+    Both,
+}
+
+impl From<LevelMethod> for netspec::levels::Method {
+    fn from(m: LevelMethod) -> Self {
+        match m {
+            LevelMethod::Anneal => netspec::levels::Method::Anneal,
+            LevelMethod::Milp => netspec::levels::Method::Milp,
+            LevelMethod::Both => netspec::levels::Method::Both,
+        }
+    }
 }
 
 fn main() -> ExitCode {
@@ -424,6 +492,39 @@ fn run(cli: Cli) -> Result<ExitCode> {
             opts.threads = threads.unwrap_or(opts.threads);
             netspec::serve::run(opts, |addr| println!("netspec serve: http://{addr}/ (Ctrl-C stops)"))?;
             Ok(ExitCode::SUCCESS)
+        }
+        Command::Level {
+            spec,
+            method,
+            seed,
+            count,
+            solver,
+            time_limit,
+            threads,
+            no_explain,
+            out,
+            export_spec,
+            spacing,
+            entrance,
+            coverage,
+        } => {
+            let solver =
+                solver.or_else(SolverKind::default_kind).ok_or_else(|| anyhow::anyhow!("no backend compiled in"))?;
+            if !(time_limit > 0.0 && time_limit.is_finite()) {
+                anyhow::bail!("--time-limit must be a positive number of seconds, got {time_limit}");
+            }
+            cli::level::run(netspec::levels::LevelRequest {
+                spec,
+                method: method.into(),
+                count: count as usize,
+                solver,
+                time_limit,
+                threads,
+                out,
+                explain: !no_explain,
+                seed,
+                export: export_spec.then_some(netspec::levels::bridge::BridgeOptions { spacing, entrance, coverage }),
+            })
         }
         Command::Convert { input, output } => {
             let c = netspec::io::convert(&input, &output)?;

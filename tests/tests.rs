@@ -31,3 +31,7 @@ mod explain;
 mod slurm;
 // `netspec serve`: its HTTP API, runs, and a real browser on its page.
 mod serve;
+// Game levels from a connectivity graph (Ma et al. 2014): configuration spaces, the exact model.
+mod levels;
+// A laid-out level exported as a mesh and a network spec, solved, crossings checked by geometry.
+mod level_bridge;

@@ -1,0 +1,276 @@
+//! Game levels from a connectivity graph, after Ma, Vining, Lefebvre and Sheffer, "Game Level
+//! Layout from Design Specification" (Eurographics 2014).
+//!
+//! A level is a set of block shapes (polygons), a door width and a graph: every node gets a
+//! block and a position so that no two blocks overlap and every graph edge is a wall the two
+//! blocks share over at least the door width. [`cspace`] computes the configuration spaces of
+//! block pairs (the paper's §3.1); [`milp`] and [`exact`] place the blocks exactly, proving when
+//! no layout exists; [`validate`] checks every layout with plain geometry. [`run`] is the one
+//! entry point of `netspec level`.
+
+pub mod anneal;
+pub mod bridge;
+pub mod cspace;
+pub mod exact;
+pub mod geometry;
+pub mod milp;
+pub mod output;
+pub mod spec;
+pub mod validate;
+
+use crate::solvers::{SolverError, SolverKind};
+use geometry::Pt;
+use serde::Serialize;
+use spec::{BlockId, Level, NodeId};
+use std::path::PathBuf;
+use std::time::Instant;
+
+/// Why a level could not be laid out (an answer of "no layout" is not an error).
+#[derive(Debug, thiserror::Error)]
+pub enum LevelError {
+    /// The file could not be read.
+    #[error("{path}: {reason}")]
+    Io {
+        /// The file.
+        path: String,
+        /// The reason.
+        reason: String,
+    },
+    /// The TOML parser's message (with line and column).
+    #[error("{0}")]
+    Toml(String),
+    /// A field's value is unusable.
+    #[error("{field}: {reason}")]
+    Field {
+        /// The field, e.g. `block[2] ("ell").polygon`.
+        field: String,
+        /// Why.
+        reason: String,
+    },
+    /// An error in a named file.
+    #[error("{path}: {source}")]
+    InFile {
+        /// The file.
+        path: String,
+        /// The error.
+        #[source]
+        source: Box<LevelError>,
+    },
+    /// The solve could not be attempted.
+    #[error(transparent)]
+    Solver(#[from] SolverError),
+    /// An answer failed netspec's own checks (a solver bug or a tolerance problem).
+    #[error("{0}")]
+    Rejected(String),
+    /// An export was asked for, but there is no layout to export.
+    #[error("{path}: no layout to export (status {status}); the export needs a feasible level")]
+    NoLayout {
+        /// The level file.
+        path: String,
+        /// `infeasible` or `unknown`.
+        status: String,
+    },
+    /// Writing an output failed.
+    #[error("writing {path}: {reason}")]
+    Write {
+        /// The file.
+        path: String,
+        /// The reason.
+        reason: String,
+    },
+}
+
+/// One node's block and position.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Placement {
+    /// The node.
+    pub node: String,
+    /// The block's name.
+    pub block_name: String,
+    /// The block.
+    #[serde(skip)]
+    pub block: BlockId,
+    /// The translation applied to the block's polygon.
+    pub position: Pt,
+}
+
+impl Placement {
+    /// Node `n` as block `block` at `position`.
+    pub fn new(level: &Level, n: NodeId, block: BlockId, position: Pt) -> Placement {
+        Placement {
+            node: level.node_name(n).to_string(),
+            block_name: level.blocks[block.0 as usize].name.clone(),
+            block,
+            position,
+        }
+    }
+}
+
+/// A layout: every node placed, in node order.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Layout {
+    /// Placements, in node order.
+    pub nodes: Vec<Placement>,
+}
+
+/// The method(s) to run.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Method {
+    /// The paper's incremental simulated annealing.
+    Anneal,
+    /// The exact model.
+    Milp,
+    /// The annealer, then the exact model with the annealed layouts as MIP starts.
+    Both,
+}
+
+/// What `netspec level` asks for.
+#[derive(Clone, Debug)]
+pub struct LevelRequest {
+    /// The level file.
+    pub spec: PathBuf,
+    /// Method.
+    pub method: Method,
+    /// Layouts wanted.
+    pub count: usize,
+    /// Backend of the exact model.
+    pub solver: SolverKind,
+    /// Seconds per method.
+    pub time_limit: f64,
+    /// Threads for the backend.
+    pub threads: Option<u32>,
+    /// Output directory (nothing written when `None`).
+    pub out: Option<PathBuf>,
+    /// Look for conflicting edges when the level is infeasible.
+    pub explain: bool,
+    /// Seed of the annealer.
+    pub seed: u64,
+    /// Export the first layout as a mesh and a network spec into `out` ([`bridge`]).
+    pub export: Option<bridge::BridgeOptions>,
+}
+
+/// The overall answer.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Status {
+    /// Layouts found (each validated).
+    Feasible,
+    /// Proven that none exists (the exact model only).
+    Infeasible,
+    /// Neither.
+    Unknown,
+}
+
+/// Everything `netspec level` found.
+#[derive(Clone, Debug, Serialize)]
+pub struct LevelOutcome {
+    /// The answer.
+    pub status: Status,
+    /// The method(s) run.
+    pub method: Method,
+    /// Door width.
+    pub door_width: f64,
+    /// Layouts, distinct, each validated.
+    pub layouts: Vec<Layout>,
+    /// Seconds to build the configuration spaces.
+    pub cspace_time: f64,
+    /// The annealer, when run.
+    pub anneal: Option<anneal::AnnealReport>,
+    /// The exact search, when run.
+    pub milp: Option<exact::ExactReport>,
+    /// Files written.
+    pub files: Vec<PathBuf>,
+}
+
+/// Reads the level file, lays it out with the chosen method, validates every layout and
+/// writes the outputs.
+pub fn run(req: &LevelRequest) -> Result<LevelOutcome, LevelError> {
+    let level = Level::read(&req.spec)?;
+    let mut outcome = solve_level(&level, req)?;
+    if let Some(dir) = &req.out {
+        outcome.files = output::write(dir, &level, &outcome)?;
+    }
+    if let Some(opts) = &req.export {
+        outcome.files.extend(export(req, &level, &outcome, opts)?);
+    }
+    Ok(outcome)
+}
+
+/// The export of the first layout into the output directory.
+fn export(
+    req: &LevelRequest,
+    level: &Level,
+    outcome: &LevelOutcome,
+    opts: &bridge::BridgeOptions,
+) -> Result<Vec<PathBuf>, LevelError> {
+    let path = req.spec.display().to_string();
+    let dir = req.out.as_ref().ok_or_else(|| LevelError::Field {
+        field: "out".into(),
+        reason: "the export needs an output directory".into(),
+    })?;
+    let Some(layout) = outcome.layouts.first() else {
+        let status = serde_json::to_value(outcome.status).ok().and_then(|v| v.as_str().map(String::from));
+        return Err(LevelError::NoLayout { path, status: status.unwrap_or_default() });
+    };
+    let name = req.spec.file_stem().map_or("level".into(), |s| s.to_string_lossy().into_owned());
+    let b = bridge::bridge(level, layout, &name, opts).map_err(|e| LevelError::InFile { path, source: Box::new(e) })?;
+    bridge::write(dir, &b)
+}
+
+/// Lays out a checked level (no files).
+pub fn solve_level(level: &Level, req: &LevelRequest) -> Result<LevelOutcome, LevelError> {
+    let t0 = Instant::now();
+    let cs = cspace::CSpaces::new(level);
+    let cspace_time = t0.elapsed().as_secs_f64();
+    let count = req.count.max(1);
+    if req.method != Method::Milp && !level.euler_bound_ok() {
+        return Err(LevelError::Field {
+            field: "edge".into(),
+            reason: format!(
+                "the annealer needs a planar graph; {} edges on {} nodes exceed Euler's bound 3V − 6",
+                level.edges.len(),
+                level.nodes.len()
+            ),
+        });
+    }
+    let annealed = (req.method != Method::Milp).then(|| {
+        let o = anneal::AnnealOptions { seed: req.seed, count, time_limit: req.time_limit, ..Default::default() };
+        anneal::anneal(level, &cs, &o)
+    });
+    let mut layouts: Vec<Layout> = annealed.as_ref().map(|a| a.layouts.clone()).unwrap_or_default();
+    let milp = if req.method == Method::Anneal {
+        None
+    } else {
+        let opts = exact::ExactOptions {
+            solver: req.solver,
+            time_limit: req.time_limit,
+            count,
+            threads: req.threads,
+            explain: req.explain,
+        };
+        Some(exact::solve(level, &cs, &opts, &layouts)?)
+    };
+    if let Some(m) = &milp {
+        for l in &m.layouts {
+            if !layouts.contains(l) {
+                layouts.push(l.clone());
+            }
+        }
+    }
+    let status = match (&milp, layouts.is_empty()) {
+        (_, false) => Status::Feasible,
+        (Some(m), true) if m.status == exact::ExactStatus::Infeasible => Status::Infeasible,
+        _ => Status::Unknown,
+    };
+    Ok(LevelOutcome {
+        status,
+        method: req.method,
+        door_width: level.door_width,
+        layouts,
+        cspace_time,
+        anneal: annealed,
+        milp,
+        files: Vec::new(),
+    })
+}

@@ -1,0 +1,61 @@
+//! Outputs: `level.json` (status, layouts, the search's figures) and a picture of every layout
+//! (`layout-K.svg` and `.png`: blocks, doors, the graph over them).
+
+use super::geometry;
+use super::spec::{Level, NodeId};
+use super::validate::{door, validate};
+use super::{Layout, LevelError, LevelOutcome};
+use crate::render::{self, level::LevelBlock, level::LevelScene};
+use std::path::{Path, PathBuf};
+
+fn put(path: &Path, bytes: &[u8]) -> Result<(), LevelError> {
+    std::fs::write(path, bytes)
+        .map_err(|e| LevelError::Write { path: path.display().to_string(), reason: e.to_string() })
+}
+
+/// The picture of a layout as plain data for [`render::level::level_svg`].
+pub fn scene(level: &Level, layout: &Layout, caption: String) -> LevelScene {
+    let blocks = layout
+        .nodes
+        .iter()
+        .map(|p| {
+            let polygon = geometry::translate(&level.blocks[p.block.0 as usize].polygon, p.position);
+            let n = polygon.len() as f64;
+            let centre = polygon.iter().fold([0.0, 0.0], |a, q| [a[0] + q[0] / n, a[1] + q[1] / n]);
+            LevelBlock { polygon, label: p.node.clone(), shape: p.block.0 as usize, centre }
+        })
+        .collect();
+    let v = validate(level, layout);
+    let doors = level
+        .all_edges()
+        .into_iter()
+        .filter_map(|e| {
+            let (a, b): (NodeId, NodeId) = level.edges[e.0 as usize];
+            door(level, &v, e).map(|d| (d, a.0 as usize, b.0 as usize))
+        })
+        .collect();
+    LevelScene { blocks, doors, caption }
+}
+
+/// Writes the outputs into `dir` (created if missing); returns the files written.
+pub fn write(dir: &Path, level: &Level, outcome: &LevelOutcome) -> Result<Vec<PathBuf>, LevelError> {
+    std::fs::create_dir_all(dir)
+        .map_err(|e| LevelError::Write { path: dir.display().to_string(), reason: e.to_string() })?;
+    let json = dir.join("level.json");
+    let text = serde_json::to_string_pretty(outcome)
+        .map_err(|e| LevelError::Write { path: json.display().to_string(), reason: e.to_string() })?;
+    put(&json, text.as_bytes())?;
+    let mut files = vec![json];
+    for (k, layout) in outcome.layouts.iter().enumerate() {
+        let caption = format!("layout {} of {} · door width {}", k + 1, outcome.layouts.len(), level.door_width);
+        let svg = render::level::level_svg(&scene(level, layout, caption));
+        let svg_path = dir.join(format!("layout-{}.svg", k + 1));
+        put(&svg_path, svg.as_bytes())?;
+        let png_path = dir.join(format!("layout-{}.png", k + 1));
+        let png = render::png(&svg)
+            .map_err(|e| LevelError::Write { path: png_path.display().to_string(), reason: e.to_string() })?;
+        put(&png_path, &png)?;
+        files.extend([svg_path, png_path]);
+    }
+    Ok(files)
+}

@@ -1,0 +1,326 @@
+//! The level spec: blocks (polygons), a door width, the connectivity graph's nodes and edges.
+//! Read from TOML, checked, and resolved to ids.
+
+use super::geometry::{self, Pt};
+use super::LevelError;
+use serde::{Deserialize, Serialize};
+use std::collections::{BTreeMap, BTreeSet, VecDeque};
+use std::path::Path;
+
+/// A block shape's index in [`Level::blocks`].
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+pub struct BlockId(pub u32);
+
+/// A graph node's index in [`Level::nodes`].
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+pub struct NodeId(pub u32);
+
+/// A graph edge's index in [`Level::edges`].
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+pub struct EdgeId(pub u32);
+
+/// What the exact model minimises.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Objective {
+    /// Nothing: any layout (the fastest proofs).
+    #[default]
+    None,
+    /// The bounding box's width plus height.
+    Bbox,
+}
+
+/// The level file as written.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LevelSpec {
+    /// The door width `w`: every graph edge is a shared wall at least this long.
+    pub door_width: f64,
+    /// What the exact model minimises (default: nothing).
+    #[serde(default)]
+    pub objective: Objective,
+    /// Block shapes.
+    #[serde(default)]
+    pub block: Vec<BlockSpec>,
+    /// Graph nodes.
+    #[serde(default)]
+    pub node: Vec<NodeSpec>,
+    /// Graph edges.
+    #[serde(default)]
+    pub edge: Vec<EdgeSpec>,
+}
+
+/// One block shape.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BlockSpec {
+    /// Unique name.
+    pub name: String,
+    /// Vertices, counter-clockwise, used as given (a rotation is another block).
+    pub polygon: Vec<Pt>,
+}
+
+/// One graph node.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct NodeSpec {
+    /// Unique name.
+    pub name: String,
+    /// Allowed blocks (every block when omitted).
+    pub blocks: Option<Vec<String>>,
+    /// A fixed position (the block's own coordinates are translated by it).
+    pub position: Option<Pt>,
+}
+
+/// One graph edge.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EdgeSpec {
+    /// The two node names.
+    pub nodes: [String; 2],
+}
+
+/// A checked block shape.
+#[derive(Clone, Debug)]
+pub struct Block {
+    /// Its name.
+    pub name: String,
+    /// Vertices, counter-clockwise, without collinear repeats.
+    pub polygon: Vec<Pt>,
+    /// Convex parts covering it.
+    pub parts: Vec<Vec<Pt>>,
+}
+
+/// A checked node.
+#[derive(Clone, Debug)]
+pub struct Node {
+    /// Its name.
+    pub name: String,
+    /// Allowed blocks, in block order.
+    pub blocks: Vec<BlockId>,
+    /// Fixed position, if any.
+    pub position: Option<Pt>,
+}
+
+/// A checked level: ids resolved, polygons simple and counter-clockwise, graph connected.
+#[derive(Clone, Debug)]
+pub struct Level {
+    /// Door width.
+    pub door_width: f64,
+    /// Objective of the exact model.
+    pub objective: Objective,
+    /// Block shapes.
+    pub blocks: Vec<Block>,
+    /// Nodes.
+    pub nodes: Vec<Node>,
+    /// Edges, each `(a, b)` with `a < b`, in file order.
+    pub edges: Vec<(NodeId, NodeId)>,
+}
+
+fn field(name: impl Into<String>, reason: impl Into<String>) -> LevelError {
+    LevelError::Field { field: name.into(), reason: reason.into() }
+}
+
+impl LevelSpec {
+    /// Parses TOML text (errors give the parser's line and column).
+    pub fn from_toml(text: &str) -> Result<LevelSpec, LevelError> {
+        toml::from_str(text).map_err(|e| LevelError::Toml(e.to_string()))
+    }
+
+    /// Reads and parses a file.
+    pub fn read(path: &Path) -> Result<LevelSpec, LevelError> {
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| LevelError::Io { path: path.display().to_string(), reason: e.to_string() })?;
+        Self::from_toml(&text)
+    }
+
+    /// Checks the spec and resolves names to ids.
+    pub fn resolve(&self) -> Result<Level, LevelError> {
+        let w = self.door_width;
+        if !(w > 0.0 && w.is_finite()) {
+            return Err(field("door_width", format!("must be a positive number, got {w}")));
+        }
+        let blocks = self.blocks()?;
+        let longest =
+            blocks.iter().flat_map(|b| (0..b.polygon.len()).map(|i| edge_len(&b.polygon, i))).fold(0.0, f64::max);
+        if w > longest + geometry::LEN_TOL {
+            return Err(field("door_width", format!("{w} is wider than every wall (the longest is {longest})")));
+        }
+        let by_name: BTreeMap<&str, BlockId> =
+            blocks.iter().enumerate().map(|(i, b)| (b.name.as_str(), BlockId(i as u32))).collect();
+        let nodes = self.nodes(&by_name)?;
+        let edges = self.edges(&nodes)?;
+        let level = Level { door_width: w, objective: self.objective, blocks, nodes, edges };
+        level.check_connected()?;
+        Ok(level)
+    }
+
+    fn blocks(&self) -> Result<Vec<Block>, LevelError> {
+        if self.block.is_empty() {
+            return Err(field("block", "give at least one [[block]]"));
+        }
+        let mut seen = BTreeSet::new();
+        let mut out = Vec::new();
+        for (i, b) in self.block.iter().enumerate() {
+            let at = format!("block[{i}] ({:?})", b.name);
+            if !seen.insert(b.name.as_str()) {
+                return Err(field(format!("{at}.name"), "duplicate block name"));
+            }
+            if b.polygon.iter().flatten().any(|v| !v.is_finite()) {
+                return Err(field(format!("{at}.polygon"), "coordinates must be finite"));
+            }
+            let poly = geometry::simplify(&b.polygon);
+            if poly.len() < 3 {
+                return Err(field(format!("{at}.polygon"), "needs at least three non-collinear vertices"));
+            }
+            if let Some((e, f)) = geometry::self_intersection(&poly) {
+                return Err(field(format!("{at}.polygon"), format!("self-intersecting: edges {e} and {f} meet")));
+            }
+            if geometry::signed_area(&poly) <= 0.0 {
+                return Err(field(format!("{at}.polygon"), "must be counter-clockwise (its signed area is negative)"));
+            }
+            let parts = geometry::convex_parts(&poly);
+            out.push(Block { name: b.name.clone(), polygon: poly, parts });
+        }
+        Ok(out)
+    }
+
+    fn nodes(&self, by_name: &BTreeMap<&str, BlockId>) -> Result<Vec<Node>, LevelError> {
+        if self.node.is_empty() {
+            return Err(field("node", "give at least one [[node]]"));
+        }
+        let mut seen = BTreeSet::new();
+        let mut out = Vec::new();
+        for (i, n) in self.node.iter().enumerate() {
+            let at = format!("node[{i}] ({:?})", n.name);
+            if !seen.insert(n.name.as_str()) {
+                return Err(field(format!("{at}.name"), "duplicate node name"));
+            }
+            let blocks = match &n.blocks {
+                None => (0..by_name.len() as u32).map(BlockId).collect(),
+                Some(names) => {
+                    let mut ids = BTreeSet::new();
+                    for name in names {
+                        let id = by_name
+                            .get(name.as_str())
+                            .ok_or_else(|| field(format!("{at}.blocks"), format!("no block named {name:?}")))?;
+                        ids.insert(*id);
+                    }
+                    if ids.is_empty() {
+                        return Err(field(format!("{at}.blocks"), "allow at least one block"));
+                    }
+                    ids.into_iter().collect()
+                }
+            };
+            if n.position.is_some_and(|p| p.iter().any(|v| !v.is_finite())) {
+                return Err(field(format!("{at}.position"), "coordinates must be finite"));
+            }
+            out.push(Node { name: n.name.clone(), blocks, position: n.position });
+        }
+        Ok(out)
+    }
+
+    fn edges(&self, nodes: &[Node]) -> Result<Vec<(NodeId, NodeId)>, LevelError> {
+        let by_name: BTreeMap<&str, NodeId> =
+            nodes.iter().enumerate().map(|(i, n)| (n.name.as_str(), NodeId(i as u32))).collect();
+        let mut seen = BTreeSet::new();
+        let mut out = Vec::new();
+        for (i, e) in self.edge.iter().enumerate() {
+            let at = format!("edge[{i}].nodes");
+            let id = |name: &String| {
+                by_name.get(name.as_str()).copied().ok_or_else(|| field(&at, format!("no node named {name:?}")))
+            };
+            let (a, b) = (id(&e.nodes[0])?, id(&e.nodes[1])?);
+            if a == b {
+                return Err(field(&at, "an edge joins two different nodes"));
+            }
+            let key = (a.min(b), a.max(b));
+            if !seen.insert(key) {
+                return Err(field(&at, "duplicate edge"));
+            }
+            out.push(key);
+        }
+        Ok(out)
+    }
+}
+
+/// Length of edge `i` (from vertex `i`).
+pub fn edge_len(poly: &[Pt], i: usize) -> f64 {
+    geometry::norm(geometry::sub(poly[(i + 1) % poly.len()], poly[i]))
+}
+
+impl Level {
+    /// Reads, parses and checks a level file; errors name the file.
+    pub fn read(path: &Path) -> Result<Level, LevelError> {
+        LevelSpec::read(path)
+            .and_then(|s| s.resolve())
+            .map_err(|e| LevelError::InFile { path: path.display().to_string(), source: Box::new(e) })
+    }
+
+    /// Parses and checks TOML text.
+    pub fn from_toml(text: &str) -> Result<Level, LevelError> {
+        LevelSpec::from_toml(text)?.resolve()
+    }
+
+    /// The name of a node.
+    pub fn node_name(&self, n: NodeId) -> &str {
+        &self.nodes[n.0 as usize].name
+    }
+
+    /// Neighbours of every node through the given edges, sorted.
+    pub fn adjacency(&self, edges: &[EdgeId]) -> Vec<Vec<NodeId>> {
+        let mut adj = vec![Vec::new(); self.nodes.len()];
+        for e in edges {
+            let (a, b) = self.edges[e.0 as usize];
+            adj[a.0 as usize].push(b);
+            adj[b.0 as usize].push(a);
+        }
+        for a in &mut adj {
+            a.sort();
+        }
+        adj
+    }
+
+    /// Every edge id.
+    pub fn all_edges(&self) -> Vec<EdgeId> {
+        (0..self.edges.len() as u32).map(EdgeId).collect()
+    }
+
+    /// Hop distances from `from` through `edges` (`usize::MAX` when unreachable).
+    pub fn hops(&self, from: NodeId, edges: &[EdgeId]) -> Vec<usize> {
+        let adj = self.adjacency(edges);
+        let mut d = vec![usize::MAX; self.nodes.len()];
+        d[from.0 as usize] = 0;
+        let mut q = VecDeque::from([from]);
+        while let Some(u) = q.pop_front() {
+            for &v in &adj[u.0 as usize] {
+                if d[v.0 as usize] == usize::MAX {
+                    d[v.0 as usize] = d[u.0 as usize] + 1;
+                    q.push_back(v);
+                }
+            }
+        }
+        d
+    }
+
+    fn check_connected(&self) -> Result<(), LevelError> {
+        let d = self.hops(NodeId(0), &self.all_edges());
+        match d.iter().position(|&x| x == usize::MAX) {
+            Some(i) => Err(field(
+                "edge",
+                format!(
+                    "the graph must be connected: node {:?} is not reachable from {:?}",
+                    self.nodes[i].name, self.nodes[0].name
+                ),
+            )),
+            None => Ok(()),
+        }
+    }
+
+    /// Whether the graph can be planar by Euler's bound (`|E| ≤ 3|V| − 6`); a graph over it is
+    /// certainly not planar. (A necessary condition only.)
+    pub fn euler_bound_ok(&self) -> bool {
+        let (v, e) = (self.nodes.len(), self.edges.len());
+        v < 3 || e <= 3 * v - 6
+    }
+}

@@ -1,0 +1,73 @@
+//! A game level's layout: the blocks (one colour per block shape), the doors, and the
+//! connectivity graph drawn over them (block centres joined through the doors).
+
+use super::writer::Svg;
+use std::fmt::Write;
+
+/// A placed block.
+pub struct LevelBlock {
+    /// The placed polygon.
+    pub polygon: Vec<[f64; 2]>,
+    /// The node's name (written at the centre).
+    pub label: String,
+    /// Index of the block shape (its colour).
+    pub shape: usize,
+    /// Where the graph node is drawn.
+    pub centre: [f64; 2],
+}
+
+/// A level picture's contents, in level coordinates (y up).
+pub struct LevelScene {
+    /// The blocks.
+    pub blocks: Vec<LevelBlock>,
+    /// Doors: each a door-wide piece of a shared wall, with the indices of its two blocks.
+    pub doors: Vec<([[f64; 2]; 2], usize, usize)>,
+    /// A caption under the picture.
+    pub caption: String,
+}
+
+const PALETTE: [&str; 8] = ["#c6dbef", "#fdd0a2", "#c7e9c0", "#dadaeb", "#fcbba1", "#d9d9d9", "#f2e2a0", "#b3e2cd"];
+
+/// The picture as SVG text (about 640 pixels across).
+pub fn level_svg(scene: &LevelScene) -> String {
+    let pts = scene.blocks.iter().flat_map(|b| b.polygon.iter());
+    let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
+    for p in pts {
+        (x0, x1, y0, y1) = (x0.min(p[0]), x1.max(p[0]), y0.min(p[1]), y1.max(p[1]));
+    }
+    if !x0.is_finite() {
+        (x0, x1, y0, y1) = (0.0, 1.0, 0.0, 1.0);
+    }
+    let margin = 20.0;
+    let scale = 600.0 / (x1 - x0).max(y1 - y0).max(1e-9);
+    let (w, h) = ((x1 - x0) * scale + 2.0 * margin, (y1 - y0) * scale + 2.0 * margin + 24.0);
+    let tx = |p: [f64; 2]| (margin + (p[0] - x0) * scale, margin + (y1 - p[1]) * scale);
+    let mut svg = Svg::new(w, h, Some(12.0));
+    for b in &scene.blocks {
+        let d: Vec<String> = b.polygon.iter().map(|&p| tx(p)).map(|(x, y)| format!("{x:.2},{y:.2}")).collect();
+        let fill = PALETTE[b.shape % PALETTE.len()];
+        let _ =
+            writeln!(svg, r##"<polygon points="{}" fill="{fill}" stroke="#333" stroke-width="1.5"/>"##, d.join(" "));
+    }
+    for (door, _, _) in &scene.doors {
+        let ((ax, ay), (bx, by)) = (tx(door[0]), tx(door[1]));
+        let _ = writeln!(
+            svg,
+            r##"<line x1="{ax:.2}" y1="{ay:.2}" x2="{bx:.2}" y2="{by:.2}" stroke="#ffffff" stroke-width="4"/>"##
+        );
+    }
+    for (door, i, j) in &scene.doors {
+        let mid = [(door[0][0] + door[1][0]) / 2.0, (door[0][1] + door[1][1]) / 2.0];
+        let pts = [tx(scene.blocks[*i].centre), tx(mid), tx(scene.blocks[*j].centre)];
+        let d: Vec<String> = pts.iter().map(|(x, y)| format!("{x:.2},{y:.2}")).collect();
+        let _ =
+            writeln!(svg, r##"<polyline points="{}" fill="none" stroke="#b2182b" stroke-width="1.5"/>"##, d.join(" "));
+    }
+    for b in &scene.blocks {
+        let (x, y) = tx(b.centre);
+        let _ = writeln!(svg, r##"<circle cx="{x:.2}" cy="{y:.2}" r="3.5" fill="#b2182b"/>"##);
+        svg.text(x + 5.0, y - 5.0, "", &b.label);
+    }
+    svg.text(margin, h - 8.0, "", &scene.caption);
+    svg.finish()
+}
