@@ -104,6 +104,25 @@ pub struct Layout {
     pub nodes: Vec<Placement>,
 }
 
+/// A layout of a level without fixed nodes, moved clear of the obstacles when it overlaps one
+/// (translations keep every door and every gap, so the layout stays a layout); any other layout
+/// unchanged.
+pub fn clear_of_obstacles(level: &Level, layout: Layout) -> Layout {
+    if level.has_fixed() || validate::validate(level, &layout).obstacle_overlaps.is_empty() {
+        return layout;
+    }
+    let right = level.obstacles.iter().flat_map(|o| o.polygon.iter().map(|q| q[0])).fold(f64::NEG_INFINITY, f64::max);
+    let left = layout
+        .nodes
+        .iter()
+        .flat_map(|n| level.blocks[n.block.0 as usize].polygon.iter().map(|q| q[0] + n.position[0]))
+        .fold(f64::INFINITY, f64::min);
+    let dx = right - left + level.door_width;
+    let nodes =
+        layout.nodes.into_iter().map(|n| Placement { position: [n.position[0] + dx, n.position[1]], ..n }).collect();
+    Layout { nodes }
+}
+
 /// The method(s) to run.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "lowercase")]
@@ -189,13 +208,14 @@ pub fn solve_level(level: &Level, req: &LevelRequest) -> Result<LevelOutcome, Le
     let cs = cspace::CSpaces::new(level);
     let cspace_time = t0.elapsed().as_secs_f64();
     let count = req.count.max(1);
-    if req.method != Method::Milp && !level.euler_bound_ok() {
+    if req.method != Method::Milp && !level.is_planar() {
         return Err(LevelError::Field {
             field: "edge".into(),
             reason: format!(
-                "the annealer needs a planar graph; {} edges on {} nodes exceed Euler's bound 3V − 6",
-                level.edges.len(),
-                level.nodes.len()
+                "the graph is not planar ({} nodes, {} edges), and the annealer lays out planar graphs only \
+                 (use --method milp)",
+                level.nodes.len(),
+                level.edges.len()
             ),
         });
     }

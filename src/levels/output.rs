@@ -22,7 +22,13 @@ pub fn scene(level: &Level, layout: &Layout, caption: String) -> LevelScene {
             let polygon = geometry::translate(&level.blocks[p.block.0 as usize].polygon, p.position);
             let n = polygon.len() as f64;
             let centre = polygon.iter().fold([0.0, 0.0], |a, q| [a[0] + q[0] / n, a[1] + q[1] / n]);
-            LevelBlock { polygon, label: p.node.clone(), shape: p.block.0 as usize, centre }
+            let block = &level.blocks[p.block.0 as usize];
+            // A rotation takes its block's colour and says which it is.
+            let (shape, label) = match block.rotation_of {
+                Some((base, _)) => (base.0 as usize, format!("{} ({})", p.node, block.name)),
+                None => (p.block.0 as usize, p.node.clone()),
+            };
+            LevelBlock { polygon, label, shape, centre }
         })
         .collect();
     let v = validate(level, layout);
@@ -34,7 +40,8 @@ pub fn scene(level: &Level, layout: &Layout, caption: String) -> LevelScene {
             door(level, &v, e).map(|d| (d, a.0 as usize, b.0 as usize))
         })
         .collect();
-    LevelScene { blocks, doors, caption }
+    let obstacles = level.obstacles.iter().map(|o| o.polygon.clone()).collect();
+    LevelScene { blocks, doors, obstacles, caption }
 }
 
 /// Writes the outputs into `dir` (created if missing); returns the files written.
