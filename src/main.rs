@@ -259,6 +259,9 @@ enum Command {
         /// Seed of the annealer.
         #[arg(long, default_value_t = 1)]
         seed: u64,
+        /// Run the annealer with N seeds from --seed on: summary.json and a table over them.
+        #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..=100_000))]
+        seeds: u64,
         /// Distinct layouts wanted.
         #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..))]
         count: u64,
@@ -478,7 +481,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
             netspec::serve::run(opts, |addr| println!("netspec serve: http://{addr}/ (Ctrl-C stops)"))?;
             Ok(ExitCode::SUCCESS)
         }
-        Command::Level { spec, method, seed, count, solver, time_limit, threads, no_explain, out } => {
+        Command::Level { spec, method, seed, seeds, count, solver, time_limit, threads, no_explain, out } => {
             let solver =
                 solver.or_else(SolverKind::default_kind).ok_or_else(|| anyhow::anyhow!("no backend compiled in"))?;
             if !(time_limit > 0.0 && time_limit.is_finite()) {
@@ -494,6 +497,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 out,
                 explain: !no_explain,
                 seed,
+                seeds: seeds as usize,
             })
         }
         Command::Convert { input, output } => {

@@ -547,3 +547,37 @@ fn command_reports_the_variant_and_draws_obstacles() {
     assert_eq!(svg.matches("class=\"obstacle\"").count(), 1);
     assert!(svg.contains("l (ell@180)"), "the label names the variant");
 }
+
+#[test]
+fn seeds_give_a_summary_over_the_annealer_runs() {
+    let dir = tempfile::tempdir().unwrap();
+    let spec = dir.path().join("star.toml");
+    let mut text = format!("door_width = 0.6\n{SQUARE}[[node]]\nname = \"hub\"\n");
+    for i in 0..4 {
+        text += &format!("[[node]]\nname = \"leaf{i}\"\n[[edge]]\nnodes = [\"hub\", \"leaf{i}\"]\n");
+    }
+    std::fs::write(&spec, &text).unwrap();
+    let out = dir.path().join("out");
+    let args = ["--method", "anneal", "--seed", "5", "--seeds", "3", "--count", "2", "--out"];
+    let run = netspec().arg("level").arg(&spec).args(args).arg(&out).output().unwrap();
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let s: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(s["method"], "anneal");
+    assert_eq!(s["seeds"], 3);
+    let seeds: Vec<u64> = s["runs"].as_array().unwrap().iter().map(|r| r["seed"].as_u64().unwrap()).collect();
+    assert_eq!(seeds, [5, 6, 7]);
+    // The 4-leaf star has layouts: every seed finds two.
+    assert_eq!(s["success_count"], 1.0);
+    assert_eq!(s["time_to_count"]["runs"], 3);
+    let stdout = String::from_utf8_lossy(&run.stdout);
+    assert!(stdout.contains("| anneal | 3 | 1/1 | 2 |"), "{stdout}");
+    // level.json and the pictures are the first seed's.
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("level.json")).unwrap()).unwrap();
+    assert_eq!(json["layouts"].as_array().unwrap().len(), 2);
+    // The exact model has no seeds.
+    let run = netspec().arg("level").arg(&spec).args(["--method", "milp", "--seeds", "2"]).output().unwrap();
+    assert_eq!(run.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&run.stderr).contains("--seeds"));
+}

@@ -14,6 +14,7 @@ pub mod exact;
 pub mod geometry;
 pub mod milp;
 pub mod output;
+pub mod seeds;
 pub mod spec;
 pub mod validate;
 
@@ -156,6 +157,8 @@ pub struct LevelRequest {
     pub explain: bool,
     /// Seed of the annealer.
     pub seed: u64,
+    /// Seeds to run the annealer with (`seed`, `seed + 1`, …); above 1, a summary over them.
+    pub seeds: usize,
 }
 
 /// The overall answer.
@@ -187,6 +190,9 @@ pub struct LevelOutcome {
     pub anneal: Option<anneal::AnnealReport>,
     /// The exact search, when run.
     pub milp: Option<exact::ExactReport>,
+    /// The annealer over seeds, when more than one was asked for (`summary.json`).
+    #[serde(skip)]
+    pub seeds: Option<seeds::SeedsSummary>,
     /// Files written.
     pub files: Vec<PathBuf>,
 }
@@ -219,9 +225,22 @@ pub fn solve_level(level: &Level, req: &LevelRequest) -> Result<LevelOutcome, Le
             ),
         });
     }
+    if req.seeds > 1 && req.method == Method::Milp {
+        return Err(LevelError::Field {
+            field: "--seeds".into(),
+            reason: "seeds are the annealer's: use --method anneal or both".into(),
+        });
+    }
+    let mut summary = None;
     let annealed = (req.method != Method::Milp).then(|| {
         let o = anneal::AnnealOptions { seed: req.seed, count, time_limit: req.time_limit, ..Default::default() };
-        anneal::anneal(level, &cs, &o)
+        if req.seeds > 1 {
+            let (first, s) = seeds::over_seeds(level, &cs, &o, req.seeds);
+            summary = Some(s);
+            first
+        } else {
+            anneal::anneal(level, &cs, &o)
+        }
     });
     let mut layouts: Vec<Layout> = annealed.as_ref().map(|a| a.layouts.clone()).unwrap_or_default();
     let milp = if req.method == Method::Anneal {
@@ -256,6 +275,7 @@ pub fn solve_level(level: &Level, req: &LevelRequest) -> Result<LevelOutcome, Le
         cspace_time,
         anneal: annealed,
         milp,
+        seeds: summary,
         files: Vec::new(),
     })
 }

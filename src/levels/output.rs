@@ -1,4 +1,5 @@
-//! Outputs: `level.json` (status, layouts, the search's figures) and a picture of every layout
+//! Outputs: `level.json` (status, layouts, the search's figures), `summary.json` (the annealer
+//! over seeds, when asked for) and a picture of every layout
 //! (`layout-K.svg` and `.png`: blocks, doors, the graph over them).
 
 use super::geometry;
@@ -53,6 +54,13 @@ pub fn write(dir: &Path, level: &Level, outcome: &LevelOutcome) -> Result<Vec<Pa
         .map_err(|e| LevelError::Write { path: json.display().to_string(), reason: e.to_string() })?;
     put(&json, text.as_bytes())?;
     let mut files = vec![json];
+    if let Some(summary) = &outcome.seeds {
+        let path = dir.join("summary.json");
+        let text = serde_json::to_string_pretty(summary)
+            .map_err(|e| LevelError::Write { path: path.display().to_string(), reason: e.to_string() })?;
+        put(&path, text.as_bytes())?;
+        files.push(path);
+    }
     for (k, layout) in outcome.layouts.iter().enumerate() {
         let caption = format!("layout {} of {} · door width {}", k + 1, outcome.layouts.len(), level.door_width);
         let svg = render::level::level_svg(&scene(level, layout, caption));
