@@ -419,23 +419,25 @@ impl Level {
         self.nodes.iter().any(|n| n.position.is_some())
     }
 
-    /// Every obstacle must leave each fixed node at least one allowed block that does not
-    /// overlap it.
+    /// Each fixed node must have an allowed block that clears every obstacle at its position;
+    /// the error names the first obstacle in the way.
     fn check_fixed_clear(&self) -> Result<(), LevelError> {
-        for (k, o) in self.obstacles.iter().enumerate() {
-            let tri = geometry::triangulate(&o.polygon);
-            for n in &self.nodes {
-                let Some(p) = n.position else { continue };
-                let overlaps = |b: &BlockId| {
-                    let placed = geometry::translate(&self.blocks[b.0 as usize].polygon, p);
-                    geometry::overlap_area(&geometry::triangulate(&placed), &tri) > geometry::AREA_TOL
-                };
-                if n.blocks.iter().all(overlaps) {
-                    return Err(field(
-                        format!("obstacle[{k}].polygon"),
-                        format!("overlaps node {:?} at its fixed position whatever block it takes", n.name),
-                    ));
-                }
+        if self.obstacles.is_empty() {
+            return Ok(());
+        }
+        let tris: Vec<Vec<[Pt; 3]>> = self.obstacles.iter().map(|o| geometry::triangulate(&o.polygon)).collect();
+        for n in &self.nodes {
+            let Some(p) = n.position else { continue };
+            let first_hit = |b: &BlockId| {
+                let placed = geometry::triangulate(&geometry::translate(&self.blocks[b.0 as usize].polygon, p));
+                tris.iter().position(|t| geometry::overlap_area(&placed, t) > geometry::AREA_TOL)
+            };
+            let hits: Vec<Option<usize>> = n.blocks.iter().map(first_hit).collect();
+            if let Some(Some(k)) = hits.iter().all(Option::is_some).then(|| hits[0]) {
+                return Err(field(
+                    format!("obstacle[{k}].polygon"),
+                    format!("overlaps node {:?} at its fixed position whatever block it takes", n.name),
+                ));
             }
         }
         Ok(())

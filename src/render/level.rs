@@ -1,6 +1,6 @@
 //! A game level's layout: the blocks (one colour per block shape), the doors, and the
 //! connectivity graph drawn over them (block centres joined through the doors), and the
-//! obstacles, hatched.
+//! obstacles, dark grey.
 
 use super::writer::Svg;
 use std::fmt::Write;
@@ -23,7 +23,7 @@ pub struct LevelScene {
     pub blocks: Vec<LevelBlock>,
     /// Doors: each a door-wide piece of a shared wall, with the indices of its two blocks.
     pub doors: Vec<([[f64; 2]; 2], usize, usize)>,
-    /// Obstacles (fixed polygons no block may overlap), drawn dark and hatched.
+    /// Obstacles (fixed polygons no block may overlap), drawn dark grey.
     pub obstacles: Vec<Vec<[f64; 2]>>,
     /// A caption under the picture.
     pub caption: String,
@@ -46,17 +46,11 @@ pub fn level_svg(scene: &LevelScene) -> String {
     let (w, h) = ((x1 - x0) * scale + 2.0 * margin, (y1 - y0) * scale + 2.0 * margin + 24.0);
     let tx = |p: [f64; 2]| (margin + (p[0] - x0) * scale, margin + (y1 - p[1]) * scale);
     let mut svg = Svg::new(w, h, Some(12.0));
-    if !scene.obstacles.is_empty() {
-        let _ = writeln!(
-            svg,
-            r##"<defs><pattern id="hatch" width="6" height="6" patternUnits="userSpaceOnUse" patternTransform="rotate(45)"><rect width="6" height="6" fill="#7f7f7f"/><line x1="0" y1="0" x2="0" y2="6" stroke="#4d4d4d" stroke-width="3"/></pattern></defs>"##
-        );
-    }
     for o in &scene.obstacles {
         let d: Vec<String> = o.iter().map(|&p| tx(p)).map(|(x, y)| format!("{x:.2},{y:.2}")).collect();
         let _ = writeln!(
             svg,
-            r##"<polygon class="obstacle" points="{}" fill="url(#hatch)" stroke="#333" stroke-width="1"/>"##,
+            r##"<polygon class="obstacle" points="{}" fill="#737373" stroke="#333" stroke-width="1"/>"##,
             d.join(" ")
         );
     }
