@@ -581,3 +581,41 @@ fn seeds_give_a_summary_over_the_annealer_runs() {
     assert_eq!(run.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&run.stderr).contains("--seeds"));
 }
+
+#[test]
+fn the_obstacles_example_reads() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("models/levels/obstacles.toml");
+    let level = Level::read(&path).unwrap();
+    let names: Vec<&str> = level.blocks.iter().map(|b| b.name.as_str()).collect();
+    assert_eq!(names, ["ell", "ell@90", "ell@180", "ell@270", "square", "bar", "bar@90"]);
+    assert_eq!(level.obstacles.len(), 2);
+    assert!(level.is_planar());
+}
+
+#[test]
+fn chains_start_with_the_fixed_nodes_and_then_touch_what_is_laid_out() {
+    // A path 0-1-2 with node 2 fixed, then a triangle 2-3-4 and a cycle 0-5-6-7 away from it.
+    let mut t = format!("door_width = 0.3\n{SQUARE}");
+    for i in 0..8 {
+        t += &format!("[[node]]\nname = \"n{i}\"\n{}", if i == 2 { "position = [5, 5]\n" } else { "" });
+    }
+    for (a, b) in [(0, 1), (1, 2), (2, 3), (3, 4), (4, 2), (0, 5), (5, 6), (6, 7), (7, 0)] {
+        t += &format!("[[edge]]\nnodes = [\"n{a}\", \"n{b}\"]\n");
+    }
+    let level = Level::from_toml(&t).unwrap();
+    let c: Vec<Vec<u32>> = anneal::chains(&level).iter().map(|c| c.iter().map(|n| n.0).collect()).collect();
+    assert_eq!(c[0], [2]);
+    assert_eq!(c[1], [3, 4], "the triangle through the fixed node");
+    let mut placed = vec![2, 3, 4];
+    for chain in &c[2..] {
+        let touches = chain.iter().any(|&n| {
+            level.edges.iter().any(|&(a, b)| (a.0 == n && placed.contains(&b.0)) || (b.0 == n && placed.contains(&a.0)))
+        });
+        assert!(touches, "{chain:?} in {c:?}");
+        placed.extend(chain);
+    }
+    assert_eq!(placed.len(), 8);
+    let r = anneal::anneal(&level, &CSpaces::new(&level), &quick(2, 1));
+    assert!(validate(&level, &r.layouts[0]).is_valid());
+    assert_eq!(r.layouts[0].nodes[2].position, [5.0, 5.0]);
+}

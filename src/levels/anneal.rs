@@ -107,7 +107,9 @@ fn shortest_cycle(adj: &[Vec<NodeId>], a: NodeId, b: NodeId) -> Option<Vec<NodeI
 
 /// The chains: node sets in processing order. The first is the shortest cycle; each next one
 /// is the shortest cycle touching the laid-out nodes that brings new nodes (its new nodes);
-/// the nodes left come in breadth-first order, grouped into paths.
+/// the nodes left come in breadth-first order, grouped into paths. Fixed nodes, if any, come
+/// before all of them as a chain of their own (their blocks are chosen before anything is laid
+/// out where they must go), and every later chain then touches what is laid out.
 pub fn chains(level: &Level) -> Vec<Vec<NodeId>> {
     let adj = level.adjacency(&level.all_edges());
     let mut cycles: Vec<Vec<NodeId>> = level
@@ -126,8 +128,9 @@ pub fn chains(level: &Level) -> Vec<Vec<NodeId>> {
         .collect();
     cycles.sort_by(|x, y| x.len().cmp(&y.len()).then(x.cmp(y)));
     cycles.dedup();
-    let mut placed = vec![false; level.nodes.len()];
-    let mut out: Vec<Vec<NodeId>> = Vec::new();
+    let mut placed: Vec<bool> = level.nodes.iter().map(|n| n.position.is_some()).collect();
+    let fixed: Vec<NodeId> = (0..level.nodes.len() as u32).map(NodeId).filter(|n| placed[n.0 as usize]).collect();
+    let mut out: Vec<Vec<NodeId>> = if fixed.is_empty() { Vec::new() } else { vec![fixed] };
     loop {
         let next = cycles.iter().find(|c| {
             let new = c.iter().any(|n| !placed[n.0 as usize]);
@@ -422,6 +425,8 @@ impl Search<'_> {
                 }
             }
         }
+        // Members the search did not reach (fixed nodes apart from each other) come last.
+        order.extend(chain.iter().copied().filter(|n| !seen.contains(n)));
         for n in order {
             let i = n.0 as usize;
             let mut best: Option<((BlockId, Pt), f64)> = None;
