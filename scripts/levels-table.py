@@ -6,7 +6,7 @@ reconstructed inputs of Ma et al. 2014, Table 1 (models/levels/).
     python3 scripts/levels-table.py --netspec "$CARGO_TARGET_DIR/release/netspec" --scaling
 
 Writes docs/levels/results.json and prints the markdown table."""
-import argparse, json, statistics, subprocess, tempfile, pathlib
+import argparse, json, subprocess, tempfile, pathlib
 
 MODELS = ["fig1", "fig7-top", "fig7-bottom", "fig8", "fig9"]
 # Ma et al. 2014, Table 1: success first/tenth, time to first (avg/med), time to ten (avg/med), s.
@@ -19,15 +19,16 @@ PAPER = {
 }
 
 
-def run(netspec, model, args):
+def run(netspec, model, args, output="level.json"):
     with tempfile.TemporaryDirectory() as d:
         subprocess.run([netspec, "level", f"models/levels/{model}.toml", "--out", d, *args],
                        stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-        return json.loads((pathlib.Path(d) / "level.json").read_text())
+        return json.loads((pathlib.Path(d) / output).read_text())
 
 
-def avg_med(xs):
-    return f"{statistics.mean(xs):.2g}/{statistics.median(xs):.2g}" if xs else "–"
+def avg_med(m, unit=1.0):
+    """A mean/median pair of netspec's summary.json."""
+    return f"{m['mean'] / unit:.2g}/{m['median'] / unit:.2g}" if m else "–"
 
 
 SQUARE = 'door_width = 0.6\n[[block]]\nname = "square"\npolygon = [[0, 0], [1, 0], [1, 1], [0, 1]]\n'
@@ -73,34 +74,29 @@ def main():
         return
     results = {}
     for m in a.models:
-        runs = []
-        for seed in range(1, a.seeds + 1):
-            j = run(a.netspec, m, ["--method", "anneal", "--count", "10", "--seed", str(seed),
-                                    "--time-limit", str(a.time_limit)])
-            an = j["anneal"]
-            runs.append({"seed": seed, "layouts": len(j["layouts"]), "first": an["time_to_first"],
-                         "last": an["time_to_last"], "trials": an["trials_to_last"], "stopped": an["stopped"]})
+        # The annealer over seeds 1..N in one run: netspec's summary.json has every seed's run and
+        # the figures over them.
+        summary = run(a.netspec, m, ["--method", "anneal", "--count", "10", "--seed", "1", "--seeds", str(a.seeds),
+                                     "--time-limit", str(a.time_limit)], "summary.json")
         milp = run(a.netspec, m, ["--method", "milp", "--time-limit", str(a.milp_time_limit), "--no-explain"])["milp"]
-        results[m] = {"anneal": runs, "milp": {k: milp[k] for k in ("status", "time_to_first", "time_to_proof", "size", "note")}}
+        results[m] = {"anneal": summary["runs"], "summary": {k: v for k, v in summary.items() if k != "runs"},
+                      "milp": {k: milp[k] for k in ("status", "time_to_first", "time_to_proof", "size", "note")}}
     out = pathlib.Path("docs/levels/results.json")
     out.parent.mkdir(parents=True, exist_ok=True)
     out.write_text(json.dumps({"seeds": a.seeds, "time_limit": a.time_limit, "results": results}, indent=1) + "\n")
     print("| input | success first/tenth | #layouts | first, s avg/med | ten, s avg/med | trials to ten avg/med | paper: success | paper: first | paper: ten | MILP (60 s) |")
     print("|---|---|---|---|---|---|---|---|---|---|")
     for m, r in results.items():
-        runs = r["anneal"]
-        n = len(runs)
-        first = [x["first"] for x in runs if x["first"] is not None]
-        ten = [x for x in runs if x["layouts"] >= 10]
+        s = r["summary"]
         mi = r["milp"]
         milp = {"feasible": f"layout in {mi['time_to_first']:.2g} s" if mi["time_to_first"] else "",
                 "infeasible": f"infeasible, proof {mi['time_to_proof']:.2g} s" if mi["time_to_proof"] else "",
                 "unknown": "no answer"}[mi["status"]]
         milp += f" ({mi['size'][0]} vars, {mi['size'][1]} rows)"
         p = PAPER[m]
-        print(f"| {m} | {len(first)/n:.2g}/{len(ten)/n:.2g} | {statistics.mean(x['layouts'] for x in runs):.3g} | "
-              f"{avg_med(first)} | {avg_med([x['last'] for x in ten])} | "
-              f"{avg_med([x['trials']/1000 for x in ten])}k | {p[0]} | {p[1]} | {p[2]} | {milp} |")
+        print(f"| {m} | {s['success_first']:.2g}/{s['success_count']:.2g} | {s['mean_layouts']:.3g} | "
+              f"{avg_med(s['time_to_first'])} | {avg_med(s['time_to_count'])} | "
+              f"{avg_med(s['trials_to_count'], 1000)}k | {p[0]} | {p[1]} | {p[2]} | {milp} |")
 
 
 if __name__ == "__main__":

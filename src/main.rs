@@ -261,6 +261,9 @@ enum Command {
         /// Seed of the annealer.
         #[arg(long, default_value_t = 1)]
         seed: u64,
+        /// Run the annealer with N seeds from --seed on: summary.json and a table over them.
+        #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..=100_000))]
+        seeds: u64,
         /// Distinct layouts wanted.
         #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..))]
         count: u64,
@@ -497,6 +500,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
             spec,
             method,
             seed,
+            seeds,
             count,
             solver,
             time_limit,
@@ -524,6 +528,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 explain: !no_explain,
                 seed,
                 export: export_spec.then_some(netspec::levels::bridge::BridgeOptions { spacing, entrance, coverage }),
+                seeds: seeds as usize,
             })
         }
         Command::Convert { input, output } => {

@@ -53,6 +53,9 @@ pub fn run(req: LevelRequest) -> Result<ExitCode> {
             println!("conflict   {} ({how}, {} checks)", edges.join(", "), c.checks);
         }
     }
+    if let Some(s) = &out.seeds {
+        print!("{}", netspec::levels::seeds::table(s));
+    }
     for f in &out.files {
         println!("wrote      {}", f.display());
     }

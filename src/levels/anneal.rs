@@ -10,7 +10,7 @@
 //! each edge (on a planar graph, the inner faces are such cycles); the embedding only orders
 //! the chains. Every layout returned has passed [`super::validate::validate`].
 
-use super::cspace::{intersect, CSpaces, Segment};
+use super::cspace::{clip_out, intersect, CSpaces, Segment};
 use super::geometry::{self, norm, sub, Pt, AREA_TOL, LEN_TOL};
 use super::spec::{BlockId, Level, NodeId};
 use super::validate::{shared_wall, validate};
@@ -107,7 +107,9 @@ fn shortest_cycle(adj: &[Vec<NodeId>], a: NodeId, b: NodeId) -> Option<Vec<NodeI
 
 /// The chains: node sets in processing order. The first is the shortest cycle; each next one
 /// is the shortest cycle touching the laid-out nodes that brings new nodes (its new nodes);
-/// the nodes left come in breadth-first order, grouped into paths.
+/// the nodes left come in breadth-first order, grouped into paths. Fixed nodes, if any, come
+/// before all of them as a chain of their own (their blocks are chosen before anything is laid
+/// out where they must go), and every later chain then touches what is laid out.
 pub fn chains(level: &Level) -> Vec<Vec<NodeId>> {
     let adj = level.adjacency(&level.all_edges());
     let mut cycles: Vec<Vec<NodeId>> = level
@@ -126,8 +128,9 @@ pub fn chains(level: &Level) -> Vec<Vec<NodeId>> {
         .collect();
     cycles.sort_by(|x, y| x.len().cmp(&y.len()).then(x.cmp(y)));
     cycles.dedup();
-    let mut placed = vec![false; level.nodes.len()];
-    let mut out: Vec<Vec<NodeId>> = Vec::new();
+    let mut placed: Vec<bool> = level.nodes.iter().map(|n| n.position.is_some()).collect();
+    let fixed: Vec<NodeId> = (0..level.nodes.len() as u32).map(NodeId).filter(|n| placed[n.0 as usize]).collect();
+    let mut out: Vec<Vec<NodeId>> = if fixed.is_empty() { Vec::new() } else { vec![fixed] };
     loop {
         let next = cycles.iter().find(|c| {
             let new = c.iter().any(|n| !placed[n.0 as usize]);
@@ -171,6 +174,8 @@ struct Shapes {
     tris: Vec<Vec<[Pt; 3]>>,
     centre: Vec<Pt>,
     boxes: Vec<[f64; 4]>,
+    /// Obstacles: triangles and bounding box (absolute coordinates).
+    obstacles: Vec<(Vec<[Pt; 3]>, [f64; 4])>,
     sigma: f64,
     threshold: f64,
 }
@@ -186,27 +191,33 @@ impl Shapes {
                 b.polygon.iter().fold([0.0, 0.0], |a, p| [a[0] + p[0] / n, a[1] + p[1] / n])
             })
             .collect();
-        let boxes = level
-            .blocks
-            .iter()
-            .map(|b| {
-                let f = |axis: usize, max: bool| {
-                    let it = b.polygon.iter().map(|p| p[axis]);
-                    if max {
-                        it.fold(f64::NEG_INFINITY, f64::max)
-                    } else {
-                        it.fold(f64::INFINITY, f64::min)
-                    }
-                };
-                [f(0, false), f(0, true), f(1, false), f(1, true)]
-            })
-            .collect();
+        let boxes = level.blocks.iter().map(|b| bounding_box(&b.polygon)).collect();
+        let obstacles =
+            level.obstacles.iter().map(|o| (geometry::triangulate(&o.polygon), bounding_box(&o.polygon))).collect();
         let mean_area =
             level.blocks.iter().map(|b| geometry::signed_area(&b.polygon)).sum::<f64>() / level.blocks.len() as f64;
         // The paper's σ: a hundred times the average block area. Two layouts differ when their
         // centred block centres move by more than a tenth of that area in all (squared).
-        Shapes { tris, centre, boxes, sigma: 100.0 * mean_area, threshold: 0.1 * mean_area }
+        Shapes { tris, centre, boxes, obstacles, sigma: 100.0 * mean_area, threshold: 0.1 * mean_area }
     }
+}
+
+/// `[xmin, xmax, ymin, ymax]` of a polygon.
+fn bounding_box(poly: &[Pt]) -> [f64; 4] {
+    let f = |axis: usize, max: bool| {
+        let it = poly.iter().map(|p| p[axis]);
+        if max {
+            it.fold(f64::NEG_INFINITY, f64::max)
+        } else {
+            it.fold(f64::INFINITY, f64::min)
+        }
+    };
+    [f(0, false), f(0, true), f(1, false), f(1, true)]
+}
+
+/// Whether two boxes are apart (touching counts as apart).
+fn boxes_apart(a: [f64; 4], b: [f64; 4]) -> bool {
+    a[1] <= b[0] || b[1] <= a[0] || a[3] <= b[2] || b[3] <= a[2]
 }
 
 type Slot = Option<(BlockId, Pt)>;
@@ -232,19 +243,37 @@ struct Search<'a> {
 
 impl Search<'_> {
     fn overlap(&self, a: (BlockId, Pt), b: (BlockId, Pt)) -> f64 {
-        let (ba, bb) = (self.shapes.boxes[a.0 .0 as usize], self.shapes.boxes[b.0 .0 as usize]);
-        if ba[1] + a.1[0] <= bb[0] + b.1[0]
-            || bb[1] + b.1[0] <= ba[0] + a.1[0]
-            || ba[3] + a.1[1] <= bb[2] + b.1[1]
-            || bb[3] + b.1[1] <= ba[2] + a.1[1]
-        {
+        if boxes_apart(self.placed_box(a), self.placed_box(b)) {
             return 0.0;
         }
-        let ta: Vec<[Pt; 3]> =
-            self.shapes.tris[a.0 .0 as usize].iter().map(|t| t.map(|p| geometry::add(p, a.1))).collect();
-        let tb: Vec<[Pt; 3]> =
-            self.shapes.tris[b.0 .0 as usize].iter().map(|t| t.map(|p| geometry::add(p, b.1))).collect();
-        geometry::overlap_area(&ta, &tb)
+        geometry::overlap_area(&self.placed_tris(a), &self.placed_tris(b))
+    }
+
+    fn placed_box(&self, a: (BlockId, Pt)) -> [f64; 4] {
+        let b = self.shapes.boxes[a.0 .0 as usize];
+        [b[0] + a.1[0], b[1] + a.1[0], b[2] + a.1[1], b[3] + a.1[1]]
+    }
+
+    fn placed_tris(&self, a: (BlockId, Pt)) -> Vec<[Pt; 3]> {
+        self.shapes.tris[a.0 .0 as usize].iter().map(|t| t.map(|p| geometry::add(p, a.1))).collect()
+    }
+
+    /// The area of a placed block inside obstacles (each overlap above [`AREA_TOL`]).
+    fn obstacle_area(&self, a: (BlockId, Pt)) -> f64 {
+        let bx = self.placed_box(a);
+        let mut tris = None;
+        let mut area = 0.0;
+        for (ot, ob) in &self.shapes.obstacles {
+            if boxes_apart(bx, *ob) {
+                continue;
+            }
+            let ta = tris.get_or_insert_with(|| self.placed_tris(a));
+            let x = geometry::overlap_area(ta, ot);
+            if x > AREA_TOL {
+                area += x;
+            }
+        }
+        area
     }
 
     fn in_contact(&self, a: (BlockId, Pt), b: (BlockId, Pt)) -> bool {
@@ -257,10 +286,10 @@ impl Search<'_> {
         geometry::add(self.shapes.centre[a.0 .0 as usize], a.1)
     }
 
-    /// Node `i`'s share of the energy terms: overlap area with every placed block, squared
-    /// centre distance to every placed neighbour not in door contact.
+    /// Node `i`'s share of the energy terms: overlap area with every placed block and every
+    /// obstacle, squared centre distance to every placed neighbour not in door contact.
     fn node_terms(&self, s: &[Slot], i: usize, at: (BlockId, Pt)) -> (f64, f64) {
-        let mut area = 0.0;
+        let mut area = self.obstacle_area(at);
         for (j, sj) in s.iter().enumerate() {
             if let (true, Some(b)) = (j != i, sj) {
                 let x = self.overlap(at, *b);
@@ -286,7 +315,9 @@ impl Search<'_> {
         for (i, si) in s.iter().enumerate() {
             if let Some(x) = si {
                 let (ai, di) = self.node_terms(s, i, *x);
-                a += ai / 2.0;
+                // Block pairs are counted from both ends, obstacles once.
+                let ob = self.obstacle_area(*x);
+                a += (ai - ob) / 2.0 + ob;
                 d += di / 2.0;
             }
         }
@@ -309,7 +340,7 @@ impl Search<'_> {
         }
         let mut nbs: Vec<(BlockId, Pt)> = self.adj[i].iter().filter_map(|n| s[n.0 as usize]).collect();
         if nbs.is_empty() {
-            return Some([0.0, 0.0]);
+            return Some(self.clear_start(b));
         }
         // Random order; the greedy intersection keeps every neighbour it can.
         for k in (1..nbs.len()).rev() {
@@ -329,6 +360,10 @@ impl Search<'_> {
             if !inter.is_empty() {
                 acc = inter;
             }
+        }
+        // Obstacles are fixed: the pieces of the space clear of them.
+        for o in 0..self.level.obstacles.len() {
+            acc = acc.iter().flat_map(|g| clip_out(g, self.cs.obstacle_facets(o, b))).collect();
         }
         if acc.is_empty() {
             return None;
@@ -390,6 +425,8 @@ impl Search<'_> {
                 }
             }
         }
+        // Members the search did not reach (fixed nodes apart from each other) come last.
+        order.extend(chain.iter().copied().filter(|n| !seen.contains(n)));
         for n in order {
             let i = n.0 as usize;
             let mut best: Option<((BlockId, Pt), f64)> = None;
@@ -403,6 +440,27 @@ impl Search<'_> {
             }
             s[i] = best.map(|x| x.0);
         }
+    }
+
+    /// The origin, or beside the obstacles when block `b` would overlap one there.
+    fn clear_start(&self, b: BlockId) -> Pt {
+        if self.obstacle_area((b, [0.0, 0.0])) <= AREA_TOL {
+            return [0.0, 0.0];
+        }
+        let right = self.shapes.obstacles.iter().map(|o| o.1[1]).fold(f64::NEG_INFINITY, f64::max);
+        [right - self.shapes.boxes[b.0 as usize][0] + 1.0, 0.0]
+    }
+
+    /// A move's new position: a sample clear of every obstacle (a few tries; none when every
+    /// try lands in one, and the move is rejected).
+    fn sample_clear(&mut self, s: &[Slot], i: usize, b: BlockId) -> Option<Pt> {
+        for _ in 0..4 {
+            let p = self.sample(s, i, b)?;
+            if self.shapes.obstacles.is_empty() || self.obstacle_area((b, p)) <= AREA_TOL {
+                return Some(p);
+            }
+        }
+        None
     }
 
     /// A position beside everything placed (for a node whose neighbours give no contact).
@@ -451,7 +509,7 @@ impl Search<'_> {
                 let blocks = self.level.nodes[i].blocks.clone();
                 // Positions 7 : block changes 3.
                 let b = if blocks.len() > 1 && self.rng.random::<f64>() < 0.3 { self.pick(&blocks) } else { old.0 };
-                let Some(p) = self.sample(&s, i, b) else { continue };
+                let Some(p) = self.sample_clear(&s, i, b) else { continue };
                 let (ao, dold) = self.node_terms(&s, i, old);
                 let (an, dn) = self.node_terms(&s, i, (b, p));
                 let (a2, d2) = ((a - ao + an).max(0.0), (d - dold + dn).max(0.0));
@@ -517,7 +575,7 @@ pub fn anneal(level: &Level, cs: &CSpaces, o: &AnnealOptions) -> AnnealReport {
         if last {
             for e in ext {
                 if full.iter().all(|f| search.distinct(f, &e.slots)) {
-                    let layout = to_layout(level, &e.slots);
+                    let layout = super::clear_of_obstacles(level, to_layout(level, &e.slots));
                     // Every layout passes the independent validator; one that does not is dropped.
                     if validate(level, &layout).is_valid() {
                         rep.time_to_first.get_or_insert(e.seconds);

@@ -138,12 +138,26 @@ pub fn contact_segments(a: &Block, b: &Block, w: f64) -> Vec<Segment> {
     out
 }
 
+/// The pieces of segment `seg` (absolute positions of a block) at which the block stays out of
+/// every convex region given by `facet_lists` (closed pieces; a single position is a piece too).
+pub fn clip_out(seg: &Segment, facet_lists: &[Vec<Facet>]) -> Vec<Segment> {
+    let len = seg.len();
+    if len < LEN_TOL {
+        let inside = facet_lists.iter().any(|fs| fs.iter().all(|f| f.h - dot(f.n, seg.a) > LEN_TOL));
+        return if inside { Vec::new() } else { vec![*seg] };
+    }
+    let d = scale(sub(seg.b, seg.a), 1.0 / len);
+    let holes: Vec<(f64, f64)> = facet_lists.iter().filter_map(|fs| inside_interval(seg.a, d, fs)).collect();
+    subtract(0.0, len, holes).into_iter().map(|(lo, hi)| Segment { a: seg.at(lo / len), b: seg.at(hi / len) }).collect()
+}
+
 /// The configuration spaces of every ordered pair of block shapes of a level.
 #[derive(Clone, Debug)]
 pub struct CSpaces {
     n: usize,
     segments: Vec<Vec<Segment>>,
     facets: Vec<Vec<Vec<Facet>>>,
+    obstacle_facets: Vec<Vec<Vec<Facet>>>,
     /// The largest coordinate of any segment end: one contact moves a block at most this far
     /// along either axis.
     pub reach: f64,
@@ -162,7 +176,28 @@ impl CSpaces {
             }
         }
         let reach = segments.iter().flatten().flat_map(|s| [s.a, s.b]).flatten().fold(0.0, |m: f64, v| m.max(v.abs()));
-        CSpaces { n, segments, facets, reach }
+        let obstacle_facets = level
+            .obstacles
+            .iter()
+            .flat_map(|o| {
+                level.blocks.iter().map(|b| {
+                    o.parts
+                        .iter()
+                        .flat_map(|po| {
+                            b.parts.iter().map(move |pb| geometry::facets(&geometry::minkowski_difference(po, pb)))
+                        })
+                        .collect()
+                })
+            })
+            .collect();
+        CSpaces { n, segments, facets, obstacle_facets, reach }
+    }
+
+    /// Part-pair facet lists of block `b` against obstacle `o` (absolute coordinates): block `b`
+    /// at position `p` clears the obstacle exactly when, for every list, `n · p ≥ h` holds for
+    /// at least one facet.
+    pub fn obstacle_facets(&self, o: usize, b: BlockId) -> &[Vec<Facet>] {
+        &self.obstacle_facets[o * self.n + b.0 as usize]
     }
 
     /// Translations of `b` relative to `a` where they touch by a door.
@@ -224,7 +259,7 @@ mod tests {
     use super::*;
 
     fn block(poly: &[Pt]) -> Block {
-        Block { name: "b".into(), polygon: poly.to_vec(), parts: geometry::convex_parts(poly) }
+        Block { name: "b".into(), polygon: poly.to_vec(), parts: geometry::convex_parts(poly), rotation_of: None }
     }
 
     const SQ: [Pt; 4] = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];

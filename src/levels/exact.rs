@@ -153,7 +153,7 @@ pub fn solve(level: &Level, cs: &CSpaces, o: &ExactOptions, starts: &[Layout]) -
         }
         match (v, x) {
             (Verdict::Feasible, Some(x)) => {
-                let layout = lm.decode(level, &x);
+                let layout = super::clear_of_obstacles(level, lm.decode(level, &x));
                 let check = validate(level, &layout);
                 if !check.is_valid() {
                     return Err(LevelError::Rejected(format!(

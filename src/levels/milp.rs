@@ -13,6 +13,9 @@
 //! half-plane `n · (p_j − p_i) ≥ h` (big-M from the position bounds; a part pair the bounds
 //! already keep apart gets nothing). Adjacent pairs need no such rows: a configuration-space
 //! segment has no overlap on it.
+//! Per node, allowed block and obstacle (when the part has a fixed node; otherwise a layout is
+//! moved clear of the obstacles afterwards, see [`super::clear_of_obstacles`]): the same facet
+//! disjunction against the obstacle's fixed parts, big-M from the node's own position box.
 
 use super::cspace::{CSpaces, Segment};
 use super::geometry::{dot, Pt};
@@ -58,6 +61,12 @@ struct ContactVar {
     l1: VarId,
 }
 
+struct ObstacleGroup {
+    i: usize,
+    k: BlockId,
+    facets: Vec<(Pt, f64, VarId)>,
+}
+
 struct SepGroup {
     i: usize,
     j: usize,
@@ -75,6 +84,7 @@ pub struct LevelModel {
     choice: Vec<Vec<(BlockId, VarId)>>,
     contacts: Vec<(usize, usize, Vec<ContactVar>)>,
     seps: Vec<SepGroup>,
+    obstacles: Vec<ObstacleGroup>,
     bbox: Option<[VarId; 4]>,
     /// Size by family.
     pub families: Vec<FamilySize>,
@@ -233,13 +243,73 @@ pub fn build(level: &Level, cs: &CSpaces, part: &Part) -> LevelModel {
     }
     families.push(c.done(&m, "non-overlap (facet disjunctions)"));
 
+    let mut obstacles = Vec::new();
+    if !level.obstacles.is_empty() && part.nodes.iter().any(|n| level.nodes[n.0 as usize].position.is_some()) {
+        let c = Counter::start(&m);
+        obstacles = obstacle_rows(&mut m, level, cs, &b, &pos, &choice, &nname);
+        families.push(c.done(&m, "obstacles (facet disjunctions)"));
+    }
+
     let bbox = (level.objective == Objective::Bbox).then(|| {
         let c = Counter::start(&m);
         let v = bbox_rows(&mut m, level, &b, &pos, &choice);
         families.push(c.done(&m, "bounding box objective"));
         v
     });
-    LevelModel { model: m, nodes: part.nodes.clone(), pos, choice, contacts, seps, bbox, families }
+    LevelModel { model: m, nodes: part.nodes.clone(), pos, choice, contacts, seps, obstacles, bbox, families }
+}
+
+/// Per node, allowed block, obstacle and convex-part pair: a binary per facet of the parts'
+/// Minkowski difference, at least one chosen when the block is, and the chosen facet's
+/// half-plane `n · p_i ≥ h` with `M = h − min_{box} n · p` (the node's position box, so `M` is
+/// zero in effect for a fixed node). Facets the box can never satisfy get no binary; a part pair
+/// the box already keeps apart gets nothing; a block with no facet left is forbidden.
+fn obstacle_rows(
+    m: &mut Model,
+    level: &Level,
+    cs: &CSpaces,
+    b: &[[f64; 4]],
+    pos: &[(VarId, VarId)],
+    choice: &[Vec<(BlockId, VarId)>],
+    nname: &dyn Fn(usize) -> String,
+) -> Vec<ObstacleGroup> {
+    let mut out = Vec::new();
+    for (i, zs) in choice.iter().enumerate() {
+        let lo = |n: Pt| {
+            n[0] * if n[0] > 0.0 { b[i][0] } else { b[i][1] } + n[1] * if n[1] > 0.0 { b[i][2] } else { b[i][3] }
+        };
+        let hi = |n: Pt| {
+            n[0] * if n[0] > 0.0 { b[i][1] } else { b[i][0] } + n[1] * if n[1] > 0.0 { b[i][3] } else { b[i][2] }
+        };
+        for &(k, z) in zs {
+            for o in 0..level.obstacles.len() {
+                for (q, fs) in cs.obstacle_facets(o, k).iter().enumerate() {
+                    if fs.iter().any(|f| lo(f.n) >= f.h) {
+                        continue;
+                    }
+                    let t = format!("{}_{}_o{o}_{q}", nname(i), k.0);
+                    let mut facets = Vec::new();
+                    for (fi, f) in fs.iter().enumerate() {
+                        if hi(f.n) < f.h {
+                            continue;
+                        }
+                        let d = m.add_binary(format!("so_{t}_{fi}"), 0.0);
+                        let big = f.h - lo(f.n);
+                        m.add_ge(
+                            format!("clear_{t}_{fi}"),
+                            [(pos[i].0, f.n[0]), (pos[i].1, f.n[1]), (d, -big)],
+                            f.h - big,
+                        );
+                        facets.push((f.n, f.h, d));
+                    }
+                    let terms = facets.iter().map(|&(_, _, d)| (d, 1.0)).chain([(z, -1.0)]);
+                    m.add_ge(format!("avoid_{t}"), terms, 0.0);
+                    out.push(ObstacleGroup { i, k, facets });
+                }
+            }
+        }
+    }
+    out
 }
 
 /// `xmin ≤ x_i + minx(block)`, `xmax ≥ x_i + maxx(block)` (and in y); minimise the width plus
@@ -355,6 +425,16 @@ impl LevelModel {
             }
             let d = [at[g.j].1[0] - at[g.i].1[0], at[g.j].1[1] - at[g.i].1[1]];
             if let Some(&(_, _, v)) = g.facets.iter().max_by(|a, b| (dot(a.0, d) - a.1).total_cmp(&(dot(b.0, d) - b.1)))
+            {
+                x[v.index()] = 1.0;
+            }
+        }
+        for g in &self.obstacles {
+            if at[g.i].0 != g.k {
+                continue;
+            }
+            let p = at[g.i].1;
+            if let Some(&(_, _, v)) = g.facets.iter().max_by(|a, b| (dot(a.0, p) - a.1).total_cmp(&(dot(b.0, p) - b.1)))
             {
                 x[v.index()] = 1.0;
             }

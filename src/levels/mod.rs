@@ -15,6 +15,7 @@ pub mod exact;
 pub mod geometry;
 pub mod milp;
 pub mod output;
+pub mod seeds;
 pub mod spec;
 pub mod validate;
 
@@ -113,6 +114,25 @@ pub struct Layout {
     pub nodes: Vec<Placement>,
 }
 
+/// A layout of a level without fixed nodes, moved clear of the obstacles when it overlaps one
+/// (translations keep every door and every gap, so the layout stays a layout); any other layout
+/// unchanged.
+pub fn clear_of_obstacles(level: &Level, layout: Layout) -> Layout {
+    if level.has_fixed() || validate::validate(level, &layout).obstacle_overlaps.is_empty() {
+        return layout;
+    }
+    let right = level.obstacles.iter().flat_map(|o| o.polygon.iter().map(|q| q[0])).fold(f64::NEG_INFINITY, f64::max);
+    let left = layout
+        .nodes
+        .iter()
+        .flat_map(|n| level.blocks[n.block.0 as usize].polygon.iter().map(|q| q[0] + n.position[0]))
+        .fold(f64::INFINITY, f64::min);
+    let dx = right - left + level.door_width;
+    let nodes =
+        layout.nodes.into_iter().map(|n| Placement { position: [n.position[0] + dx, n.position[1]], ..n }).collect();
+    Layout { nodes }
+}
+
 /// The method(s) to run.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "lowercase")]
@@ -148,6 +168,8 @@ pub struct LevelRequest {
     pub seed: u64,
     /// Export the first layout as a mesh and a network spec into `out` ([`bridge`]).
     pub export: Option<bridge::BridgeOptions>,
+    /// Seeds to run the annealer with (`seed`, `seed + 1`, …); above 1, a summary over them.
+    pub seeds: usize,
 }
 
 /// The overall answer.
@@ -179,6 +201,9 @@ pub struct LevelOutcome {
     pub anneal: Option<anneal::AnnealReport>,
     /// The exact search, when run.
     pub milp: Option<exact::ExactReport>,
+    /// The annealer over seeds, when more than one was asked for (`summary.json`).
+    #[serde(skip)]
+    pub seeds: Option<seeds::SeedsSummary>,
     /// Files written.
     pub files: Vec<PathBuf>,
 }
@@ -224,19 +249,33 @@ pub fn solve_level(level: &Level, req: &LevelRequest) -> Result<LevelOutcome, Le
     let cs = cspace::CSpaces::new(level);
     let cspace_time = t0.elapsed().as_secs_f64();
     let count = req.count.max(1);
-    if req.method != Method::Milp && !level.euler_bound_ok() {
+    if req.method != Method::Milp && !level.is_planar() {
         return Err(LevelError::Field {
             field: "edge".into(),
             reason: format!(
-                "the annealer needs a planar graph; {} edges on {} nodes exceed Euler's bound 3V − 6",
-                level.edges.len(),
-                level.nodes.len()
+                "the graph is not planar ({} nodes, {} edges), and the annealer lays out planar graphs only \
+                 (use --method milp)",
+                level.nodes.len(),
+                level.edges.len()
             ),
         });
     }
+    if req.seeds > 1 && req.method == Method::Milp {
+        return Err(LevelError::Field {
+            field: "--seeds".into(),
+            reason: "seeds are the annealer's: use --method anneal or both".into(),
+        });
+    }
+    let mut summary = None;
     let annealed = (req.method != Method::Milp).then(|| {
         let o = anneal::AnnealOptions { seed: req.seed, count, time_limit: req.time_limit, ..Default::default() };
-        anneal::anneal(level, &cs, &o)
+        if req.seeds > 1 {
+            let (first, s) = seeds::over_seeds(level, &cs, &o, req.seeds);
+            summary = Some(s);
+            first
+        } else {
+            anneal::anneal(level, &cs, &o)
+        }
     });
     let mut layouts: Vec<Layout> = annealed.as_ref().map(|a| a.layouts.clone()).unwrap_or_default();
     let milp = if req.method == Method::Anneal {
@@ -271,6 +310,7 @@ pub fn solve_level(level: &Level, req: &LevelRequest) -> Result<LevelOutcome, Le
         cspace_time,
         anneal: annealed,
         milp,
+        seeds: summary,
         files: Vec::new(),
     })
 }

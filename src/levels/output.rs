@@ -1,4 +1,5 @@
-//! Outputs: `level.json` (status, layouts, the search's figures) and a picture of every layout
+//! Outputs: `level.json` (status, layouts, the search's figures), `summary.json` (the annealer
+//! over seeds, when asked for) and a picture of every layout
 //! (`layout-K.svg` and `.png`: blocks, doors, the graph over them).
 
 use super::geometry;
@@ -22,7 +23,13 @@ pub fn scene(level: &Level, layout: &Layout, caption: String) -> LevelScene {
             let polygon = geometry::translate(&level.blocks[p.block.0 as usize].polygon, p.position);
             let n = polygon.len() as f64;
             let centre = polygon.iter().fold([0.0, 0.0], |a, q| [a[0] + q[0] / n, a[1] + q[1] / n]);
-            LevelBlock { polygon, label: p.node.clone(), shape: p.block.0 as usize, centre }
+            let block = &level.blocks[p.block.0 as usize];
+            // A rotation takes its block's colour and says which it is.
+            let (shape, label) = match block.rotation_of {
+                Some((base, _)) => (base.0 as usize, format!("{} ({})", p.node, block.name)),
+                None => (p.block.0 as usize, p.node.clone()),
+            };
+            LevelBlock { polygon, label, shape, centre }
         })
         .collect();
     let v = validate(level, layout);
@@ -34,7 +41,8 @@ pub fn scene(level: &Level, layout: &Layout, caption: String) -> LevelScene {
             door(level, &v, e).map(|d| (d, a.0 as usize, b.0 as usize))
         })
         .collect();
-    LevelScene { blocks, doors, caption }
+    let obstacles = level.obstacles.iter().map(|o| o.polygon.clone()).collect();
+    LevelScene { blocks, doors, obstacles, caption }
 }
 
 /// Writes the outputs into `dir` (created if missing); returns the files written.
@@ -46,6 +54,13 @@ pub fn write(dir: &Path, level: &Level, outcome: &LevelOutcome) -> Result<Vec<Pa
         .map_err(|e| LevelError::Write { path: json.display().to_string(), reason: e.to_string() })?;
     put(&json, text.as_bytes())?;
     let mut files = vec![json];
+    if let Some(summary) = &outcome.seeds {
+        let path = dir.join("summary.json");
+        let text = serde_json::to_string_pretty(summary)
+            .map_err(|e| LevelError::Write { path: path.display().to_string(), reason: e.to_string() })?;
+        put(&path, text.as_bytes())?;
+        files.push(path);
+    }
     for (k, layout) in outcome.layouts.iter().enumerate() {
         let caption = format!("layout {} of {} · door width {}", k + 1, outcome.layouts.len(), level.door_width);
         let svg = render::level::level_svg(&scene(level, layout, caption));

@@ -3,6 +3,7 @@
 
 use super::geometry::{self, Pt};
 use super::LevelError;
+use rustworkx_core::petgraph::graph::{NodeIndex, UnGraph};
 use serde::{Deserialize, Serialize};
 use std::collections::{BTreeMap, BTreeSet, VecDeque};
 use std::path::Path;
@@ -48,6 +49,17 @@ pub struct LevelSpec {
     /// Graph edges.
     #[serde(default)]
     pub edge: Vec<EdgeSpec>,
+    /// Obstacles: fixed polygons no block may overlap.
+    #[serde(default)]
+    pub obstacle: Vec<ObstacleSpec>,
+}
+
+/// One obstacle: a polygon in absolute coordinates, fixed in place.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ObstacleSpec {
+    /// Vertices, counter-clockwise.
+    pub polygon: Vec<Pt>,
 }
 
 /// One block shape.
@@ -56,8 +68,12 @@ pub struct LevelSpec {
 pub struct BlockSpec {
     /// Unique name.
     pub name: String,
-    /// Vertices, counter-clockwise, used as given (a rotation is another block).
+    /// Vertices, counter-clockwise.
     pub polygon: Vec<Pt>,
+    /// Rotations (degrees, counter-clockwise about the origin, multiples of 90) that become
+    /// variant blocks named `name@angle`, allowed wherever the block is.
+    #[serde(default)]
+    pub rotations: Vec<i64>,
 }
 
 /// One graph node.
@@ -89,6 +105,17 @@ pub struct Block {
     pub polygon: Vec<Pt>,
     /// Convex parts covering it.
     pub parts: Vec<Vec<Pt>>,
+    /// The block it is a rotation of, and the angle in degrees (`None` for a block as given).
+    pub rotation_of: Option<(BlockId, i64)>,
+}
+
+/// A checked obstacle.
+#[derive(Clone, Debug)]
+pub struct Obstacle {
+    /// Vertices, counter-clockwise, without collinear repeats (absolute coordinates).
+    pub polygon: Vec<Pt>,
+    /// Convex parts covering it.
+    pub parts: Vec<Vec<Pt>>,
 }
 
 /// A checked node.
@@ -115,6 +142,8 @@ pub struct Level {
     pub nodes: Vec<Node>,
     /// Edges, each `(a, b)` with `a < b`, in file order.
     pub edges: Vec<(NodeId, NodeId)>,
+    /// Obstacles, in file order.
+    pub obstacles: Vec<Obstacle>,
 }
 
 fn field(name: impl Into<String>, reason: impl Into<String>) -> LevelError {
@@ -148,11 +177,23 @@ impl LevelSpec {
         }
         let by_name: BTreeMap<&str, BlockId> =
             blocks.iter().enumerate().map(|(i, b)| (b.name.as_str(), BlockId(i as u32))).collect();
-        let nodes = self.nodes(&by_name)?;
+        let nodes = self.nodes(&blocks, &by_name)?;
         let edges = self.edges(&nodes)?;
-        let level = Level { door_width: w, objective: self.objective, blocks, nodes, edges };
+        let obstacles = self.obstacles()?;
+        let level = Level { door_width: w, objective: self.objective, blocks, nodes, edges, obstacles };
         level.check_connected()?;
+        level.check_fixed_clear()?;
         Ok(level)
+    }
+
+    fn obstacles(&self) -> Result<Vec<Obstacle>, LevelError> {
+        let mut out = Vec::new();
+        for (i, o) in self.obstacle.iter().enumerate() {
+            let polygon = checked_polygon(&format!("obstacle[{i}].polygon"), &o.polygon)?;
+            let parts = geometry::convex_parts(&polygon);
+            out.push(Obstacle { polygon, parts });
+        }
+        Ok(out)
     }
 
     fn blocks(&self) -> Result<Vec<Block>, LevelError> {
@@ -160,32 +201,35 @@ impl LevelSpec {
             return Err(field("block", "give at least one [[block]]"));
         }
         let mut seen = BTreeSet::new();
-        let mut out = Vec::new();
+        let mut seen_variant = BTreeSet::new();
+        let mut out: Vec<Block> = Vec::new();
         for (i, b) in self.block.iter().enumerate() {
             let at = format!("block[{i}] ({:?})", b.name);
             if !seen.insert(b.name.as_str()) {
                 return Err(field(format!("{at}.name"), "duplicate block name"));
             }
-            if b.polygon.iter().flatten().any(|v| !v.is_finite()) {
-                return Err(field(format!("{at}.polygon"), "coordinates must be finite"));
-            }
-            let poly = geometry::simplify(&b.polygon);
-            if poly.len() < 3 {
-                return Err(field(format!("{at}.polygon"), "needs at least three non-collinear vertices"));
-            }
-            if let Some((e, f)) = geometry::self_intersection(&poly) {
-                return Err(field(format!("{at}.polygon"), format!("self-intersecting: edges {e} and {f} meet")));
-            }
-            if geometry::signed_area(&poly) <= 0.0 {
-                return Err(field(format!("{at}.polygon"), "must be counter-clockwise (its signed area is negative)"));
-            }
+            let poly = checked_polygon(&format!("{at}.polygon"), &b.polygon)?;
+            let base = BlockId(out.len() as u32);
+            let angles = rotations(&format!("{at}.rotations"), &b.rotations)?;
             let parts = geometry::convex_parts(&poly);
-            out.push(Block { name: b.name.clone(), polygon: poly, parts });
+            out.push(Block { name: b.name.clone(), polygon: poly.clone(), parts, rotation_of: None });
+            for a in angles {
+                let name = format!("{}@{a}", b.name);
+                if !seen_variant.insert(name.clone()) {
+                    return Err(field(format!("{at}.rotations"), format!("variant name {name:?} is taken")));
+                }
+                let polygon: Vec<Pt> = poly.iter().map(|&p| rotate(p, a)).collect();
+                let parts = geometry::convex_parts(&polygon);
+                out.push(Block { name, polygon, parts, rotation_of: Some((base, a)) });
+            }
+        }
+        if let Some(b) = out.iter().find(|b| b.rotation_of.is_some() && seen.contains(b.name.as_str())) {
+            return Err(field("block", format!("variant name {:?} is also a block's name", b.name)));
         }
         Ok(out)
     }
 
-    fn nodes(&self, by_name: &BTreeMap<&str, BlockId>) -> Result<Vec<Node>, LevelError> {
+    fn nodes(&self, blocks: &[Block], by_name: &BTreeMap<&str, BlockId>) -> Result<Vec<Node>, LevelError> {
         if self.node.is_empty() {
             return Err(field("node", "give at least one [[node]]"));
         }
@@ -205,6 +249,10 @@ impl LevelSpec {
                             .get(name.as_str())
                             .ok_or_else(|| field(format!("{at}.blocks"), format!("no block named {name:?}")))?;
                         ids.insert(*id);
+                        // A block brings its rotations.
+                        let variants =
+                            blocks.iter().enumerate().filter(|(_, b)| b.rotation_of.is_some_and(|r| r.0 == *id));
+                        ids.extend(variants.map(|(k, _)| BlockId(k as u32)));
                     }
                     if ids.is_empty() {
                         return Err(field(format!("{at}.blocks"), "allow at least one block"));
@@ -241,6 +289,54 @@ impl LevelSpec {
             out.push(key);
         }
         Ok(out)
+    }
+}
+
+/// A polygon checked where read: finite, at least three non-collinear vertices, simple,
+/// counter-clockwise; returned without collinear repeats.
+fn checked_polygon(at: &str, polygon: &[Pt]) -> Result<Vec<Pt>, LevelError> {
+    if polygon.iter().flatten().any(|v| !v.is_finite()) {
+        return Err(field(at, "coordinates must be finite"));
+    }
+    let poly = geometry::simplify(polygon);
+    if poly.len() < 3 {
+        return Err(field(at, "needs at least three non-collinear vertices"));
+    }
+    if let Some((e, f)) = geometry::self_intersection(&poly) {
+        return Err(field(at, format!("self-intersecting: edges {e} and {f} meet")));
+    }
+    if geometry::signed_area(&poly) <= 0.0 {
+        return Err(field(at, "must be counter-clockwise (its signed area is negative)"));
+    }
+    Ok(poly)
+}
+
+/// The angles of a block's rotations, normalised to 90, 180 or 270, in the order given.
+fn rotations(at: &str, angles: &[i64]) -> Result<Vec<i64>, LevelError> {
+    let mut out = Vec::new();
+    for &a in angles {
+        let r = a.rem_euclid(360);
+        if a % 90 != 0 {
+            return Err(field(at, format!("{a} is not a multiple of 90 degrees")));
+        }
+        if r == 0 {
+            return Err(field(at, format!("{a} degrees is the block itself")));
+        }
+        if out.contains(&r) {
+            return Err(field(at, format!("{a} degrees is given twice")));
+        }
+        out.push(r);
+    }
+    Ok(out)
+}
+
+/// `p` rotated counter-clockwise about the origin by a multiple of 90 degrees (exact).
+pub fn rotate(p: Pt, degrees: i64) -> Pt {
+    match degrees.rem_euclid(360) {
+        90 => [-p[1], p[0]],
+        180 => [-p[0], -p[1]],
+        270 => [p[1], -p[0]],
+        _ => p,
     }
 }
 
@@ -317,10 +413,43 @@ impl Level {
         }
     }
 
-    /// Whether the graph can be planar by Euler's bound (`|E| ≤ 3|V| − 6`); a graph over it is
-    /// certainly not planar. (A necessary condition only.)
-    pub fn euler_bound_ok(&self) -> bool {
-        let (v, e) = (self.nodes.len(), self.edges.len());
-        v < 3 || e <= 3 * v - 6
+    /// Whether some node has a fixed position (obstacles matter only then: otherwise a layout
+    /// can be moved clear of them).
+    pub fn has_fixed(&self) -> bool {
+        self.nodes.iter().any(|n| n.position.is_some())
+    }
+
+    /// Each fixed node must have an allowed block that clears every obstacle at its position;
+    /// the error names the first obstacle in the way.
+    fn check_fixed_clear(&self) -> Result<(), LevelError> {
+        if self.obstacles.is_empty() {
+            return Ok(());
+        }
+        let tris: Vec<Vec<[Pt; 3]>> = self.obstacles.iter().map(|o| geometry::triangulate(&o.polygon)).collect();
+        for n in &self.nodes {
+            let Some(p) = n.position else { continue };
+            let first_hit = |b: &BlockId| {
+                let placed = geometry::triangulate(&geometry::translate(&self.blocks[b.0 as usize].polygon, p));
+                tris.iter().position(|t| geometry::overlap_area(&placed, t) > geometry::AREA_TOL)
+            };
+            let hits: Vec<Option<usize>> = n.blocks.iter().map(first_hit).collect();
+            if let Some(Some(k)) = hits.iter().all(Option::is_some).then(|| hits[0]) {
+                return Err(field(
+                    format!("obstacle[{k}].polygon"),
+                    format!("overlaps node {:?} at its fixed position whatever block it takes", n.name),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// Whether the graph is planar (the left-right planarity test of `rustworkx-core`).
+    pub fn is_planar(&self) -> bool {
+        let mut g = UnGraph::<(), ()>::with_capacity(self.nodes.len(), self.edges.len());
+        let ids: Vec<NodeIndex> = self.nodes.iter().map(|_| g.add_node(())).collect();
+        for &(a, b) in &self.edges {
+            g.add_edge(ids[a.0 as usize], ids[b.0 as usize], ());
+        }
+        rustworkx_core::planar::is_planar(&g)
     }
 }

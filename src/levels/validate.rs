@@ -1,7 +1,7 @@
 //! The independent validator: plain geometry on the placed polygons, never the model that
 //! produced them. A layout is valid when no two blocks overlap (intersection area above
 //! [`AREA_TOL`]) and every graph edge is a wall the two blocks share over at least the door
-//! width.
+//! width, and no block overlaps an obstacle.
 
 use super::geometry::{self, dot, norm, scale, sub, Pt, AREA_TOL, LEN_TOL};
 use super::spec::{EdgeId, Level, NodeId};
@@ -13,6 +13,8 @@ use serde::Serialize;
 pub struct Validation {
     /// Pairs of nodes whose blocks overlap, with the area.
     pub overlaps: Vec<(String, String, f64)>,
+    /// Nodes whose blocks overlap an obstacle: node, obstacle index, area.
+    pub obstacle_overlaps: Vec<(String, usize, f64)>,
     /// Graph edges whose blocks share no wall a door wide, with the longest shared wall.
     pub missing_doors: Vec<(String, String, f64)>,
     /// The door of every graph edge: the shared wall's two ends (empty where there is none).
@@ -23,14 +25,15 @@ pub struct Validation {
 impl Validation {
     /// Whether the layout passes.
     pub fn is_valid(&self) -> bool {
-        self.overlaps.is_empty() && self.missing_doors.is_empty()
+        self.overlaps.is_empty() && self.missing_doors.is_empty() && self.obstacle_overlaps.is_empty()
     }
 
     /// One line per finding.
     pub fn problems(&self) -> Vec<String> {
         let o = self.overlaps.iter().map(|(a, b, x)| format!("{a} and {b} overlap (area {x:.3e})"));
         let m = self.missing_doors.iter().map(|(a, b, x)| format!("{a}–{b}: longest shared wall {x:.6}"));
-        o.chain(m).collect()
+        let q = self.obstacle_overlaps.iter().map(|(a, k, x)| format!("{a} overlaps obstacle[{k}] (area {x:.3e})"));
+        o.chain(m).chain(q).collect()
     }
 }
 
@@ -75,6 +78,15 @@ pub fn validate(level: &Level, layout: &Layout) -> Validation {
                     level.node_name(NodeId(j as u32)).into(),
                     area,
                 ));
+            }
+        }
+    }
+    for (k, o) in level.obstacles.iter().enumerate() {
+        let tri = geometry::triangulate(&o.polygon);
+        for (i, t) in tris.iter().enumerate() {
+            let area = geometry::overlap_area(t, &tri);
+            if area > AREA_TOL {
+                v.obstacle_overlaps.push((level.node_name(NodeId(i as u32)).into(), k, area));
             }
         }
     }

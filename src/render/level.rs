@@ -1,5 +1,6 @@
 //! A game level's layout: the blocks (one colour per block shape), the doors, and the
-//! connectivity graph drawn over them (block centres joined through the doors).
+//! connectivity graph drawn over them (block centres joined through the doors), and the
+//! obstacles, dark grey.
 
 use super::writer::Svg;
 use std::fmt::Write;
@@ -22,6 +23,8 @@ pub struct LevelScene {
     pub blocks: Vec<LevelBlock>,
     /// Doors: each a door-wide piece of a shared wall, with the indices of its two blocks.
     pub doors: Vec<([[f64; 2]; 2], usize, usize)>,
+    /// Obstacles (fixed polygons no block may overlap), drawn dark grey.
+    pub obstacles: Vec<Vec<[f64; 2]>>,
     /// A caption under the picture.
     pub caption: String,
 }
@@ -30,7 +33,7 @@ const PALETTE: [&str; 8] = ["#c6dbef", "#fdd0a2", "#c7e9c0", "#dadaeb", "#fcbba1
 
 /// The picture as SVG text (about 640 pixels across).
 pub fn level_svg(scene: &LevelScene) -> String {
-    let pts = scene.blocks.iter().flat_map(|b| b.polygon.iter());
+    let pts = scene.blocks.iter().flat_map(|b| b.polygon.iter()).chain(scene.obstacles.iter().flatten());
     let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
     for p in pts {
         (x0, x1, y0, y1) = (x0.min(p[0]), x1.max(p[0]), y0.min(p[1]), y1.max(p[1]));
@@ -43,6 +46,14 @@ pub fn level_svg(scene: &LevelScene) -> String {
     let (w, h) = ((x1 - x0) * scale + 2.0 * margin, (y1 - y0) * scale + 2.0 * margin + 24.0);
     let tx = |p: [f64; 2]| (margin + (p[0] - x0) * scale, margin + (y1 - p[1]) * scale);
     let mut svg = Svg::new(w, h, Some(12.0));
+    for o in &scene.obstacles {
+        let d: Vec<String> = o.iter().map(|&p| tx(p)).map(|(x, y)| format!("{x:.2},{y:.2}")).collect();
+        let _ = writeln!(
+            svg,
+            r##"<polygon class="obstacle" points="{}" fill="#737373" stroke="#333" stroke-width="1"/>"##,
+            d.join(" ")
+        );
+    }
     for b in &scene.blocks {
         let d: Vec<String> = b.polygon.iter().map(|&p| tx(p)).map(|(x, y)| format!("{x:.2},{y:.2}")).collect();
         let fill = PALETTE[b.shape % PALETTE.len()];
