@@ -408,19 +408,6 @@ pub fn on_segment(p: Pt, s: &[Pt; 2]) -> bool {
     off <= MERGE_TOL && t >= -MERGE_TOL && t <= len + MERGE_TOL
 }
 
-/// The area centroid of a simple polygon.
-fn centroid(poly: &[Pt]) -> Pt {
-    let (mut a, mut cx, mut cy) = (0.0, 0.0, 0.0);
-    for i in 0..poly.len() {
-        let (p, q) = (poly[i], poly[(i + 1) % poly.len()]);
-        let c = geometry::cross(p, q);
-        a += c;
-        cx += (p[0] + q[0]) * c;
-        cy += (p[1] + q[1]) * c;
-    }
-    [cx / (3.0 * a), cy / (3.0 * a)]
-}
-
 /// Each node's room vertex: the vertex off the mesh boundary and inside its block alone that is
 /// nearest the block's centroid (the smallest id on a tie).
 fn rooms(
@@ -433,7 +420,7 @@ fn rooms(
     let owners = vertex_owners(mesh, face_owner);
     let mut out = Vec::new();
     for (k, poly) in blocks.iter().enumerate() {
-        let c = centroid(poly);
+        let c = crate::mesh::geom::centroid(poly);
         let best = mesh
             .vertices()
             .filter(|&v| !mesh.is_boundary_vertex(v) && owners[v.index()].len() == 1 && owners[v.index()].contains(&k))

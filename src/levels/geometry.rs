@@ -5,15 +5,13 @@
 /// A point (or a vector) in the plane.
 pub type Pt = [f64; 2];
 
+/// The plane primitives are the mesh's own.
+pub use crate::mesh::geom::{cross, dot, signed_area, sub};
+
 /// Lengths below this are zero.
 pub const LEN_TOL: f64 = 1e-7;
 /// Areas above this are an overlap (the validator's threshold).
 pub const AREA_TOL: f64 = 1e-9;
-
-/// `a − b`.
-pub fn sub(a: Pt, b: Pt) -> Pt {
-    [a[0] - b[0], a[1] - b[1]]
-}
 
 /// `a + b`.
 pub fn add(a: Pt, b: Pt) -> Pt {
@@ -25,26 +23,9 @@ pub fn scale(a: Pt, s: f64) -> Pt {
     [a[0] * s, a[1] * s]
 }
 
-/// The dot product.
-pub fn dot(a: Pt, b: Pt) -> f64 {
-    a[0] * b[0] + a[1] * b[1]
-}
-
-/// The z component of the cross product.
-pub fn cross(a: Pt, b: Pt) -> f64 {
-    a[0] * b[1] - a[1] * b[0]
-}
-
 /// Euclidean length.
 pub fn norm(a: Pt) -> f64 {
     dot(a, a).sqrt()
-}
-
-/// Twice the signed area would be the shoelace sum; this is the signed area itself
-/// (positive when counter-clockwise).
-pub fn signed_area(poly: &[Pt]) -> f64 {
-    let n = poly.len();
-    (0..n).map(|i| cross(poly[i], poly[(i + 1) % n])).sum::<f64>() / 2.0
 }
 
 /// The polygon translated by `p`.

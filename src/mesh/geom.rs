@@ -4,18 +4,21 @@ use std::f64::consts::TAU;
 
 pub(crate) type P = [f64; 2];
 
+/// `a − b`.
 #[inline]
-pub(crate) fn sub(a: P, b: P) -> P {
+pub fn sub(a: P, b: P) -> P {
     [a[0] - b[0], a[1] - b[1]]
 }
 
+/// The z component of the cross product.
 #[inline]
-pub(crate) fn cross(a: P, b: P) -> f64 {
+pub fn cross(a: P, b: P) -> f64 {
     a[0] * b[1] - a[1] * b[0]
 }
 
+/// The dot product.
 #[inline]
-pub(crate) fn dot(a: P, b: P) -> f64 {
+pub fn dot(a: P, b: P) -> f64 {
     a[0] * b[0] + a[1] * b[1]
 }
 
@@ -50,7 +53,7 @@ pub(crate) fn closest_on_segment(p: P, a: P, b: P) -> P {
 }
 
 /// Signed area of a closed polygon (positive if counter-clockwise).
-pub(crate) fn signed_area(pts: &[P]) -> f64 {
+pub fn signed_area(pts: &[P]) -> f64 {
     let n = pts.len();
     let mut s = 0.0;
     for i in 0..n {
@@ -73,7 +76,7 @@ pub(crate) fn is_area_degenerate(pts: &[P]) -> bool {
 }
 
 /// Area centroid of a closed polygon (falls back to the vertex average for zero area).
-pub(crate) fn centroid(pts: &[P]) -> P {
+pub fn centroid(pts: &[P]) -> P {
     let n = pts.len();
     let a = signed_area(pts);
     if n == 0 {
