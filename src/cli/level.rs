@@ -18,7 +18,7 @@ pub fn run(req: LevelRequest) -> Result<ExitCode> {
         }
         Err(e) => return Err(e.into()),
     };
-    println!("status     {}", serde_json::to_value(out.status)?.as_str().unwrap_or("?"));
+    println!("status     {}", out.status.as_str());
     println!("layouts    {} (each checked by the validator)", out.layouts.len());
     println!("cspaces    {:.3} s", out.cspace_time);
     if let Some(a) = &out.anneal {

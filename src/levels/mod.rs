@@ -173,8 +173,7 @@ pub struct LevelRequest {
 }
 
 /// The overall answer.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "lowercase")]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Status {
     /// Layouts found (each validated).
     Feasible,
@@ -182,6 +181,23 @@ pub enum Status {
     Infeasible,
     /// Neither.
     Unknown,
+}
+
+impl Status {
+    /// The name `level.json` gives it.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Status::Feasible => "feasible",
+            Status::Infeasible => "infeasible",
+            Status::Unknown => "unknown",
+        }
+    }
+}
+
+impl Serialize for Status {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(self.as_str())
+    }
 }
 
 /// Everything `netspec level` found.
@@ -235,8 +251,7 @@ fn export(
         reason: "the export needs an output directory".into(),
     })?;
     let Some(layout) = outcome.layouts.first() else {
-        let status = serde_json::to_value(outcome.status).ok().and_then(|v| v.as_str().map(String::from));
-        return Err(LevelError::NoLayout { path, status: status.unwrap_or_default() });
+        return Err(LevelError::NoLayout { path, status: outcome.status.as_str().into() });
     };
     let name = req.spec.file_stem().map_or("level".into(), |s| s.to_string_lossy().into_owned());
     let b = bridge::bridge(level, layout, &name, opts).map_err(|e| LevelError::InFile { path, source: Box::new(e) })?;
