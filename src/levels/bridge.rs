@@ -82,22 +82,31 @@ fn field(name: &str, reason: String) -> LevelError {
     LevelError::Field { field: name.into(), reason }
 }
 
+impl BridgeOptions {
+    /// The options checked against `level` (before anything is laid out): the grid spacing and
+    /// the entrance node.
+    pub fn check(&self, level: &Level) -> Result<(f64, NodeId), LevelError> {
+        let spacing = self.spacing.unwrap_or(level.door_width);
+        if !(spacing.is_finite() && spacing > 0.0) {
+            return Err(field("spacing", format!("must be a positive number, got {spacing}")));
+        }
+        if let Some(r) = self.coverage.filter(|r| !(r.is_finite() && *r >= 1.0)) {
+            return Err(field("coverage", format!("must be a finite number of at least 1, got {r}")));
+        }
+        let entrance = match &self.entrance {
+            None => NodeId(0),
+            Some(e) => (0..level.nodes.len() as u32)
+                .map(NodeId)
+                .find(|&n| level.node_name(n) == e)
+                .ok_or_else(|| field("entrance", format!("no node is named {e:?}")))?,
+        };
+        Ok((spacing, entrance))
+    }
+}
+
 /// Exports `layout` of `level` as a mesh and a spec named `name`.
 pub fn bridge(level: &Level, layout: &Layout, name: &str, o: &BridgeOptions) -> Result<Bridge, LevelError> {
-    let spacing = o.spacing.unwrap_or(level.door_width);
-    if !(spacing.is_finite() && spacing > 0.0) {
-        return Err(field("spacing", format!("must be a positive number, got {spacing}")));
-    }
-    if let Some(r) = o.coverage.filter(|r| !(r.is_finite() && *r >= 1.0)) {
-        return Err(field("coverage", format!("must be a finite number of at least 1, got {r}")));
-    }
-    let entrance = match &o.entrance {
-        None => NodeId(0),
-        Some(e) => (0..level.nodes.len() as u32)
-            .map(NodeId)
-            .find(|&n| level.node_name(n) == e)
-            .ok_or_else(|| field("entrance", format!("no node is named {e:?}")))?,
-    };
+    let (spacing, entrance) = o.check(level)?;
     let blocks = placed(level, layout)?;
     let doors = doors(level, layout)?;
     let grid = Grid::new(&blocks, &doors, spacing)?;

@@ -228,6 +228,12 @@ pub struct LevelOutcome {
 /// writes the outputs.
 pub fn run(req: &LevelRequest) -> Result<LevelOutcome, LevelError> {
     let level = Level::read(&req.spec)?;
+    if let Some(opts) = &req.export {
+        // A bad export is refused before the solve, not after it.
+        export_dir(req)?;
+        opts.check(&level)
+            .map_err(|e| LevelError::InFile { path: req.spec.display().to_string(), source: Box::new(e) })?;
+    }
     let mut outcome = solve_level(&level, req)?;
     if let Some(dir) = &req.out {
         outcome.files = output::write(dir, &level, &outcome)?;
@@ -246,16 +252,20 @@ fn export(
     opts: &bridge::BridgeOptions,
 ) -> Result<Vec<PathBuf>, LevelError> {
     let path = req.spec.display().to_string();
-    let dir = req.out.as_ref().ok_or_else(|| LevelError::Field {
-        field: "out".into(),
-        reason: "the export needs an output directory".into(),
-    })?;
+    let dir = export_dir(req)?;
     let Some(layout) = outcome.layouts.first() else {
         return Err(LevelError::NoLayout { path, status: outcome.status.as_str().into() });
     };
     let name = req.spec.file_stem().map_or("level".into(), |s| s.to_string_lossy().into_owned());
     let b = bridge::bridge(level, layout, &name, opts).map_err(|e| LevelError::InFile { path, source: Box::new(e) })?;
     bridge::write(dir, &b)
+}
+
+/// The output directory an export writes into.
+fn export_dir(req: &LevelRequest) -> Result<&PathBuf, LevelError> {
+    req.out
+        .as_ref()
+        .ok_or_else(|| LevelError::Field { field: "out".into(), reason: "the export needs an output directory".into() })
 }
 
 /// Lays out a checked level (no files).
