@@ -156,13 +156,6 @@ impl LevelSpec {
         toml::from_str(text).map_err(|e| LevelError::Toml(e.to_string()))
     }
 
-    /// Reads and parses a file.
-    pub fn read(path: &Path) -> Result<LevelSpec, LevelError> {
-        let text = std::fs::read_to_string(path)
-            .map_err(|e| LevelError::Io { path: path.display().to_string(), reason: e.to_string() })?;
-        Self::from_toml(&text)
-    }
-
     /// Checks the spec and resolves names to ids.
     pub fn resolve(&self) -> Result<Level, LevelError> {
         let w = self.door_width;
@@ -348,9 +341,10 @@ pub fn edge_len(poly: &[Pt], i: usize) -> f64 {
 impl Level {
     /// Reads, parses and checks a level file; errors name the file.
     pub fn read(path: &Path) -> Result<Level, LevelError> {
-        LevelSpec::read(path)
-            .and_then(|s| s.resolve())
-            .map_err(|e| LevelError::InFile { path: path.display().to_string(), source: Box::new(e) })
+        let name = path.display().to_string();
+        let text =
+            std::fs::read_to_string(path).map_err(|e| LevelError::Io { path: name.clone(), reason: e.to_string() })?;
+        Self::from_toml(&text).map_err(|e| LevelError::InFile { path: name, source: Box::new(e) })
     }
 
     /// Parses and checks TOML text.
