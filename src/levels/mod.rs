@@ -12,6 +12,7 @@ pub mod anneal;
 pub mod bridge;
 pub mod cspace;
 pub mod exact;
+pub mod generate;
 pub mod geometry;
 pub mod milp;
 pub mod output;
