@@ -1,6 +1,6 @@
 //! The `netspec` command-line tool: a thin layer over the library.
 
-use anyhow::Result;
+use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
 use netspec::pipeline::Method;
 use netspec::solvers::SolverKind;
@@ -255,7 +255,7 @@ enum Command {
     Level {
         /// The level file.
         spec: PathBuf,
-        /// Method: the paper's annealer, the exact MILP, or both (annealed layouts as MIP starts).
+        /// Method: the paper's annealer, the exact MILP, or both side by side (the first to answer stops the other).
         #[arg(long, value_enum, default_value = "both")]
         method: LevelMethod,
         /// Seed of the annealer.
@@ -270,7 +270,7 @@ enum Command {
         /// Backend of the exact model (default: highs when compiled in).
         #[arg(long)]
         solver: Option<SolverKind>,
-        /// Seconds per method.
+        /// Seconds for the whole command: both methods, the proof and its explanation.
         #[arg(long, value_name = "SECONDS", default_value_t = 60.0)]
         time_limit: f64,
         /// Solver threads.
@@ -296,6 +296,19 @@ enum Command {
         #[arg(long, value_name = "R", requires = "export_spec")]
         coverage: Option<f64>,
     },
+    /// Write a level file of unit squares for a graph family: `path:N`, `cycle:N`, `ladder:N`
+    /// (2 × N), `grid:RxC`, `caterpillar:NxL` (a spine of N, L legs each), `star:N`, `tree:N`
+    /// (complete binary); `+triangle` adds an edge that closes a triangle.
+    LevelGen {
+        /// The family, e.g. `grid:10x10` or `grid:10x10+triangle`.
+        family: String,
+        /// The door width.
+        #[arg(long, default_value_t = 0.5)]
+        door_width: f64,
+        /// Write here instead of standard output.
+        #[arg(long, value_name = "FILE")]
+        out: Option<PathBuf>,
+    },
     /// Convert a model between MPS and LP (formats chosen by extension; `.gz` compressed).
     Convert {
         /// Input file (`.mps`, `.lp`, `.mps.gz` or `.lp.gz`).
@@ -318,7 +331,7 @@ enum LevelMethod {
     Anneal,
     /// The exact placement MILP.
     Milp,
-    /// The annealer, then the MILP with its layouts as MIP starts.
+    /// Both side by side on two threads; the first answer stops the other.
     Both,
 }
 
@@ -530,6 +543,18 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 export: export_spec.then_some(netspec::levels::bridge::BridgeOptions { spacing, entrance, coverage }),
                 seeds: seeds as usize,
             })
+        }
+        Command::LevelGen { family, door_width, out } => {
+            let g = netspec::levels::generate::Generated::parse(&family)?;
+            if !(door_width > 0.0 && door_width <= 1.0) {
+                anyhow::bail!("--door-width must be in (0, 1] for unit squares, got {door_width}");
+            }
+            let text = g.to_toml(door_width);
+            match out {
+                Some(path) => std::fs::write(&path, text).with_context(|| format!("writing {}", path.display()))?,
+                None => print!("{text}"),
+            }
+            Ok(ExitCode::SUCCESS)
         }
         Command::Convert { input, output } => {
             let c = netspec::io::convert(&input, &output)?;

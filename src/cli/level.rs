@@ -23,10 +23,12 @@ pub fn run(req: LevelRequest) -> Result<ExitCode> {
     println!("cspaces    {:.3} s", out.cspace_time);
     if let Some(a) = &out.anneal {
         println!(
-            "anneal     {} layout(s) · {} chains · {} trials · stopped: {}{}",
+            "anneal     {} layout(s) · {} chains ({} placed exactly) · {} trials · {} restart(s) · stopped: {}{}",
             a.layouts.len(),
             a.chains.len(),
+            a.exact_extensions,
             a.trials,
+            a.restarts,
             a.stopped,
             a.time_to_first.map_or(String::new(), |t| format!(" · first layout {t:.3} s")),
         );

@@ -8,20 +8,33 @@
 //!
 //! The planar embedding the paper takes its faces from is replaced by shortest cycles through
 //! each edge (on a planar graph, the inner faces are such cycles); the embedding only orders
-//! the chains. Every layout returned has passed [`super::validate::validate`].
+//! the chains. Three additions make it finish where a layout exists:
+//! - a chain is first placed exactly ([`super::construct`]): each node in the intersection of
+//!   all its placed neighbours' configuration spaces, clear of every placed block, by a
+//!   depth-first search with look-ahead — where a cycle closes, that is the exact point; the
+//!   paper's annealing runs from the deepest placement when this fails;
+//! - long chains are laid out in pieces of at most [`AnnealOptions::piece`] nodes;
+//! - extensions are made when the stack needs them (each popped partial layout is extended
+//!   again, with other random choices, up to [`AnnealOptions::partial_variations`] times), and
+//!   an exhausted stack restarts with the next cycle first and twice the variations, until
+//!   `count` layouts, the time limit, or the stop request.
+//!
+//! Every layout returned has passed [`super::validate::validate`].
 
+use super::construct::{self, Placer, Slot};
 use super::cspace::{clip_out, intersect, CSpaces, Segment};
-use super::geometry::{self, norm, sub, Pt, AREA_TOL, LEN_TOL};
+use super::geometry::{self, norm, sub, Pt, AREA_TOL};
 use super::spec::{BlockId, Level, NodeId};
-use super::validate::{shared_wall, validate};
+use super::validate::validate;
 use super::{Layout, Placement};
+use crate::solvers::Interrupt;
 use rand::rngs::Xoshiro256PlusPlus;
 use rand::{RngExt, SeedableRng};
 use serde::Serialize;
 use std::collections::{BTreeSet, VecDeque};
 use std::time::Instant;
 
-/// Settings of the annealer (defaults: the paper's).
+/// Settings of the annealer (defaults: the paper's schedule).
 #[derive(Clone, Debug)]
 pub struct AnnealOptions {
     /// Seed of every random choice.
@@ -38,8 +51,17 @@ pub struct AnnealOptions {
     pub t0: f64,
     /// Final temperature.
     pub t1: f64,
-    /// Partial layouts kept per chain extension.
+    /// Extensions made of one partial layout before the search backtracks past it.
     pub partial_variations: usize,
+    /// Longest piece a chain is laid out in (nodes).
+    pub piece: usize,
+    /// Placements the exact start may try per chain node.
+    pub place_budget: usize,
+    /// Restarts once the stack runs empty (each with the next cycle first and twice the
+    /// variations); `usize::MAX` for as many as the time limit allows.
+    pub restarts: usize,
+    /// A request to stop (another method has settled the question).
+    pub stop: Option<Interrupt>,
 }
 
 impl Default for AnnealOptions {
@@ -53,6 +75,10 @@ impl Default for AnnealOptions {
             t0: 0.6,
             t1: 0.2,
             partial_variations: 15,
+            piece: 12,
+            place_budget: 200,
+            restarts: usize::MAX,
+            stop: None,
         }
     }
 }
@@ -63,7 +89,7 @@ pub struct AnnealReport {
     /// Distinct full layouts, each validated.
     #[serde(skip)]
     pub layouts: Vec<Layout>,
-    /// The chains, in processing order (node names).
+    /// The chains (pieces), in processing order (node names), of the last start.
     pub chains: Vec<Vec<String>>,
     /// Seconds to the first layout.
     pub time_to_first: Option<f64>,
@@ -75,7 +101,12 @@ pub struct AnnealReport {
     pub trials_to_last: u64,
     /// Partial layouts popped from the stack (backtracks included).
     pub extensions: usize,
-    /// Why the search stopped: `count`, `exhausted` (the stack ran empty) or `time limit`.
+    /// Chain extensions the exact start completed without annealing.
+    pub exact_extensions: usize,
+    /// Restarts after the stack ran empty.
+    pub restarts: usize,
+    /// Why the search stopped: `count`, `exhausted` (the stack ran empty and no restart was
+    /// left), `time limit` or `stopped` (another method answered).
     pub stopped: String,
 }
 
@@ -105,19 +136,14 @@ fn shortest_cycle(adj: &[Vec<NodeId>], a: NodeId, b: NodeId) -> Option<Vec<NodeI
     None
 }
 
-/// The chains: node sets in processing order. The first is the shortest cycle; each next one
-/// is the shortest cycle touching the laid-out nodes that brings new nodes (its new nodes);
-/// the nodes left come in breadth-first order, grouped into paths. Fixed nodes, if any, come
-/// before all of them as a chain of their own (their blocks are chosen before anything is laid
-/// out where they must go), and every later chain then touches what is laid out.
-pub fn chains(level: &Level) -> Vec<Vec<NodeId>> {
-    let adj = level.adjacency(&level.all_edges());
+/// The distinct shortest cycles through the edges, shortest first (each rotated to its least
+/// node, that node's smaller neighbour next).
+fn cycles(level: &Level, adj: &[Vec<NodeId>]) -> Vec<Vec<NodeId>> {
     let mut cycles: Vec<Vec<NodeId>> = level
         .edges
         .iter()
-        .filter_map(|&(a, b)| shortest_cycle(&adj, a, b))
+        .filter_map(|&(a, b)| shortest_cycle(adj, a, b))
         .map(|mut c| {
-            // One representative per cycle: rotated to its least node, that node's smaller neighbour next.
             let i = c.iter().enumerate().min_by_key(|x| x.1).map_or(0, |x| x.0);
             c.rotate_left(i);
             if c.len() > 2 && c[c.len() - 1] < c[1] {
@@ -128,6 +154,28 @@ pub fn chains(level: &Level) -> Vec<Vec<NodeId>> {
         .collect();
     cycles.sort_by(|x, y| x.len().cmp(&y.len()).then(x.cmp(y)));
     cycles.dedup();
+    cycles
+}
+
+/// The chains: node sets in processing order. The first is the shortest cycle; each next one
+/// is the shortest cycle touching the laid-out nodes that brings new nodes (its new nodes, in
+/// cycle order); the nodes left come in breadth-first order from what is laid out. Fixed nodes,
+/// if any, come before all of them as a chain of their own (their blocks are chosen before
+/// anything is laid out where they must go), and every later chain then touches what is laid
+/// out.
+pub fn chains(level: &Level) -> Vec<Vec<NodeId>> {
+    chains_from(level, 0)
+}
+
+/// [`chains`] with the `first`-th cycle (modulo their number) laid out first.
+pub fn chains_from(level: &Level, first: usize) -> Vec<Vec<NodeId>> {
+    let adj = level.adjacency(&level.all_edges());
+    let mut cycles = cycles(level, &adj);
+    if !cycles.is_empty() {
+        let k = first % cycles.len();
+        let c = cycles.remove(k);
+        cycles.insert(0, c);
+    }
     let mut placed: Vec<bool> = level.nodes.iter().map(|n| n.position.is_some()).collect();
     let fixed: Vec<NodeId> = (0..level.nodes.len() as u32).map(NodeId).filter(|n| placed[n.0 as usize]).collect();
     let mut out: Vec<Vec<NodeId>> = if fixed.is_empty() { Vec::new() } else { vec![fixed] };
@@ -144,27 +192,45 @@ pub fn chains(level: &Level) -> Vec<Vec<NodeId>> {
         }
         out.push(new);
     }
-    // Trees: breadth-first from what is placed (or from the first node), as paths.
     if out.is_empty() {
         placed[0] = true;
         out.push(vec![NodeId(0)]);
     }
-    loop {
-        let start = (0..level.nodes.len())
-            .filter(|&i| placed[i])
-            .flat_map(|i| adj[i].iter().copied())
-            .find(|n| !placed[n.0 as usize]);
-        let Some(mut n) = start else { break };
-        let mut path = Vec::new();
-        loop {
-            placed[n.0 as usize] = true;
-            path.push(n);
-            match adj[n.0 as usize].iter().copied().find(|m| !placed[m.0 as usize]) {
-                Some(m) => n = m,
-                None => break,
+    // Trees: breadth-first from what is placed.
+    let mut q: VecDeque<NodeId> = (0..level.nodes.len() as u32).map(NodeId).filter(|n| placed[n.0 as usize]).collect();
+    let mut rest = Vec::new();
+    while let Some(u) = q.pop_front() {
+        for &v in &adj[u.0 as usize] {
+            if !placed[v.0 as usize] {
+                placed[v.0 as usize] = true;
+                rest.push(v);
+                q.push_back(v);
             }
         }
-        out.push(path);
+    }
+    if !rest.is_empty() {
+        out.push(rest);
+    }
+    out
+}
+
+/// Chains regrouped into pieces of about `size` nodes: long chains cut into consecutive
+/// pieces of at most `size`, short consecutive ones joined while the piece stays within
+/// `size` (each piece touches what the pieces before it lay out). The fixed nodes' chain stays
+/// a piece of its own.
+pub fn pieces(level: &Level, chains: Vec<Vec<NodeId>>, size: usize) -> Vec<Vec<NodeId>> {
+    let size = size.max(1);
+    let mut out: Vec<Vec<NodeId>> = Vec::new();
+    let mut open = false;
+    for (k, c) in chains.into_iter().enumerate() {
+        let fixed = k == 0 && c.iter().all(|n| level.nodes[n.0 as usize].position.is_some());
+        for part in c.chunks(size) {
+            match out.last_mut() {
+                Some(last) if open && !fixed && last.len() + part.len() <= size => last.extend_from_slice(part),
+                _ => out.push(part.to_vec()),
+            }
+            open = !fixed;
+        }
     }
     out
 }
@@ -178,49 +244,28 @@ struct Shapes {
     obstacles: Vec<(Vec<[Pt; 3]>, [f64; 4])>,
     sigma: f64,
     threshold: f64,
+    /// The largest distance from a block's origin to one of its vertices.
+    extent: f64,
 }
 
 impl Shapes {
     fn new(level: &Level) -> Shapes {
         let tris = level.blocks.iter().map(|b| geometry::triangulate(&b.polygon)).collect();
-        let centre = level
-            .blocks
+        let centre = level.blocks.iter().map(|b| construct::block_centre(&b.polygon)).collect();
+        let boxes = level.blocks.iter().map(|b| construct::bounding_box(&b.polygon)).collect();
+        let obstacles = level
+            .obstacles
             .iter()
-            .map(|b| {
-                let n = b.polygon.len() as f64;
-                b.polygon.iter().fold([0.0, 0.0], |a, p| [a[0] + p[0] / n, a[1] + p[1] / n])
-            })
+            .map(|o| (geometry::triangulate(&o.polygon), construct::bounding_box(&o.polygon)))
             .collect();
-        let boxes = level.blocks.iter().map(|b| bounding_box(&b.polygon)).collect();
-        let obstacles =
-            level.obstacles.iter().map(|o| (geometry::triangulate(&o.polygon), bounding_box(&o.polygon))).collect();
         let mean_area =
             level.blocks.iter().map(|b| geometry::signed_area(&b.polygon)).sum::<f64>() / level.blocks.len() as f64;
+        let extent = level.blocks.iter().flat_map(|b| b.polygon.iter().map(|&p| norm(p))).fold(0.0, f64::max);
         // The paper's σ: a hundred times the average block area. Two layouts differ when their
         // centred block centres move by more than a tenth of that area in all (squared).
-        Shapes { tris, centre, boxes, obstacles, sigma: 100.0 * mean_area, threshold: 0.1 * mean_area }
+        Shapes { tris, centre, boxes, obstacles, sigma: 100.0 * mean_area, threshold: 0.1 * mean_area, extent }
     }
 }
-
-/// `[xmin, xmax, ymin, ymax]` of a polygon.
-fn bounding_box(poly: &[Pt]) -> [f64; 4] {
-    let f = |axis: usize, max: bool| {
-        let it = poly.iter().map(|p| p[axis]);
-        if max {
-            it.fold(f64::NEG_INFINITY, f64::max)
-        } else {
-            it.fold(f64::INFINITY, f64::min)
-        }
-    };
-    [f(0, false), f(0, true), f(1, false), f(1, true)]
-}
-
-/// Whether two boxes are apart (touching counts as apart).
-fn boxes_apart(a: [f64; 4], b: [f64; 4]) -> bool {
-    a[1] <= b[0] || b[1] <= a[0] || a[3] <= b[2] || b[3] <= a[2]
-}
-
-type Slot = Option<(BlockId, Pt)>;
 
 /// A valid extension and when it was found.
 struct Found {
@@ -233,17 +278,22 @@ struct Found {
 struct Search<'a> {
     level: &'a Level,
     cs: &'a CSpaces,
+    placer: Placer<'a>,
     shapes: Shapes,
     adj: Vec<Vec<NodeId>>,
     rng: Xoshiro256PlusPlus,
     o: &'a AnnealOptions,
     t0: Instant,
     trials: u64,
+    exact_extensions: usize,
+    /// The nodes the current chain's energy is counted over: its members and the placed
+    /// nodes near enough to touch them.
+    local: Vec<usize>,
 }
 
 impl Search<'_> {
     fn overlap(&self, a: (BlockId, Pt), b: (BlockId, Pt)) -> f64 {
-        if boxes_apart(self.placed_box(a), self.placed_box(b)) {
+        if construct::boxes_apart(self.placed_box(a), self.placed_box(b)) {
             return 0.0;
         }
         geometry::overlap_area(&self.placed_tris(a), &self.placed_tris(b))
@@ -264,7 +314,7 @@ impl Search<'_> {
         let mut tris = None;
         let mut area = 0.0;
         for (ot, ob) in &self.shapes.obstacles {
-            if boxes_apart(bx, *ob) {
+            if construct::boxes_apart(bx, *ob) {
                 continue;
             }
             let ta = tris.get_or_insert_with(|| self.placed_tris(a));
@@ -276,23 +326,18 @@ impl Search<'_> {
         area
     }
 
-    fn in_contact(&self, a: (BlockId, Pt), b: (BlockId, Pt)) -> bool {
-        let pa = geometry::translate(&self.level.blocks[a.0 .0 as usize].polygon, a.1);
-        let pb = geometry::translate(&self.level.blocks[b.0 .0 as usize].polygon, b.1);
-        shared_wall(&pa, &pb).is_some_and(|w| norm(sub(w[1], w[0])) >= self.level.door_width - LEN_TOL)
-    }
-
     fn centre(&self, a: (BlockId, Pt)) -> Pt {
         geometry::add(self.shapes.centre[a.0 .0 as usize], a.1)
     }
 
-    /// Node `i`'s share of the energy terms: overlap area with every placed block and every
-    /// obstacle, squared centre distance to every placed neighbour not in door contact.
+    /// Node `i`'s share of the energy terms: overlap area with every placed block near the
+    /// chain and every obstacle, squared centre distance to every placed neighbour not in
+    /// door contact.
     fn node_terms(&self, s: &[Slot], i: usize, at: (BlockId, Pt)) -> (f64, f64) {
         let mut area = self.obstacle_area(at);
-        for (j, sj) in s.iter().enumerate() {
-            if let (true, Some(b)) = (j != i, sj) {
-                let x = self.overlap(at, *b);
+        for &j in &self.local {
+            if let (true, Some(b)) = (j != i, s[j]) {
+                let x = self.overlap(at, b);
                 if x > AREA_TOL {
                     area += x;
                 }
@@ -301,7 +346,7 @@ impl Search<'_> {
         let mut dist = 0.0;
         for n in &self.adj[i] {
             if let Some(b) = s[n.0 as usize] {
-                if !self.in_contact(at, b) {
+                if !self.placer.in_contact(at, b) {
                     let d = sub(self.centre(at), self.centre(b));
                     dist += geometry::dot(d, d);
                 }
@@ -310,13 +355,14 @@ impl Search<'_> {
         (area, dist)
     }
 
+    /// The energy terms over the local nodes (the partial layout the chain extends has none).
     fn totals(&self, s: &[Slot]) -> (f64, f64) {
         let (mut a, mut d) = (0.0, 0.0);
-        for (i, si) in s.iter().enumerate() {
-            if let Some(x) = si {
-                let (ai, di) = self.node_terms(s, i, *x);
+        for &i in &self.local {
+            if let Some(x) = s[i] {
+                let (ai, di) = self.node_terms(s, i, x);
                 // Block pairs are counted from both ends, obstacles once.
-                let ob = self.obstacle_area(*x);
+                let ob = self.obstacle_area(x);
                 a += (ai - ob) / 2.0 + ob;
                 d += di / 2.0;
             }
@@ -400,23 +446,28 @@ impl Search<'_> {
         Found { slots: s.to_vec(), seconds: self.t0.elapsed().as_secs_f64(), trials: self.trials }
     }
 
-    fn out_of_time(&self) -> bool {
-        self.t0.elapsed().as_secs_f64() >= self.o.time_limit
+    fn stop_requested(&self) -> bool {
+        self.o.stop.as_ref().is_some_and(Interrupt::is_triggered)
     }
 
-    /// Breadth-first placement of the chain's nodes, each at the lowest-energy sample.
-    fn initialise(&mut self, s: &mut [Slot], chain: &[NodeId]) {
-        let mut order: Vec<NodeId> = Vec::new();
+    fn out_of_time(&self) -> bool {
+        self.t0.elapsed().as_secs_f64() >= self.o.time_limit || self.stop_requested()
+    }
+
+    /// The chain's nodes breadth-first from what is placed (members the search does not reach
+    /// — fixed nodes apart from each other — last).
+    fn order(&mut self, s: &[Slot], chain: &[NodeId]) -> Vec<NodeId> {
         let mut q: VecDeque<NodeId> = chain
             .iter()
             .copied()
             .filter(|n| self.adj[n.0 as usize].iter().any(|m| s[m.0 as usize].is_some()))
             .collect();
         if q.is_empty() {
-            q.push_back(self.pick(chain));
+            q.push_back(chain[0]);
         }
         let members: BTreeSet<NodeId> = chain.iter().copied().collect();
         let mut seen: BTreeSet<NodeId> = q.iter().copied().collect();
+        let mut order = Vec::new();
         while let Some(n) = q.pop_front() {
             order.push(n);
             for &m in &self.adj[n.0 as usize] {
@@ -425,10 +476,44 @@ impl Search<'_> {
                 }
             }
         }
-        // Members the search did not reach (fixed nodes apart from each other) come last.
         order.extend(chain.iter().copied().filter(|n| !seen.contains(n)));
-        for n in order {
+        order
+    }
+
+    /// The chain's members and the placed nodes within reach of them: the chain can lay its
+    /// nodes at most one contact step per node from its placed neighbours.
+    fn set_local(&mut self, s: &[Slot], chain: &[NodeId]) {
+        let members: BTreeSet<usize> = chain.iter().map(|n| n.0 as usize).collect();
+        let anchors: Vec<Pt> = chain
+            .iter()
+            .flat_map(|n| self.adj[n.0 as usize].iter())
+            .filter_map(|m| s[m.0 as usize])
+            .map(|a| self.centre(a))
+            .chain(chain.iter().filter_map(|n| self.level.nodes[n.0 as usize].position))
+            .collect();
+        let radius = (chain.len() as f64 + 2.0) * (self.placer_step() + 2.0 * self.shapes.extent);
+        self.local = (0..s.len())
+            .filter(|j| {
+                members.contains(j)
+                    || s[*j].is_some_and(|a| {
+                        let c = self.centre(a);
+                        anchors.is_empty() || anchors.iter().any(|&p| norm(sub(c, p)) <= radius)
+                    })
+            })
+            .collect();
+    }
+
+    fn placer_step(&self) -> f64 {
+        self.cs.reach * std::f64::consts::SQRT_2
+    }
+
+    /// The paper's start: breadth-first, each node at the lowest-energy of ten samples.
+    fn initialise(&mut self, s: &mut [Slot], order: &[NodeId]) {
+        for &n in order {
             let i = n.0 as usize;
+            if s[i].is_some() {
+                continue;
+            }
             let mut best: Option<((BlockId, Pt), f64)> = None;
             for _ in 0..10 {
                 let b = self.pick(&self.level.nodes[i].blocks.clone());
@@ -469,38 +554,96 @@ impl Search<'_> {
         [right - self.shapes.boxes[b.0 as usize][0] + 1.0, 0.0]
     }
 
-    /// Extends the partial layout `s` by `chain` (Pseudocode 2): valid extensions that differ,
-    /// up to `want`, each with the seconds and trials at which it was found.
-    fn add_chain(&mut self, s0: &[Slot], chain: &[NodeId], want: usize) -> Vec<Found> {
-        let mut s = s0.to_vec();
-        self.initialise(&mut s, chain);
-        let (mut a, mut d) = self.totals(&s);
+    /// Exact placements of the chain (up to `want` that differ), each a valid extension.
+    /// Returns them and the deepest partial placement of the last failed try.
+    fn exact_starts(&mut self, s0: &[Slot], order: &[NodeId], want: usize) -> (Vec<Found>, Vec<Slot>) {
         let mut found: Vec<Found> = Vec::new();
-        let members: BTreeSet<NodeId> = chain.iter().copied().collect();
-        let ratio = (self.o.t1 / self.o.t0).powf(1.0 / (self.o.cycles.max(2) - 1) as f64);
-        let (mut t, mut k_sum, mut k_n) = (self.o.t0, 0.0, 0usize);
-        if a <= AREA_TOL && d == 0.0 {
-            found.push(self.found(&s));
-            if found.len() >= want {
-                return found;
+        let mut deepest = s0.to_vec();
+        let budget = self.o.place_budget.saturating_mul(order.len()).max(1);
+        // A few tries per layout wanted: ends, middles and straight-on points repeat often.
+        for _ in 0..want.saturating_mul(3).max(2) {
+            if self.out_of_time() {
+                break;
+            }
+            let mut s = s0.to_vec();
+            let stop = self.o.stop.clone();
+            let t0 = self.t0;
+            let limit = self.o.time_limit;
+            let stop_fn =
+                move || stop.as_ref().is_some_and(Interrupt::is_triggered) || t0.elapsed().as_secs_f64() >= limit;
+            match self.placer.place(&mut s, order, &mut self.rng, budget, &stop_fn) {
+                Ok(()) => {
+                    if found.iter().all(|f| self.distinct(&f.slots, &s)) {
+                        found.push(self.found(&s));
+                        if found.len() >= want {
+                            break;
+                        }
+                    }
+                }
+                Err(partial) => {
+                    deepest = partial;
+                    break;
+                }
             }
         }
+        (found, deepest)
+    }
+
+    /// Extends the partial layout `s0` by `chain` (Pseudocode 2): valid extensions that differ,
+    /// up to `want`, each with the seconds and trials at which it was found — exact placements
+    /// first, then the paper's annealing from the deepest one.
+    fn add_chain(&mut self, s0: &[Slot], chain: &[NodeId], want: usize) -> Vec<Found> {
+        self.set_local(s0, chain);
+        let order = self.order(s0, chain);
+        let (mut found, deepest) = self.exact_starts(s0, &order, want);
+        if !found.is_empty() {
+            self.exact_extensions += 1;
+        }
+        if found.len() >= want || self.out_of_time() {
+            return found;
+        }
+        let mut s = deepest;
+        self.initialise(&mut s, &order);
+        self.anneal_chain(&mut s, chain, want, &mut found);
+        found
+    }
+
+    /// The paper's annealing of the chain from `s`, adding valid extensions that differ to
+    /// `found` until `want`.
+    fn anneal_chain(&mut self, s: &mut [Slot], chain: &[NodeId], want: usize, found: &mut Vec<Found>) {
+        let (mut a, mut d) = self.totals(s);
+        let members: BTreeSet<usize> = chain.iter().map(|n| n.0 as usize).collect();
+        let ratio = (self.o.t1 / self.o.t0).powf(1.0 / (self.o.cycles.max(2) - 1) as f64);
+        let (mut t, mut k_sum, mut k_n) = (self.o.t0, 0.0, 0usize);
+        let mut moved_earlier: BTreeSet<usize> = BTreeSet::new();
+        if a <= AREA_TOL && d == 0.0 && found.iter().all(|f| self.distinct(&f.slots, s)) {
+            found.push(self.found(s));
+            if found.len() >= want {
+                return;
+            }
+        }
+        let mut movable: Vec<usize> = Vec::new();
         for _ in 0..self.o.cycles {
-            for _ in 0..self.o.trials {
+            for trial in 0..self.o.trials {
                 self.trials += 1;
                 if self.trials.is_multiple_of(256) && self.out_of_time() {
-                    return found;
+                    return;
                 }
-                // A chain node, or an earlier node with energy of its own.
-                let movable: Vec<usize> = (0..s.len())
-                    .filter(|&i| {
-                        s[i].is_some()
-                            && (members.contains(&NodeId(i as u32)) || {
-                                let (x, y) = self.node_terms(&s, i, s[i].unwrap_or((BlockId(0), [0.0, 0.0])));
-                                x + y > 0.0
-                            })
-                    })
-                    .collect();
+                // A chain node, or an earlier node near the chain with energy of its own.
+                if trial % 50 == 0 {
+                    movable = self
+                        .local
+                        .iter()
+                        .copied()
+                        .filter(|&i| {
+                            s[i].is_some()
+                                && (members.contains(&i) || {
+                                    let (x, y) = self.node_terms(s, i, s[i].unwrap_or((BlockId(0), [0.0, 0.0])));
+                                    x + y > 0.0
+                                })
+                        })
+                        .collect();
+                }
                 if movable.is_empty() {
                     break;
                 }
@@ -509,9 +652,9 @@ impl Search<'_> {
                 let blocks = self.level.nodes[i].blocks.clone();
                 // Positions 7 : block changes 3.
                 let b = if blocks.len() > 1 && self.rng.random::<f64>() < 0.3 { self.pick(&blocks) } else { old.0 };
-                let Some(p) = self.sample_clear(&s, i, b) else { continue };
-                let (ao, dold) = self.node_terms(&s, i, old);
-                let (an, dn) = self.node_terms(&s, i, (b, p));
+                let Some(p) = self.sample_clear(s, i, b) else { continue };
+                let (ao, dold) = self.node_terms(s, i, old);
+                let (an, dn) = self.node_terms(s, i, (b, p));
                 let (a2, d2) = ((a - ao + an).max(0.0), (d - dold + dn).max(0.0));
                 let de = self.energy(a2, d2) - self.energy(a, d);
                 let accept = de < 0.0 || {
@@ -524,54 +667,87 @@ impl Search<'_> {
                     continue;
                 }
                 s[i] = Some((b, p));
+                if !members.contains(&i) {
+                    moved_earlier.insert(i);
+                }
                 (a, d) = (a2, d2);
                 if a2 <= AREA_TOL && dn == 0.0 && d2 < 1e-12 {
-                    // Recount to be sure (the running sums drift).
-                    let (ac, dc) = self.totals(&s);
+                    // Recount to be sure (the running sums drift), and check moved earlier
+                    // nodes against every placed block, near the chain or not.
+                    let (ac, dc) = self.totals(s);
                     (a, d) = (ac, dc);
-                    if ac <= AREA_TOL && dc == 0.0 && found.iter().all(|f| self.distinct(&f.slots, &s)) {
-                        found.push(self.found(&s));
+                    let clear = moved_earlier.iter().all(|&j| s[j].is_some_and(|x| self.placer.fits(s, j, x)));
+                    if ac <= AREA_TOL && dc == 0.0 && clear && found.iter().all(|f| self.distinct(&f.slots, s)) {
+                        found.push(self.found(s));
                         if found.len() >= want {
-                            return found;
+                            return;
                         }
                     }
                 }
             }
             t *= ratio;
         }
-        found
     }
 }
 
-/// Lays out `level` with the paper's method.
+/// Lays out `level` with the paper's method (and the additions of the module docs).
 pub fn anneal(level: &Level, cs: &CSpaces, o: &AnnealOptions) -> AnnealReport {
+    let placer = Placer::new(level, cs);
     let mut search = Search {
         level,
         cs,
+        adj: placer.adjacency().to_vec(),
+        placer,
         shapes: Shapes::new(level),
-        adj: level.adjacency(&level.all_edges()),
         rng: Xoshiro256PlusPlus::seed_from_u64(o.seed),
         o,
         t0: Instant::now(),
         trials: 0,
+        exact_extensions: 0,
+        local: Vec::new(),
     };
-    let chains = chains(level);
-    let mut rep = AnnealReport {
-        chains: chains.iter().map(|c| c.iter().map(|&n| level.node_name(n).to_string()).collect()).collect(),
-        ..AnnealReport::default()
-    };
+    let mut rep = AnnealReport::default();
     let mut full: Vec<Vec<Slot>> = Vec::new();
-    let mut stack: Vec<(Vec<Slot>, usize)> = vec![(vec![None; level.nodes.len()], 0)];
-    rep.stopped = "exhausted".into();
-    while let Some((s, k)) = stack.pop() {
-        if search.out_of_time() {
-            rep.stopped = "time limit".into();
+    let mut variations = o.partial_variations.max(1);
+    loop {
+        let chains = pieces(level, chains_from(level, rep.restarts), o.piece);
+        rep.chains = chains.iter().map(|c| c.iter().map(|&n| level.node_name(n).to_string()).collect()).collect();
+        rep.stopped = search_stack(&mut search, &chains, variations, &mut full, &mut rep);
+        if rep.stopped != "exhausted" || rep.restarts >= o.restarts {
             break;
+        }
+        rep.restarts += 1;
+        variations = variations.saturating_mul(2);
+    }
+    rep.trials = search.trials;
+    rep.exact_extensions = search.exact_extensions;
+    rep
+}
+
+/// One pass over the stack of partial layouts: each popped layout is extended by its next
+/// chain (one extension; the layout goes back on the stack for another until `variations`),
+/// full layouts are validated and kept. Returns why it stopped.
+fn search_stack(
+    search: &mut Search,
+    chains: &[Vec<NodeId>],
+    variations: usize,
+    full: &mut Vec<Vec<Slot>>,
+    rep: &mut AnnealReport,
+) -> String {
+    let level = search.level;
+    let o = search.o;
+    let mut stack: Vec<(Vec<Slot>, usize, usize)> = vec![(vec![None; level.nodes.len()], 0, 0)];
+    while let Some((s, k, tries)) = stack.pop() {
+        if search.out_of_time() {
+            return if search.stop_requested() { "stopped".into() } else { "time limit".into() };
         }
         rep.extensions += 1;
         let last = k + 1 == chains.len();
-        let want = if last { o.count - full.len() } else { o.partial_variations };
+        let want = if last { o.count - full.len() } else { 1 };
         let ext = search.add_chain(&s, &chains[k], want);
+        if tries + 1 < variations {
+            stack.push((s, k, tries + 1));
+        }
         if last {
             for e in ext {
                 if full.iter().all(|f| search.distinct(f, &e.slots)) {
@@ -587,17 +763,14 @@ pub fn anneal(level: &Level, cs: &CSpaces, o: &AnnealOptions) -> AnnealReport {
                 }
             }
             if full.len() >= o.count {
-                rep.stopped = "count".into();
-                break;
+                return "count".into();
             }
         } else {
-            stack.extend(ext.into_iter().rev().map(|e| (e.slots, k + 1)));
+            stack.extend(ext.into_iter().rev().map(|e| (e.slots, k + 1, 0)));
         }
     }
-    rep.trials = search.trials;
-    rep
+    "exhausted".into()
 }
-
 fn to_layout(level: &Level, s: &[Slot]) -> Layout {
     Layout {
         nodes: s

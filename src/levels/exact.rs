@@ -10,7 +10,7 @@ use super::validate::validate;
 use super::{Layout, LevelError};
 use crate::explain::{deletion_filter, Verdict};
 use crate::milp::Tolerances;
-use crate::solvers::{SolveOptions, SolverKind, Termination};
+use crate::solvers::{Interrupt, SolveOptions, SolverKind, Termination};
 use serde::Serialize;
 use std::collections::BTreeSet;
 use std::time::Instant;
@@ -81,6 +81,8 @@ pub struct ExactOptions {
     pub threads: Option<u32>,
     /// Look for conflicting edges when infeasible.
     pub explain: bool,
+    /// A request to stop (another method has settled the question): every solve is handed it.
+    pub interrupt: Option<Interrupt>,
 }
 
 /// One solve's answer: the verdict, the checked point when there is one, and whether the MIP
@@ -98,9 +100,16 @@ fn solve_once(
     limit: f64,
     threads: Option<u32>,
     start: Option<Vec<f64>>,
+    interrupt: Option<&Interrupt>,
 ) -> Result<Answer, LevelError> {
     let solver = kind.instance()?;
-    let opts = SolveOptions { time_limit: Some(limit.max(0.01)), threads, mip_start: start, ..SolveOptions::default() };
+    let opts = SolveOptions {
+        time_limit: Some(limit.max(0.01)),
+        threads,
+        mip_start: start,
+        interrupt: interrupt.cloned(),
+        ..SolveOptions::default()
+    };
     let r = solver.solve(&lm.model, &opts)?;
     let accepted = r.mip_start.as_ref().map(|s| s.accepted);
     let verdict = match &r.termination {
@@ -144,9 +153,13 @@ pub fn solve(level: &Level, cs: &CSpaces, o: &ExactOptions, starts: &[Layout]) -
             rep.note = Some("time limit".into());
             break;
         }
+        if o.interrupt.as_ref().is_some_and(Interrupt::is_triggered) {
+            rep.note = Some("stopped".into());
+            break;
+        }
         let start = starts.get(rep.solves).map(|l| lm.encode(level, l));
         let Answer { verdict: v, point: x, start_accepted: accepted } =
-            solve_once(&lm, o.solver, left, o.threads, start)?;
+            solve_once(&lm, o.solver, left, o.threads, start, o.interrupt.as_ref())?;
         rep.solves += 1;
         if rep.start_accepted.is_none() {
             rep.start_accepted = accepted;
@@ -180,7 +193,8 @@ pub fn solve(level: &Level, cs: &CSpaces, o: &ExactOptions, starts: &[Layout]) -
                 break;
             }
             _ => {
-                rep.note = Some("time limit".into());
+                let stopped = o.interrupt.as_ref().is_some_and(Interrupt::is_triggered);
+                rep.note = Some(if stopped { "stopped" } else { "time limit" }.into());
                 break;
             }
         }
@@ -191,7 +205,7 @@ pub fn solve(level: &Level, cs: &CSpaces, o: &ExactOptions, starts: &[Layout]) -
         (true, false) => ExactStatus::Unknown,
     };
     if rep.status == ExactStatus::Infeasible && o.explain {
-        let left = (o.time_limit - t0.elapsed().as_secs_f64()).max(1.0);
+        let left = (o.time_limit - t0.elapsed().as_secs_f64()).max(0.0);
         rep.conflict = Some(conflict(level, cs, o, left)?);
     }
     Ok(rep)
@@ -223,7 +237,7 @@ fn check_edges(
         let part_edges: Vec<EdgeId> =
             edges.iter().copied().filter(|e| nodes.binary_search(&level.edges[e.0 as usize].0).is_ok()).collect();
         let lm = milp::build(level, cs, &Part { nodes, edges: part_edges });
-        match solve_once(&lm, o.solver, limit, o.threads, None)?.verdict {
+        match solve_once(&lm, o.solver, limit, o.threads, None, o.interrupt.as_ref())?.verdict {
             Verdict::Infeasible => return Ok(Verdict::Infeasible),
             Verdict::Unknown => verdict = Verdict::Unknown,
             Verdict::Feasible => {}
@@ -241,7 +255,7 @@ fn conflict(level: &Level, cs: &CSpaces, o: &ExactOptions, budget: f64) -> Resul
     let mut error = None;
     let mut minimal = deletion_filter(&mut kept, members, |s| {
         let left = budget - t0.elapsed().as_secs_f64();
-        if left <= 0.05 || error.is_some() {
+        if left <= 0.05 || error.is_some() || o.interrupt.as_ref().is_some_and(Interrupt::is_triggered) {
             return Verdict::Unknown;
         }
         checks += 1;

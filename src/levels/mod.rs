@@ -10,6 +10,7 @@
 
 pub mod anneal;
 pub mod bridge;
+pub mod construct;
 pub mod cspace;
 pub mod exact;
 pub mod generate;
@@ -20,7 +21,7 @@ pub mod seeds;
 pub mod spec;
 pub mod validate;
 
-use crate::solvers::{SolverError, SolverKind};
+use crate::solvers::{Interrupt, SolverError, SolverKind};
 use geometry::Pt;
 use serde::Serialize;
 use spec::{BlockId, Level, NodeId};
@@ -142,7 +143,8 @@ pub enum Method {
     Anneal,
     /// The exact model.
     Milp,
-    /// The annealer, then the exact model with the annealed layouts as MIP starts.
+    /// The annealer and the exact model side by side; the first to settle the question stops
+    /// the other.
     Both,
 }
 
@@ -157,7 +159,7 @@ pub struct LevelRequest {
     pub count: usize,
     /// Backend of the exact model.
     pub solver: SolverKind,
-    /// Seconds per method.
+    /// Seconds for the whole command (configuration spaces, both methods, the checks).
     pub time_limit: f64,
     /// Threads for the backend.
     pub threads: Option<u32>,
@@ -269,56 +271,58 @@ fn export_dir(req: &LevelRequest) -> Result<&PathBuf, LevelError> {
         .ok_or_else(|| LevelError::Field { field: "out".into(), reason: "the export needs an output directory".into() })
 }
 
-/// Lays out a checked level (no files).
+/// Lays out a checked level (no files). `req.time_limit` bounds the whole call: the
+/// configuration spaces, both methods and the checks.
 pub fn solve_level(level: &Level, req: &LevelRequest) -> Result<LevelOutcome, LevelError> {
     let t0 = Instant::now();
+    check_request(level, req)?;
     let cs = cspace::CSpaces::new(level);
     let cspace_time = t0.elapsed().as_secs_f64();
     let count = req.count.max(1);
-    if req.method != Method::Milp && !level.is_planar() {
-        return Err(LevelError::Field {
-            field: "edge".into(),
-            reason: format!(
-                "the graph is not planar ({} nodes, {} edges), and the annealer lays out planar graphs only \
-                 (use --method milp)",
-                level.nodes.len(),
-                level.edges.len()
-            ),
-        });
-    }
-    if req.seeds > 1 && req.method == Method::Milp {
-        return Err(LevelError::Field {
-            field: "--seeds".into(),
-            reason: "seeds are the annealer's: use --method anneal or both".into(),
-        });
-    }
-    let mut summary = None;
-    let annealed = (req.method != Method::Milp).then(|| {
-        let o = anneal::AnnealOptions { seed: req.seed, count, time_limit: req.time_limit, ..Default::default() };
-        if req.seeds > 1 {
-            let (first, s) = seeds::over_seeds(level, &cs, &o, req.seeds);
-            summary = Some(s);
-            first
-        } else {
-            anneal::anneal(level, &cs, &o)
-        }
-    });
-    let mut layouts: Vec<Layout> = annealed.as_ref().map(|a| a.layouts.clone()).unwrap_or_default();
-    let milp = if req.method == Method::Anneal {
-        None
-    } else {
-        let opts = exact::ExactOptions {
-            solver: req.solver,
-            time_limit: req.time_limit,
-            count,
-            threads: req.threads,
-            explain: req.explain,
-        };
-        Some(exact::solve(level, &cs, &opts, &layouts)?)
+    let left = || (req.time_limit - t0.elapsed().as_secs_f64()).max(0.0);
+    let anneal_opts = |stop: Option<Interrupt>| anneal::AnnealOptions {
+        seed: req.seed,
+        count,
+        time_limit: left(),
+        stop,
+        ..Default::default()
     };
+    let exact_opts = |interrupt: Option<Interrupt>| exact::ExactOptions {
+        solver: req.solver,
+        time_limit: left(),
+        count,
+        threads: req.threads,
+        explain: req.explain,
+        interrupt,
+    };
+    let mut summary = None;
+    let (annealed, milp) = match req.method {
+        Method::Anneal => {
+            let o = anneal_opts(None);
+            let a = if req.seeds > 1 {
+                let (first, s) = seeds::over_seeds(level, &cs, &o, req.seeds);
+                summary = Some(s);
+                first
+            } else {
+                anneal::anneal(level, &cs, &o)
+            };
+            (Some(a), None)
+        }
+        Method::Milp => (None, Some(exact::solve(level, &cs, &exact_opts(None), &[])?)),
+        Method::Both if req.seeds > 1 => {
+            let (first, s) = seeds::over_seeds(level, &cs, &anneal_opts(None), req.seeds);
+            summary = Some(s);
+            (Some(first), None)
+        }
+        Method::Both => {
+            let (a, m) = race(level, &cs, count, anneal_opts(None), exact_opts(None));
+            (Some(a), Some(m?))
+        }
+    };
+    let mut layouts: Vec<Layout> = annealed.as_ref().map(|a| a.layouts.clone()).unwrap_or_default();
     if let Some(m) = &milp {
         for l in &m.layouts {
-            if !layouts.contains(l) {
+            if layouts.len() < count && !layouts.contains(l) {
                 layouts.push(l.clone());
             }
         }
@@ -338,5 +342,74 @@ pub fn solve_level(level: &Level, req: &LevelRequest) -> Result<LevelOutcome, Le
         milp,
         seeds: summary,
         files: Vec::new(),
+    })
+}
+
+/// Checks what the methods need before anything runs: a planar graph for the annealer, seeds
+/// for the annealer only, and a level small enough to be laid out at all.
+fn check_request(level: &Level, req: &LevelRequest) -> Result<(), LevelError> {
+    if req.method != Method::Milp && !level.is_planar() {
+        return Err(LevelError::Field {
+            field: "edge".into(),
+            reason: format!(
+                "the graph is not planar ({} nodes, {} edges), and the annealer lays out planar graphs only \
+                 (use --method milp)",
+                level.nodes.len(),
+                level.edges.len()
+            ),
+        });
+    }
+    if req.seeds > 1 && req.method == Method::Milp {
+        return Err(LevelError::Field {
+            field: "--seeds".into(),
+            reason: "seeds are the annealer's: use --method anneal or both".into(),
+        });
+    }
+    if level.nodes.len() > MAX_NODES {
+        return Err(LevelError::Field {
+            field: "node".into(),
+            reason: format!(
+                "{} nodes: netspec lays out levels of at most {MAX_NODES} nodes (the configuration spaces and \
+                 the checks grow with the square of the block shapes and the nodes near each other)",
+                level.nodes.len()
+            ),
+        });
+    }
+    Ok(())
+}
+
+/// The most nodes a level may have.
+pub const MAX_NODES: usize = 20_000;
+
+/// `--method both`: the annealer and the exact search side by side on two threads; whichever
+/// settles the question first (the layouts wanted, or a proof that none exists) stops the
+/// other.
+fn race(
+    level: &Level,
+    cs: &cspace::CSpaces,
+    count: usize,
+    mut ao: anneal::AnnealOptions,
+    mut eo: exact::ExactOptions,
+) -> (anneal::AnnealReport, Result<exact::ExactReport, LevelError>) {
+    let (stop_anneal, stop_exact) = (Interrupt::new(), Interrupt::new());
+    ao.stop = Some(stop_anneal.clone());
+    eo.interrupt = Some(stop_exact.clone());
+    std::thread::scope(|sc| {
+        let annealer = sc.spawn(|| {
+            let r = anneal::anneal(level, cs, &ao);
+            if r.layouts.len() >= count {
+                stop_exact.trigger();
+            }
+            r
+        });
+        let m = exact::solve(level, cs, &eo, &[]);
+        let settled =
+            m.as_ref().map_or(true, |m| m.status == exact::ExactStatus::Infeasible || m.layouts.len() >= count);
+        if settled {
+            stop_anneal.trigger();
+        }
+        let a =
+            annealer.join().unwrap_or_else(|_| anneal::AnnealReport { stopped: "failed".into(), ..Default::default() });
+        (a, m)
     })
 }

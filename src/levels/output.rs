@@ -1,4 +1,5 @@
-//! Outputs: `level.json` (status, layouts, the search's figures), `summary.json` (the annealer
+//! Outputs: `level.json` (status, layouts, the search's figures — the same bytes for the same
+//! seed), `run.json` (what the clock measured), `summary.json` (the annealer
 //! over seeds, when asked for) and a picture of every layout
 //! (`layout-K.svg` and `.png`: blocks, doors, the graph over them).
 
@@ -45,15 +46,53 @@ pub fn scene(level: &Level, layout: &Layout, caption: String) -> LevelScene {
     LevelScene { blocks, doors, obstacles, caption }
 }
 
+/// What a run measured rather than decided: seconds, and the report of a method that another
+/// stopped (`--method both`), whose extent depends on when it was stopped.
+const MEASURED: [&str; 5] = ["cspace_time", "time_to_first", "time_to_last", "time_to_proof", "seconds"];
+
+/// Moves every measured value out of `value` into the returned object (same paths), so that
+/// `level.json` is the same bytes for the same seed and `run.json` holds the clock's part.
+pub fn split_times(value: &mut serde_json::Value) -> serde_json::Value {
+    use serde_json::{Map, Value};
+    let Value::Object(map) = value else { return Value::Null };
+    let mut out = Map::new();
+    let stopped = |v: &Value, key: &str| match key {
+        "anneal" => v.get("stopped").and_then(Value::as_str) == Some("stopped"),
+        "milp" => v.get("note").and_then(Value::as_str) == Some("stopped"),
+        _ => false,
+    };
+    let keys: Vec<String> = map.keys().cloned().collect();
+    for k in keys {
+        if MEASURED.contains(&k.as_str()) || map.get(&k).is_some_and(|v| stopped(v, &k)) {
+            if let Some(v) = map.remove(&k) {
+                out.insert(k, v);
+            }
+        } else if let Some(v) = map.get_mut(&k) {
+            let inner = split_times(v);
+            if inner.as_object().is_some_and(|o| !o.is_empty()) {
+                out.insert(k, inner);
+            }
+        }
+    }
+    Value::Object(out)
+}
+
 /// Writes the outputs into `dir` (created if missing); returns the files written.
 pub fn write(dir: &Path, level: &Level, outcome: &LevelOutcome) -> Result<Vec<PathBuf>, LevelError> {
     std::fs::create_dir_all(dir)
         .map_err(|e| LevelError::Write { path: dir.display().to_string(), reason: e.to_string() })?;
     let json = dir.join("level.json");
-    let text = serde_json::to_string_pretty(outcome)
+    let mut value = serde_json::to_value(outcome)
+        .map_err(|e| LevelError::Write { path: json.display().to_string(), reason: e.to_string() })?;
+    let times = split_times(&mut value);
+    let text = serde_json::to_string_pretty(&value)
         .map_err(|e| LevelError::Write { path: json.display().to_string(), reason: e.to_string() })?;
     put(&json, text.as_bytes())?;
-    let mut files = vec![json];
+    let run = dir.join("run.json");
+    let text = serde_json::to_string_pretty(&times)
+        .map_err(|e| LevelError::Write { path: run.display().to_string(), reason: e.to_string() })?;
+    put(&run, text.as_bytes())?;
+    let mut files = vec![json, run];
     if let Some(summary) = &outcome.seeds {
         let path = dir.join("summary.json");
         let text = serde_json::to_string_pretty(summary)

@@ -60,6 +60,34 @@ pub fn shared_wall(p: &[Pt], q: &[Pt]) -> Option<[Pt; 2]> {
     best.map(|b| b.0)
 }
 
+/// The pairs `(i, j)`, `i < j`, whose bounding boxes overlap with positive area (others
+/// cannot overlap): a sweep over the boxes sorted by their left edge, in ascending pair order.
+fn box_pairs(polys: &[Vec<Pt>]) -> Vec<(usize, usize)> {
+    let boxes: Vec<[f64; 4]> = polys
+        .iter()
+        .map(|p| {
+            p.iter().fold([f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY], |b, q| {
+                [b[0].min(q[0]), b[1].max(q[0]), b[2].min(q[1]), b[3].max(q[1])]
+            })
+        })
+        .collect();
+    let mut order: Vec<usize> = (0..boxes.len()).collect();
+    order.sort_by(|&a, &b| boxes[a][0].total_cmp(&boxes[b][0]).then(a.cmp(&b)));
+    let mut pairs = Vec::new();
+    for (k, &i) in order.iter().enumerate() {
+        for &j in &order[k + 1..] {
+            if boxes[j][0] >= boxes[i][1] {
+                break;
+            }
+            if boxes[j][2] < boxes[i][3] && boxes[i][2] < boxes[j][3] {
+                pairs.push((i.min(j), i.max(j)));
+            }
+        }
+    }
+    pairs.sort_unstable();
+    pairs
+}
+
 /// Checks a layout of `level` (every node placed).
 pub fn validate(level: &Level, layout: &Layout) -> Validation {
     let placed: Vec<Vec<Pt>> = layout
@@ -69,8 +97,8 @@ pub fn validate(level: &Level, layout: &Layout) -> Validation {
         .collect();
     let tris: Vec<Vec<[Pt; 3]>> = placed.iter().map(|p| geometry::triangulate(p)).collect();
     let mut v = Validation::default();
-    for i in 0..placed.len() {
-        for j in i + 1..placed.len() {
+    for (i, j) in box_pairs(&placed) {
+        {
             let area = geometry::overlap_area(&tris[i], &tris[j]);
             if area > AREA_TOL {
                 v.overlaps.push((
