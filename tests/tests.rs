@@ -33,5 +33,7 @@ mod slurm;
 mod serve;
 // Game levels from a connectivity graph (Ma et al. 2014): configuration spaces, the exact model.
 mod levels;
+// Game levels on the graph families designers draw: paths, cycles, ladders, grids, trees.
+mod level_families;
 // A laid-out level exported as a mesh and a network spec, solved, crossings checked by geometry.
 mod level_bridge;

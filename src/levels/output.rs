@@ -15,8 +15,13 @@ fn put(path: &Path, bytes: &[u8]) -> Result<(), LevelError> {
         .map_err(|e| LevelError::Write { path: path.display().to_string(), reason: e.to_string() })
 }
 
+/// Levels with more nodes than this are drawn without node names (at about 640 pixels across
+/// they could not be read, and the text is most of the drawing's cost).
+pub const LABELS_MAX: usize = 200;
+
 /// The picture of a layout as plain data for [`render::level::level_svg`].
 pub fn scene(level: &Level, layout: &Layout, caption: String) -> LevelScene {
+    let labels = layout.nodes.len() <= LABELS_MAX;
     let blocks = layout
         .nodes
         .iter()
@@ -30,7 +35,7 @@ pub fn scene(level: &Level, layout: &Layout, caption: String) -> LevelScene {
                 Some((base, _)) => (base.0 as usize, format!("{} ({})", p.node, block.name)),
                 None => (p.block.0 as usize, p.node.clone()),
             };
-            LevelBlock { polygon, label, shape, centre }
+            LevelBlock { polygon, label: if labels { label } else { String::new() }, shape, centre }
         })
         .collect();
     let v = validate(level, layout);

@@ -9,7 +9,7 @@ use std::fmt::Write;
 pub struct LevelBlock {
     /// The placed polygon.
     pub polygon: Vec<[f64; 2]>,
-    /// The node's name (written at the centre).
+    /// The node's name (written at the centre; nothing when empty).
     pub label: String,
     /// Index of the block shape (its colour).
     pub shape: usize,
@@ -77,7 +77,9 @@ pub fn level_svg(scene: &LevelScene) -> String {
     for b in &scene.blocks {
         let (x, y) = tx(b.centre);
         let _ = writeln!(svg, r##"<circle cx="{x:.2}" cy="{y:.2}" r="3.5" fill="#b2182b"/>"##);
-        svg.text(x + 5.0, y - 5.0, "", &b.label);
+        if !b.label.is_empty() {
+            svg.text(x + 5.0, y - 5.0, "", &b.label);
+        }
     }
     svg.text(margin, h - 8.0, "", &scene.caption);
     svg.finish()
