@@ -62,6 +62,9 @@ pub fn block_centre(poly: &[Pt]) -> Pt {
     poly.iter().fold([0.0, 0.0], |a, p| [a[0] + p[0] / n, a[1] + p[1] / n])
 }
 
+/// A placement, how straight on it continues, and its sort key (outside the pace, crowding).
+type Candidate = ((BlockId, Pt), f64, (bool, usize));
+
 /// Per-node search state of the depth-first placement.
 struct Frame {
     node: usize,
@@ -293,7 +296,7 @@ impl<'a> Placer<'a> {
             return self.level.nodes[i].blocks.iter().map(|&b| (b, p)).collect();
         }
         let placed_nbs: Vec<(BlockId, Pt)> = self.adj[i].iter().filter_map(|n| s[n.0 as usize]).collect();
-        let mut out: Vec<((BlockId, Pt), f64, (bool, usize))> = Vec::new();
+        let mut out: Vec<Candidate> = Vec::new();
         for &b in &self.level.nodes[i].blocks {
             let segs = match self.space(s, i, b) {
                 Some(x) => x,
