@@ -4,9 +4,11 @@ reconstructed inputs of Ma et al. 2014, Table 1 (models/levels/).
 
     python3 scripts/levels-table.py --netspec "$CARGO_TARGET_DIR/release/netspec" [--seeds 50] [--time-limit 20]
     python3 scripts/levels-table.py --netspec "$CARGO_TARGET_DIR/release/netspec" --scaling
+    python3 scripts/levels-table.py --netspec "$CARGO_TARGET_DIR/release/netspec" --families [--print]
 
-Writes docs/levels/results.json and prints the markdown table."""
-import argparse, json, subprocess, tempfile, pathlib
+Writes docs/levels/results.json (or docs/levels/families.json) and prints the markdown table;
+`--families --print` prints the families table from the committed file without running."""
+import argparse, json, subprocess, tempfile, pathlib, time
 
 MODELS = ["fig1", "fig7-top", "fig7-bottom", "fig8", "fig9"]
 # Ma et al. 2014, Table 1: success first/tenth, time to first (avg/med), time to ten (avg/med), s.
@@ -19,10 +21,28 @@ PAPER = {
 }
 
 
+def merged(a, b):
+    """level.json with run.json's measured values put back at their places."""
+    if isinstance(a, dict) and isinstance(b, dict):
+        out = dict(a)
+        for k, v in b.items():
+            out[k] = merged(a[k], v) if k in a else v
+        return out
+    return b
+
+
+def read_level(d):
+    d = pathlib.Path(d)
+    level = json.loads((d / "level.json").read_text())
+    return merged(level, json.loads((d / "run.json").read_text()))
+
+
 def run(netspec, model, args, output="level.json"):
     with tempfile.TemporaryDirectory() as d:
         subprocess.run([netspec, "level", f"models/levels/{model}.toml", "--out", d, *args],
                        stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        if output == "level.json":
+            return read_level(d)
         return json.loads((pathlib.Path(d) / output).read_text())
 
 
@@ -54,10 +74,69 @@ def scaling(netspec, limit):
                 spec.write_text(star_with_tail(leaves, tail))
                 subprocess.run([netspec, "level", str(spec), "--method", "milp", "--time-limit", str(limit),
                                 "--no-explain", "--out", d], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-                m = json.loads((pathlib.Path(d) / "level.json").read_text())["milp"]
+                m = read_level(d)["milp"]
             t = m["time_to_first"] if m["status"] == "feasible" else m["time_to_proof"]
             ans = m["status"] + (f" in {t:.2g} s" if t is not None else "")
             print(f"| star of {leaves} + path of {tail} | {1 + leaves + tail} | {ans} |", flush=True)
+
+
+# Graph families of unit squares at door width 0.5 (`netspec level-gen`), growing sizes.
+FAMILIES = {
+    "path": ["path:100", "path:300", "path:1000", "path:3000", "path:10000"],
+    "cycle": ["cycle:20", "cycle:50", "cycle:200", "cycle:500", "cycle:2000"],
+    "ladder": ["ladder:10", "ladder:20", "ladder:50", "ladder:100", "ladder:500"],
+    "grid": ["grid:5x5", "grid:10x10", "grid:20x20", "grid:30x30", "grid:50x50"],
+    "caterpillar": ["caterpillar:20x2", "caterpillar:100x2", "caterpillar:300x2", "caterpillar:1000x2"],
+    "tree": ["tree:15", "tree:31", "tree:63", "tree:127"],
+}
+METHODS = ["anneal", "milp", "both"]
+
+
+def family_run(netspec, family, method, limit):
+    """One `netspec level` run on a generated family member: status, wall seconds, why."""
+    with tempfile.TemporaryDirectory() as d:
+        spec = pathlib.Path(d) / "g.toml"
+        subprocess.run([netspec, "level-gen", family, "--out", str(spec)], check=True)
+        t0 = time.monotonic()
+        p = subprocess.run([netspec, "level", str(spec), "--method", method, "--time-limit", str(limit),
+                            "--threads", "1", "--out", d], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+        wall = time.monotonic() - t0
+        if p.returncode == 1:
+            return {"status": "refused", "wall": wall, "why": p.stderr.strip().splitlines()[-1][:200]}
+        lv = read_level(d)
+        return {"status": lv["status"], "wall": round(wall, 3)}
+
+
+def families(netspec, limit):
+    """Each family's members by each method, up to the first that is not answered."""
+    out = {}
+    for fam, members in FAMILIES.items():
+        for method in METHODS:
+            rows = []
+            for m in members:
+                r = family_run(netspec, m, method, limit)
+                rows.append({"graph": m, **r})
+                print(fam, method, m, r, flush=True)
+                if r["status"] not in ("feasible", "infeasible"):
+                    break
+            out.setdefault(fam, {})[method] = rows
+    path = pathlib.Path("docs/levels/families.json")
+    path.write_text(json.dumps({"time_limit": limit, "door_width": 0.5, "results": out}, indent=1) + "\n")
+    return out
+
+
+def largest(rows, within):
+    ok = [r for r in rows if r["status"] in ("feasible", "infeasible") and r["wall"] <= within]
+    return f"{ok[-1]['graph'].split(':')[1]} ({ok[-1]['wall']:.2g} s)" if ok else "–"
+
+
+def print_families(results):
+    """Largest member of each family answered within 10 s and 60 s (wall time of the command)."""
+    print("| family | annealer ≤ 10 s | annealer ≤ 60 s | MILP ≤ 10 s | MILP ≤ 60 s | both ≤ 10 s | both ≤ 60 s |")
+    print("|---|---|---|---|---|---|---|")
+    for fam, by in results.items():
+        cells = [largest(by.get(m, []), w) for m in METHODS for w in (10, 60)]
+        print(f"| {fam} | " + " | ".join(cells) + " |")
 
 
 def main():
@@ -68,7 +147,16 @@ def main():
     ap.add_argument("--milp-time-limit", type=float, default=60.0)
     ap.add_argument("--models", nargs="*", default=MODELS)
     ap.add_argument("--scaling", action="store_true", help="only the MILP on growing star graphs")
+    ap.add_argument("--families", action="store_true", help="graph families by every method")
+    ap.add_argument("--print", action="store_true", help="with --families: the table from the committed file")
     a = ap.parse_args()
+    if a.families:
+        if a.print:
+            results = json.loads(pathlib.Path("docs/levels/families.json").read_text())["results"]
+        else:
+            results = families(a.netspec, 60.0)
+        print_families(results)
+        return
     if a.scaling:
         scaling(a.netspec, a.milp_time_limit)
         return
