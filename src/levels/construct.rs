@@ -63,7 +63,11 @@ pub fn block_centre(poly: &[Pt]) -> Pt {
 }
 
 /// A placement, how straight on it continues, and its sort key (outside the pace, crowding).
-type Candidate = ((BlockId, Pt), f64, (bool, usize));
+type Candidate = ((BlockId, Pt), f64, (bool, usize, u64));
+
+/// Targets this many hops away or closer draw a placement towards them (the cycles about to
+/// close: a grid's next row above the last, not beside it).
+const NEAR_HOPS: u32 = 3;
 
 /// Per-node search state of the depth-first placement.
 struct Frame {
@@ -317,13 +321,19 @@ impl<'a> Placer<'a> {
                     if out.iter().any(|(q, _, _)| q.0 == b && norm(sub(q.1, p)) < LEN_TOL) {
                         continue;
                     }
-                    let key = (!self.within_pace(targets, s, (b, p)), self.crowding(s, i, (b, p)));
+                    let at = (b, p);
+                    let key = (
+                        !self.within_pace(targets, s, at),
+                        self.crowding(s, i, at, targets),
+                        self.pull(s, at, targets),
+                    );
                     out.push(((b, p), self.straightness(s, i, (b, p)), key));
                 }
             }
         }
         // Within pace first, then the least crowded (a walk that keeps clear of what is laid out
-        // does not trap itself); among those, straight on first, or at random one time in four. A little
+        // does not trap itself), then the nearest to the cycles about to close; among those,
+        // straight on first, or at random one time in four. A little
         // noise breaks ties so that layouts differ.
         let straight = rng.random::<f64>() < 0.75;
         for x in out.iter_mut() {
@@ -333,9 +343,9 @@ impl<'a> Placer<'a> {
         out.into_iter().map(|x| x.0).collect()
     }
 
-    /// How many placed blocks other than node `i`'s neighbours come within a block's extent of
-    /// the placement (boxes grown by the largest block dimension).
-    fn crowding(&self, s: &[Slot], i: usize, at: (BlockId, Pt)) -> usize {
+    /// How many placed blocks other than node `i`'s neighbours and its near targets come within
+    /// a block's extent of the placement (boxes grown by the largest block dimension).
+    fn crowding(&self, s: &[Slot], i: usize, at: (BlockId, Pt), targets: &[(usize, u32)]) -> usize {
         let b = self.placed_box(at);
         let m = self.margin;
         let grown = [b[0] - m, b[1] + m, b[2] - m, b[3] + m];
@@ -345,8 +355,21 @@ impl<'a> Placer<'a> {
                 *j != i
                     && sj.is_some_and(|o| !construct_apart(grown, self.placed_box(o)))
                     && !self.adj[i].iter().any(|n| n.0 as usize == *j)
+                    && !targets.iter().any(|&(t, d)| t == *j && d <= NEAR_HOPS)
             })
             .count()
+    }
+
+    /// How far the placement is from the targets a few hops away (the sum of centre distances
+    /// over hops, in millionths): nearer is better, 0 when there is none.
+    fn pull(&self, s: &[Slot], at: (BlockId, Pt), targets: &[(usize, u32)]) -> u64 {
+        let c = self.centre_of(at);
+        let sum: f64 = targets
+            .iter()
+            .filter(|t| t.1 <= NEAR_HOPS)
+            .filter_map(|&(j, d)| s[j].map(|o| norm(sub(c, self.centre_of(o))) / f64::from(d)))
+            .sum();
+        (sum * 1e6).round() as u64
     }
 
     /// How straight on a placement continues: the cosine between its step from the placed
