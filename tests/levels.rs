@@ -38,7 +38,7 @@ fn backends() -> Vec<SolverKind> {
 }
 
 fn solve(level: &Level, kind: SolverKind, count: usize, explain: bool) -> exact::ExactReport {
-    let o = ExactOptions { solver: kind, time_limit: 60.0, count, threads: Some(1), explain };
+    let o = ExactOptions { solver: kind, time_limit: 60.0, count, threads: Some(1), explain, interrupt: None };
     exact::solve(level, &CSpaces::new(level), &o, &[]).unwrap()
 }
 
@@ -299,7 +299,14 @@ fn annealed_layouts_are_mip_starts_the_checker_accepts_on_every_backend() {
         let a = anneal::anneal(&level, &cs, &quick(5, 1));
         assert_eq!(a.layouts.len(), 1);
         for kind in backends() {
-            let o = ExactOptions { solver: kind, time_limit: 60.0, count: 1, threads: Some(1), explain: false };
+            let o = ExactOptions {
+                solver: kind,
+                time_limit: 60.0,
+                count: 1,
+                threads: Some(1),
+                explain: false,
+                interrupt: None,
+            };
             let r = exact::solve(&level, &cs, &o, &a.layouts).unwrap();
             assert_eq!(r.status, ExactStatus::Feasible, "{kind}");
             assert_eq!(r.start_accepted, Some(true), "{kind}");
@@ -402,7 +409,14 @@ fn annealed_layouts_avoid_obstacles_and_are_accepted_starts() {
         assert_eq!(a.layouts.len(), 1);
         assert!(validate(&level, &a.layouts[0]).is_valid());
         for kind in backends() {
-            let o = ExactOptions { solver: kind, time_limit: 60.0, count: 1, threads: Some(1), explain: false };
+            let o = ExactOptions {
+                solver: kind,
+                time_limit: 60.0,
+                count: 1,
+                threads: Some(1),
+                explain: false,
+                interrupt: None,
+            };
             let r = exact::solve(&level, &cs, &o, &a.layouts).unwrap();
             assert_eq!(r.start_accepted, Some(true), "{kind}");
         }

@@ -313,6 +313,7 @@ pub fn solve_level(level: &Level, req: &LevelRequest) -> Result<LevelOutcome, Le
             count,
             threads: req.threads,
             explain: req.explain,
+            interrupt: None,
         };
         Some(exact::solve(level, &cs, &opts, &layouts)?)
     };
