@@ -63,10 +63,15 @@ pub enum Route {
 pub struct Screen {
     /// Candidate subgraphs there were.
     pub candidates: usize,
-    /// Candidates solved.
+    /// Candidates solved (a model built and solved).
     pub tried: usize,
     /// Candidates answered feasible.
     pub feasible: usize,
+    /// Of those, candidates answered by an earlier one of the same shape
+    /// ([`subgraphs::shape`]) without a solve.
+    pub same_shape: usize,
+    /// Candidates left unanswered within their time limit.
+    pub unknown: usize,
     /// Seconds spent.
     pub seconds: f64,
     /// The subgraph proven infeasible.
@@ -139,9 +144,19 @@ pub struct ExactOptions {
     pub interrupt: Option<Interrupt>,
 }
 
-/// Levels of at most this many nodes go to the whole model; larger ones are laid out
-/// incrementally.
-pub const WHOLE_MAX_NODES: usize = 16;
+/// Levels of at most this many nodes go to the whole model (when it has at most
+/// [`WHOLE_MAX_VARS`] variables); larger ones are laid out incrementally first. Measured
+/// (HiGHS, 60 s): the incremental route lays out Fig. 1 (14 nodes) in 2.0 s against the whole
+/// model's 4.8 s, Fig. 9 (16) in 4.4 s against 21.6 s, a 4-star with a 20-path (25) in well
+/// under a second against no answer.
+pub const WHOLE_MAX_NODES: usize = 10;
+
+/// The whole model is solved first only when it has at most this many variables.
+pub const WHOLE_MAX_VARS: usize = 12_000;
+
+/// When the incremental route ends without an answer, levels of at most this many nodes get
+/// the whole model for the time left.
+pub const FALLBACK_MAX_NODES: usize = 40;
 
 /// Share of the time limit the subgraph screen may take.
 const SCREEN_SHARE: f64 = 0.25;
@@ -214,12 +229,24 @@ pub fn solve_once(
     limit: f64,
     start: Option<Vec<f64>>,
 ) -> Result<Answer, LevelError> {
+    solve_gap(lm, o, limit, start, None)
+}
+
+/// [`solve_once`] with a relative MIP gap to stop at (for a model with an objective).
+pub fn solve_gap(
+    lm: &LevelModel,
+    o: &ExactOptions,
+    limit: f64,
+    start: Option<Vec<f64>>,
+    rel_gap: Option<f64>,
+) -> Result<Answer, LevelError> {
     let kind = o.solver;
     let solver = kind.instance()?;
     let opts = SolveOptions {
         time_limit: Some(limit.max(0.01)),
         threads: o.threads,
         mip_start: start,
+        rel_gap,
         interrupt: o.interrupt.clone(),
         ..SolveOptions::default()
     };
@@ -290,7 +317,8 @@ fn empty_report(o: &ExactOptions) -> ExactReport {
 /// Solves the level exactly, with `starts` (annealed layouts) tried as MIP starts on the whole
 /// model. The subgraph screen runs first (at most a quarter of the time limit); then the whole
 /// model for levels of at most [`WHOLE_MAX_NODES`] nodes, the incremental layout for larger
-/// ones. The time limit is a deadline over the whole call; on an interrupt the call returns
+/// ones (and the whole model for the time left when that ends without an answer, up to
+/// [`FALLBACK_MAX_NODES`] nodes). The time limit is a deadline over the whole call; on an interrupt the call returns
 /// what it has.
 pub fn solve(level: &Level, cs: &CSpaces, o: &ExactOptions, starts: &[Layout]) -> Result<ExactReport, LevelError> {
     let clock = Clock::new(o);
@@ -312,11 +340,24 @@ pub fn solve(level: &Level, cs: &CSpaces, o: &ExactOptions, starts: &[Layout]) -
         rep.note = Some(clock.why().into());
         return Ok(rep);
     }
-    if level.nodes.len() <= WHOLE_MAX_NODES {
-        whole(level, cs, o, starts, &clock, &mut rep)?;
-    } else {
-        rep.route = Route::Incremental;
-        incremental::solve(level, cs, o, &clock, &mut rep)?;
+    let lm = (level.nodes.len() <= WHOLE_MAX_NODES)
+        .then(|| milp::build(level, cs, &Part::whole(level)))
+        .filter(|lm| lm.model.num_vars() <= WHOLE_MAX_VARS);
+    match lm {
+        Some(lm) => whole(level, cs, o, lm, starts, &clock, &mut rep)?,
+        None => {
+            rep.route = Route::Incremental;
+            incremental::solve(level, cs, o, &clock, &mut rep)?;
+            let open = rep.layouts.is_empty() && rep.time_to_proof.is_none();
+            if open && !clock.stopped() && level.nodes.len() <= FALLBACK_MAX_NODES {
+                let lm = milp::build(level, cs, &Part::whole(level));
+                let note = rep.note.take();
+                whole(level, cs, o, lm, starts, &clock, &mut rep)?;
+                if let (Some(a), Some(b)) = (note, rep.note.as_mut()) {
+                    *b = format!("incremental: {a}; whole: {b}");
+                }
+            }
+        }
     }
     rep.status = match (rep.layouts.is_empty(), rep.time_to_proof.is_some()) {
         (false, _) => ExactStatus::Feasible,
@@ -337,12 +378,20 @@ fn screen(
 ) -> Result<(Screen, Option<Vec<NodeId>>), LevelError> {
     let t0 = clock.elapsed();
     let cands = subgraphs::candidates(level, BLOCK_CAP);
-    let mut s = Screen { candidates: cands.len(), tried: 0, feasible: 0, seconds: 0.0, proof: None };
+    let mut s =
+        Screen { candidates: cands.len(), tried: 0, feasible: 0, same_shape: 0, unknown: 0, seconds: 0.0, proof: None };
     let mut found = None;
+    let mut feasible_shapes: BTreeSet<Vec<u32>> = BTreeSet::new();
     for c in cands {
         let left = (budget - (clock.elapsed() - t0)).min(clock.left());
         if left <= 0.0 || clock.interrupted() {
             break;
+        }
+        let shape = subgraphs::shape(level, &c.nodes);
+        if shape.as_ref().is_some_and(|k| feasible_shapes.contains(k)) {
+            s.feasible += 1;
+            s.same_shape += 1;
+            continue;
         }
         let part = Part::induced(level, c.nodes.clone());
         let lm = milp::build(level, cs, &part);
@@ -358,25 +407,28 @@ fn screen(
                 found = Some(c.nodes);
                 break;
             }
-            Verdict::Feasible => s.feasible += 1,
-            Verdict::Unknown => {}
+            Verdict::Feasible => {
+                s.feasible += 1;
+                feasible_shapes.extend(shape);
+            }
+            Verdict::Unknown => s.unknown += 1,
         }
     }
     s.seconds = clock.elapsed() - t0;
     Ok((s, found))
 }
 
-/// The whole model: layouts by no-good cuts, MIP starts from `starts`, the conflict when it
+/// The whole model `lm`: layouts by no-good cuts, MIP starts from `starts`, the conflict when it
 /// is infeasible.
 fn whole(
     level: &Level,
     cs: &CSpaces,
     o: &ExactOptions,
+    mut lm: LevelModel,
     starts: &[Layout],
     clock: &Clock,
     rep: &mut ExactReport,
 ) -> Result<(), LevelError> {
-    let mut lm = milp::build(level, cs, &Part::whole(level));
     rep.route = Route::Whole;
     rep.families = lm.families.clone();
     rep.size = (lm.model.num_vars(), lm.model.num_rows());

@@ -424,6 +424,19 @@ impl LevelModel {
         self.model.add_le(format!("nogood_{index}"), on.into_iter().map(|c| (c, 1.0)), n - 1.0);
     }
 
+    /// Minimises `−d · p_i` over the part's nodes (placed ones are constants): the free
+    /// nodes pushed as far as they go in direction `d` (an incremental step grown away from
+    /// what is placed). Left as it is when the model already minimises the bounding box.
+    pub fn push_towards(&mut self, d: Pt) {
+        if self.bbox.is_some() {
+            return;
+        }
+        for &(x, y) in &self.pos {
+            self.model.var_mut(x).obj = -d[0];
+            self.model.var_mut(y).obj = -d[1];
+        }
+    }
+
     /// Whether the model has a contact binary to cut on (a level with edges).
     pub fn has_contacts(&self) -> bool {
         !self.contacts.is_empty()

@@ -15,20 +15,35 @@ use super::super::geometry::Pt;
 use super::super::milp::{self, LevelModel, Part};
 use super::super::spec::{BlockId, EdgeId, Level, NodeId};
 use super::super::{Layout, Placement};
-use super::{checked, conflict, solve_once, Answer, Clock, ExactOptions, ExactReport, LevelError};
+use super::{checked, conflict, solve_gap, solve_once, Answer, Clock, ExactOptions, ExactReport, LevelError};
 use crate::explain::Verdict;
 use serde::Serialize;
 use std::collections::{BTreeSet, VecDeque};
 
 /// Nodes per step at most (chains are cut into pieces of at most this many and small ones are
-/// packed together up to it).
+/// packed together up to it), for nodes of one allowed block; see [`piece`].
 pub const PIECE: usize = 8;
 
-/// A failed step is merged with the one before while the two have at most this many nodes.
-pub const MERGE_CAP: usize = 24;
+/// Allowed blocks summed over a step's nodes, at most: nodes of many blocks make smaller steps.
+const PIECE_BLOCKS: usize = 16;
+
+/// A failed step is merged with the one before while the two have at most this many times
+/// [`piece`] nodes.
+pub const MERGE_FACTOR: usize = 3;
+
+/// Nodes per step for this level: [`PIECE`], fewer when the nodes allow several blocks (at
+/// most [`PIECE_BLOCKS`] allowed blocks over a step on average), at least 2.
+pub fn piece(level: &Level) -> usize {
+    let blocks: usize = level.nodes.iter().map(|n| n.blocks.len()).sum();
+    let mean = blocks as f64 / level.nodes.len().max(1) as f64;
+    ((PIECE_BLOCKS as f64 / mean).floor() as usize).clamp(2, PIECE)
+}
 
 /// No-good re-solves of one step at most, once merging is out.
 pub const RETRIES: usize = 8;
+
+/// Relative gap at which a step's solve stops pushing its nodes outward.
+const PUSH_GAP: f64 = 0.25;
 
 /// Seconds one step's solve may take at most.
 const STEP_LIMIT: f64 = 20.0;
@@ -188,6 +203,27 @@ pub fn step_part(level: &Level, cs: &CSpaces, free: &[NodeId], placed: &[Option<
     }
 }
 
+/// The direction a step grows in: from the centre of everything placed to the centre of the
+/// placed nodes the step's nodes have doors to (none when nothing is placed or the two
+/// coincide).
+fn outward(level: &Level, part: &Part, step: &[NodeId], placed: &[Option<(BlockId, Pt)>]) -> Option<Pt> {
+    let centre = |ps: &mut dyn Iterator<Item = Pt>| {
+        let (mut sum, mut k) = ([0.0, 0.0], 0.0);
+        for p in ps {
+            sum = [sum[0] + p[0], sum[1] + p[1]];
+            k += 1.0;
+        }
+        (k > 0.0).then(|| [sum[0] / k, sum[1] / k])
+    };
+    let all = centre(&mut placed.iter().flatten().map(|p| p.1))?;
+    let joined =
+        |n: NodeId| level.edges.iter().any(|&(a, b)| (a == n && step.contains(&b)) || (b == n && step.contains(&a)));
+    let near = centre(&mut part.placed.iter().filter(|p| joined(p.0)).map(|p| p.2))?;
+    let d = [near[0] - all[0], near[1] - all[1]];
+    let len = (d[0] * d[0] + d[1] * d[1]).sqrt();
+    (len > 1e-9).then(|| [d[0] / len, d[1] / len])
+}
+
 /// One step's model and its last point.
 struct Solved {
     lm: LevelModel,
@@ -205,7 +241,8 @@ pub fn solve(
     rep: &mut ExactReport,
 ) -> Result<(), LevelError> {
     let t0 = clock.elapsed();
-    let mut plan = steps(level, PIECE);
+    let k = piece(level);
+    let mut plan = steps(level, k);
     let mut st = Stats { steps: plan.len(), ..Stats::default() };
     let mut placed: Vec<Option<(BlockId, Pt)>> = vec![None; level.nodes.len()];
     let mut solved: Vec<Option<Solved>> = Vec::new();
@@ -222,8 +259,14 @@ pub fn solve(
             None => {
                 let part = step_part(level, cs, &plan[i], &placed);
                 st.most_fixed = st.most_fixed.max(part.placed.len());
-                let lm = milp::build(level, cs, &part);
-                let a = solve_once(&lm, o, clock.left().min(STEP_LIMIT), None)?;
+                let mut lm = milp::build(level, cs, &part);
+                // A step merged after a failure closes cycles: no push, any layout will do.
+                if plan[i].len() <= k {
+                    if let Some(d) = outward(level, &part, &plan[i], &placed) {
+                        lm.push_towards(d);
+                    }
+                }
+                let a = solve_gap(&lm, o, clock.left().min(STEP_LIMIT), None, Some(PUSH_GAP))?;
                 (a, lm)
             }
         };
@@ -261,7 +304,7 @@ pub fn solve(
         }
         // Back to the step before: merged with this one, or solved again differently.
         unplace(&plan[i - 1], &mut placed);
-        if plan[i - 1].len() + plan[i].len() <= MERGE_CAP {
+        if plan[i - 1].len() + plan[i].len() <= MERGE_FACTOR * k {
             let tail = plan.remove(i);
             plan[i - 1].extend(tail);
             retries.remove(i);

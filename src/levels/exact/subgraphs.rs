@@ -114,7 +114,8 @@ pub fn biconnected_components(adj: &[Vec<NodeId>]) -> Vec<Vec<NodeId>> {
     out
 }
 
-/// Candidate subgraphs of `level`, smallest first (nodes, then edges, then origin and nodes),
+/// Candidate subgraphs of `level`, smallest first (fewest nodes, then most edges, then origin
+/// and nodes),
 /// each node set once; sets of fewer than three nodes, of every node, and blocks of more than
 /// `block_cap` nodes are left out (two nodes and an edge have a layout unless fixed nodes
 /// forbid it, and the whole level is the whole model's to solve).
@@ -151,8 +152,63 @@ pub fn candidates(level: &Level, block_cap: usize) -> Vec<Candidate> {
             .count();
         out.push(Candidate { nodes, edges, origin });
     }
-    out.sort_by(|x, y| (x.nodes.len(), x.edges, x.origin, &x.nodes).cmp(&(y.nodes.len(), y.edges, y.origin, &y.nodes)));
+    // Fewest nodes first; among as many nodes, most edges first (the most constrained).
+    let key = |c: &Candidate| (c.nodes.len(), std::cmp::Reverse(c.edges), c.origin, c.nodes.clone());
+    out.sort_by_key(key);
     out
+}
+
+/// Candidates of at most this many nodes get a canonical form ([`shape`]).
+pub const SHAPE_MAX_NODES: usize = 7;
+
+/// The candidate's shape up to relabelling, when it has at most [`SHAPE_MAX_NODES`] nodes and
+/// none of them is fixed: the least, over node orders, of the allowed blocks per node and the
+/// adjacency matrix. Two candidates of one shape are the same level up to names (translations
+/// aside), so one answer serves both.
+pub fn shape(level: &Level, nodes: &[NodeId]) -> Option<Vec<u32>> {
+    let n = nodes.len();
+    if n > SHAPE_MAX_NODES || nodes.iter().any(|v| level.nodes[v.0 as usize].position.is_some()) {
+        return None;
+    }
+    let mut adj = vec![vec![false; n]; n];
+    for &(a, b) in &level.edges {
+        if let (Ok(i), Ok(j)) = (nodes.binary_search(&a), nodes.binary_search(&b)) {
+            adj[i][j] = true;
+            adj[j][i] = true;
+        }
+    }
+    let code = |order: &[usize]| -> Vec<u32> {
+        let mut c: Vec<u32> = Vec::new();
+        for &i in order {
+            let blocks = &level.nodes[nodes[i].0 as usize].blocks;
+            c.push(blocks.len() as u32);
+            c.extend(blocks.iter().map(|b| b.0));
+        }
+        for (x, &i) in order.iter().enumerate() {
+            for &j in &order[x + 1..] {
+                c.push(u32::from(adj[i][j]));
+            }
+        }
+        c
+    };
+    let mut order: Vec<usize> = (0..n).collect();
+    let mut best = code(&order);
+    // Heap's algorithm over every order.
+    let mut k = vec![0usize; n];
+    let mut i = 1;
+    while i < n {
+        if k[i] < i {
+            order.swap(if i % 2 == 0 { 0 } else { k[i] }, i);
+            best = best.min(code(&order));
+            k[i] += 1;
+            i = 1;
+        } else {
+            k[i] = 0;
+            i += 1;
+        }
+    }
+    best.push(n as u32);
+    Some(best)
 }
 
 #[cfg(test)]
@@ -171,8 +227,12 @@ mod tests {
         // r0c0, r0c1, r1c1 are nodes 0, 1, 5.
         assert_eq!(c[0].nodes, ids(&[0, 1, 5]));
         assert_eq!((c[0].edges, c[0].origin), (3, Origin::Cycle));
-        // The 4-cycles of the grid follow (the one through r0c0 is split by the diagonal).
-        assert!(c[1..].iter().take(8).all(|x| x.nodes.len() == 4 && x.origin == Origin::Cycle), "{c:?}");
+        // The other triangle (r0c0, r1c0, r1c1), paths of three, then sets of four, the grid's
+        // squares among them.
+        assert_eq!(c[1].nodes, ids(&[0, 4, 5]));
+        assert!(c.windows(2).all(|w| w[0].nodes.len() <= w[1].nodes.len()));
+        let squares = c.iter().filter(|x| x.nodes.len() == 4 && x.edges == 4 && x.origin == Origin::Cycle).count();
+        assert_eq!(squares, 8, "nine squares, the one with the diagonal split into triangles: {c:?}");
         let mut sets: Vec<&Vec<NodeId>> = c.iter().map(|x| &x.nodes).collect();
         sets.sort();
         sets.dedup();
@@ -202,6 +262,19 @@ mod tests {
         );
         let path = Generated::parse("path:6").unwrap().level(0.5).unwrap();
         assert!(candidates(&path, 12).iter().all(|x| x.nodes.len() == 3 && x.edges == 2));
+    }
+
+    #[test]
+    fn shapes_match_up_to_relabelling() {
+        let level = Generated::parse("grid:4x4").unwrap().level(0.5).unwrap();
+        // Two squares of the grid, and two 3-paths, one bent the other way.
+        let sq = |v: &[u32]| shape(&level, &ids(v)).unwrap();
+        assert_eq!(sq(&[0, 1, 4, 5]), sq(&[10, 11, 14, 15]));
+        assert_eq!(sq(&[0, 1, 2]), sq(&[1, 5, 9]));
+        assert_ne!(sq(&[0, 1, 2]), sq(&[0, 1, 4, 5]));
+        assert_ne!(sq(&[0, 1, 5]), sq(&[0, 1, 4, 5]));
+        // A path of three and three nodes of which only two are joined differ.
+        assert_ne!(sq(&[0, 1, 2]), sq(&[0, 1, 3]));
     }
 
     #[test]
