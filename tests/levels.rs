@@ -639,3 +639,95 @@ fn chains_start_with_the_fixed_nodes_and_then_touch_what_is_laid_out() {
     assert!(validate(&level, &r.layouts[0]).is_valid());
     assert_eq!(r.layouts[0].nodes[2].position, [5.0, 5.0]);
 }
+
+fn generated(family: &str, w: f64) -> Level {
+    netspec::levels::generate::Generated::parse(family).unwrap().level(w).unwrap()
+}
+
+fn options(kind: SolverKind, time_limit: f64) -> ExactOptions {
+    ExactOptions { solver: kind, time_limit, count: 1, threads: Some(1), explain: true, interrupt: None }
+}
+
+#[test]
+fn a_grid_with_a_triangle_is_proven_infeasible_by_the_triangle_on_every_backend() {
+    let level = generated("grid:4x4+triangle", 0.55);
+    for kind in backends() {
+        let r = exact::solve(&level, &CSpaces::new(&level), &options(kind, 60.0), &[]).unwrap();
+        assert_eq!(r.status, ExactStatus::Infeasible, "{kind}");
+        assert_eq!(r.route, exact::Route::Subgraph, "{kind}");
+        let proof = r.screen.as_ref().and_then(|s| s.proof.as_ref()).expect("the subgraph");
+        assert_eq!(proof.nodes, ["r0c0", "r0c1", "r1c1"], "{kind}");
+        let c = r.conflict.expect("explained");
+        let mut edges = c.edges.clone();
+        edges.sort();
+        assert_eq!(edges, [["r0c0", "r0c1"], ["r0c0", "r1c1"], ["r0c1", "r1c1"]].map(|e| e.map(String::from)));
+        assert!(c.minimal, "{kind}");
+    }
+}
+
+#[test]
+fn a_ladder_and_a_grid_are_laid_out_incrementally_and_validated_on_every_backend() {
+    for (family, kinds) in [("ladder:12", backends()), ("grid:5x5", vec![SolverKind::default_kind().unwrap()])] {
+        let level = generated(family, 0.5);
+        assert!(level.nodes.len() > exact::WHOLE_MAX_NODES || family.starts_with("grid"));
+        for kind in kinds {
+            let r = exact::solve(&level, &CSpaces::new(&level), &options(kind, 60.0), &[]).unwrap();
+            assert_eq!(r.status, ExactStatus::Feasible, "{family} {kind}: {:?}", r.note);
+            assert_eq!(r.route, exact::Route::Incremental, "{family} {kind}");
+            let v = validate(&level, &r.layouts[0]);
+            assert!(v.is_valid(), "{family} {kind}: {:?}", v.problems());
+            let st = r.incremental.as_ref().unwrap();
+            assert!(st.steps >= 2 && st.largest_step <= level.nodes.len(), "{st:?}");
+        }
+    }
+}
+
+#[test]
+fn incremental_layouts_keep_fixed_nodes_and_give_more_layouts_by_the_last_step() {
+    // A path of 30 with its first node fixed away from the origin: the route is incremental,
+    // the fixed node stays where it is, and the last step gives two more layouts.
+    let mut t = String::from("door_width = 0.5\n") + SQUARE;
+    for i in 0..30 {
+        t += &format!("[[node]]\nname = \"n{i}\"\n{}", if i == 0 { "position = [3, 4]\n" } else { "" });
+    }
+    for i in 1..30 {
+        t += &format!("[[edge]]\nnodes = [\"n{}\", \"n{i}\"]\n", i - 1);
+    }
+    let level = Level::from_toml(&t).unwrap();
+    let o = ExactOptions { count: 3, ..options(SolverKind::default_kind().unwrap(), 60.0) };
+    let r = exact::solve(&level, &CSpaces::new(&level), &o, &[]).unwrap();
+    assert_eq!(r.route, exact::Route::Incremental);
+    assert_eq!(r.layouts.len(), 3, "{:?}", r.note);
+    for l in &r.layouts {
+        assert!(validate(&level, l).is_valid());
+        assert_eq!(l.nodes[0].position, [3.0, 4.0]);
+    }
+    assert_ne!(r.layouts[0], r.layouts[1]);
+    // A ladder's last step closes a square: fewer layouts than asked, and the note says why.
+    let ladder = generated("ladder:12", 0.5);
+    let r = exact::solve(&ladder, &CSpaces::new(&ladder), &o, &[]).unwrap();
+    assert!(!r.layouts.is_empty());
+    if r.layouts.len() < 3 {
+        assert!(r.note.as_deref().is_some_and(|n| n.contains("last step")), "{:?}", r.note);
+    }
+}
+
+#[test]
+fn an_interrupt_returns_at_once_and_the_deadline_holds() {
+    let level = generated("path:60", 0.5);
+    let cs = CSpaces::new(&level);
+    let kind = SolverKind::default_kind().unwrap();
+    let stop = netspec::solvers::Interrupt::new();
+    stop.trigger();
+    let o = ExactOptions { interrupt: Some(stop), ..options(kind, 60.0) };
+    let t = std::time::Instant::now();
+    let r = exact::solve(&level, &cs, &o, &[]).unwrap();
+    assert!(t.elapsed().as_secs_f64() < 10.0);
+    assert_eq!(r.status, ExactStatus::Unknown);
+    assert_eq!(r.note.as_deref(), Some("stopped"));
+    // A tiny limit: no answer, the time limit named, back well within a few limits.
+    let t = std::time::Instant::now();
+    let r = exact::solve(&level, &cs, &options(kind, 0.05), &[]).unwrap();
+    assert!(t.elapsed().as_secs_f64() < 5.0);
+    assert!(r.note.as_deref().is_some_and(|n| n.contains("time limit")), "{:?}", r.note);
+}

@@ -33,7 +33,9 @@ pub fn run(req: LevelRequest) -> Result<ExitCode> {
             a.time_to_first.map_or(String::new(), |t| format!(" · first layout {t:.3} s")),
         );
     }
-    if let Some(m) = &out.milp {
+    if let Some(m) = out.milp.as_ref().filter(|m| m.note.as_deref() == Some("stopped")) {
+        println!("milp       {} · stopped: the annealer answered first", m.solver);
+    } else if let Some(m) = &out.milp {
         println!(
             "milp       {} · {} vars, {} rows · {} solve(s){}{}",
             m.solver,

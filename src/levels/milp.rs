@@ -28,16 +28,48 @@ use std::collections::BTreeSet;
 /// A part of a level to model: some nodes and the graph edges among them that must hold.
 #[derive(Clone, Debug)]
 pub struct Part {
-    /// Nodes, ascending.
+    /// Nodes, ascending (the placed ones included).
     pub nodes: Vec<NodeId>,
-    /// Edges that must be doors (both ends in `nodes`).
+    /// Edges that must be doors (both ends in `nodes`; an edge between two placed nodes is
+    /// left out of the model, it already holds or not).
     pub edges: Vec<EdgeId>,
+    /// Nodes already laid out, ascending, each a node of `nodes` with its block and position
+    /// held constant: partners of the other nodes' doors and blocks they must not overlap
+    /// (an incremental layout's earlier steps). Empty for a whole level.
+    pub placed: Vec<(NodeId, BlockId, Pt)>,
 }
 
 impl Part {
     /// The whole level.
     pub fn whole(level: &Level) -> Part {
-        Part { nodes: (0..level.nodes.len() as u32).map(NodeId).collect(), edges: level.all_edges() }
+        Part {
+            nodes: (0..level.nodes.len() as u32).map(NodeId).collect(),
+            edges: level.all_edges(),
+            placed: Vec::new(),
+        }
+    }
+
+    /// The nodes of `nodes` (ascending) and the level's edges among them, nothing placed: an
+    /// induced subgraph as a level of its own.
+    pub fn induced(level: &Level, nodes: Vec<NodeId>) -> Part {
+        let edges = (0..level.edges.len() as u32)
+            .map(EdgeId)
+            .filter(|e| {
+                let (a, b) = level.edges[e.0 as usize];
+                nodes.binary_search(&a).is_ok() && nodes.binary_search(&b).is_ok()
+            })
+            .collect();
+        Part { nodes, edges, placed: Vec::new() }
+    }
+
+    /// The placement of node `n` if it is placed.
+    pub fn placement(&self, n: NodeId) -> Option<(BlockId, Pt)> {
+        self.placed.binary_search_by_key(&n, |p| p.0).ok().map(|k| (self.placed[k].1, self.placed[k].2))
+    }
+
+    /// Where node `n` must be: its placement's position, else its fixed position in the level.
+    fn anchor(&self, level: &Level, n: NodeId) -> Option<Pt> {
+        self.placement(n).map(|p| p.1).or(level.nodes[n.0 as usize].position)
     }
 }
 
@@ -86,20 +118,17 @@ pub struct LevelModel {
     seps: Vec<SepGroup>,
     obstacles: Vec<ObstacleGroup>,
     bbox: Option<[VarId; 4]>,
+    /// Whether some node is placed (no translation of a start).
+    pinned: bool,
     /// Size by family.
     pub families: Vec<FamilySize>,
 }
 
 /// Position bounds per node of the part: `[xlo, xhi, ylo, yhi]`, and the pinned root if no
-/// node is fixed.
-fn bounds(level: &Level, cs: &CSpaces, part: &Part) -> Vec<[f64; 4]> {
-    let fixed: Vec<NodeId> =
-        part.nodes.iter().copied().filter(|n| level.nodes[n.0 as usize].position.is_some()).collect();
-    let anchors: Vec<(NodeId, Pt)> = if fixed.is_empty() {
-        vec![(part.nodes[0], [0.0, 0.0])]
-    } else {
-        fixed.iter().map(|&n| (n, level.nodes[n.0 as usize].position.unwrap_or_default())).collect()
-    };
+/// node is fixed or placed (hop distance from each anchor × the longest contact offset).
+pub fn bounds(level: &Level, cs: &CSpaces, part: &Part) -> Vec<[f64; 4]> {
+    let fixed: Vec<(NodeId, Pt)> = part.nodes.iter().filter_map(|&n| part.anchor(level, n).map(|p| (n, p))).collect();
+    let anchors: Vec<(NodeId, Pt)> = if fixed.is_empty() { vec![(part.nodes[0], [0.0, 0.0])] } else { fixed };
     let mut b: Vec<[f64; 4]> =
         vec![[f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY]; part.nodes.len()];
     for (root, at) in anchors {
@@ -146,8 +175,11 @@ pub fn build(level: &Level, cs: &CSpaces, part: &Part) -> LevelModel {
         let x = m.add_continuous(format!("x_{name}"), b[k][0], b[k][1], 0.0);
         let y = m.add_continuous(format!("y_{name}"), b[k][2], b[k][3], 0.0);
         pos.push((x, y));
-        let zs: Vec<(BlockId, VarId)> = level.nodes[n.0 as usize]
-            .blocks
+        let allowed = match part.placement(*n) {
+            Some((bk, _)) => vec![bk],
+            None => level.nodes[n.0 as usize].blocks.clone(),
+        };
+        let zs: Vec<(BlockId, VarId)> = allowed
             .iter()
             .map(|&bk| (bk, m.add_binary(format!("z_{name}_{}", level.blocks[bk.0 as usize].name), 0.0)))
             .collect();
@@ -159,9 +191,13 @@ pub fn build(level: &Level, cs: &CSpaces, part: &Part) -> LevelModel {
     // Contacts.
     let c = Counter::start(&m);
     let mut contacts = Vec::new();
+    let is_placed: Vec<bool> = part.nodes.iter().map(|&n| part.placement(n).is_some()).collect();
     for &e in &part.edges {
         let (na, nb) = level.edges[e.0 as usize];
         let (i, j) = (local(na), local(nb));
+        if is_placed[i] && is_placed[j] {
+            continue;
+        }
         let tag = format!("{}_{}", nname(i), nname(j));
         let mut vars = Vec::new();
         for &(ka, _) in &choice[i] {
@@ -202,7 +238,7 @@ pub fn build(level: &Level, cs: &CSpaces, part: &Part) -> LevelModel {
     let mut seps = Vec::new();
     for i in 0..part.nodes.len() {
         for j in i + 1..part.nodes.len() {
-            if adjacent.contains(&(i, j)) {
+            if adjacent.contains(&(i, j)) || (is_placed[i] && is_placed[j]) {
                 continue;
             }
             // Range of p_j − p_i over the bounds.
@@ -244,7 +280,11 @@ pub fn build(level: &Level, cs: &CSpaces, part: &Part) -> LevelModel {
     families.push(c.done(&m, "non-overlap (facet disjunctions)"));
 
     let mut obstacles = Vec::new();
-    if !level.obstacles.is_empty() && part.nodes.iter().any(|n| level.nodes[n.0 as usize].position.is_some()) {
+    // Obstacles matter once something is pinned in absolute coordinates: a fixed node of the
+    // part, or placed nodes of a level that has fixed nodes.
+    let pinned = part.nodes.iter().any(|n| level.nodes[n.0 as usize].position.is_some())
+        || (!part.placed.is_empty() && level.has_fixed());
+    if !level.obstacles.is_empty() && pinned {
         let c = Counter::start(&m);
         obstacles = obstacle_rows(&mut m, level, cs, &b, &pos, &choice, &nname);
         families.push(c.done(&m, "obstacles (facet disjunctions)"));
@@ -256,7 +296,8 @@ pub fn build(level: &Level, cs: &CSpaces, part: &Part) -> LevelModel {
         families.push(c.done(&m, "bounding box objective"));
         v
     });
-    LevelModel { model: m, nodes: part.nodes.clone(), pos, choice, contacts, seps, obstacles, bbox, families }
+    let pinned = !part.placed.is_empty();
+    LevelModel { model: m, nodes: part.nodes.clone(), pos, choice, contacts, seps, obstacles, bbox, pinned, families }
 }
 
 /// Per node, allowed block, obstacle and convex-part pair: a binary per facet of the parts'
@@ -383,6 +424,19 @@ impl LevelModel {
         self.model.add_le(format!("nogood_{index}"), on.into_iter().map(|c| (c, 1.0)), n - 1.0);
     }
 
+    /// Minimises `−d · p_i` over the part's nodes (placed ones are constants): the free
+    /// nodes pushed as far as they go in direction `d` (an incremental step grown away from
+    /// what is placed). Left as it is when the model already minimises the bounding box.
+    pub fn push_towards(&mut self, d: Pt) {
+        if self.bbox.is_some() {
+            return;
+        }
+        for &(x, y) in &self.pos {
+            self.model.var_mut(x).obj = -d[0];
+            self.model.var_mut(y).obj = -d[1];
+        }
+    }
+
     /// Whether the model has a contact binary to cut on (a level with edges).
     pub fn has_contacts(&self) -> bool {
         !self.contacts.is_empty()
@@ -454,7 +508,7 @@ impl LevelModel {
     /// The translation that moves a free layout onto the model's pinned anchor (none when
     /// some node is fixed: the layout must already respect it).
     fn anchor_shift(&self, level: &Level, layout: &Layout) -> Pt {
-        if self.nodes.iter().any(|n| level.nodes[n.0 as usize].position.is_some()) {
+        if self.pinned || self.nodes.iter().any(|n| level.nodes[n.0 as usize].position.is_some()) {
             return [0.0, 0.0];
         }
         let p = layout.nodes[self.nodes[0].0 as usize].position;
