@@ -66,7 +66,7 @@ pub enum TrafficErrorKind {
     #[error("the network failed netspec's independent checks ({0}); not simulating it")]
     Invalid(String),
     /// SUMO's binaries are not where they should be.
-    #[error("SUMO not found (looked in {looked}); install it with `bash scripts/setup.sh` (or `./dev setup`), or set SUMO_HOME")]
+    #[error("SUMO not found (looked in {looked}); install it with `bash scripts/setup.sh sumo` (or `./dev setup sumo`), or set SUMO_HOME")]
     SumoMissing {
         /// Where we looked.
         looked: String,
