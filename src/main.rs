@@ -73,9 +73,11 @@ enum Command {
         /// When the spec is infeasible, do not look for the requirements that conflict.
         #[arg(long)]
         no_explain: bool,
-        /// Time budget for explaining an infeasible spec, seconds.
-        #[arg(long, value_name = "SECONDS", default_value_t = 60.0)]
-        explain_time: f64,
+        /// Time budget for explaining an infeasible spec, seconds, from when the explanation
+        /// starts: it may run past --time-limit, which the solve says up front (default: what is
+        /// left of --time-limit; 60 s without one).
+        #[arg(long, value_name = "SECONDS")]
+        explain_time: Option<f64>,
         /// Start from this design: an earlier `result.json` of the same spec, or a `.sol` file
         /// of this model (`--sol`). It is checked first; a start that fails is reported, not used.
         /// Default: the construction heuristic's design (a twentieth of the time limit, ≤ 1 s; while
@@ -391,7 +393,9 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 no_solve,
                 relax,
                 sol: solve.sol.clone(),
-                explain: (!no_explain).then_some(explain_time),
+                explain: (!no_explain).then_some(
+                    explain_time.map_or(netspec::run::ExplainBudget::Remaining, netspec::run::ExplainBudget::Seconds),
+                ),
                 start,
                 interrupt: None,
                 progress: None,

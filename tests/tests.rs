@@ -35,6 +35,8 @@ mod serve;
 mod levels;
 // A laid-out level exported as a mesh and a network spec, solved, crossings checked by geometry.
 mod level_bridge;
+// One time limit per command; nothing found is lost (processes killed with SIGKILL).
+mod promises;
 
 /// Runs `scripts/setup.sh PART` once per test process (idempotent, about a second when done): the
 /// tests that use SUMO or Chromium install them themselves, as `./dev demo` does not.

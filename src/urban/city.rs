@@ -620,6 +620,7 @@ fn run_level(
         options: solve_opts,
         explain: None,
         sol: None,
+        deadline: None,
     };
     let res: DesignResult = match crate::run::solve_problem(&problem, &nm, &run, &ldir, &mut |_| {}) {
         Ok(crate::run::Solved { design: Some(crate::run::Design::Milp(r)), .. }) => *r,
