@@ -165,9 +165,14 @@ enum Command {
         /// Backend (default: the spec's, else the embedded HiGHS).
         #[arg(long, value_name = "NAME")]
         solver: Option<SolverKind>,
-        /// Time limit for every level's solve, seconds (default: each level's `time_limit`).
+        /// Time limit of every level, seconds, for all of its work (model, start, solve,
+        /// outputs; default: each level's `time_limit`).
         #[arg(long, value_name = "SECONDS")]
         time_limit: Option<f64>,
+        /// Time limit of the whole city, seconds: no level starts after it, a running level
+        /// stops at it with its best network, and the city is assembled and written within it.
+        #[arg(long, value_name = "SECONDS")]
+        total_time_limit: Option<f64>,
         /// Total thread budget (default: the spec's).
         #[arg(long)]
         threads: Option<u32>,
@@ -447,6 +452,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
             spec,
             solver,
             time_limit,
+            total_time_limit,
             threads,
             threads_per_solve,
             gap,
@@ -459,6 +465,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
             let args = cli::city::CityArgs {
                 solver,
                 time_limit,
+                total_time_limit,
                 threads,
                 threads_per_solve,
                 gap,

@@ -182,3 +182,32 @@ fn a_killed_server_shows_the_run_interrupted() {
         assert!(summary["objective"].as_f64().is_some(), "{summary}");
     });
 }
+
+/// `netspec city` with a level limit of 1 s and a total limit of 3 s on a city whose levels
+/// otherwise run for minutes: every level's work within its limit, the city within its total,
+/// levels left when the total runs out skipped, and the city still assembled and written.
+#[test]
+fn city_time_limits_bound_levels_and_the_city() {
+    let dir = tempfile::tempdir().unwrap();
+    let t = Instant::now();
+    let o = netspec()
+        .arg("city")
+        .arg(root().join("models/city/fig7a.toml"))
+        .args(["--time-limit", "1", "--total-time-limit", "3", "--fresh", "--out"])
+        .arg(dir.path())
+        .output()
+        .unwrap();
+    let secs = t.elapsed().as_secs_f64();
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(secs < 10.0, "{secs:.1} s for a 3 s total limit:\n{stdout}");
+    assert!(dir.path().join("city.json").exists(), "{stdout}{}", String::from_utf8_lossy(&o.stderr));
+    let city: Value = serde_json::from_str(&std::fs::read_to_string(dir.path().join("city.json")).unwrap()).unwrap();
+    let levels: Vec<&Value> =
+        city["regions"].as_array().unwrap().iter().flat_map(|r| r["levels"].as_array().unwrap()).collect();
+    assert!(!levels.is_empty());
+    for l in levels {
+        if let Some(w) = l["wall_time"].as_f64() {
+            assert!(w < 4.0, "a level with a 1 s limit took {w:.1} s: {l}");
+        }
+    }
+}

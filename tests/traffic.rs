@@ -198,6 +198,7 @@ fn city_export_is_exactly_the_street_graph() {
         interrupt: None,
         only: None,
         reuse_only: false,
+        deadline: None,
     };
     let city = run_city(&spec, out.path(), &opts).unwrap();
     assert!(city.complete && city.valid);
