@@ -234,6 +234,10 @@ enum Command {
         /// Output directory.
         #[arg(long, value_name = "DIR", default_value = "out/traffic")]
         out: PathBuf,
+        /// Time limit of the whole evaluation, seconds: a SUMO tool still running when it runs
+        /// out is stopped and the command fails, saying so (default: none).
+        #[arg(long, value_name = "SECONDS")]
+        time_limit: Option<f64>,
     },
     /// Design in the browser: a local web application to open, edit and solve specs, watch the
     /// solve, and compare and export designs (docs/serve.md).
@@ -488,6 +492,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
             level,
             sumo_home,
             out,
+            time_limit,
         } => cli::traffic::run_traffic(cli::traffic::TrafficArgs {
             designs,
             labels,
@@ -500,6 +505,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
             load: netspec::traffic::network::LoadOptions { metres_per_unit, level },
             sumo_home,
             out,
+            time_limit,
         }),
         Command::Serve { root, port, bind, max_solves, threads } => {
             let mut opts = netspec::serve::ServeOptions { root, port, bind, max_solves, ..Default::default() };

@@ -211,3 +211,33 @@ fn city_time_limits_bound_levels_and_the_city() {
         }
     }
 }
+
+/// `netspec traffic --time-limit 2` on a demand that keeps SUMO busy for minutes: the tool is
+/// stopped at the limit and the command fails saying so.
+#[test]
+fn traffic_time_limit_stops_sumo() {
+    crate::setup_part("sumo");
+    let dir = tempfile::tempdir().unwrap();
+    let design = dir.path().join("tiny");
+    let o = netspec()
+        .arg("solve")
+        .arg(root().join("fixtures/specs/tiny_network.toml"))
+        .arg("--out")
+        .arg(&design)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let t = Instant::now();
+    let o = netspec()
+        .arg("traffic")
+        .arg(&design)
+        .args(["--duration", "100000", "--through-rate", "5000", "--local-rate", "5000", "--time-limit", "2", "--out"])
+        .arg(dir.path().join("traffic"))
+        .output()
+        .unwrap();
+    let secs = t.elapsed().as_secs_f64();
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success());
+    assert!(stderr.contains("the time limit ran out"), "{stderr}");
+    assert!(secs < 10.0, "{secs:.1} s for a 2 s limit: {stderr}");
+}

@@ -86,6 +86,12 @@ pub enum TrafficErrorKind {
     /// SUMO's output does not say what it should.
     #[error("{0}")]
     Output(String),
+    /// The command's time limit ran out while a SUMO tool ran; it was stopped.
+    #[error("the time limit ran out while `{tool}` ran; it was stopped (raise --time-limit)")]
+    TimeLimit {
+        /// The tool.
+        tool: String,
+    },
 }
 
 impl TrafficError {
