@@ -565,6 +565,15 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 for s in &list {
                     println!("{:<8} {:<10} {}", s.name, s.version, s.capability_summary());
                 }
+                let (live, at_end): (Vec<_>, Vec<_>) = list.iter().partition(|s| s.capabilities.reports_progress);
+                let names = |v: &[&netspec::report::SolverInfo]| {
+                    v.iter().map(|s| s.name.as_str()).collect::<Vec<_>>().join(", ")
+                };
+                println!(
+                    "live: improving designs and progress while solving from {}; only at the end from {}",
+                    names(&live),
+                    names(&at_end)
+                );
                 let missing: Vec<_> = SolverKind::ALL.iter().filter(|k| !k.is_compiled()).map(|k| k.name()).collect();
                 if !missing.is_empty() {
                     println!("not compiled in: {} (enable the cargo features of the same names)", missing.join(", "));

@@ -244,7 +244,8 @@ pub fn solve(h: &Arc<RunHandle>, problem: Problem, threads: u32, max_cells: usiz
     };
     let mut on = |e: Event| {
         if let Event::SolveStarted { kind, time_limit, .. } = e {
-            h.push(json!({ "kind": "solving", "solver": kind.to_string(), "time_limit": time_limit }));
+            let live = kind.instance().is_ok_and(|s| s.capabilities().reports_progress);
+            h.push(json!({ "kind": "solving", "solver": kind.to_string(), "time_limit": time_limit, "live": live }));
         }
     };
     match crate::run::solve_spec(&req, &mut on) {
