@@ -639,9 +639,15 @@ fn run_level(
     }
     // Every level starts from the construction heuristic's design (checked before it is used),
     // and is solved and written like `netspec solve` (result.json, network.svg/png, .geojson).
+    // A level that an earlier run left unfinished (killed) goes on from the design it wrote,
+    // checked like any start.
+    let start = match crate::run::left_design(&ldir).filter(|l| l.network.active.len() == problem.mesh.num_edges()) {
+        Some(left) => pipeline::StartFrom::Design { network: left.network, source: left.path.display().to_string() },
+        None => pipeline::default_start(solve_opts.finite_time_limit()),
+    };
     let run = crate::run::Run {
         method: Method::Milp(opts.solver),
-        start: pipeline::default_start(solve_opts.finite_time_limit()),
+        start,
         options: solve_opts,
         explain: None,
         sol: None,
