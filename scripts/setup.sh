@@ -1,10 +1,22 @@
 #!/usr/bin/env bash
-# Idempotent machine setup for netspec: Debian packages for HiGHS (build) and CBC,
-# SCIP 10.0.2 from the pyscipopt==6.3.0 wheel, wired into Cargo via a `links` override,
-# SUMO 1.28.0 (traffic simulation, `netspec traffic`) from the eclipse-sumo wheel, and
-# Chromium with its WebDriver (the browser test of `netspec serve`).
-# A second run takes about a second. Stops loudly on any version drift.
+# Idempotent machine setup for netspec, in parts; each part installs only what it needs:
+#
+#   scripts/setup.sh [build]   what the build needs: Debian packages for HiGHS's build and CBC,
+#                              SCIP 10.0.2 from the pyscipopt==6.3.0 wheel, wired into Cargo via
+#                              a `links` override (what `./dev demo` and `./dev install` run)
+#   scripts/setup.sh sumo      SUMO 1.28.0 from the eclipse-sumo wheel (`netspec traffic`)
+#   scripts/setup.sh browser   Chromium and its WebDriver (the browser test of `netspec serve`)
+#   scripts/setup.sh all       all three (what `./dev test` runs)
+#
+# (Slurm, for the cluster tests, is scripts/slurm-local.sh's.) A second run takes about a
+# second. Stops loudly on any version drift.
 set -euo pipefail
+parts=("${@:-build}")
+[[ ${parts[0]} == all ]] && parts=(build sumo browser)
+want_part() { local p; for p in "${parts[@]}"; do [[ $p == "$1" ]] && return 0; done; return 1; }
+for p in "${parts[@]}"; do
+  case "$p" in build|sumo|browser) ;; *) printf '[setup] ERROR: unknown part %s (build, sumo, browser, all)\n' "$p" >&2; exit 2 ;; esac
+done
 here=$(cd "$(dirname "$0")/.." && pwd)
 # Python packages are pinned in scripts/requirements.txt.
 pinned() { sed -n "s/^$1==\([^ #]*\).*/\1/p" "$here/scripts/requirements.txt"; }
@@ -18,19 +30,28 @@ PREFIX=$DEPS/scip-$SCIP_VERSION
 log() { printf '[setup] %s\n' "$*" >&2; }
 die() { printf '[setup] ERROR: %s\n' "$*" >&2; exit 1; }
 
-# 1. Debian packages.
-pkgs=(cmake clang libclang-dev coinor-libcbc-dev coinor-cbc pkg-config unzip fonts-dejavu-core python3-venv python3-pip
-  chromium chromium-driver)
-missing=()
-for p in "${pkgs[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
-done
-if ((${#missing[@]})); then
+# Debian packages that are not installed yet, installed (apt's own progress shown).
+apt_install() {
+  local p missing=()
+  for p in "$@"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
+  done
+  ((${#missing[@]})) || return 0
   log "installing Debian packages: ${missing[*]}"
-  SUDO=""; [[ $(id -u) -ne 0 ]] && SUDO=sudo
+  local SUDO=""; [[ $(id -u) -ne 0 ]] && SUDO=sudo
   $SUDO apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq "${missing[@]}" >/dev/null
-fi
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -q "${missing[@]}"
+}
+
+setup_browser() {
+  apt_install chromium chromium-driver
+  log "ok: $(chromium --version 2>/dev/null || echo chromium), $(chromedriver --version 2>/dev/null | cut -d' ' -f1-2)"
+}
+
+setup_build() {
+# 1. Debian packages: HiGHS's build (cmake, clang for bindgen), CBC, the wheel's unpacking, the
+# pictures' font.
+apt_install cmake clang libclang-dev coinor-libcbc-dev coinor-cbc pkg-config unzip fonts-dejavu-core python3-pip
 cbc_have=$(dpkg-query -W -f='${Version}' coinor-libcbc-dev)
 [[ $cbc_have == $CBC_VERSION_PREFIX* ]] || die "coinor-libcbc-dev is $cbc_have, expected $CBC_VERSION_PREFIX.x"
 
@@ -84,7 +105,12 @@ if [[ ! -f $cfg ]] || [[ "$(cat "$cfg")" != "$want" ]]; then
   printf '%s\n' "$want" > "$cfg"
   log "wrote $cfg"
 fi
-# 5. SUMO for `netspec traffic`: the eclipse-sumo wheel (binaries with their libraries bundled)
+log "ok (build): CBC $cbc_have, SCIP $SCIP_VERSION at $PREFIX"
+}
+
+setup_sumo() {
+apt_install python3-venv
+# SUMO for `netspec traffic`: the eclipse-sumo wheel (binaries with their libraries bundled)
 # in a venv of its own, and $DEPS/sumo-home -> its SUMO_HOME, where netspec looks for it.
 # Measured against Debian's sumo + sumo-tools (1.15.0: 122 packages, 7 system upgrades, 36 s):
 # the wheel is 13 releases newer, touches nothing outside $DEPS and installs in about 10 s.
@@ -107,4 +133,10 @@ if [[ "$(readlink "$DEPS/sumo-home" 2>/dev/null)" != "$sumo_home" ]]; then
   ln -sfn "$sumo_home" "$DEPS/sumo-home"
 fi
 
-log "ok: CBC $cbc_have, SCIP $SCIP_VERSION at $PREFIX, SUMO $SUMO_VERSION at $DEPS/sumo-home"
+log "ok (sumo): SUMO $SUMO_VERSION at $DEPS/sumo-home"
+}
+
+want_part build && setup_build
+want_part sumo && setup_sumo
+want_part browser && setup_browser
+true

@@ -925,7 +925,7 @@ impl Explanation {
             self.requirements,
             self.checks,
             self.solver,
-            self.check_time_limit,
+            (self.check_time_limit * 100.0).round() / 100.0,
             if self.unknown_checks > 0 {
                 format!(", {} without an answer", self.unknown_checks)
             } else {

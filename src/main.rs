@@ -73,9 +73,11 @@ enum Command {
         /// When the spec is infeasible, do not look for the requirements that conflict.
         #[arg(long)]
         no_explain: bool,
-        /// Time budget for explaining an infeasible spec, seconds.
-        #[arg(long, value_name = "SECONDS", default_value_t = 60.0)]
-        explain_time: f64,
+        /// Time budget for explaining an infeasible spec, seconds, from when the explanation
+        /// starts: it may run past --time-limit, which the solve says up front (default: what is
+        /// left of --time-limit; 60 s without one).
+        #[arg(long, value_name = "SECONDS")]
+        explain_time: Option<f64>,
         /// Start from this design: an earlier `result.json` of the same spec, or a `.sol` file
         /// of this model (`--sol`). It is checked first; a start that fails is reported, not used.
         /// Default: the construction heuristic's design (a twentieth of the time limit, ≤ 1 s; while
@@ -163,9 +165,14 @@ enum Command {
         /// Backend (default: the spec's, else the embedded HiGHS).
         #[arg(long, value_name = "NAME")]
         solver: Option<SolverKind>,
-        /// Time limit for every level's solve, seconds (default: each level's `time_limit`).
+        /// Time limit of every level, seconds, for all of its work (model, start, solve,
+        /// outputs; default: each level's `time_limit`).
         #[arg(long, value_name = "SECONDS")]
         time_limit: Option<f64>,
+        /// Time limit of the whole city, seconds: no level starts after it, a running level
+        /// stops at it with its best network, and the city is assembled and written within it.
+        #[arg(long, value_name = "SECONDS")]
+        total_time_limit: Option<f64>,
         /// Total thread budget (default: the spec's).
         #[arg(long)]
         threads: Option<u32>,
@@ -227,6 +234,10 @@ enum Command {
         /// Output directory.
         #[arg(long, value_name = "DIR", default_value = "out/traffic")]
         out: PathBuf,
+        /// Time limit of the whole evaluation, seconds: a SUMO tool still running when it runs
+        /// out is stopped and the command fails, saying so (default: none).
+        #[arg(long, value_name = "SECONDS")]
+        time_limit: Option<f64>,
     },
     /// Design in the browser: a local web application to open, edit and solve specs, watch the
     /// solve, and compare and export designs (docs/serve.md).
@@ -404,7 +415,9 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 no_solve,
                 relax,
                 sol: solve.sol.clone(),
-                explain: (!no_explain).then_some(explain_time),
+                explain: (!no_explain).then_some(
+                    explain_time.map_or(netspec::run::ExplainBudget::Remaining, netspec::run::ExplainBudget::Seconds),
+                ),
                 start,
                 interrupt: None,
                 progress: None,
@@ -456,6 +469,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
             spec,
             solver,
             time_limit,
+            total_time_limit,
             threads,
             threads_per_solve,
             gap,
@@ -468,6 +482,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
             let args = cli::city::CityArgs {
                 solver,
                 time_limit,
+                total_time_limit,
                 threads,
                 threads_per_solve,
                 gap,
@@ -490,6 +505,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
             level,
             sumo_home,
             out,
+            time_limit,
         } => cli::traffic::run_traffic(cli::traffic::TrafficArgs {
             designs,
             labels,
@@ -502,6 +518,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
             load: netspec::traffic::network::LoadOptions { metres_per_unit, level },
             sumo_home,
             out,
+            time_limit,
         }),
         Command::Serve { root, port, bind, max_solves, threads } => {
             let mut opts = netspec::serve::ServeOptions { root, port, bind, max_solves, ..Default::default() };
@@ -573,6 +590,15 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 for s in &list {
                     println!("{:<8} {:<10} {}", s.name, s.version, s.capability_summary());
                 }
+                let (live, at_end): (Vec<_>, Vec<_>) = list.iter().partition(|s| s.capabilities.reports_progress);
+                let names = |v: &[&netspec::report::SolverInfo]| {
+                    v.iter().map(|s| s.name.as_str()).collect::<Vec<_>>().join(", ")
+                };
+                println!(
+                    "live: improving designs and progress while solving from {}; only at the end from {}",
+                    names(&live),
+                    names(&at_end)
+                );
                 let missing: Vec<_> = SolverKind::ALL.iter().filter(|k| !k.is_compiled()).map(|k| k.name()).collect();
                 if !missing.is_empty() {
                     println!("not compiled in: {} (enable the cargo features of the same names)", missing.join(", "));

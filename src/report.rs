@@ -157,6 +157,7 @@ impl SolverInfo {
             ("nodecount", c.reports_nodes),
             ("interrupt", c.interrupt),
             ("params", c.raw_params),
+            ("live", c.reports_progress),
         ];
         flags.iter().map(|(n, ok)| if *ok { n.to_string() } else { format!("-{n}") }).collect::<Vec<_>>().join(" ")
     }

@@ -21,11 +21,33 @@ use crate::solvers::{Interrupt, PointSink, ProgressSink, SolveOptions, SolverErr
 use crate::spec::{Problem, Spec, SpecError, Variant};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
-use std::time::Instant;
+use std::time::{Duration, Instant};
+
+pub mod running;
+pub use running::{left_design, write_atomic, LeftDesign};
 
 /// Default time limits of the searches, seconds.
 const HEURISTIC_SECONDS: f64 = 10.0;
 const ANNEAL_SECONDS: f64 = 60.0;
+/// The explanation's budget when the command has no time limit, seconds.
+const EXPLAIN_SECONDS: f64 = 60.0;
+
+/// How long explaining an infeasible spec may take.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ExplainBudget {
+    /// What is left of the command's time limit (60 s without one): the limit bounds the whole
+    /// command.
+    Remaining,
+    /// Its own budget, in seconds from when the explanation starts: it may run past the
+    /// command's limit, which the run says up front ([`Event::LimitExtended`]).
+    Seconds(f64),
+}
+
+/// The time kept from a command's limit for writing its outputs (pictures, GeoJSON, results): a
+/// twentieth of the limit, at most 1 s.
+pub fn output_reserve(limit: f64) -> f64 {
+    (0.05 * limit).min(1.0)
+}
 
 /// Why a run could not be made (a finished solve, whatever its termination, is not an error).
 #[derive(Debug, thiserror::Error)]
@@ -105,8 +127,8 @@ pub struct SolveRequest {
     pub relax: bool,
     /// Write the solution (or, with `relax`, the LP point) as a `.sol` file.
     pub sol: Option<PathBuf>,
-    /// The time budget for explaining an infeasible spec (`None`: do not explain).
-    pub explain: Option<f64>,
+    /// Explaining an infeasible spec, and its budget (`None`: do not explain).
+    pub explain: Option<ExplainBudget>,
     /// The MIP start.
     pub start: StartChoice,
     /// A request to stop early, keeping the best design.
@@ -199,6 +221,15 @@ pub enum Event<'a> {
         time_limit: Option<f64>,
         /// The start, checked.
         start: Option<&'a StartReport>,
+    },
+    /// Work with its own budget will run past the command's time limit (said before any work).
+    LimitExtended {
+        /// What: `explain`.
+        what: &'static str,
+        /// Its budget, seconds.
+        seconds: f64,
+        /// The command's time limit, seconds.
+        limit: f64,
     },
     /// The design (or the verdict that there is none) is ready, checked.
     Designed(&'a Design),
@@ -343,6 +374,17 @@ pub fn solve_spec(req: &SolveRequest, on: &mut dyn FnMut(Event)) -> Result<Solve
     let layers =
         [(Origin::Flags, req.flags.clone()), (Origin::Spec(req.spec.clone()), Settings::of_spec(&problem.spec.solver))];
     let (method, mut options) = resolve(&layers)?;
+    if let Some(ExplainBudget::Seconds(s)) = req.explain {
+        if !(s.is_finite() && s >= 0.0) {
+            return Err(RunError::Unsupported(format!("--explain-time must be a number of seconds ≥ 0, got {s}")));
+        }
+    }
+    let deadline = options.finite_time_limit().map(|limit| t0 + Duration::from_secs_f64(limit));
+    if let (Some(ExplainBudget::Seconds(seconds)), Some(limit)) = (req.explain, options.finite_time_limit()) {
+        if !req.no_solve && !req.relax && method.milp().is_some() {
+            on(Event::LimitExtended { what: "explain", seconds, limit });
+        }
+    }
     let f = pipeline::build(&problem);
     on(Event::Built { problem: &problem, formulation: &f, millis: t0.elapsed().as_secs_f64() * 1e3 });
     if let Some(path) = &req.export {
@@ -368,7 +410,7 @@ pub fn solve_spec(req: &SolveRequest, on: &mut dyn FnMut(Event)) -> Result<Solve
     options.progress = req.progress.clone();
     options.incumbents = req.incumbents.clone().map(|sink| point_sink(&problem, &f, sink));
     if let Some(limit) = options.finite_time_limit() {
-        options.time_limit = Some((limit - t0.elapsed().as_secs_f64()).max(0.0));
+        options.time_limit = Some((limit - output_reserve(limit) - t0.elapsed().as_secs_f64()).max(0.0));
     }
     let start = match &req.start {
         StartChoice::Nothing => StartFrom::Nothing,
@@ -377,7 +419,7 @@ pub fn solve_spec(req: &SolveRequest, on: &mut dyn FnMut(Event)) -> Result<Solve
             StartFrom::Design { network: start_design(file, &problem, &f)?, source: file.display().to_string() }
         }
     };
-    let run = Run { method, options, start, explain: req.explain, sol: req.sol.clone() };
+    let run = Run { method, options, start, explain: req.explain, sol: req.sol.clone(), deadline };
     let out = req.out.clone().unwrap_or_else(|| default_out_dir(&req.spec));
     solve_problem(&problem, &f, &run, &out, on).map_err(|e| name_origin(e, &layers))
 }
@@ -409,10 +451,26 @@ pub struct Run {
     pub options: SolveOptions,
     /// The MIP start of a MILP solve.
     pub start: StartFrom,
-    /// The time budget for explaining an infeasible spec (`None`: do not explain).
-    pub explain: Option<f64>,
+    /// Explaining an infeasible spec, and its budget (`None`: do not explain).
+    pub explain: Option<ExplainBudget>,
     /// Write the solution found as a `.sol` file here.
     pub sol: Option<PathBuf>,
+    /// When the command's time limit runs out (`None`: no limit); what is left of it after the
+    /// solve is the explanation's [`ExplainBudget::Remaining`].
+    pub deadline: Option<Instant>,
+}
+
+impl Run {
+    /// Seconds the explanation may take, when it is asked for.
+    fn explain_seconds(&self) -> Option<f64> {
+        match self.explain? {
+            ExplainBudget::Seconds(s) => Some(s),
+            ExplainBudget::Remaining => Some(self.deadline.map_or(EXPLAIN_SECONDS, |d| {
+                let left = d.saturating_duration_since(Instant::now()).as_secs_f64();
+                (left - output_reserve(left)).max(0.0)
+            })),
+        }
+    }
 }
 
 /// Designs a built problem, explains it if infeasible, and writes the outputs into `out`.
@@ -425,7 +483,7 @@ pub fn solve_problem(
 ) -> Result<Solved, RunError> {
     let design = match run.method {
         Method::Search(m) => Design::Search(Box::new(search(p, f, m, &run.options, on)?)),
-        Method::Milp(kind) => Design::Milp(Box::new(milp(p, f, kind, run, on)?)),
+        Method::Milp(kind) => Design::Milp(Box::new(milp_writing(p, f, kind, run, out, on)?)),
     };
     on(Event::Designed(&design));
     if let (Some(path), Design::Milp(r)) = (&run.sol, &design) {
@@ -435,7 +493,7 @@ pub fn solve_problem(
             on(Event::Wrote { what: "solution", path });
         }
     }
-    let explanation = match (run.explain, &design) {
+    let explanation = match (run.explain_seconds(), &design) {
         (Some(budget), Design::Milp(r)) if r.solve.termination == Termination::Infeasible => {
             on(Event::Explaining);
             let opts = ExplainOptions {
@@ -454,6 +512,27 @@ pub fn solve_problem(
     };
     write_outputs(out, p, f, &design, explanation.as_ref(), on)?;
     Ok(Solved { design: Some(design), explanation })
+}
+
+/// A MILP solve that writes every design it finds on the way into `out` as it arrives
+/// ([`running`]), the writer finished before the answer is returned.
+fn milp_writing(
+    p: &Problem,
+    f: &Formulation,
+    kind: SolverKind,
+    run: &Run,
+    out: &Path,
+    on: &mut dyn FnMut(Event),
+) -> Result<DesignResult, RunError> {
+    std::thread::scope(|scope| {
+        let (sink, writer) = running::spawn(scope, out, p, f);
+        let mut run = run.clone();
+        run.options.incumbents = Some(sink.point_sink(run.options.incumbents.take()));
+        let r = milp(p, f, kind, &run, on);
+        sink.close();
+        let _ = writer.join();
+        r
+    })
 }
 
 /// A MILP solve from the run's start: the start is prepared first (so the caller can show it),
@@ -593,7 +672,7 @@ pub fn write_outputs(
     on: &mut dyn FnMut(Event),
 ) -> Result<(), RunError> {
     let write = |path: &Path, bytes: &[u8]| {
-        std::fs::write(path, bytes).map_err(|source| RunError::Write { path: path.to_path_buf(), source })
+        write_atomic(path, bytes).map_err(|source| RunError::Write { path: path.to_path_buf(), source })
     };
     std::fs::create_dir_all(dir).map_err(|source| RunError::Write { path: dir.to_path_buf(), source })?;
     let json = dir.join("result.json");
@@ -604,15 +683,23 @@ pub fn write_outputs(
             struct Written<'a> {
                 #[serde(flatten)]
                 result: &'a DesignResult,
+                status: &'static str,
                 #[serde(skip_serializing_if = "Option::is_none")]
                 infeasibility: Option<&'a Explanation>,
             }
-            serde_json::to_string_pretty(&Written { result: r, infeasibility: explanation })
+            serde_json::to_string_pretty(&Written { result: r, status: running::FINISHED, infeasibility: explanation })
         }
-        Design::Search(r) => serde_json::to_string_pretty(r),
+        Design::Search(r) => {
+            #[derive(serde::Serialize)]
+            struct Written<'a> {
+                #[serde(flatten)]
+                result: &'a SearchResult,
+                status: &'static str,
+            }
+            serde_json::to_string_pretty(&Written { result: r, status: running::FINISHED })
+        }
     }
     .expect("results serialise");
-    write(&json, (text + "\n").as_bytes())?;
     let spec = &p.spec;
     let caption = caption(spec, design);
     let picture = match design.network() {
@@ -645,6 +732,8 @@ pub fn write_outputs(
         write(&dot, g.to_dot(&spec.name).as_bytes())?;
         on(Event::Wrote { what: "blocks", path: &dot });
     }
+    // Last, so that a finished result.json never stands beside a picture of an earlier design.
+    write(&json, (text + "\n").as_bytes())?;
     on(Event::Wrote { what: "result", path: &json });
     Ok(())
 }

@@ -37,3 +37,25 @@ mod levels;
 mod level_families;
 // A laid-out level exported as a mesh and a network spec, solved, crossings checked by geometry.
 mod level_bridge;
+// One time limit per command; nothing found is lost (processes killed with SIGKILL).
+mod promises;
+
+/// Runs `scripts/setup.sh PART` once per test process (idempotent, about a second when done): the
+/// tests that use SUMO or Chromium install them themselves, as `./dev demo` does not.
+pub fn setup_part(part: &'static str) {
+    use std::collections::BTreeMap;
+    use std::sync::{Mutex, OnceLock};
+    static DONE: OnceLock<Mutex<BTreeMap<&'static str, Result<(), String>>>> = OnceLock::new();
+    let mut done = DONE.get_or_init(Default::default).lock().unwrap_or_else(|e| e.into_inner());
+    let r = done.entry(part).or_insert_with(|| {
+        let script = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scripts/setup.sh");
+        match std::process::Command::new("bash").arg(&script).arg(part).output() {
+            Ok(o) if o.status.success() => Ok(()),
+            Ok(o) => Err(format!("scripts/setup.sh {part} failed: {}", String::from_utf8_lossy(&o.stderr))),
+            Err(e) => Err(format!("scripts/setup.sh {part} could not be run: {e}")),
+        }
+    });
+    if let Err(e) = r {
+        panic!("{e}");
+    }
+}

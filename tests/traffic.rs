@@ -1,5 +1,5 @@
 //! Traffic evaluation in SUMO: tiny designs through the real `netconvert`,
-//! `duarouter` and `sumo` installed by scripts/setup.sh; the export checked against the design
+//! `duarouter` and `sumo` installed by `scripts/setup.sh sumo` (run by the tests that need them); the export checked against the design
 //! graph; the demand; errors that name the file and the cause.
 
 use netspec::pipeline::{self, DesignResult};
@@ -37,6 +37,7 @@ fn tiny_design(extra: &str) -> DesignResult {
 }
 
 fn sumo() -> Sumo {
+    crate::setup_part("sumo");
     Sumo::locate(None).unwrap_or_else(|e| panic!("{e}"))
 }
 
@@ -197,6 +198,7 @@ fn city_export_is_exactly_the_street_graph() {
         interrupt: None,
         only: None,
         reuse_only: false,
+        deadline: None,
     };
     let city = run_city(&spec, out.path(), &opts).unwrap();
     assert!(city.complete && city.valid);
@@ -368,6 +370,7 @@ fn bad_input_names_the_file_and_the_cause() {
 /// plot; `netspec solve` writes the design's GeoJSON (every segment an active edge).
 #[test]
 fn cli_compares_designs_and_solve_writes_geojson() {
+    crate::setup_part("sumo");
     let dir = tempfile::tempdir().unwrap();
     for (name, extra) in [("short", ""), ("direct", "[weights]\nlength = 0\ndistance = 1\n")] {
         let spec = dir.path().join(format!("{name}.toml"));

@@ -28,6 +28,7 @@ fn options(kind: SolverKind) -> CityRunOptions {
         interrupt: None,
         only: None,
         reuse_only: false,
+        deadline: None,
     }
 }
 

@@ -9,7 +9,7 @@ use netspec::urban::{self, CityEvent, CityRunOptions, CitySpec};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::Arc;
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 /// Exit code when some level produced no network (infeasible, time limit without a solution,
 /// error) — the rest of the city is still written.
@@ -17,10 +17,17 @@ const EXIT_INCOMPLETE: u8 = 4;
 /// Exit code when a network fails an independent check.
 const EXIT_INVALID: u8 = 3;
 
+/// The time kept from `--total-time-limit` for smoothing, assembling and writing the city after
+/// its levels: a tenth, at most 5 s.
+fn assembly_reserve(total: f64) -> f64 {
+    (0.1 * total).min(5.0)
+}
+
 /// The command line's settings.
 pub struct CityArgs {
     pub solver: Option<SolverKind>,
     pub time_limit: Option<f64>,
+    pub total_time_limit: Option<f64>,
     pub threads: Option<u32>,
     pub threads_per_solve: Option<u32>,
     pub gap: Option<f64>,
@@ -67,6 +74,7 @@ fn level_job(spec: &CitySpec, out: &Path, opts: &CityRunOptions, job: &str) -> R
 }
 
 pub fn run_city(path: &Path, args: CityArgs) -> Result<ExitCode> {
+    let started = Instant::now();
     let spec = CitySpec::load(path)?;
     let flags = Settings {
         method: args.solver.map(Method::Milp),
@@ -77,6 +85,16 @@ pub fn run_city(path: &Path, args: CityArgs) -> Result<ExitCode> {
     let max_cells = args.max_cells.unwrap_or(netspec::spec::DEFAULT_MAX_CELLS);
     let mut opts = CityRunOptions::resolve(&spec, path, &flags, args.threads, args.threads_per_solve, max_cells)?;
     opts.resume = !args.fresh;
+    if let Some(total) = args.total_time_limit {
+        if !(total > 0.0 && total.is_finite()) {
+            anyhow::bail!("--total-time-limit must be a positive number of seconds, got {total}");
+        }
+        anyhow::ensure!(
+            args.slurm.is_none(),
+            "--total-time-limit: the cluster's jobs have their own limits (--time-limit)"
+        );
+        opts.deadline = Some(started + Duration::from_secs_f64(total - assembly_reserve(total)));
+    }
     let interrupt = crate::cli::interrupt::install()?;
     opts.interrupt = Some(interrupt.clone());
     let out = args.out.clone().unwrap_or_else(|| netspec::run::default_out_dir(path));

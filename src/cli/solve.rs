@@ -75,6 +75,9 @@ fn print_event(e: &Event, bar: &ProgressBar) {
                 );
             }
         }
+        Event::LimitExtended { what, seconds, limit } => println!(
+            "limit      --{what}-time {seconds} s: if the spec is infeasible, explaining it may run past the {limit} s time limit by up to {seconds} s"
+        ),
         Event::Exported { path, .. } => println!("exported   {}", path.display()),
         Event::Relaxed { kind, bound: b } => {
             let f = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.6}"));

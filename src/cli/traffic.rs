@@ -17,6 +17,7 @@ pub struct TrafficArgs {
     pub load: LoadOptions,
     pub sumo_home: Option<PathBuf>,
     pub out: PathBuf,
+    pub time_limit: Option<f64>,
 }
 
 /// A label from a design's path: its directory name (`result.json`'s parent's for a file).
@@ -34,7 +35,16 @@ fn write_picture(dir: &Path, stem: &str, svg: &str) -> Result<()> {
 }
 
 pub fn run_traffic(args: TrafficArgs) -> Result<ExitCode> {
-    let sumo = Sumo::locate(args.sumo_home.as_deref())?;
+    let started = Instant::now();
+    let mut sumo = Sumo::locate(args.sumo_home.as_deref())?;
+    if let Some(limit) = args.time_limit {
+        if !(limit > 0.0 && limit.is_finite()) {
+            anyhow::bail!("--time-limit must be a positive number of seconds, got {limit}");
+        }
+        // The tools stop early enough for the pictures and tables to be written within the limit.
+        let tools = limit - netspec::run::output_reserve(limit);
+        sumo.deadline = Some(started + std::time::Duration::from_secs_f64(tools));
+    }
     let note = if sumo.version == traffic::sumo::SETUP_SUMO_VERSION {
         String::new()
     } else {

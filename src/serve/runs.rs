@@ -15,7 +15,8 @@ use std::sync::atomic::AtomicUsize;
 use std::sync::{Arc, Mutex};
 use std::time::Instant;
 
-/// Seconds an infeasible spec's explanation may take.
+/// Seconds an infeasible spec's explanation may take when the spec has no time limit (with one,
+/// what is left of it).
 const EXPLAIN_SECONDS: f64 = 10.0;
 
 /// Where a run is.
@@ -30,8 +31,11 @@ pub enum RunState {
     Finished,
     /// The solve could not be made (the message says why).
     Failed,
-    /// The server stopped while the run was queued or running.
+    /// The server stopped while the run was queued or running, before it found a design.
     Lost,
+    /// The server stopped (or was killed) while the run was running, after it had found a
+    /// design: the last one written, checked by the validator when the server read it back.
+    Interrupted,
 }
 
 /// A finished run's result, as the page and `compare` show it.
@@ -149,11 +153,12 @@ impl RunHandle {
             f(&mut r);
             serde_json::to_string_pretty(&*r).expect("records serialise")
         };
-        let _ = std::fs::write(self.dir.join("run.json"), text + "\n");
+        let _ = crate::run::write_atomic(&self.dir.join("run.json"), (text + "\n").as_bytes());
     }
 }
 
-/// Reads every run kept under `runs`; one left queued or running by a stopped server is `lost`.
+/// Reads every run kept under `runs`; one left queued or running by a stopped server is
+/// `interrupted` with the last design it wrote (validated), or `lost` when it wrote none.
 pub fn load_all(runs: &Path) -> Vec<RunHandle> {
     let mut out = Vec::new();
     let Ok(entries) = std::fs::read_dir(runs) else { return out };
@@ -167,7 +172,13 @@ pub fn load_all(runs: &Path) -> Vec<RunHandle> {
         };
         let lost = matches!(rec.state, RunState::Queued | RunState::Running);
         if lost {
-            rec.state = RunState::Lost;
+            match interrupted_summary(&dir) {
+                Some(summary) => {
+                    rec.state = RunState::Interrupted;
+                    rec.summary = Some(summary);
+                }
+                None => rec.state = RunState::Lost,
+            }
         }
         let h = RunHandle::new(dir, rec);
         if lost {
@@ -176,6 +187,29 @@ pub fn load_all(runs: &Path) -> Vec<RunHandle> {
         out.push(h);
     }
     out
+}
+
+/// The summary of the design an unfinished run left in `dir` (`result.json` with `"status":
+/// "running"), checked by the validator against the run's spec.
+fn interrupted_summary(dir: &Path) -> Option<Summary> {
+    let left = crate::run::left_design(dir)?;
+    let p = crate::run::load(&dir.join("spec.toml"), None, crate::spec::DEFAULT_MAX_CELLS).ok()?;
+    if left.network.active.len() != p.mesh.num_edges() {
+        return None;
+    }
+    let f = crate::pipeline::build(&p);
+    let violations = crate::design::validate(&p, &left.network, f.path_sets.as_ref());
+    let metrics = Metrics::of(&p, &left.network);
+    let verdict =
+        if violations.is_empty() { "valid".to_string() } else { format!("INVALID ({} violations)", violations.len()) };
+    Some(Summary {
+        status: format!("interrupted (the server stopped), design found ({} edges)", metrics.edges),
+        objective: Some(Objective::of(&p, &left.network).total),
+        verdict,
+        interrupted: true,
+        metrics: Some(metrics),
+        ..Summary::default()
+    })
 }
 
 /// The settings a run is made with, for its record.
@@ -198,7 +232,10 @@ pub fn solve(h: &Arc<RunHandle>, problem: Problem, threads: u32, max_cells: usiz
         spec: h.dir.join("spec.toml"),
         flags: crate::pipeline::settings::Settings { threads: Some(threads), ..Default::default() },
         out: Some(h.dir.clone()),
-        explain: Some(EXPLAIN_SECONDS),
+        explain: Some(match problem.spec.solver.time_limit.filter(|t| t.is_finite()) {
+            Some(_) => crate::run::ExplainBudget::Remaining,
+            None => crate::run::ExplainBudget::Seconds(EXPLAIN_SECONDS),
+        }),
         interrupt: Some(h.interrupt.clone()),
         progress: Some(progress_sink(h.clone())),
         incumbents: Some(incumbent_sink(h.clone(), problem.clone())),
@@ -207,7 +244,8 @@ pub fn solve(h: &Arc<RunHandle>, problem: Problem, threads: u32, max_cells: usiz
     };
     let mut on = |e: Event| {
         if let Event::SolveStarted { kind, time_limit, .. } = e {
-            h.push(json!({ "kind": "solving", "solver": kind.to_string(), "time_limit": time_limit }));
+            let live = kind.instance().is_ok_and(|s| s.capabilities().reports_progress);
+            h.push(json!({ "kind": "solving", "solver": kind.to_string(), "time_limit": time_limit, "live": live }));
         }
     };
     match crate::run::solve_spec(&req, &mut on) {

@@ -66,7 +66,7 @@ pub enum TrafficErrorKind {
     #[error("the network failed netspec's independent checks ({0}); not simulating it")]
     Invalid(String),
     /// SUMO's binaries are not where they should be.
-    #[error("SUMO not found (looked in {looked}); install it with `bash scripts/setup.sh` (or `./dev setup`), or set SUMO_HOME")]
+    #[error("SUMO not found (looked in {looked}); install it with `bash scripts/setup.sh sumo` (or `./dev setup sumo`), or set SUMO_HOME")]
     SumoMissing {
         /// Where we looked.
         looked: String,
@@ -86,6 +86,12 @@ pub enum TrafficErrorKind {
     /// SUMO's output does not say what it should.
     #[error("{0}")]
     Output(String),
+    /// The command's time limit ran out while a SUMO tool ran; it was stopped.
+    #[error("the time limit ran out while `{tool}` ran; it was stopped (raise --time-limit)")]
+    TimeLimit {
+        /// The tool.
+        tool: String,
+    },
 }
 
 impl TrafficError {

@@ -23,6 +23,10 @@ pub struct Sumo {
     pub home: Option<PathBuf>,
     /// The version `sumo --version` reports.
     pub version: String,
+    /// When the command's time runs out: a tool still running then is killed, and the
+    /// evaluation ends with [`TrafficErrorKind::TimeLimit`] (`None`: no limit).
+    #[serde(skip)]
+    pub deadline: Option<std::time::Instant>,
 }
 
 /// Where `scripts/setup.sh` puts SUMO: `<deps>/sumo-home`.
@@ -83,7 +87,7 @@ impl Sumo {
                     TrafficErrorKind::Output(format!("`sumo --version` printed no version: {first:?}")),
                 )
             })?;
-        Ok(Sumo { bin, home, version })
+        Ok(Sumo { bin, home, version, deadline: None })
     }
 
     /// Runs one tool; its output goes to `log`. `input` is named in errors.
@@ -94,12 +98,9 @@ impl Sumo {
         if let Some(h) = &self.home {
             cmd.env("SUMO_HOME", h);
         }
-        let out = cmd.output().map_err(|e| TrafficError::new(&exe, e.into()))?;
-        let mut text = format!("$ {} {}\n", exe.display(), args.join(" "));
-        text.push_str(&String::from_utf8_lossy(&out.stdout));
-        text.push_str(&String::from_utf8_lossy(&out.stderr));
-        super::write(log, &text)?;
-        if out.status.success() {
+        let status = self.run_until_deadline(tool, &exe, &mut cmd, args, log)?;
+        let text = super::read(log)?;
+        if status.success() {
             return Ok(());
         }
         let errors: Vec<&str> = text.lines().filter(|l| l.starts_with("Error")).collect();
@@ -112,11 +113,38 @@ impl Sumo {
             input,
             TrafficErrorKind::ToolFailed {
                 tool: tool.into(),
-                status: out.status.to_string(),
+                status: status.to_string(),
                 detail,
                 log: log.to_path_buf(),
             },
         ))
+    }
+
+    /// Runs `cmd` with its output into `log` (after the command line), killed at the deadline.
+    fn run_until_deadline(
+        &self,
+        tool: &str,
+        exe: &Path,
+        cmd: &mut Command,
+        args: &[String],
+        log: &Path,
+    ) -> Result<std::process::ExitStatus, TrafficError> {
+        let io = |e: std::io::Error| TrafficError::new(log, e.into());
+        super::write(log, &format!("$ {} {}\n", exe.display(), args.join(" ")))?;
+        let file = std::fs::OpenOptions::new().append(true).open(log).map_err(io)?;
+        cmd.stdout(file.try_clone().map_err(io)?).stderr(file);
+        let mut child = cmd.spawn().map_err(|e| TrafficError::new(exe, e.into()))?;
+        loop {
+            if let Some(status) = child.try_wait().map_err(io)? {
+                return Ok(status);
+            }
+            if self.deadline.is_some_and(|d| std::time::Instant::now() >= d) {
+                let _ = child.kill();
+                let _ = child.wait();
+                return Err(TrafficError::new(exe, TrafficErrorKind::TimeLimit { tool: tool.into() }));
+            }
+            std::thread::sleep(std::time::Duration::from_millis(20));
+        }
     }
 
     /// `netconvert`: plain XML to `net` (coordinates kept as given; U-turns only at dead ends).

@@ -11,6 +11,7 @@ use crate::solvers::{Interrupt, ProgressSink, SolveOptions, SolverKind};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
+use std::time::Instant;
 
 /// Why a city could not be run at all (a sub-region's failure is an report, not this).
 #[derive(Debug, thiserror::Error)]
@@ -74,6 +75,9 @@ pub struct CityRunOptions {
     /// Solve nothing: levels without a saved state of the same inputs are skipped (the
     /// assembly after cluster jobs).
     pub reuse_only: bool,
+    /// When the whole city's time runs out: no level starts after it, and a running level's
+    /// limit ends at it (it keeps its best network). `None`: no overall limit.
+    pub deadline: Option<Instant>,
 }
 
 /// A receiver of [`CityEvent`]s, called from the worker threads.
@@ -130,6 +134,7 @@ impl CityRunOptions {
             interrupt: None,
             only: None,
             reuse_only: false,
+            deadline: None,
         })
     }
 
@@ -147,6 +152,7 @@ impl CityRunOptions {
             interrupt: None,
             only: None,
             reuse_only: false,
+            deadline: None,
         })
     }
 }
@@ -482,6 +488,9 @@ fn run_region(
         if blocked.is_none() && opts.interrupt.as_ref().is_some_and(|i| i.is_triggered()) {
             blocked = Some("interrupted".into());
         }
+        if blocked.is_none() && opts.deadline.is_some_and(|d| Instant::now() >= d) {
+            blocked = Some("the city's total time limit ran out".into());
+        }
         if let Some(why) = &blocked {
             let o = LevelReport::bare(n, "skipped", why.clone());
             emit(CityEvent::LevelDone { region: index, report: o.clone() });
@@ -506,6 +515,19 @@ fn run_region(
     }
     report.roads = Some(roads);
     Ok(report)
+}
+
+/// The solver's limit of a level that started at `started`: what is left of the level's limit and
+/// of the city's, less the time kept for the level's outputs ([`crate::run::output_reserve`]).
+fn level_solve_limit(started: Instant, limit: Option<f64>, city: Option<Instant>) -> Option<f64> {
+    let limit = limit.filter(|t| t.is_finite());
+    let own = limit.map(|t| started + std::time::Duration::from_secs_f64(t));
+    let end = match (own, city) {
+        (Some(a), Some(b)) => a.min(b),
+        (a, b) => a.or(b)?,
+    };
+    let left = end.saturating_duration_since(Instant::now()).as_secs_f64();
+    Some((left - crate::run::output_reserve(limit.unwrap_or(left))).max(0.0))
 }
 
 /// The input of one level: the mesh (subdivided if asked) with earlier roads, and its spec.
@@ -554,6 +576,8 @@ fn run_level(
     prev: &RegionRoads,
     emit: &dyn Fn(CityEvent),
 ) -> Result<(LevelReport, Option<RegionRoads>), CityError> {
+    // The level's time limit bounds all of its work, from here: input, model, start, solve, outputs.
+    let started = Instant::now();
     let input = level_input(&city.name, name, n, level, prev);
     let time_limit = opts.time_limit.or(level.time_limit);
     let solve_opts = SolveOptions {
@@ -605,6 +629,7 @@ fn run_level(
     };
     let nm = pipeline::build(&problem);
     let mut solve_opts = solve_opts;
+    solve_opts.time_limit = level_solve_limit(started, time_limit, opts.deadline);
     solve_opts.interrupt = opts.interrupt.clone();
     if opts.observer.is_some() && opts.solver.instance().is_ok_and(|s| s.capabilities().reports_progress) {
         let observer = opts.observer.clone().expect("checked");
@@ -614,12 +639,19 @@ fn run_level(
     }
     // Every level starts from the construction heuristic's design (checked before it is used),
     // and is solved and written like `netspec solve` (result.json, network.svg/png, .geojson).
+    // A level that an earlier run left unfinished (killed) goes on from the design it wrote,
+    // checked like any start.
+    let start = match crate::run::left_design(&ldir).filter(|l| l.network.active.len() == problem.mesh.num_edges()) {
+        Some(left) => pipeline::StartFrom::Design { network: left.network, source: left.path.display().to_string() },
+        None => pipeline::default_start(solve_opts.finite_time_limit()),
+    };
     let run = crate::run::Run {
         method: Method::Milp(opts.solver),
-        start: pipeline::default_start(solve_opts.finite_time_limit()),
+        start,
         options: solve_opts,
         explain: None,
         sol: None,
+        deadline: None,
     };
     let res: DesignResult = match crate::run::solve_problem(&problem, &nm, &run, &ldir, &mut |_| {}) {
         Ok(crate::run::Solved { design: Some(crate::run::Design::Milp(r)), .. }) => *r,

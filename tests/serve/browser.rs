@@ -1,5 +1,5 @@
 //! A real browser on the page: headless Chromium driven over WebDriver (`chromium-driver`, both
-//! installed by scripts/setup.sh). Every wait is on the page's state, never a fixed sleep.
+//! installed by `scripts/setup.sh browser`, which the test runs). Every wait is on the page's state, never a fixed sleep.
 
 use super::{cli_objective, runtime, server};
 use fantoccini::{Client, ClientBuilder, Locator};
@@ -23,6 +23,7 @@ impl Drop for Driver {
 }
 
 fn start_driver() -> Driver {
+    crate::setup_part("browser");
     let port = TcpListener::bind("127.0.0.1:0").unwrap().local_addr().unwrap().port();
     let child = Command::new("chromedriver")
         .arg(format!("--port={port}"))
@@ -30,7 +31,7 @@ fn start_driver() -> Driver {
         .stderr(Stdio::null())
         .spawn()
         .unwrap_or_else(|e| {
-            panic!("chromedriver could not be started ({e}): run scripts/setup.sh (Debian packages chromium and chromium-driver)")
+            panic!("chromedriver could not be started ({e}): run `scripts/setup.sh browser` (Debian packages chromium and chromium-driver)")
         });
     Driver { child, port, profile: tempfile::tempdir().unwrap() }
 }

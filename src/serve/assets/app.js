@@ -252,6 +252,8 @@ function watch(id) {
   source.onmessage = (m) => {
     const ev = JSON.parse(m.data);
     if (ev.kind === "started") $("#run-state").textContent = `run ${id}: solving`;
+    if (ev.kind === "solving" && ev.live === false)
+      $("#run-state").textContent = `run ${id}: solving with ${ev.solver}, which reports its designs only at the end`;
     if (ev.kind === "design") {
       showPicture(ev.svg);
       chart.incumbent.push([ev.t, ev.objective]);
