@@ -421,7 +421,9 @@ impl LevelModel {
         let on: Vec<VarId> =
             self.contacts.iter().flat_map(|(_, _, vs)| vs.iter().map(|v| v.c)).filter(|c| x[c.index()] > 0.5).collect();
         let n = on.len() as f64;
-        self.model.add_le(format!("nogood_{index}"), on.into_iter().map(|c| (c, 1.0)), n - 1.0);
+        // The row count keeps names unique when a model is cut again after a retry.
+        let name = format!("nogood_{index}_{}", self.model.num_rows());
+        self.model.add_le(name, on.into_iter().map(|c| (c, 1.0)), n - 1.0);
     }
 
     /// Minimises `−d · p_i` over the part's nodes (placed ones are constants): the free
@@ -513,5 +515,23 @@ impl LevelModel {
         }
         let p = layout.nodes[self.nodes[0].0 as usize].position;
         [-p[0], -p[1]]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::levels::generate::Generated;
+
+    #[test]
+    fn a_model_cut_twice_with_the_same_index_keeps_its_row_names_unique() {
+        let level = Generated::parse("path:3").unwrap().level(0.5).unwrap();
+        let cs = CSpaces::new(&level);
+        let mut lm = build(&level, &cs, &Part::whole(&level));
+        let x: Vec<f64> = vec![1.0; lm.model.num_vars()];
+        lm.no_good(&x, 1);
+        lm.no_good(&x, 1);
+        let names: BTreeSet<&str> = lm.model.rows().map(|r| r.name).collect();
+        assert_eq!(names.len(), lm.model.num_rows());
     }
 }
