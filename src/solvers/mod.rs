@@ -17,6 +17,8 @@ pub mod microlp;
 pub mod scip;
 #[cfg(feature = "scip")]
 mod scip_lazy;
+#[cfg(feature = "scip")]
+mod scip_live;
 
 mod guard;
 pub mod lattice;

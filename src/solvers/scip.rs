@@ -17,6 +17,7 @@
 //! | `log` | `display/verblevel` 0 plus a quiet message handler (quiet); verbosity 4 on stdout; or SCIP's own log file (`SCIPsetMessagehdlrLogfile`) with the console quiet |
 //! | `mip_start` | an original-space solution checked and added before the solve (an infeasible start is dropped) |
 //! | `interrupt` | `SCIPinterruptSolve` from netspec's watchdog thread; SCIP's own Ctrl-C handler is off (`misc/catchctrlc` = false), netspec handles the signal |
+//! | `incumbents` / `progress` | an event handler ([`super::scip_live`]) on best solutions (every improving point) and solved nodes (incumbent, bound, nodes, at most four times a second); with one thread only: the concurrent solver's copies do not carry it, and report at the end |
 //! | `params` | any SCIP parameter by its name (`limits/nodes`), set by its type |
 //!
 //! Values of magnitude 1e20 or more are infinite for SCIP; netspec passes infinite bounds and
@@ -355,7 +356,7 @@ impl Solver for ScipSolver {
             reports_dual_bound: true,
             reports_nodes: true,
             reports_solver_time: true,
-            reports_progress: false,
+            reports_progress: true,
             lazy_constraints: true,
             interrupt: true,
             raw_params: true,
@@ -399,7 +400,10 @@ fn native(
     ctl: &StopControl,
     handler: Option<&mut super::scip_lazy::Handler<'_>>,
 ) -> Result<SolveResult, SolverError> {
-    let (p, vars) = load(model)?;
+    let (mut p, vars) = load(model)?;
+    if let Some(live) = super::scip_live::Live::new(vars.iter().map(|v| v.inner()).collect(), o) {
+        p.include_eventhdlr("netspec_live", "improving points and progress for netspec", Box::new(live));
+    }
     if let Some(h) = handler {
         h.set_vars(vars.iter().map(|v| v.inner()).collect());
         // SAFETY: the handler outlives this call, and with it the SCIP instance (dropped before

@@ -613,6 +613,38 @@ pub fn lp_session_adds_rows(kind: SolverKind) {
     }
 }
 
+/// A backend that reports progress hands over every improving point while it solves (one
+/// thread): each passes the checker, objectives improve, and the last is the final optimum.
+/// Elsewhere the option is refused with the typed error naming it.
+pub fn live_incumbents_are_checked_points_ending_at_the_optimum(kind: SolverKind) {
+    use std::sync::{Arc, Mutex};
+    let model = models::knapsack();
+    let seen: Arc<Mutex<Vec<(f64, Vec<f64>)>>> = Arc::default();
+    let sink = seen.clone();
+    let o = SolveOptions {
+        threads: Some(1),
+        incumbents: Some(netspec::solvers::PointSink(Arc::new(move |obj, x| {
+            sink.lock().unwrap().push((obj, x.to_vec()));
+        }))),
+        ..SolveOptions::default()
+    };
+    let caps = kind.instance().unwrap().capabilities();
+    if refused_unless(caps.reports_progress, kind, &model, &o, "incumbents") {
+        return;
+    }
+    let r = assert_optimal_with(kind, &model, &o, models::knapsack_optimum());
+    let seen = seen.lock().unwrap();
+    assert!(!seen.is_empty(), "{kind}: no incumbent reported");
+    for (obj, x) in seen.iter() {
+        let c = check_point(&model, x, &Tolerances::default());
+        assert!(c.is_feasible(), "{kind}: a reported point fails the checker: {:?}", c.violations.first());
+        assert!(objectives_agree(*obj, model.objective_value(x), 1e-6), "{kind}: objective {obj} of its point");
+    }
+    assert!(seen.windows(2).all(|w| w[1].0 >= w[0].0 - 1e-9), "{kind}: a maximisation's incumbents improve");
+    let last = seen.last().unwrap().0;
+    assert!(objectives_agree(last, r.objective.unwrap(), 1e-6), "{kind}: last incumbent {last}");
+}
+
 /// Instantiates every case above for one backend.
 macro_rules! conformance_suite {
     ($($module:ident => $kind:expr, $feature:literal;)*) => {$(
@@ -625,7 +657,8 @@ macro_rules! conformance_suite {
                 time_limit_zero, mip_start_is_used, mip_start_is_only_a_start, nan_mip_start_is_refused,
                 gap_limit_stops_early, node_limit, two_threads, invalid_model_is_an_error,
                 unsupported_options_are_refused, lazy_subtour_elimination, lazy_solve_from_a_start, optimal_mip_start_is_proven_optimal,
-                lp_session_adds_rows, numeric_limits_are_screened);
+                lp_session_adds_rows, numeric_limits_are_screened,
+                live_incumbents_are_checked_points_ending_at_the_optimum);
         }
     )*};
     (@cases $kind:expr; $($case:ident),*) => {$(
