@@ -24,7 +24,7 @@
 use super::construct::{self, Placer, Slot};
 use super::cspace::{clip_out, intersect, CSpaces, Segment};
 use super::geometry::{self, norm, sub, Pt, AREA_TOL};
-use super::spec::{BlockId, Level, NodeId};
+use super::spec::{shortest_cycle, BlockId, Level, NodeId};
 use super::validate::validate;
 use super::{Layout, Placement};
 use crate::solvers::Interrupt;
@@ -108,32 +108,6 @@ pub struct AnnealReport {
     /// Why the search stopped: `count`, `exhausted` (the stack ran empty and no restart was
     /// left), `time limit` or `stopped` (another method answered).
     pub stopped: String,
-}
-
-/// The shortest cycle through edge `(a, b)` (a path from `b` back to `a` avoiding the edge).
-fn shortest_cycle(adj: &[Vec<NodeId>], a: NodeId, b: NodeId) -> Option<Vec<NodeId>> {
-    let mut prev = vec![None; adj.len()];
-    prev[b.0 as usize] = Some(b);
-    let mut q = VecDeque::from([b]);
-    while let Some(u) = q.pop_front() {
-        for &v in &adj[u.0 as usize] {
-            if (u == b && v == a) || prev[v.0 as usize].is_some() {
-                continue;
-            }
-            prev[v.0 as usize] = Some(u);
-            if v == a {
-                let mut path = vec![a];
-                let mut x = a;
-                while x != b {
-                    x = prev[x.0 as usize]?;
-                    path.push(x);
-                }
-                return Some(path);
-            }
-            q.push_back(v);
-        }
-    }
-    None
 }
 
 /// The distinct shortest cycles through the edges, shortest first (each rotated to its least

@@ -447,3 +447,29 @@ impl Level {
         rustworkx_core::planar::is_planar(&g)
     }
 }
+
+/// The shortest cycle through edge `a`–`b` (its nodes), if the edge is on one.
+pub fn shortest_cycle(adj: &[Vec<NodeId>], a: NodeId, b: NodeId) -> Option<Vec<NodeId>> {
+    let mut prev: Vec<Option<NodeId>> = vec![None; adj.len()];
+    prev[b.0 as usize] = Some(b);
+    let mut q = VecDeque::from([b]);
+    while let Some(u) = q.pop_front() {
+        for &v in &adj[u.0 as usize] {
+            if (u == b && v == a) || prev[v.0 as usize].is_some() {
+                continue;
+            }
+            prev[v.0 as usize] = Some(u);
+            if v == a {
+                let mut path = vec![a];
+                let mut x = a;
+                while x != b {
+                    x = prev[x.0 as usize]?;
+                    path.push(x);
+                }
+                return Some(path);
+            }
+            q.push_back(v);
+        }
+    }
+    None
+}

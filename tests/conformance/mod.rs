@@ -619,7 +619,8 @@ pub fn lp_session_adds_rows(kind: SolverKind) {
 pub fn live_incumbents_are_checked_points_ending_at_the_optimum(kind: SolverKind) {
     use std::sync::{Arc, Mutex};
     let model = models::knapsack();
-    let seen: Arc<Mutex<Vec<(f64, Vec<f64>)>>> = Arc::default();
+    type Seen = Vec<(f64, Vec<f64>)>;
+    let seen: Arc<Mutex<Seen>> = Arc::default();
     let sink = seen.clone();
     let o = SolveOptions {
         threads: Some(1),

@@ -6,9 +6,9 @@
 //! neighbourhood (the node, its neighbours), the biconnected components up to a size cap; each
 //! as the subgraph its nodes induce, without repeats.
 
-use super::super::spec::{Level, NodeId};
+use super::super::spec::{shortest_cycle, Level, NodeId};
 use serde::Serialize;
-use std::collections::{BTreeSet, VecDeque};
+use std::collections::BTreeSet;
 
 /// Where a candidate comes from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize)]
@@ -31,32 +31,6 @@ pub struct Candidate {
     pub edges: usize,
     /// Where it comes from (the first origin that gave this node set).
     pub origin: Origin,
-}
-
-/// The shortest cycle through edge `a`–`b` (its nodes), if the edge is on one.
-pub fn shortest_cycle(adj: &[Vec<NodeId>], a: NodeId, b: NodeId) -> Option<Vec<NodeId>> {
-    let mut prev: Vec<Option<NodeId>> = vec![None; adj.len()];
-    prev[b.0 as usize] = Some(b);
-    let mut q = VecDeque::from([b]);
-    while let Some(u) = q.pop_front() {
-        for &v in &adj[u.0 as usize] {
-            if (u == b && v == a) || prev[v.0 as usize].is_some() {
-                continue;
-            }
-            prev[v.0 as usize] = Some(u);
-            if v == a {
-                let mut path = vec![a];
-                let mut x = a;
-                while x != b {
-                    x = prev[x.0 as usize]?;
-                    path.push(x);
-                }
-                return Some(path);
-            }
-            q.push_back(v);
-        }
-    }
-    None
 }
 
 /// Node sets of the biconnected components (Hopcroft–Tarjan, iterative), each ascending; a
