@@ -29,7 +29,7 @@ pub fn run(req: LevelRequest) -> Result<ExitCode> {
             a.exact_extensions,
             a.trials,
             a.restarts,
-            a.stopped,
+            if a.stopped == "stopped" { "the exact search answered first" } else { a.stopped.as_str() },
             a.time_to_first.map_or(String::new(), |t| format!(" · first layout {t:.3} s")),
         );
     }
