@@ -21,7 +21,7 @@
 //!
 //! Every layout returned has passed [`super::validate::validate`].
 
-use super::construct::{self, Placer, Slot};
+use super::construct::{Placer, Slot};
 use super::cspace::{clip_out, intersect, CSpaces, Segment};
 use super::geometry::{self, norm, sub, Pt, AREA_TOL};
 use super::spec::{shortest_cycle, BlockId, Level, NodeId};
@@ -209,13 +209,8 @@ pub fn pieces(level: &Level, chains: Vec<Vec<NodeId>>, size: usize) -> Vec<Vec<N
     out
 }
 
-/// Per-block data the energy needs.
+/// The energy's scales.
 struct Shapes {
-    tris: Vec<Vec<[Pt; 3]>>,
-    centre: Vec<Pt>,
-    boxes: Vec<[f64; 4]>,
-    /// Obstacles: triangles and bounding box (absolute coordinates).
-    obstacles: Vec<(Vec<[Pt; 3]>, [f64; 4])>,
     sigma: f64,
     threshold: f64,
     /// The largest distance from a block's origin to one of its vertices.
@@ -224,20 +219,12 @@ struct Shapes {
 
 impl Shapes {
     fn new(level: &Level) -> Shapes {
-        let tris = level.blocks.iter().map(|b| geometry::triangulate(&b.polygon)).collect();
-        let centre = level.blocks.iter().map(|b| construct::block_centre(&b.polygon)).collect();
-        let boxes = level.blocks.iter().map(|b| construct::bounding_box(&b.polygon)).collect();
-        let obstacles = level
-            .obstacles
-            .iter()
-            .map(|o| (geometry::triangulate(&o.polygon), construct::bounding_box(&o.polygon)))
-            .collect();
         let mean_area =
             level.blocks.iter().map(|b| geometry::signed_area(&b.polygon)).sum::<f64>() / level.blocks.len() as f64;
         let extent = level.blocks.iter().flat_map(|b| b.polygon.iter().map(|&p| norm(p))).fold(0.0, f64::max);
         // The paper's σ: a hundred times the average block area. Two layouts differ when their
         // centred block centres move by more than a tenth of that area in all (squared).
-        Shapes { tris, centre, boxes, obstacles, sigma: 100.0 * mean_area, threshold: 0.1 * mean_area, extent }
+        Shapes { sigma: 100.0 * mean_area, threshold: 0.1 * mean_area, extent }
     }
 }
 
@@ -267,31 +254,22 @@ struct Search<'a> {
 
 impl Search<'_> {
     fn overlap(&self, a: (BlockId, Pt), b: (BlockId, Pt)) -> f64 {
-        if construct::boxes_apart(self.placed_box(a), self.placed_box(b)) {
+        if geometry::boxes_apart(self.placer.placed_box(a), self.placer.placed_box(b)) {
             return 0.0;
         }
-        geometry::overlap_area(&self.placed_tris(a), &self.placed_tris(b))
-    }
-
-    fn placed_box(&self, a: (BlockId, Pt)) -> [f64; 4] {
-        let b = self.shapes.boxes[a.0 .0 as usize];
-        [b[0] + a.1[0], b[1] + a.1[0], b[2] + a.1[1], b[3] + a.1[1]]
-    }
-
-    fn placed_tris(&self, a: (BlockId, Pt)) -> Vec<[Pt; 3]> {
-        self.shapes.tris[a.0 .0 as usize].iter().map(|t| t.map(|p| geometry::add(p, a.1))).collect()
+        geometry::overlap_area(&self.placer.placed_tris(a), &self.placer.placed_tris(b))
     }
 
     /// The area of a placed block inside obstacles (each overlap above [`AREA_TOL`]).
     fn obstacle_area(&self, a: (BlockId, Pt)) -> f64 {
-        let bx = self.placed_box(a);
+        let bx = self.placer.placed_box(a);
         let mut tris = None;
         let mut area = 0.0;
-        for (ot, ob) in &self.shapes.obstacles {
-            if construct::boxes_apart(bx, *ob) {
+        for (ot, ob) in &self.placer.obstacles {
+            if geometry::boxes_apart(bx, *ob) {
                 continue;
             }
-            let ta = tris.get_or_insert_with(|| self.placed_tris(a));
+            let ta = tris.get_or_insert_with(|| self.placer.placed_tris(a));
             let x = geometry::overlap_area(ta, ot);
             if x > AREA_TOL {
                 area += x;
@@ -301,7 +279,7 @@ impl Search<'_> {
     }
 
     fn centre(&self, a: (BlockId, Pt)) -> Pt {
-        geometry::add(self.shapes.centre[a.0 .0 as usize], a.1)
+        self.placer.centre_of(a)
     }
 
     /// Node `i`'s share of the energy terms: overlap area with every placed block near the
@@ -506,8 +484,8 @@ impl Search<'_> {
         if self.obstacle_area((b, [0.0, 0.0])) <= AREA_TOL {
             return [0.0, 0.0];
         }
-        let right = self.shapes.obstacles.iter().map(|o| o.1[1]).fold(f64::NEG_INFINITY, f64::max);
-        [right - self.shapes.boxes[b.0 as usize][0] + 1.0, 0.0]
+        let right = self.placer.obstacles.iter().map(|o| o.1[1]).fold(f64::NEG_INFINITY, f64::max);
+        [right - self.placer.boxes[b.0 as usize][0] + 1.0, 0.0]
     }
 
     /// A move's new position: a sample clear of every obstacle (a few tries; none when every
@@ -515,7 +493,7 @@ impl Search<'_> {
     fn sample_clear(&mut self, s: &[Slot], i: usize, b: BlockId) -> Option<Pt> {
         for _ in 0..4 {
             let p = self.sample(s, i, b)?;
-            if self.shapes.obstacles.is_empty() || self.obstacle_area((b, p)) <= AREA_TOL {
+            if self.placer.obstacles.is_empty() || self.obstacle_area((b, p)) <= AREA_TOL {
                 return Some(p);
             }
         }
@@ -524,8 +502,8 @@ impl Search<'_> {
 
     /// A position beside everything placed (for a node whose neighbours give no contact).
     fn far(&self, s: &[Slot], b: BlockId) -> Pt {
-        let right = s.iter().flatten().map(|(k, p)| self.shapes.boxes[k.0 as usize][1] + p[0]).fold(0.0, f64::max);
-        [right - self.shapes.boxes[b.0 as usize][0] + 1.0, 0.0]
+        let right = s.iter().flatten().map(|(k, p)| self.placer.boxes[k.0 as usize][1] + p[0]).fold(0.0, f64::max);
+        [right - self.placer.boxes[b.0 as usize][0] + 1.0, 0.0]
     }
 
     /// Exact placements of the chain (up to `want` that differ), each a valid extension.

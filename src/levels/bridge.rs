@@ -251,14 +251,7 @@ impl Grid {
                 format!("{spacing} gives a grid of {nx} × {ny} cells (at most {MAX_CELLS}); choose a larger one"),
             ));
         }
-        let boxes: Vec<[f64; 4]> = blocks
-            .iter()
-            .map(|b| {
-                b.iter().fold([f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY], |a, p| {
-                    [a[0].min(p[0]), a[1].max(p[0]), a[2].min(p[1]), a[3].max(p[1])]
-                })
-            })
-            .collect();
+        let boxes: Vec<[f64; 4]> = blocks.iter().map(|b| geometry::bounding_box(b)).collect();
         let mut owner = vec![None; nx * ny];
         for j in 0..ny {
             for i in 0..nx {

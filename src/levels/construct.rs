@@ -9,7 +9,7 @@
 //! (what lets a long cycle come back to close).
 
 use super::cspace::{clip_out, intersect, CSpaces, Segment};
-use super::geometry::{self, norm, sub, Facet, Pt, AREA_TOL, LEN_TOL};
+use super::geometry::{self, bounding_box, boxes_apart, norm, sub, Facet, Pt, AREA_TOL, LEN_TOL};
 use super::spec::{BlockId, Level, NodeId};
 use super::validate::shared_wall;
 use rand::rngs::Xoshiro256PlusPlus;
@@ -24,12 +24,13 @@ pub struct Placer<'a> {
     level: &'a Level,
     cs: &'a CSpaces,
     adj: Vec<Vec<NodeId>>,
-    /// Per block: triangles, `[xmin, xmax, ymin, ymax]`, centre.
+    /// Per block: triangles.
     tris: Vec<Vec<[Pt; 3]>>,
-    boxes: Vec<[f64; 4]>,
+    /// Per block: `[xmin, xmax, ymin, ymax]`.
+    pub boxes: Vec<[f64; 4]>,
     centre: Vec<Pt>,
-    /// Obstacles: triangles and box.
-    obstacles: Vec<(Vec<[Pt; 3]>, [f64; 4])>,
+    /// Obstacles: triangles and box (absolute coordinates).
+    pub obstacles: Vec<(Vec<[Pt; 3]>, [f64; 4])>,
     /// The longest distance between the centres of two blocks in door contact.
     step: f64,
     /// The largest block dimension (the crowding test's margin).
@@ -38,26 +39,8 @@ pub struct Placer<'a> {
     pace: f64,
 }
 
-fn construct_apart(a: [f64; 4], b: [f64; 4]) -> bool {
-    boxes_apart(a, b)
-}
-
-/// `[xmin, xmax, ymin, ymax]` of a polygon.
-pub fn bounding_box(poly: &[Pt]) -> [f64; 4] {
-    let mut b = [f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY];
-    for p in poly {
-        b = [b[0].min(p[0]), b[1].max(p[0]), b[2].min(p[1]), b[3].max(p[1])];
-    }
-    b
-}
-
-/// Whether two boxes are apart (touching counts as apart).
-pub fn boxes_apart(a: [f64; 4], b: [f64; 4]) -> bool {
-    a[1] <= b[0] || b[1] <= a[0] || a[3] <= b[2] || b[3] <= a[2]
-}
-
 /// The centre a block is measured by: the mean of its vertices.
-pub fn block_centre(poly: &[Pt]) -> Pt {
+fn block_centre(poly: &[Pt]) -> Pt {
     let n = poly.len() as f64;
     poly.iter().fold([0.0, 0.0], |a, p| [a[0] + p[0] / n, a[1] + p[1] / n])
 }
@@ -116,16 +99,19 @@ impl<'a> Placer<'a> {
         &self.adj
     }
 
-    fn placed_box(&self, a: (BlockId, Pt)) -> [f64; 4] {
+    /// The box of block `a.0` placed at `a.1`.
+    pub fn placed_box(&self, a: (BlockId, Pt)) -> [f64; 4] {
         let b = self.boxes[a.0 .0 as usize];
         [b[0] + a.1[0], b[1] + a.1[0], b[2] + a.1[1], b[3] + a.1[1]]
     }
 
-    fn placed_tris(&self, a: (BlockId, Pt)) -> Vec<[Pt; 3]> {
+    /// The triangles of block `a.0` placed at `a.1`.
+    pub fn placed_tris(&self, a: (BlockId, Pt)) -> Vec<[Pt; 3]> {
         self.tris[a.0 .0 as usize].iter().map(|t| t.map(|p| geometry::add(p, a.1))).collect()
     }
 
-    fn centre_of(&self, a: (BlockId, Pt)) -> Pt {
+    /// The centre of block `a.0` placed at `a.1`.
+    pub fn centre_of(&self, a: (BlockId, Pt)) -> Pt {
         geometry::add(self.centre[a.0 .0 as usize], a.1)
     }
 
@@ -353,7 +339,7 @@ impl<'a> Placer<'a> {
             .enumerate()
             .filter(|(j, sj)| {
                 *j != i
-                    && sj.is_some_and(|o| !construct_apart(grown, self.placed_box(o)))
+                    && sj.is_some_and(|o| !boxes_apart(grown, self.placed_box(o)))
                     && !self.adj[i].iter().any(|n| n.0 as usize == *j)
                     && !targets.iter().any(|&(t, d)| t == *j && d <= NEAR_HOPS)
             })

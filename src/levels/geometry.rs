@@ -202,6 +202,18 @@ pub fn convex_hull(points: &[Pt]) -> Vec<Pt> {
     lower
 }
 
+/// `[xmin, xmax, ymin, ymax]` of a polygon.
+pub fn bounding_box(poly: &[Pt]) -> [f64; 4] {
+    poly.iter().fold([f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY], |b, p| {
+        [b[0].min(p[0]), b[1].max(p[0]), b[2].min(p[1]), b[3].max(p[1])]
+    })
+}
+
+/// Whether two boxes `[xmin, xmax, ymin, ymax]` are apart (touching counts as apart).
+pub fn boxes_apart(a: [f64; 4], b: [f64; 4]) -> bool {
+    a[1] <= b[0] || b[1] <= a[0] || a[3] <= b[2] || b[3] <= a[2]
+}
+
 /// A half-plane `n · p ≤ h` with unit outward normal `n`: one facet of a convex polygon.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Facet {

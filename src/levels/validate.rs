@@ -63,14 +63,7 @@ pub fn shared_wall(p: &[Pt], q: &[Pt]) -> Option<[Pt; 2]> {
 /// The pairs `(i, j)`, `i < j`, whose bounding boxes overlap with positive area (others
 /// cannot overlap): a sweep over the boxes sorted by their left edge, in ascending pair order.
 fn box_pairs(polys: &[Vec<Pt>]) -> Vec<(usize, usize)> {
-    let boxes: Vec<[f64; 4]> = polys
-        .iter()
-        .map(|p| {
-            p.iter().fold([f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY], |b, q| {
-                [b[0].min(q[0]), b[1].max(q[0]), b[2].min(q[1]), b[3].max(q[1])]
-            })
-        })
-        .collect();
+    let boxes: Vec<[f64; 4]> = polys.iter().map(|p| geometry::bounding_box(p)).collect();
     let mut order: Vec<usize> = (0..boxes.len()).collect();
     order.sort_by(|&a, &b| boxes[a][0].total_cmp(&boxes[b][0]).then(a.cmp(&b)));
     let mut pairs = Vec::new();
