@@ -1,0 +1,341 @@
+//! Polygons with holes: checked on construction (finite, non-degenerate, simple, holes inside
+//! and apart), normalised (outer ring counter-clockwise, holes clockwise, no closing repeat).
+
+use super::{closest_on_segment, dist, ring_area2, ring_contains, segment_intersection, P};
+use std::fmt;
+use thiserror::Error;
+
+/// Which ring of a polygon an error is about.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Ring {
+    /// The outer boundary.
+    Outer,
+    /// Hole `i` (0-based, in input order).
+    Hole(usize),
+}
+
+impl fmt::Display for Ring {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Ring::Outer => write!(f, "the outer ring"),
+            Ring::Hole(i) => write!(f, "hole {i}"),
+        }
+    }
+}
+
+/// Why a polygon was refused.
+#[derive(Debug, Error, PartialEq)]
+pub enum PolygonError {
+    /// Fewer than three distinct vertices.
+    #[error("{ring} has {count} distinct vertices; a polygon needs at least 3")]
+    TooFewVertices {
+        /// The ring.
+        ring: Ring,
+        /// Its distinct vertices.
+        count: usize,
+    },
+    /// A coordinate is NaN or infinite.
+    #[error("{ring}: vertex {vertex} is not finite")]
+    NotFinite {
+        /// The ring.
+        ring: Ring,
+        /// The vertex (0-based).
+        vertex: usize,
+    },
+    /// The ring encloses no area.
+    #[error("{ring} encloses no area (its vertices are collinear)")]
+    Degenerate {
+        /// The ring.
+        ring: Ring,
+    },
+    /// Two non-adjacent edges of a ring meet.
+    #[error("{ring} intersects itself near ({:.3}, {:.3}) (edges {} and {})", at[0], at[1], edges.0, edges.1)]
+    SelfIntersecting {
+        /// The ring.
+        ring: Ring,
+        /// Where.
+        at: P,
+        /// The two edges (edge `i` joins vertices `i` and `i + 1`).
+        edges: (usize, usize),
+    },
+    /// A hole lies (partly) outside the outer ring.
+    #[error("hole {hole} is not inside the outer ring")]
+    HoleOutside {
+        /// The hole.
+        hole: usize,
+    },
+    /// A hole's boundary crosses another ring.
+    #[error("hole {hole} crosses {other} near ({:.3}, {:.3})", at[0], at[1])]
+    HoleCrossing {
+        /// The hole.
+        hole: usize,
+        /// The ring it crosses.
+        other: Ring,
+        /// Where.
+        at: P,
+    },
+    /// One hole lies inside another.
+    #[error("hole {inner} lies inside hole {outer}")]
+    HoleInHole {
+        /// The enclosed hole.
+        inner: usize,
+        /// The enclosing hole.
+        outer: usize,
+    },
+}
+
+/// A polygon with holes, valid by construction.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Polygon {
+    outer: Vec<P>,
+    holes: Vec<Vec<P>>,
+}
+
+impl Polygon {
+    /// Checks and normalises a polygon: rings may come in either orientation, with or without a
+    /// closing vertex equal to the first; consecutive duplicates are dropped.
+    pub fn new(outer: Vec<P>, holes: Vec<Vec<P>>) -> Result<Polygon, PolygonError> {
+        let outer = clean_ring(outer, Ring::Outer, true)?;
+        let holes = holes
+            .into_iter()
+            .enumerate()
+            .map(|(i, h)| clean_ring(h, Ring::Hole(i), false))
+            .collect::<Result<Vec<_>, _>>()?;
+        let polygon = Polygon { outer, holes };
+        polygon.check_holes()?;
+        Ok(polygon)
+    }
+
+    /// The outer ring, counter-clockwise, not closed.
+    pub fn outer(&self) -> &[P] {
+        &self.outer
+    }
+
+    /// The holes, each clockwise, not closed.
+    pub fn holes(&self) -> &[Vec<P>] {
+        &self.holes
+    }
+
+    /// The outer ring followed by the holes.
+    pub fn rings(&self) -> impl Iterator<Item = &[P]> {
+        std::iter::once(self.outer.as_slice()).chain(self.holes.iter().map(Vec::as_slice))
+    }
+
+    /// Every boundary edge `(a, b)`, outer ring first, with the interior on the left.
+    pub fn edges(&self) -> impl Iterator<Item = (P, P)> + '_ {
+        self.rings().flat_map(|r| (0..r.len()).map(move |i| (r[i], r[(i + 1) % r.len()])))
+    }
+
+    /// The area (outer minus holes).
+    pub fn area(&self) -> f64 {
+        self.rings().map(ring_area2).sum::<f64>() / 2.0
+    }
+
+    /// The boundary length (outer ring and holes).
+    pub fn perimeter(&self) -> f64 {
+        self.edges().map(|(a, b)| dist(a, b)).sum()
+    }
+
+    /// Whether `p` is inside (not in a hole); points on the boundary may go either way.
+    pub fn contains(&self, p: P) -> bool {
+        ring_contains(&self.outer, p) && !self.holes.iter().any(|h| ring_contains(h, p))
+    }
+
+    /// The distance from `p` to the nearest boundary point (outer ring or hole).
+    pub fn boundary_distance(&self, p: P) -> f64 {
+        self.edges().map(|(a, b)| dist(p, closest_on_segment(p, a, b).0)).fold(f64::INFINITY, f64::min)
+    }
+
+    /// The bounding box `[min, max]`.
+    pub fn bounds(&self) -> [P; 2] {
+        bounds(&self.outer)
+    }
+
+    /// The polygon as a `geo` polygon (for booleans, buffers and rotated rectangles).
+    pub fn to_geo(&self) -> geo::Polygon<f64> {
+        let ring = |r: &[P]| geo::LineString::from(r.iter().chain(r.first()).map(|p| (p[0], p[1])).collect::<Vec<_>>());
+        geo::Polygon::new(ring(&self.outer), self.holes.iter().map(|h| ring(h)).collect())
+    }
+
+    fn check_holes(&self) -> Result<(), PolygonError> {
+        for (i, h) in self.holes.iter().enumerate() {
+            if let Some((_, _, at)) = first_crossing(h, &self.outer) {
+                return Err(PolygonError::HoleCrossing { hole: i, other: Ring::Outer, at });
+            }
+            if !ring_contains(&self.outer, h[0]) {
+                return Err(PolygonError::HoleOutside { hole: i });
+            }
+            for (j, g) in self.holes.iter().enumerate().take(i) {
+                if let Some((_, _, at)) = first_crossing(h, g) {
+                    return Err(PolygonError::HoleCrossing { hole: i, other: Ring::Hole(j), at });
+                }
+                if ring_contains(g, h[0]) {
+                    return Err(PolygonError::HoleInHole { inner: i, outer: j });
+                }
+                if ring_contains(h, g[0]) {
+                    return Err(PolygonError::HoleInHole { inner: j, outer: i });
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The bounding box `[min, max]` of points.
+pub fn bounds(points: &[P]) -> [P; 2] {
+    let mut b = [[f64::INFINITY; 2], [f64::NEG_INFINITY; 2]];
+    for p in points {
+        for k in 0..2 {
+            b[0][k] = b[0][k].min(p[k]);
+            b[1][k] = b[1][k].max(p[k]);
+        }
+    }
+    b
+}
+
+fn clean_ring(ring: Vec<P>, which: Ring, ccw: bool) -> Result<Vec<P>, PolygonError> {
+    if let Some(vertex) = ring.iter().position(|p| !p[0].is_finite() || !p[1].is_finite()) {
+        return Err(PolygonError::NotFinite { ring: which, vertex });
+    }
+    let mut r: Vec<P> = Vec::with_capacity(ring.len());
+    for p in ring {
+        if r.last() != Some(&p) {
+            r.push(p);
+        }
+    }
+    while r.len() > 1 && r.first() == r.last() {
+        r.pop();
+    }
+    if r.len() < 3 {
+        return Err(PolygonError::TooFewVertices { ring: which, count: r.len() });
+    }
+    if let Some((e, f, at)) = self_crossing(&r) {
+        return Err(PolygonError::SelfIntersecting { ring: which, at, edges: (e, f) });
+    }
+    let a2 = ring_area2(&r);
+    let [lo, hi] = bounds(&r);
+    let extent = (hi[0] - lo[0]).max(hi[1] - lo[1]);
+    if a2.abs() <= 1e-12 * extent * extent {
+        return Err(PolygonError::Degenerate { ring: which });
+    }
+    if (a2 > 0.0) != ccw {
+        r.reverse();
+    }
+    Ok(r)
+}
+
+/// Edge boxes sorted by their left end, swept left to right: the pairs whose boxes overlap.
+fn sweep_pairs(a: &[(P, P)], b: &[(P, P)], mut visit: impl FnMut(usize, usize) -> bool) {
+    let key = |s: &(P, P)| s.0[0].min(s.1[0]);
+    let right = |s: &(P, P)| s.0[0].max(s.1[0]);
+    let mut all: Vec<(bool, usize)> = (0..a.len()).map(|i| (false, i)).chain((0..b.len()).map(|i| (true, i))).collect();
+    let seg = |&(side, i): &(bool, usize)| if side { b[i] } else { a[i] };
+    all.sort_by(|x, y| key(&seg(x)).total_cmp(&key(&seg(y))));
+    let mut active: Vec<(bool, usize)> = Vec::new();
+    for item in all {
+        let s = seg(&item);
+        active.retain(|o| right(&seg(o)) >= key(&s));
+        for o in &active {
+            if o.0 == item.0 {
+                continue;
+            }
+            let t = seg(o);
+            let (ylo, yhi) = (s.0[1].min(s.1[1]), s.0[1].max(s.1[1]));
+            if t.0[1].max(t.1[1]) < ylo || t.0[1].min(t.1[1]) > yhi {
+                continue;
+            }
+            let (i, j) = if item.0 { (o.1, item.1) } else { (item.1, o.1) };
+            if visit(i, j) {
+                return;
+            }
+        }
+        active.push(item);
+    }
+}
+
+fn ring_edges(r: &[P]) -> Vec<(P, P)> {
+    (0..r.len()).map(|i| (r[i], r[(i + 1) % r.len()])).collect()
+}
+
+/// The first pair of non-adjacent edges of a ring that meet, and where.
+fn self_crossing(r: &[P]) -> Option<(usize, usize, P)> {
+    let edges = ring_edges(r);
+    let n = edges.len();
+    let mut found = None;
+    sweep_pairs(&edges, &edges, |i, j| {
+        let (i, j) = (i.min(j), i.max(j));
+        if i == j || j == i + 1 || (i == 0 && j == n - 1) {
+            return false;
+        }
+        let (a, b) = edges[i];
+        let (c, d) = edges[j];
+        if let Some((s, _)) = segment_intersection(a, b, c, d) {
+            found = Some((i, j, [a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1])]));
+            return true;
+        }
+        false
+    });
+    found
+}
+
+/// The first pair of edges, one from each ring, that meet.
+fn first_crossing(r: &[P], s: &[P]) -> Option<(usize, usize, P)> {
+    let (er, es) = (ring_edges(r), ring_edges(s));
+    let mut found = None;
+    sweep_pairs(&er, &es, |i, j| {
+        let (a, b) = er[i];
+        let (c, d) = es[j];
+        if let Some((t, _)) = segment_intersection(a, b, c, d) {
+            found = Some((i, j, [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])]));
+            return true;
+        }
+        false
+    });
+    found
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn square(x: f64, y: f64, s: f64) -> Vec<P> {
+        vec![[x, y], [x + s, y], [x + s, y + s], [x, y + s]]
+    }
+
+    #[test]
+    fn normalises_orientation_and_closing_vertex() {
+        let mut cw = square(0.0, 0.0, 10.0);
+        cw.reverse();
+        cw.push(cw[0]);
+        let mut hole = square(2.0, 2.0, 2.0);
+        hole.push(hole[0]);
+        let p = Polygon::new(cw, vec![hole]).unwrap();
+        assert_eq!(p.outer().len(), 4);
+        assert!(ring_area2(p.outer()) > 0.0 && ring_area2(&p.holes()[0]) < 0.0);
+        assert_eq!(p.area(), 96.0);
+        assert!(p.contains([1.0, 1.0]) && !p.contains([3.0, 3.0]));
+        assert_eq!(p.boundary_distance([5.0, 1.0]), 1.0);
+    }
+
+    #[test]
+    fn refuses_bad_rings_by_name() {
+        let bow = vec![[0.0, 0.0], [1.0, 1.0], [1.0, 0.0], [0.0, 1.0]];
+        assert!(matches!(Polygon::new(bow, vec![]), Err(PolygonError::SelfIntersecting { ring: Ring::Outer, .. })));
+        let line = vec![[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]];
+        assert_eq!(Polygon::new(line, vec![]), Err(PolygonError::Degenerate { ring: Ring::Outer }));
+        let nan = vec![[0.0, 0.0], [f64::NAN, 0.0], [2.0, 1.0]];
+        assert_eq!(Polygon::new(nan, vec![]), Err(PolygonError::NotFinite { ring: Ring::Outer, vertex: 1 }));
+        let out = square(20.0, 20.0, 1.0);
+        assert_eq!(Polygon::new(square(0.0, 0.0, 10.0), vec![out]), Err(PolygonError::HoleOutside { hole: 0 }));
+        let across = square(8.0, 2.0, 4.0);
+        assert!(matches!(
+            Polygon::new(square(0.0, 0.0, 10.0), vec![across]),
+            Err(PolygonError::HoleCrossing { hole: 0, other: Ring::Outer, .. })
+        ));
+        let (a, b) = (square(1.0, 1.0, 4.0), square(2.0, 2.0, 1.0));
+        assert_eq!(
+            Polygon::new(square(0.0, 0.0, 10.0), vec![a, b]),
+            Err(PolygonError::HoleInHole { inner: 1, outer: 0 })
+        );
+    }
+}
