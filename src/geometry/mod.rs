@@ -4,6 +4,7 @@
 //! the few primitives they lack. Coordinates are metres in a local plane.
 
 pub mod polygon;
+pub mod site;
 
 pub use polygon::{Polygon, PolygonError};
 

@@ -1,0 +1,308 @@
+//! Sites: a region drawn in WGS 84 (GeoJSON, as QGIS and OpenStreetMap exports write it),
+//! projected to local metres by a transverse Mercator centred on the site, and back.
+//!
+//! A site file is a GeoJSON `FeatureCollection` (or a single `Feature`/`Polygon`): its one
+//! `Polygon` feature is the region (its inner rings are holes), and `LineString` features whose
+//! `kind` property is `"road"` are major roads. The polygon feature's other properties are
+//! returned to the caller (settings such as the parcel size).
+
+use super::polygon::{Polygon, PolygonError};
+use super::{segment_intersection, P};
+use geo::BooleanOps;
+use proj4rs::proj::Proj;
+use serde_json::{Map, Value};
+use thiserror::Error;
+
+/// Why a site was refused. `feature` is the 0-based index in the collection.
+#[derive(Debug, Error)]
+pub enum SiteError {
+    /// Not GeoJSON.
+    #[error("not GeoJSON: {0}")]
+    Json(String),
+    /// No polygon feature.
+    #[error("no Polygon feature: a site needs one polygon (the region)")]
+    NoPolygon,
+    /// More than one polygon feature.
+    #[error("features[{second}] is a second Polygon (features[{first}] is the region); a site has one")]
+    TwoPolygons {
+        /// The first.
+        first: usize,
+        /// The second.
+        second: usize,
+    },
+    /// A geometry of a type the site does not use.
+    #[error("features[{feature}].geometry: a {kind} is not part of a site (a Polygon region and LineString roads)")]
+    Unsupported {
+        /// The feature.
+        feature: usize,
+        /// Its geometry type.
+        kind: String,
+    },
+    /// A position outside WGS 84's range or not finite.
+    #[error("features[{feature}].geometry: position {position} ({lon}, {lat}) is not a WGS 84 longitude/latitude")]
+    NotWgs84 {
+        /// The feature.
+        feature: usize,
+        /// The position's index along the feature's rings or line.
+        position: usize,
+        /// Its longitude.
+        lon: f64,
+        /// Its latitude.
+        lat: f64,
+    },
+    /// The region polygon is invalid.
+    #[error("features[{feature}] (the region): {source}")]
+    Polygon {
+        /// The feature.
+        feature: usize,
+        /// Why.
+        source: PolygonError,
+    },
+    /// A road is invalid or does not fit the region.
+    #[error("{what}: {problem}")]
+    Road {
+        /// Which road (a GeoJSON feature path or a TOML key).
+        what: String,
+        /// Why.
+        problem: RoadProblem,
+    },
+    /// The projection failed.
+    #[error("projection: {0}")]
+    Projection(String),
+}
+
+/// What is wrong with a road.
+#[derive(Debug, Error, PartialEq)]
+pub enum RoadProblem {
+    /// Fewer than two distinct points.
+    #[error("a road needs at least 2 distinct points")]
+    TooShort,
+    /// A coordinate is not finite.
+    #[error("point {0} is not finite")]
+    NotFinite(usize),
+    /// No part of it is inside the region.
+    #[error("the road lies outside the region")]
+    Outside,
+    /// It crosses a hole.
+    #[error("the road crosses hole {0}")]
+    AcrossHole(usize),
+}
+
+/// A transverse Mercator projection centred on a WGS 84 origin (metres east and north of it).
+#[derive(Debug)]
+pub struct Projection {
+    origin: [f64; 2],
+    local: Proj,
+    wgs84: Proj,
+}
+
+impl Clone for Projection {
+    fn clone(&self) -> Self {
+        Projection::new(self.origin).expect("an origin that projected once projects again")
+    }
+}
+
+impl Projection {
+    /// The projection centred on `origin` (`[longitude, latitude]` degrees).
+    pub fn new(origin: [f64; 2]) -> Result<Projection, SiteError> {
+        let [lon0, lat0] = origin;
+        if !(lon0.is_finite() && lat0.is_finite() && lon0.abs() <= 180.0 && lat0.abs() < 90.0) {
+            return Err(SiteError::Projection(format!("origin ({lon0}, {lat0}) is not a WGS 84 position")));
+        }
+        let def = format!("+proj=tmerc +lat_0={lat0} +lon_0={lon0} +k=1 +x_0=0 +y_0=0 +ellps=WGS84 +units=m +no_defs");
+        let local = Proj::from_proj_string(&def).map_err(|e| SiteError::Projection(e.to_string()))?;
+        let wgs84 = Proj::from_proj_string("+proj=longlat +ellps=WGS84 +datum=WGS84 +no_defs")
+            .map_err(|e| SiteError::Projection(e.to_string()))?;
+        Ok(Projection { origin, local, wgs84 })
+    }
+
+    /// The origin, `[longitude, latitude]` degrees.
+    pub fn origin(&self) -> [f64; 2] {
+        self.origin
+    }
+
+    /// A WGS 84 position (degrees) in local metres.
+    pub fn to_local(&self, lonlat: [f64; 2]) -> Result<P, SiteError> {
+        let mut p = (lonlat[0].to_radians(), lonlat[1].to_radians(), 0.0);
+        proj4rs::transform::transform(&self.wgs84, &self.local, &mut p)
+            .map_err(|e| SiteError::Projection(e.to_string()))?;
+        Ok([p.0, p.1])
+    }
+
+    /// A local point (metres) as WGS 84 `[longitude, latitude]` degrees.
+    pub fn to_wgs84(&self, p: P) -> Result<[f64; 2], SiteError> {
+        let mut q = (p[0], p[1], 0.0);
+        proj4rs::transform::transform(&self.local, &self.wgs84, &mut q)
+            .map_err(|e| SiteError::Projection(e.to_string()))?;
+        Ok([q.0.to_degrees(), q.1.to_degrees()])
+    }
+}
+
+/// A site read from GeoJSON, in local metres.
+#[derive(Clone, Debug)]
+pub struct Site {
+    /// The region.
+    pub polygon: Polygon,
+    /// Major roads, clipped to the region (a road leaving and re-entering gives several pieces).
+    pub roads: Vec<Vec<P>>,
+    /// The projection between the file's WGS 84 and the local metres.
+    pub projection: Projection,
+    /// The region feature's properties.
+    pub properties: Map<String, Value>,
+}
+
+/// Reads a site from GeoJSON text (see the module documentation).
+pub fn read_geojson(text: &str) -> Result<Site, SiteError> {
+    let gj: geojson::GeoJson = text.parse().map_err(|e: geojson::Error| SiteError::Json(e.to_string()))?;
+    let features: Vec<geojson::Feature> = match gj {
+        geojson::GeoJson::FeatureCollection(fc) => fc.features,
+        geojson::GeoJson::Feature(f) => vec![f],
+        geojson::GeoJson::Geometry(g) => vec![geojson::Feature { geometry: Some(g), ..Default::default() }],
+    };
+    let mut region: Option<(usize, Vec<Vec<[f64; 2]>>, Map<String, Value>)> = None;
+    let mut roads: Vec<(usize, Vec<[f64; 2]>)> = Vec::new();
+    for (i, f) in features.iter().enumerate() {
+        let Some(g) = &f.geometry else { continue };
+        let props = f.properties.clone().unwrap_or_default();
+        match &g.value {
+            geojson::GeometryValue::Polygon { coordinates } => {
+                if let Some((first, ..)) = &region {
+                    return Err(SiteError::TwoPolygons { first: *first, second: i });
+                }
+                let rings = coordinates.iter().map(|r| positions(i, r)).collect::<Result<Vec<_>, _>>()?;
+                region = Some((i, rings, props));
+            }
+            geojson::GeometryValue::LineString { coordinates } => {
+                if props.get("kind").and_then(Value::as_str) == Some("road") {
+                    roads.push((i, positions(i, coordinates)?));
+                }
+            }
+            geojson::GeometryValue::Point { .. } | geojson::GeometryValue::MultiPoint { .. } => {}
+            other => return Err(SiteError::Unsupported { feature: i, kind: other.type_name().to_string() }),
+        }
+    }
+    let (feature, rings, properties) = region.ok_or(SiteError::NoPolygon)?;
+    let projection = Projection::new(centre(&rings[0]))?;
+    let local = |ring: &[[f64; 2]]| ring.iter().map(|&q| projection.to_local(q)).collect::<Result<Vec<P>, _>>();
+    let mut rings_m = rings.iter().map(|r| local(r)).collect::<Result<Vec<_>, _>>()?.into_iter();
+    let outer = rings_m.next().unwrap_or_default();
+    let polygon = Polygon::new(outer, rings_m.collect()).map_err(|source| SiteError::Polygon { feature, source })?;
+    let mut clipped = Vec::new();
+    for (i, road) in &roads {
+        let what = format!("features[{i}] (a road)");
+        clipped.extend(clip_road(&polygon, &local(road)?, &what)?);
+    }
+    Ok(Site { polygon, roads: clipped, projection, properties })
+}
+
+/// A road clipped to a region: the pieces inside it, or an error naming `what` when the road has
+/// too few points, a non-finite one, lies outside or crosses a hole.
+pub fn clip_road(polygon: &Polygon, road: &[P], what: &str) -> Result<Vec<Vec<P>>, SiteError> {
+    let err = |problem| SiteError::Road { what: what.to_string(), problem };
+    if let Some(i) = road.iter().position(|p| !(p[0].is_finite() && p[1].is_finite())) {
+        return Err(err(RoadProblem::NotFinite(i)));
+    }
+    let mut pts: Vec<P> = Vec::new();
+    for &p in road {
+        if pts.last() != Some(&p) {
+            pts.push(p);
+        }
+    }
+    if pts.len() < 2 {
+        return Err(err(RoadProblem::TooShort));
+    }
+    for (h, hole) in polygon.holes().iter().enumerate() {
+        let n = hole.len();
+        let crosses = pts
+            .windows(2)
+            .any(|w| (0..n).any(|k| segment_intersection(w[0], w[1], hole[k], hole[(k + 1) % n]).is_some()));
+        if crosses || super::ring_contains(hole, pts[0]) {
+            return Err(err(RoadProblem::AcrossHole(h)));
+        }
+    }
+    let line =
+        geo::MultiLineString::new(vec![geo::LineString::from(pts.iter().map(|p| (p[0], p[1])).collect::<Vec<_>>())]);
+    let inside = polygon.to_geo().clip(&line, false);
+    let pieces: Vec<Vec<P>> = inside
+        .0
+        .iter()
+        .map(|l| l.0.iter().map(|c| [c.x, c.y]).collect::<Vec<P>>())
+        .filter(|l| l.len() >= 2 && super::polyline_length(l) > 0.0)
+        .collect();
+    if pieces.is_empty() {
+        return Err(err(RoadProblem::Outside));
+    }
+    Ok(pieces)
+}
+
+fn positions(feature: usize, ring: &[geojson::Position]) -> Result<Vec<[f64; 2]>, SiteError> {
+    ring.iter()
+        .enumerate()
+        .map(|(position, p)| {
+            let s = p.as_slice();
+            let (lon, lat) = (s.first().copied().unwrap_or(f64::NAN), s.get(1).copied().unwrap_or(f64::NAN));
+            if lon.is_finite() && lat.is_finite() && lon.abs() <= 180.0 && lat.abs() < 90.0 {
+                Ok([lon, lat])
+            } else {
+                Err(SiteError::NotWgs84 { feature, position, lon, lat })
+            }
+        })
+        .collect()
+}
+
+/// The centre of a ring's bounding box (the projection's origin).
+fn centre(ring: &[[f64; 2]]) -> [f64; 2] {
+    let [lo, hi] = super::polygon::bounds(ring);
+    [0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const SITE: &str = r#"{"type": "FeatureCollection", "features": [
+      {"type": "Feature", "properties": {"name": "block"}, "geometry": {"type": "Polygon", "coordinates": [
+        [[11.0, 48.0], [11.01, 48.0], [11.01, 48.01], [11.0, 48.01], [11.0, 48.0]],
+        [[11.004, 48.004], [11.004, 48.006], [11.006, 48.006], [11.006, 48.004], [11.004, 48.004]]]}},
+      {"type": "Feature", "properties": {"kind": "road"}, "geometry": {"type": "LineString", "coordinates": [
+        [10.99, 48.002], [11.02, 48.002]]}},
+      {"type": "Feature", "properties": {"kind": "path"}, "geometry": {"type": "LineString", "coordinates": [
+        [11.0, 48.0], [11.01, 48.01]]}}]}"#;
+
+    #[test]
+    fn a_site_is_projected_to_metres_and_back() {
+        let site = read_geojson(SITE).unwrap();
+        assert_eq!(site.polygon.holes().len(), 1);
+        // 0.01° of longitude at 48° N is about 744 m, 0.01° of latitude about 1,112 m.
+        let [lo, hi] = site.polygon.bounds();
+        assert!((hi[0] - lo[0] - 744.5).abs() < 2.0, "{lo:?} {hi:?}");
+        assert!((hi[1] - lo[1] - 1112.0).abs() < 2.0);
+        assert_eq!(site.roads.len(), 1, "the road is clipped; the path is not a road");
+        for end in [site.roads[0][0], *site.roads[0].last().unwrap()] {
+            // Clipping works on a fixed-point grid (i_overlay): ends are within micrometres.
+            assert!(site.polygon.boundary_distance(end) < 1e-5, "{end:?} ends on the boundary");
+        }
+        let back = site.projection.to_wgs84(site.polygon.outer()[0]).unwrap();
+        assert!((back[0] - 11.0).abs() < 1e-9 && (back[1] - 48.0).abs() < 1e-9, "{back:?}");
+        assert_eq!(site.properties["name"], "block");
+    }
+
+    #[test]
+    fn bad_sites_name_the_feature() {
+        let across = SITE.replace("[10.99, 48.002], [11.02, 48.002]", "[10.99, 48.005], [11.02, 48.005]");
+        let e = read_geojson(&across).unwrap_err();
+        assert!(matches!(e, SiteError::Road { problem: RoadProblem::AcrossHole(0), .. }), "{e}");
+        assert!(e.to_string().starts_with("features[1]"));
+        let outside = SITE.replace("[10.99, 48.002], [11.02, 48.002]", "[12.0, 48.0], [12.1, 48.0]");
+        assert!(matches!(read_geojson(&outside), Err(SiteError::Road { problem: RoadProblem::Outside, .. })));
+        let bad = SITE.replace("[11.01, 48.0], [11.01, 48.01]", "[181.0, 48.0], [11.01, 48.01]");
+        assert!(matches!(read_geojson(&bad), Err(SiteError::NotWgs84 { feature: 0, position: 1, .. })));
+        let bow = SITE.replace("[11.01, 48.0], [11.01, 48.01]", "[11.01, 48.01], [11.01, 48.0]");
+        assert!(matches!(read_geojson(&bow), Err(SiteError::Polygon { feature: 0, .. })));
+        assert!(matches!(
+            read_geojson("{\"type\": \"FeatureCollection\", \"features\": []}"),
+            Err(SiteError::NoPolygon)
+        ));
+        assert!(matches!(read_geojson("not json"), Err(SiteError::Json(_))));
+    }
+}

@@ -1,0 +1,358 @@
+//! The input of `netspec layout` and `netspec field`: a region (outer polygon, holes, optional
+//! major roads) with the street widths, the parcel size and a seed, from TOML (local metres) or
+//! GeoJSON (WGS 84, projected to local metres by [`crate::geometry::site`]).
+
+use crate::geometry::polygon::{Polygon, PolygonError, Ring};
+use crate::geometry::site::{self, Projection, SiteError};
+use crate::geometry::P;
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
+use thiserror::Error;
+
+/// The parcel size every template and the parceller aim for (paper §8: 30 m deep, 18 m wide).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ParcelSize {
+    /// Depth from the street (metres).
+    #[serde(default = "default_depth")]
+    pub depth: f64,
+    /// Frontage along the street (metres).
+    #[serde(default = "default_width")]
+    pub width: f64,
+}
+
+impl Default for ParcelSize {
+    fn default() -> Self {
+        ParcelSize { depth: default_depth(), width: default_width() }
+    }
+}
+
+fn default_depth() -> f64 {
+    30.0
+}
+fn default_width() -> f64 {
+    18.0
+}
+fn default_widths() -> Vec<f64> {
+    vec![15.0]
+}
+
+/// Whether the region's own boundary is a street (half of it inside the region) or a plain edge
+/// (parcels reach it, without street access there).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Boundary {
+    /// A street of level 0 runs along the boundary.
+    #[default]
+    Street,
+    /// No street along the boundary.
+    None,
+}
+
+/// The TOML form of a region (also the settings a GeoJSON region's properties may carry).
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RegionToml {
+    #[serde(default)]
+    name: Option<String>,
+    outer: Vec<[f64; 2]>,
+    #[serde(default)]
+    holes: Vec<Vec<[f64; 2]>>,
+    #[serde(default)]
+    roads: Vec<Vec<[f64; 2]>>,
+    #[serde(default)]
+    seed: u64,
+    #[serde(default)]
+    boundary: Boundary,
+    #[serde(default = "default_widths")]
+    street_widths: Vec<f64>,
+    #[serde(default)]
+    parcel: ParcelSize,
+    #[serde(default)]
+    origin: Option<[f64; 2]>,
+}
+
+/// A region, checked.
+#[derive(Clone, Debug)]
+pub struct Region {
+    /// A name for pictures and records (the file stem unless given).
+    pub name: String,
+    /// The region, in metres.
+    pub polygon: Polygon,
+    /// Major roads, clipped to the region (level 0 streets).
+    pub roads: Vec<Vec<P>>,
+    /// Street width per level (level 0: major roads and the boundary street; a level beyond the
+    /// list takes its last entry).
+    pub street_widths: Vec<f64>,
+    /// The boundary's kind.
+    pub boundary: Boundary,
+    /// The parcel size.
+    pub parcel: ParcelSize,
+    /// The seed of every random choice.
+    pub seed: u64,
+    /// WGS 84 ↔ local metres (GeoJSON regions, or a TOML `origin`); `None` writes no GeoJSON.
+    pub projection: Option<Projection>,
+}
+
+impl Region {
+    /// The street width of a level.
+    pub fn street_width(&self, level: usize) -> f64 {
+        let w = &self.street_widths;
+        w.get(level).or(w.last()).copied().unwrap_or(15.0)
+    }
+
+    /// The parcels a layout of this region makes, about (area / parcel area).
+    pub fn parcel_estimate(&self) -> f64 {
+        self.polygon.area() / (self.parcel.depth * self.parcel.width)
+    }
+}
+
+/// The most parcels a region may hold (about 54 km² of the default 30 × 18 m parcels).
+pub const MAX_PARCELS: f64 = 100_000.0;
+
+/// Why a region was refused; every variant names the file and the field.
+#[derive(Debug, Error)]
+pub enum RegionError {
+    /// The file could not be read.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// Why.
+        source: std::io::Error,
+    },
+    /// Malformed TOML, a missing or unknown key (the message names the line and key).
+    #[error("{path}: {message}")]
+    Toml {
+        /// The file.
+        path: PathBuf,
+        /// The parser's message.
+        message: String,
+    },
+    /// A GeoJSON site problem (the message names the feature).
+    #[error("{path}: {source}")]
+    Site {
+        /// The file.
+        path: PathBuf,
+        /// Why.
+        source: SiteError,
+    },
+    /// An invalid polygon.
+    #[error("{path}: {field}: {source}")]
+    Polygon {
+        /// The file.
+        path: PathBuf,
+        /// `outer` or `holes[i]`.
+        field: String,
+        /// Why.
+        source: PolygonError,
+    },
+    /// A value out of range.
+    #[error("{path}: {field} = {value}: {expected}")]
+    Value {
+        /// The file.
+        path: PathBuf,
+        /// The key.
+        field: String,
+        /// The value given.
+        value: String,
+        /// What is expected.
+        expected: &'static str,
+    },
+    /// Refused up front: the layout would take too long.
+    #[error(
+        "{path}: the region ({area_km2:.1} km²) would hold about {parcels:.0} parcels of {depth} × {width} m; \
+         at most {max:.0} are laid out (larger parcels, or split the region)"
+    )]
+    TooLarge {
+        /// The file.
+        path: PathBuf,
+        /// Its area.
+        area_km2: f64,
+        /// The parcel estimate.
+        parcels: f64,
+        /// Parcel depth.
+        depth: f64,
+        /// Parcel width.
+        width: f64,
+        /// [`MAX_PARCELS`].
+        max: f64,
+    },
+}
+
+/// Reads a region: GeoJSON when the file name ends in `.geojson` or `.json`, TOML otherwise.
+pub fn read_region(path: &Path) -> Result<Region, RegionError> {
+    let text = std::fs::read_to_string(path).map_err(|source| RegionError::Io { path: path.into(), source })?;
+    let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("");
+    let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+    if matches!(ext, "geojson" | "json") {
+        region_from_geojson(&text, path, &stem)
+    } else {
+        region_from_toml(&text, path, &stem)
+    }
+}
+
+/// A region from TOML text; `path` names it in errors and `stem` is its default name.
+pub fn region_from_toml(text: &str, path: &Path, stem: &str) -> Result<Region, RegionError> {
+    let t: RegionToml =
+        toml::from_str(text).map_err(|e| RegionError::Toml { path: path.into(), message: e.to_string() })?;
+    let polygon = Polygon::new(t.outer, t.holes).map_err(|source| {
+        let field = match ring_of(&source) {
+            Some(Ring::Hole(i)) => format!("holes[{i}]"),
+            _ => "outer".to_string(),
+        };
+        RegionError::Polygon { path: path.into(), field, source }
+    })?;
+    let mut roads = Vec::new();
+    for (i, r) in t.roads.iter().enumerate() {
+        let pieces = site::clip_road(&polygon, r, &format!("roads[{i}]"))
+            .map_err(|source| RegionError::Site { path: path.into(), source })?;
+        roads.extend(pieces);
+    }
+    let projection =
+        t.origin.map(Projection::new).transpose().map_err(|source| RegionError::Site { path: path.into(), source })?;
+    let region = Region {
+        name: t.name.unwrap_or_else(|| stem.to_string()),
+        polygon,
+        roads,
+        street_widths: t.street_widths,
+        boundary: t.boundary,
+        parcel: t.parcel,
+        seed: t.seed,
+        projection,
+    };
+    check(region, path)
+}
+
+/// A region from GeoJSON text (the polygon feature's properties may carry `name`, `seed`,
+/// `boundary`, `street_widths`, `parcel_depth` and `parcel_width`; other properties are ignored,
+/// as QGIS and OpenStreetMap add their own).
+pub fn region_from_geojson(text: &str, path: &Path, stem: &str) -> Result<Region, RegionError> {
+    let s = site::read_geojson(text).map_err(|source| RegionError::Site { path: path.into(), source })?;
+    let p = &s.properties;
+    let bad = |field: &str, value: &serde_json::Value, expected| RegionError::Value {
+        path: path.into(),
+        field: format!("properties.{field}"),
+        value: value.to_string(),
+        expected,
+    };
+    let num = |key: &str, default: f64| -> Result<f64, RegionError> {
+        match p.get(key) {
+            None => Ok(default),
+            Some(v) => v.as_f64().ok_or_else(|| bad(key, v, "a number")),
+        }
+    };
+    let seed = match p.get("seed") {
+        None => 0,
+        Some(v) => v.as_u64().ok_or_else(|| bad("seed", v, "a non-negative integer"))?,
+    };
+    let boundary = match p.get("boundary") {
+        None => Boundary::Street,
+        Some(v) => serde_json::from_value(v.clone()).map_err(|_| bad("boundary", v, "\"street\" or \"none\""))?,
+    };
+    let street_widths = match p.get("street_widths") {
+        None => default_widths(),
+        Some(v) => serde_json::from_value(v.clone()).map_err(|_| bad("street_widths", v, "a list of numbers"))?,
+    };
+    let region = Region {
+        name: p.get("name").and_then(|v| v.as_str()).map_or_else(|| stem.to_string(), str::to_string),
+        polygon: s.polygon,
+        roads: s.roads,
+        street_widths,
+        boundary,
+        parcel: ParcelSize {
+            depth: num("parcel_depth", default_depth())?,
+            width: num("parcel_width", default_width())?,
+        },
+        seed,
+        projection: Some(s.projection),
+    };
+    check(region, path)
+}
+
+fn ring_of(e: &PolygonError) -> Option<Ring> {
+    match e {
+        PolygonError::TooFewVertices { ring, .. }
+        | PolygonError::NotFinite { ring, .. }
+        | PolygonError::Degenerate { ring }
+        | PolygonError::SelfIntersecting { ring, .. } => Some(*ring),
+        PolygonError::HoleOutside { hole } | PolygonError::HoleCrossing { hole, .. } => Some(Ring::Hole(*hole)),
+        PolygonError::HoleInHole { inner, .. } => Some(Ring::Hole(*inner)),
+    }
+}
+
+fn check(region: Region, path: &Path) -> Result<Region, RegionError> {
+    let positive = |field: &str, v: f64| {
+        if v.is_finite() && v > 0.0 {
+            Ok(())
+        } else {
+            Err(RegionError::Value {
+                path: path.into(),
+                field: field.into(),
+                value: v.to_string(),
+                expected: "a positive number",
+            })
+        }
+    };
+    positive("parcel.depth", region.parcel.depth)?;
+    positive("parcel.width", region.parcel.width)?;
+    if region.street_widths.is_empty() {
+        return Err(RegionError::Value {
+            path: path.into(),
+            field: "street_widths".into(),
+            value: "[]".into(),
+            expected: "at least one width",
+        });
+    }
+    for (i, &w) in region.street_widths.iter().enumerate() {
+        positive(&format!("street_widths[{i}]"), w)?;
+    }
+    let parcels = region.parcel_estimate();
+    if parcels > MAX_PARCELS {
+        return Err(RegionError::TooLarge {
+            path: path.into(),
+            area_km2: region.polygon.area() / 1e6,
+            parcels,
+            depth: region.parcel.depth,
+            width: region.parcel.width,
+            max: MAX_PARCELS,
+        });
+    }
+    Ok(region)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn toml(text: &str) -> Result<Region, RegionError> {
+        region_from_toml(text, Path::new("r.toml"), "r")
+    }
+
+    #[test]
+    fn a_toml_region_has_defaults_and_clipped_roads() {
+        let r = toml("outer = [[0, 0], [400, 0], [400, 300], [0, 300]]\nroads = [[[-50, 150], [450, 150]]]\n").unwrap();
+        assert_eq!((r.name.as_str(), r.seed, r.boundary), ("r", 0, Boundary::Street));
+        assert_eq!(r.parcel, ParcelSize { depth: 30.0, width: 18.0 });
+        assert_eq!(r.street_width(3), 15.0);
+        assert_eq!(r.roads.len(), 1);
+        assert!(r.projection.is_none());
+        assert!((r.parcel_estimate() - 120_000.0 / 540.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn errors_name_the_field() {
+        let e = toml("outer = [[0, 0], [400, 0], [400, 300], [0, 300]]\nholes = [[[500, 0], [600, 0], [600, 50]]]\n");
+        assert_eq!(e.unwrap_err().to_string(), "r.toml: holes[0]: hole 0 is not inside the outer ring");
+        let e = toml("outer = [[0, 0], [400, 0], [400, 300], [0, 300]]\n[parcel]\ndepth = -3\n").unwrap_err();
+        assert!(e.to_string().contains("parcel.depth = -3"), "{e}");
+        let e = toml("outer = [[0, 0], [400, 0], [400, 300], [0, 300]]\ncolour = 3\n").unwrap_err();
+        assert!(e.to_string().contains("colour"), "{e}");
+        let e = toml("outer = [[0, 0], [400, 0], [400, 300], [0, 300]]\nroads = [[[500, 0], [600, 0]]]\n").unwrap_err();
+        assert_eq!(e.to_string(), "r.toml: roads[0]: the road lies outside the region");
+        let e = toml("outer = [[0, 0], [1e5, 0], [1e5, 1e5], [0, 1e5]]\n").unwrap_err();
+        assert!(matches!(e, RegionError::TooLarge { .. }) && e.to_string().contains("10000.0 km²"), "{e}");
+        let e = toml("outer = [[0, 0], [4, 0], [4, 3], [0, 3]]\nstreet_widths = []\n").unwrap_err();
+        assert!(e.to_string().contains("street_widths"), "{e}");
+    }
+}
