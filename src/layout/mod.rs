@@ -2,4 +2,44 @@
 //! split along streamlines of a boundary-aligned cross field, and by warped templates, down to
 //! parcels.
 
+pub mod parcels;
 pub mod region;
+
+use crate::geometry::P;
+use serde::{Deserialize, Serialize};
+
+/// A street: its centreline, width and level (0: major roads and the boundary street; 1: the
+/// first split; …).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Street {
+    /// The centreline.
+    pub polyline: Vec<P>,
+    /// The width (metres).
+    pub width: f64,
+    /// The level.
+    pub level: usize,
+}
+
+/// What a parcel is used for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Use {
+    /// Houses: a parcel with street access.
+    Residential,
+    /// Green space: a parcel without street access inside a block.
+    Park,
+    /// Shops and offices.
+    Commercial,
+    /// Remnants too small or too thin to build on.
+    Other,
+}
+
+/// A parcel.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Parcel {
+    /// Its boundary, counter-clockwise, not closed.
+    pub polygon: Vec<P>,
+    /// Its use.
+    #[serde(rename = "use")]
+    pub use_: Use,
+}
