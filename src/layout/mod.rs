@@ -2,8 +2,10 @@
 //! split along streamlines of a boundary-aligned cross field, and by warped templates, down to
 //! parcels.
 
+pub mod metrics;
 pub mod parcels;
 pub mod region;
+pub mod validate;
 
 use crate::geometry::P;
 use serde::{Deserialize, Serialize};

@@ -1,0 +1,265 @@
+//! The measures urban designers compare layouts by (Yang et al. 2013 §7, after Southworth and
+//! Owens 1993): land use, blocks, streets and parcel shape. One function for every layout netspec
+//! makes, whatever drew its streets.
+//!
+//! Definitions (where §7 leaves them open):
+//! * land use: streets = the area of the union of the street buffers inside the region;
+//!   residential, parks and other (commercial included) = the parcels' areas by use; `unassigned`
+//!   = what is left (zero when blocks are fully parcelled; the validator bounds it);
+//! * densities are per km² of the whole region; a street along the region's boundary counts with
+//!   half its length (it serves the region from one side);
+//! * intersections are points where three or more street arms meet, dead ends street ends that
+//!   meet nothing and are not on the region's boundary;
+//! * parcel corners are the vertices of the parcel simplified by Douglas–Peucker at 0.5 m whose
+//!   turn is at least 20°; the corner deviation is |interior angle − 90°|; the area ratio is the
+//!   minimum rotated rectangle's area over the parcel's; a parcel is undesirable when its own
+//!   mean deviation exceeds 15° or its ratio 1.2.
+
+use super::parcels::{ring_of, street_area};
+use super::{Parcel, Street, Use};
+use crate::geometry::{dist, polyline_length, ring_area2, Polygon, P};
+use geo::{Area, MinimumRotatedRect, Simplify};
+use serde::{Deserialize, Serialize};
+
+/// A parcel is undesirable above this mean corner deviation (degrees).
+pub const UNDESIRABLE_DEVIATION: f64 = 15.0;
+/// … or above this area ratio to its minimum rotated rectangle.
+pub const UNDESIRABLE_RATIO: f64 = 1.2;
+/// Street ends closer than this meet (metres).
+const NODE_TOLERANCE: f64 = 0.5;
+
+/// Land use, in % of the region's area.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct LandUse {
+    /// Streets.
+    pub streets: f64,
+    /// Residential parcels.
+    pub residential: f64,
+    /// Parks.
+    pub parks: f64,
+    /// Other parcels (commercial included).
+    pub other: f64,
+    /// Neither street nor parcel.
+    pub unassigned: f64,
+}
+
+/// The §7 metrics of a layout.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Metrics {
+    /// The region's area (km²).
+    pub area_km2: f64,
+    /// Land use (%).
+    pub land_use: LandUse,
+    /// Blocks.
+    pub blocks: usize,
+    /// Blocks per km².
+    pub blocks_per_km2: f64,
+    /// Mean block perimeter (m).
+    pub block_perimeter_mean: f64,
+    /// Shortest block perimeter (m).
+    pub block_perimeter_min: f64,
+    /// Longest block perimeter (m).
+    pub block_perimeter_max: f64,
+    /// Street centreline length per km² (km/km²).
+    pub street_km_per_km2: f64,
+    /// Intersections per km².
+    pub intersections_per_km2: f64,
+    /// Dead ends per km².
+    pub dead_ends_per_km2: f64,
+    /// Parcels.
+    pub parcels: usize,
+    /// Parcels per km².
+    pub parcels_per_km2: f64,
+    /// Mean deviation of parcel corners from 90° (degrees).
+    pub corner_deviation_mean: f64,
+    /// Mean ratio of a parcel's minimum rotated rectangle to its area.
+    pub area_ratio_mean: f64,
+    /// Parcels with a mean corner deviation over 15° or an area ratio over 1.2.
+    pub undesirable: usize,
+}
+
+/// One parcel's shape measures.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ParcelShape {
+    /// Sum of its corners' deviations from 90° (degrees).
+    pub deviation_sum: f64,
+    /// Its corners.
+    pub corners: usize,
+    /// Its minimum rotated rectangle's area over its area.
+    pub area_ratio: f64,
+}
+
+impl ParcelShape {
+    /// Whether the parcel is undesirable.
+    pub fn undesirable(&self) -> bool {
+        self.deviation_sum / self.corners.max(1) as f64 > UNDESIRABLE_DEVIATION || self.area_ratio > UNDESIRABLE_RATIO
+    }
+}
+
+/// A parcel's shape measures.
+pub fn parcel_shape(ring: &[P]) -> ParcelShape {
+    let closed: Vec<(f64, f64)> = ring.iter().chain(ring.first()).map(|p| (p[0], p[1])).collect();
+    let poly = geo::Polygon::new(geo::LineString::from(closed), vec![]);
+    let simple = ring_of(&poly.simplify(0.5));
+    let n = simple.len();
+    let (mut sum, mut corners) = (0.0, 0);
+    for i in 0..n {
+        let (a, b, c) = (simple[(i + n - 1) % n], simple[i], simple[(i + 1) % n]);
+        let (d1, d2) = (crate::geometry::sub(b, a), crate::geometry::sub(c, b));
+        let turn = crate::geometry::cross(d1, d2).atan2(crate::geometry::dot(d1, d2)).to_degrees();
+        if turn.abs() >= 20.0 {
+            // Interior angle of a counter-clockwise ring: 180° − turn.
+            sum += (180.0 - turn - 90.0).abs();
+            corners += 1;
+        }
+    }
+    let area = poly.unsigned_area();
+    let rect = poly.minimum_rotated_rect().map_or(area, |r| r.unsigned_area());
+    ParcelShape { deviation_sum: sum, corners, area_ratio: if area > 0.0 { rect / area } else { f64::INFINITY } }
+}
+
+/// The metrics of a layout: its region, streets, blocks and parcels.
+pub fn metrics(region: &Polygon, streets: &[Street], blocks: &[geo::Polygon<f64>], parcels: &[Parcel]) -> Metrics {
+    let area = region.area();
+    let km2 = area / 1e6;
+    let pct = |a: f64| 100.0 * a / area;
+    let street_pct = pct(street_area(region, streets).unsigned_area());
+    let by_use = |u: &[Use]| {
+        pct(parcels.iter().filter(|p| u.contains(&p.use_)).map(|p| ring_area2(&p.polygon).abs() / 2.0).sum())
+    };
+    let (residential, parks, other) =
+        (by_use(&[Use::Residential]), by_use(&[Use::Park]), by_use(&[Use::Other, Use::Commercial]));
+    let perimeters: Vec<f64> = blocks.iter().map(block_perimeter).collect();
+    let shapes: Vec<ParcelShape> = parcels.iter().map(|p| parcel_shape(&p.polygon)).collect();
+    let corners: usize = shapes.iter().map(|s| s.corners).sum();
+    let (intersections, dead_ends) = nodes(region, streets);
+    let length: f64 =
+        streets.iter().map(|s| polyline_length(&s.polyline) * if on_boundary(region, s) { 0.5 } else { 1.0 }).sum();
+    Metrics {
+        area_km2: km2,
+        land_use: LandUse {
+            streets: street_pct,
+            residential,
+            parks,
+            other,
+            unassigned: 100.0 - street_pct - residential - parks - other,
+        },
+        blocks: blocks.len(),
+        blocks_per_km2: blocks.len() as f64 / km2,
+        block_perimeter_mean: mean(&perimeters),
+        block_perimeter_min: perimeters.iter().copied().fold(f64::INFINITY, f64::min).min(f64::MAX),
+        block_perimeter_max: perimeters.iter().copied().fold(0.0, f64::max),
+        street_km_per_km2: length / 1000.0 / km2,
+        intersections_per_km2: intersections as f64 / km2,
+        dead_ends_per_km2: dead_ends as f64 / km2,
+        parcels: parcels.len(),
+        parcels_per_km2: parcels.len() as f64 / km2,
+        corner_deviation_mean: shapes.iter().map(|s| s.deviation_sum).sum::<f64>() / corners.max(1) as f64,
+        area_ratio_mean: mean(&shapes.iter().map(|s| s.area_ratio).collect::<Vec<_>>()),
+        undesirable: shapes.iter().filter(|s| s.undesirable()).count(),
+    }
+}
+
+fn mean(v: &[f64]) -> f64 {
+    if v.is_empty() {
+        0.0
+    } else {
+        v.iter().sum::<f64>() / v.len() as f64
+    }
+}
+
+fn block_perimeter(b: &geo::Polygon<f64>) -> f64 {
+    let ring = |l: &geo::LineString<f64>| l.0.windows(2).map(|w| dist([w[0].x, w[0].y], [w[1].x, w[1].y])).sum::<f64>();
+    ring(b.exterior()) + b.interiors().iter().map(ring).sum::<f64>()
+}
+
+/// Whether a street runs along the region's boundary (every vertex and edge midpoint on it).
+fn on_boundary(region: &Polygon, s: &Street) -> bool {
+    let mids = s.polyline.windows(2).map(|w| [(w[0][0] + w[1][0]) / 2.0, (w[0][1] + w[1][1]) / 2.0]);
+    s.polyline.iter().copied().chain(mids).all(|p| region.boundary_distance(p) <= NODE_TOLERANCE)
+}
+
+/// Intersections (three or more arms) and dead ends (one arm, off the boundary), counted at
+/// street ends: an end meets every other end within the tolerance (one arm each) and every
+/// street passing through it (two arms).
+fn nodes(region: &Polygon, streets: &[Street]) -> (usize, usize) {
+    let ends: Vec<(usize, P)> = streets
+        .iter()
+        .enumerate()
+        .filter(|(_, s)| s.polyline.len() >= 2 && s.polyline.first() != s.polyline.last())
+        .flat_map(|(i, s)| [(i, s.polyline[0]), (i, *s.polyline.last().unwrap_or(&s.polyline[0]))])
+        .collect();
+    let segments: Vec<(usize, P, P)> =
+        streets.iter().enumerate().flat_map(|(i, s)| s.polyline.windows(2).map(move |w| (i, w[0], w[1]))).collect();
+    let index = crate::geometry::index::SegmentIndex::new(segments.iter().map(|s| (s.1, s.2)).collect(), 50.0);
+    let mut seen: Vec<P> = Vec::new();
+    let (mut intersections, mut dead_ends) = (0, 0);
+    for &(_, p) in &ends {
+        if seen.iter().any(|&q| dist(p, q) <= NODE_TOLERANCE) {
+            continue;
+        }
+        seen.push(p);
+        let end_arms = ends.iter().filter(|(_, q)| dist(p, *q) <= NODE_TOLERANCE).count();
+        let mut through: Vec<usize> = index
+            .near(p, NODE_TOLERANCE)
+            .into_iter()
+            .filter(|&k| {
+                let (i, a, b) = segments[k];
+                let s = &streets[i].polyline;
+                let is_end = dist(p, s[0]) <= NODE_TOLERANCE || dist(p, s[s.len() - 1]) <= NODE_TOLERANCE;
+                let closed = s.first() == s.last();
+                (closed || !is_end) && dist(p, crate::geometry::closest_on_segment(p, a, b).0) <= NODE_TOLERANCE
+            })
+            .map(|k| segments[k].0)
+            .collect();
+        through.sort_unstable();
+        through.dedup();
+        let arms = end_arms + 2 * through.len();
+        if arms >= 3 {
+            intersections += 1;
+        } else if arms == 1 && region.boundary_distance(p) > NODE_TOLERANCE {
+            dead_ends += 1;
+        }
+    }
+    (intersections, dead_ends)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::layout::parcels::{blocks, parcellate, StreetIndex};
+
+    #[test]
+    fn a_rectangle_has_right_corners_and_ratio_one() {
+        let s = parcel_shape(&[[0.0, 0.0], [18.0, 0.0], [18.0, 30.0], [0.0, 30.0]]);
+        assert_eq!((s.corners, s.deviation_sum), (4, 0.0));
+        assert!((s.area_ratio - 1.0).abs() < 1e-9 && !s.undesirable());
+        let t = parcel_shape(&[[0.0, 0.0], [30.0, 0.0], [0.0, 30.0]]);
+        // 90°, 45°, 45°: deviations 0 + 45 + 45 over 3 corners; ratio 2.
+        assert!((t.deviation_sum - 90.0).abs() < 1e-9 && (t.area_ratio - 2.0).abs() < 1e-9 && t.undesirable());
+    }
+
+    #[test]
+    fn a_cross_of_streets_in_a_square() {
+        let region = Polygon::new(vec![[0.0, 0.0], [300.0, 0.0], [300.0, 300.0], [0.0, 300.0]], vec![]).unwrap();
+        let ring = vec![[0.0, 0.0], [300.0, 0.0], [300.0, 300.0], [0.0, 300.0], [0.0, 0.0]];
+        let streets = vec![
+            Street { polyline: ring, width: 15.0, level: 0 },
+            Street { polyline: vec![[150.0, 0.0], [150.0, 300.0]], width: 15.0, level: 1 },
+            Street { polyline: vec![[0.0, 150.0], [150.0, 150.0]], width: 15.0, level: 2 },
+            Street { polyline: vec![[150.0, 150.0], [300.0, 150.0]], width: 15.0, level: 2 },
+            Street { polyline: vec![[75.0, 150.0], [75.0, 100.0]], width: 15.0, level: 3 },
+        ];
+        let b = blocks(&region, &streets);
+        let parcels = parcellate(&b, &StreetIndex::new(&streets), 30.0, 18.0);
+        let m = metrics(&region, &streets, &b, &parcels);
+        // Four T-junctions on the boundary, the crossing, the stub's T; the stub's other end.
+        assert_eq!(m.intersections_per_km2 * m.area_km2, 6.0);
+        assert!((m.dead_ends_per_km2 * m.area_km2 - 1.0).abs() < 1e-9);
+        assert_eq!(m.blocks, 4);
+        let lu = &m.land_use;
+        assert!(lu.unassigned.abs() < 0.01, "{lu:?}");
+        // Boundary half-counted: 600 m; inner streets 600 m; stub 50 m.
+        assert!((m.street_km_per_km2 * m.area_km2 - 1.25).abs() < 1e-9);
+    }
+}
