@@ -3,6 +3,7 @@
 //! booleans and rotated rectangles; `spade` for constrained Delaunay triangulations) and holds
 //! the few primitives they lack. Coordinates are metres in a local plane.
 
+pub mod cdt;
 pub mod index;
 pub mod polygon;
 pub mod site;

@@ -2,6 +2,7 @@
 //! split along streamlines of a boundary-aligned cross field, and by warped templates, down to
 //! parcels.
 
+pub mod field;
 pub mod metrics;
 pub mod parcels;
 pub mod region;

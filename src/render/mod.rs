@@ -17,6 +17,7 @@
 
 pub mod chart;
 pub mod city;
+pub mod field;
 pub mod level;
 pub mod network;
 pub mod traffic;
