@@ -6,6 +6,7 @@ pub mod field;
 pub mod metrics;
 pub mod parcels;
 pub mod region;
+pub mod streamline;
 pub mod validate;
 
 use crate::geometry::P;
