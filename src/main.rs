@@ -13,6 +13,7 @@ mod cli {
     pub mod city;
     pub mod compare;
     pub mod interrupt;
+    pub mod layout;
     pub mod level;
     pub mod solve;
     pub mod solve_file;
@@ -307,6 +308,44 @@ enum Command {
         #[arg(long, value_name = "R", requires = "export_spec")]
         coverage: Option<f64>,
     },
+    /// Lay out an urban region by hierarchical domain splitting (Yang et al. 2013): cuts along
+    /// streamlines of a boundary-aligned cross field down to blocks, parcels in rows, the §7
+    /// metrics and an independent check. REGION is TOML (metres) or GeoJSON (WGS 84); format in
+    /// docs/layout.md. Writes layout.json, layout.svg/.png, layout.geojson and run.json with --out.
+    Layout {
+        /// The region file.
+        region: PathBuf,
+        /// Seed of every random choice (default: the region's `seed`).
+        #[arg(long)]
+        seed: Option<u64>,
+        /// Layouts to make: the first by --mode, the others drawn by quality with seeds seed+1, ….
+        #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..=1000))]
+        variations: u64,
+        /// The cross field: boundary-aligned smooth, or the distance field (the paper's most used).
+        #[arg(long, value_enum, default_value = "distance")]
+        field: FieldKind,
+        /// Streamline choice: the best (comparison mode) or drawn by quality (variation mode).
+        #[arg(long, value_enum, default_value = "best")]
+        mode: SelectionKind,
+        /// Output directory.
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+    },
+    /// A region's cross field (smooth or distance): field.json (singularities with their index,
+    /// the field per vertex), field.svg and field.png with a few streamlines.
+    Field {
+        /// The region file (TOML or GeoJSON).
+        region: PathBuf,
+        /// The construction.
+        #[arg(long, value_enum, default_value = "distance")]
+        method: FieldKind,
+        /// Triangle size in metres (default: a third of the parcel depth).
+        #[arg(long)]
+        h: Option<f64>,
+        /// Output directory.
+        #[arg(long, value_name = "DIR")]
+        out: PathBuf,
+    },
     /// Write a level file of unit squares for a graph family: `path:N`, `cycle:N`, `ladder:N`
     /// (2 × N), `grid:RxC`, `caterpillar:NxL` (a spine of N, L legs each), `star:N`, `tree:N`
     /// (complete binary); `+triangle` adds an edge that closes a triangle.
@@ -333,6 +372,42 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+}
+
+/// A cross field's construction.
+#[derive(Copy, Clone, Debug, clap::ValueEnum)]
+enum FieldKind {
+    /// Smooth and boundary-aligned (harmonic in the power representation).
+    Smooth,
+    /// Aligned with the gradient of the distance to the boundary (D-field).
+    Distance,
+}
+
+impl From<FieldKind> for netspec::layout::field::FieldMethod {
+    fn from(m: FieldKind) -> Self {
+        match m {
+            FieldKind::Smooth => netspec::layout::field::FieldMethod::Smooth,
+            FieldKind::Distance => netspec::layout::field::FieldMethod::Distance,
+        }
+    }
+}
+
+/// How `netspec layout` picks a streamline.
+#[derive(Copy, Clone, Debug, clap::ValueEnum)]
+enum SelectionKind {
+    /// The highest quality.
+    Best,
+    /// Drawn with probability proportional to quality.
+    Random,
+}
+
+impl From<SelectionKind> for netspec::layout::split::Selection {
+    fn from(m: SelectionKind) -> Self {
+        match m {
+            SelectionKind::Best => netspec::layout::split::Selection::Best,
+            SelectionKind::Random => netspec::layout::split::Selection::Random,
+        }
+    }
 }
 
 /// `--method` of `netspec level`.
@@ -560,6 +635,22 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 export: export_spec.then_some(netspec::levels::bridge::BridgeOptions { spacing, entrance, coverage }),
                 seeds: seeds as usize,
             })
+        }
+        Command::Layout { region, seed, variations, field, mode, out } => {
+            cli::layout::run(&netspec::layout::run::LayoutRequest {
+                region,
+                field: field.into(),
+                selection: mode.into(),
+                seed,
+                variations: variations as usize,
+                out,
+            })
+        }
+        Command::Field { region, method, h, out } => {
+            if let Some(h) = h.filter(|h| !(h.is_finite() && *h > 0.0)) {
+                anyhow::bail!("--h must be a positive number of metres, got {h}");
+            }
+            cli::layout::field(&region, method.into(), h, &out)
         }
         Command::LevelGen { family, door_width, out } => {
             let g = netspec::levels::generate::Generated::parse(&family)?;

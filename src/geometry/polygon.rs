@@ -157,6 +157,78 @@ impl Polygon {
         geo::Polygon::new(ring(&self.outer), self.holes.iter().map(|h| ring(h)).collect())
     }
 
+    /// Cuts the polygon along a polyline whose two ends lie on the outer ring (within `tol`) and
+    /// whose inside avoids the boundary: the part on the line's left, then the part on its right.
+    /// Holes go with the part that holds them. `None` when an end is off the outer ring, or a part
+    /// is not a valid polygon (the line touches the boundary, or the cut leaves a sliver).
+    pub fn cut(&self, line: &[P], tol: f64) -> Option<(Polygon, Polygon)> {
+        let (a, b) = (*line.first()?, *line.last()?);
+        let (ea, ta, da) = self.locate_on_outer(a);
+        let (eb, tb, db) = self.locate_on_outer(b);
+        if da > tol || db > tol || line.len() < 2 {
+            return None;
+        }
+        let left = self.ring_walk((eb, tb), (ea, ta));
+        let right = self.ring_walk((ea, ta), (eb, tb));
+        // Left part: the line from a to b, then the ring from b back to a (counter-clockwise).
+        let mut l: Vec<P> = line.to_vec();
+        l.extend(left);
+        let mut r: Vec<P> = line.iter().rev().copied().collect();
+        r.extend(right);
+        let (mut hl, mut hr) = (Vec::new(), Vec::new());
+        for h in &self.holes {
+            if ring_contains(&l, h[0]) {
+                hl.push(h.clone());
+            } else {
+                hr.push(h.clone());
+            }
+        }
+        Some((Polygon::new(l, hl).ok()?, Polygon::new(r, hr).ok()?))
+    }
+
+    /// The outer edge nearest `p`: (edge, parameter, distance).
+    fn locate_on_outer(&self, p: P) -> (usize, f64, f64) {
+        let n = self.outer.len();
+        (0..n)
+            .map(|e| {
+                let (q, t) = closest_on_segment(p, self.outer[e], self.outer[(e + 1) % n]);
+                (e, t, dist(p, q))
+            })
+            .min_by(|x, y| x.2.total_cmp(&y.2))
+            .unwrap_or((0, 0.0, f64::INFINITY))
+    }
+
+    /// The outer ring's vertices strictly between two positions, walking counter-clockwise.
+    fn ring_walk(&self, from: (usize, f64), to: (usize, f64)) -> Vec<P> {
+        let n = self.outer.len();
+        let mut out = Vec::new();
+        if from.0 == to.0 && from.1 < to.1 {
+            return out;
+        }
+        let mut e = (from.0 + 1) % n;
+        let mut first = true;
+        loop {
+            // Vertex e starts edge e; stop once edge `to.0` is reached (its start vertex included).
+            out.push(self.outer[e]);
+            if e == to.0 && !(first && from.0 == to.0 && from.1 < to.1) {
+                break;
+            }
+            first = false;
+            e = (e + 1) % n;
+            if out.len() > n {
+                break;
+            }
+        }
+        // A position at the very start of its edge coincides with the vertex pushed last.
+        if to.1 <= 0.0 {
+            out.pop();
+        }
+        if from.1 >= 1.0 && !out.is_empty() {
+            out.remove(0);
+        }
+        out
+    }
+
     fn check_holes(&self) -> Result<(), PolygonError> {
         for (i, h) in self.holes.iter().enumerate() {
             if let Some((_, _, at)) = first_crossing(h, &self.outer) {
@@ -315,6 +387,21 @@ mod tests {
         assert_eq!(p.area(), 96.0);
         assert!(p.contains([1.0, 1.0]) && !p.contains([3.0, 3.0]));
         assert_eq!(p.boundary_distance([5.0, 1.0]), 1.0);
+    }
+
+    #[test]
+    fn a_cut_splits_a_square_with_its_hole() {
+        let p = Polygon::new(square(0.0, 0.0, 10.0), vec![square(6.0, 6.0, 2.0)]).unwrap();
+        let (l, r) = p.cut(&[[5.0, 0.0], [5.0, 5.0], [5.0, 10.0]], 1e-9).unwrap();
+        assert_eq!((l.area(), l.holes().len()), (50.0, 0));
+        assert_eq!((r.area(), r.holes().len()), (46.0, 1));
+        assert!(l.contains([2.0, 5.0]) && r.contains([9.0, 1.0]));
+        // Across a corner: ends on adjacent edges.
+        let (a, b) = p.cut(&[[8.0, 0.0], [10.0, 2.0]], 1e-9).unwrap();
+        assert!((a.area() - 94.0).abs() < 1e-9 && (b.area() - 2.0).abs() < 1e-9, "{} {}", a.area(), b.area());
+        // Both ends on one edge: a pocket.
+        assert!(p.cut(&[[2.0, 0.0], [3.0, 1.0], [4.0, 0.0]], 1e-9).is_some_and(|(x, y)| (x.area() - 1.0).abs() < 1e-9 || (y.area() - 1.0).abs() < 1e-9));
+        assert!(p.cut(&[[5.0, 0.0], [5.0, 5.0]], 1e-9).is_none(), "an end inside");
     }
 
     #[test]

@@ -6,6 +6,8 @@ pub mod field;
 pub mod metrics;
 pub mod parcels;
 pub mod region;
+pub mod run;
+pub mod split;
 pub mod streamline;
 pub mod validate;
 

@@ -97,7 +97,7 @@ pub fn parcellate(blocks: &[geo::Polygon<f64>], streets: &StreetIndex, depth: f6
     for b in blocks {
         for piece in rows_and_parcels(b, depth, width) {
             let ring = ring_of(&piece);
-            if ring.len() < 3 {
+            if ring.len() < 3 || piece.unsigned_area() < 1e-3 * depth * width {
                 continue;
             }
             let use_ = if piece.unsigned_area() < 0.25 * depth * width {

@@ -122,9 +122,14 @@ pub fn candidates(field: &CrossField, region: &Polygon, opts: &TraceOptions, rng
             }
             active[k][o] = false;
             let theta = field.theta(seeds[k]) + o as f64 * std::f64::consts::FRAC_PI_2;
-            let Some(c) = trace(field, &boundary, verts[seeds[k]], [theta.cos(), theta.sin()], opts) else { continue };
-            deactivate(field, &seed_index, &seeds, &mut active, &c.points, opts.separation);
-            out.push(c);
+            match trace(field, &boundary, verts[seeds[k]], [theta.cos(), theta.sin()], opts) {
+                Ok(c) => {
+                    deactivate(field, &seed_index, &seeds, &mut active, &c.points, opts.separation);
+                    out.push(c);
+                }
+                // Seeds on a discarded streamline would trace the same curve: their line is off.
+                Err(points) => deactivate(field, &seed_index, &seeds, &mut active, &points, opts.separation / 2.0),
+            }
         }
     }
     out
@@ -158,31 +163,37 @@ fn deactivate(field: &CrossField, index: &SegmentIndex, seeds: &[usize], active:
     }
 }
 
-/// Traces from `p` both ways along the cross line nearest `d`.
-pub fn trace(field: &CrossField, boundary: &BoundaryIndex, p: P, d: P, opts: &TraceOptions) -> Option<Candidate> {
+/// Traces from `p` both ways along the cross line nearest `d`; a discarded streamline gives the
+/// points traced before it was discarded.
+pub fn trace(field: &CrossField, boundary: &BoundaryIndex, p: P, d: P, opts: &TraceOptions) -> Result<Candidate, Vec<P>> {
     let (fwd, end1, div1) = half(field, boundary, p, d, opts)?;
-    let (bwd, end0, div0) = half(field, boundary, p, scale(d, -1.0), opts)?;
+    let (bwd, end0, div0) = half(field, boundary, p, scale(d, -1.0), opts).map_err(|mut b| {
+        b.extend(fwd.iter().copied());
+        b
+    })?;
     let mut points: Vec<P> = bwd.into_iter().rev().collect();
     points.pop();
     points.extend(fwd);
     let length = polyline_length(&points);
     if length > opts.max_length || self_crossing(&points) {
-        return None;
+        return Err(points);
     }
-    Some(Candidate { points, ends: [end0, end1], divergence: div0 + div1, length })
+    Ok(Candidate { points, ends: [end0, end1], divergence: div0 + div1, length })
 }
 
-/// One direction: points from `p` to the boundary, the hit, and `∫|∇·f|`.
-fn half(field: &CrossField, boundary: &BoundaryIndex, p: P, d: P, opts: &TraceOptions) -> Option<(Vec<P>, BoundaryHit, f64)> {
+/// One direction: points from `p` to the boundary, the hit, and `∫|∇·f|`; or the points traced
+/// before a singularity, a closed orbit, the length limit or the triangulation's edge stopped it.
+fn half(field: &CrossField, boundary: &BoundaryIndex, p: P, d: P, opts: &TraceOptions) -> Result<(Vec<P>, BoundaryHit, f64), Vec<P>> {
     let h = opts.step;
     let mut x = p;
-    let mut dir = field.direction(x, d)?;
+    let Some(mut dir) = field.direction(x, d) else { return Err(vec![p]) };
     let mut pts = vec![x];
     let (mut length, mut div) = (0.0, 0.0);
     while length <= opts.max_length {
-        let s = field.sample(x)?;
-        if s.magnitude < opts.min_magnitude {
-            return None;
+        let Some(s) = field.sample(x).filter(|s| s.magnitude >= opts.min_magnitude) else { return Err(pts) };
+        if length > 4.0 * h && dist(x, p) < h {
+            // Back at the start: a closed orbit.
+            return Err(pts);
         }
         let y = rk4(field, x, dir, h).unwrap_or_else(|| add(x, scale(dir, h)));
         if let Some((s_hit, ring, edge, t)) = boundary.first_hit(x, y) {
@@ -193,12 +204,12 @@ fn half(field: &CrossField, boundary: &BoundaryIndex, p: P, d: P, opts: &TraceOp
                 pts.push(at);
             }
             div += field.divergence(s.triangle, direction).abs() * dist(at, x);
-            return Some((pts, BoundaryHit { ring, edge, t, at, direction }, div));
+            return Ok((pts, BoundaryHit { ring, edge, t, at, direction }, div));
         }
         let step = sub(y, x);
         let l = norm(step);
         if l <= 1e-9 * h {
-            return None;
+            return Err(pts);
         }
         dir = scale(step, 1.0 / l);
         div += field.divergence(s.triangle, dir).abs() * l;
@@ -206,7 +217,7 @@ fn half(field: &CrossField, boundary: &BoundaryIndex, p: P, d: P, opts: &TraceOp
         x = y;
         pts.push(x);
     }
-    None
+    Err(pts)
 }
 
 /// One Runge–Kutta step of length `h` from `x`, each stage on the branch nearest the previous.

@@ -1,0 +1,274 @@
+//! `netspec layout`: the control loop, blocks, parcels, metrics and the independent check, and
+//! the files a layout is written as.
+
+use super::field::FieldMethod;
+use super::metrics::{metrics, parcel_shape, Metrics};
+use super::parcels::{blocks, parcellate, StreetIndex};
+use super::region::Region;
+use super::split::{split, Selection, SplitError, SplitOptions};
+use super::validate::{validate, Violation};
+use super::{Parcel, Street};
+use crate::geometry::P;
+use crate::render::layout::{layout_svg, LayoutScene, ParcelShape};
+use rand::rngs::Xoshiro256PlusPlus;
+use rand::SeedableRng;
+use serde::Serialize;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// How a layout is made.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LayoutOptions {
+    /// The cross field's construction.
+    pub field: FieldMethod,
+    /// Best streamline, or drawn by quality.
+    pub selection: Selection,
+    /// The seed (the region's own unless overridden).
+    pub seed: u64,
+}
+
+/// A layout, checked.
+#[derive(Clone, Debug, Serialize)]
+pub struct Layout {
+    /// The region's name.
+    pub name: String,
+    /// The seed it was made with.
+    pub seed: u64,
+    /// The field construction.
+    pub field: FieldMethod,
+    /// The selection mode.
+    pub selection: Selection,
+    /// Streets.
+    pub streets: Vec<Street>,
+    /// Parcels.
+    pub parcels: Vec<Parcel>,
+    /// The §7 metrics.
+    pub metrics: Metrics,
+    /// What the independent check found (empty: valid).
+    pub violations: Vec<Violation>,
+    /// Counts of the control loop.
+    pub split: SplitCounts,
+    /// Seconds per stage (not written to `layout.json`, so equal seeds give equal bytes).
+    #[serde(skip)]
+    pub times: Times,
+}
+
+/// Counts of the control loop.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct SplitCounts {
+    /// Streamline candidates traced.
+    pub candidates: usize,
+    /// Cuts along streamlines.
+    pub cuts: usize,
+    /// Blocks.
+    pub blocks: usize,
+}
+
+/// Seconds per stage.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct Times {
+    /// Splitting (fields, candidates, cuts).
+    pub split: f64,
+    /// Blocks and parcels.
+    pub parcels: f64,
+    /// Metrics and the check.
+    pub check: f64,
+}
+
+/// Why a layout failed.
+#[derive(Debug, thiserror::Error)]
+pub enum LayoutError {
+    /// The control loop failed.
+    #[error(transparent)]
+    Split(#[from] SplitError),
+    /// A file could not be written.
+    #[error("writing {}: {source}", path.display())]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// Why.
+        source: std::io::Error,
+    },
+    /// The picture could not be rasterised.
+    #[error("layout picture: {0}")]
+    Render(#[from] crate::render::RenderError),
+    /// The GeoJSON could not be projected.
+    #[error(transparent)]
+    Site(#[from] crate::geometry::site::SiteError),
+    /// The region was refused.
+    #[error(transparent)]
+    Region(#[from] super::region::RegionError),
+    /// The field could not be built or written.
+    #[error(transparent)]
+    Field(#[from] super::field::FieldError),
+}
+
+/// What `netspec layout` is asked for.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LayoutRequest {
+    /// The region file (TOML or GeoJSON).
+    pub region: PathBuf,
+    /// The field construction.
+    pub field: FieldMethod,
+    /// The selection of the first layout (the others are drawn by quality).
+    pub selection: Selection,
+    /// The seed (default: the region's).
+    pub seed: Option<u64>,
+    /// How many layouts (seeds `seed`, `seed + 1`, …).
+    pub variations: usize,
+    /// Where to write them: the first in the directory, variation `k ≥ 2` in `variation-k/`.
+    pub out: Option<PathBuf>,
+}
+
+/// Reads the region, makes the layouts and writes them (with `run.json`: the seconds per stage).
+pub fn run(req: &LayoutRequest) -> Result<Vec<Layout>, LayoutError> {
+    let region = super::region::read_region(&req.region)?;
+    let seed = req.seed.unwrap_or(region.seed);
+    let mut out = Vec::new();
+    for k in 0..req.variations.max(1) {
+        let selection = if k == 0 { req.selection } else { Selection::Random };
+        let l = layout(&region, &LayoutOptions { field: req.field, selection, seed: seed + k as u64 })?;
+        if let Some(dir) = &req.out {
+            let dir = if k == 0 { dir.clone() } else { dir.join(format!("variation-{}", k + 1)) };
+            write_layout(&dir, &region, &l)?;
+            let run = serde_json::json!({"times": l.times, "split": l.split, "seed": l.seed});
+            let path = dir.join("run.json");
+            std::fs::write(&path, serde_json::to_string_pretty(&run).expect("run.json serialises") + "\n")
+                .map_err(|source| LayoutError::Io { path, source })?;
+        }
+        out.push(l);
+    }
+    Ok(out)
+}
+
+/// `netspec field`: the region's cross field, written as `field.json`, `field.svg` and `field.png`
+/// with a few of its streamline candidates drawn over it.
+pub fn field_command(region: &Path, method: FieldMethod, h: Option<f64>, out: &Path) -> Result<super::field::CrossField, LayoutError> {
+    let region = super::region::read_region(region)?;
+    let opts = SplitOptions::for_region(&region, method, Selection::Best);
+    let field = super::field::CrossField::new(&region.polygon, &super::field::FieldOptions { method, h: h.unwrap_or(opts.h) })?;
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(region.seed);
+    // Streamlines at four times the layout's separation, so the picture stays readable.
+    let sparse = super::streamline::TraceOptions { separation: 4.0 * opts.trace.separation, ..opts.trace };
+    let lines: Vec<Vec<P>> = super::streamline::candidates(&field, &region.polygon, &sparse, &mut rng)
+        .into_iter()
+        .map(|c| c.points)
+        .collect();
+    super::field::write_field(out, &field, &lines)?;
+    Ok(field)
+}
+
+/// Lays a region out.
+pub fn layout(region: &Region, opts: &LayoutOptions) -> Result<Layout, LayoutError> {
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(opts.seed);
+    let t0 = Instant::now();
+    let s = split(region, &SplitOptions::for_region(region, opts.field, opts.selection), &mut rng)?;
+    let t1 = Instant::now();
+    let streets: Vec<Street> = s.streets.iter().map(|st| Street { polyline: round(&st.polyline), ..st.clone() }).collect();
+    let blocks = blocks(&region.polygon, &streets);
+    let parcels: Vec<Parcel> = parcellate(&blocks, &StreetIndex::new(&streets), region.parcel.depth, region.parcel.width)
+        .into_iter()
+        .map(|p| Parcel { polygon: round(&p.polygon), ..p })
+        .collect();
+    let t2 = Instant::now();
+    let metrics = metrics(&region.polygon, &streets, &blocks, &parcels);
+    let violations = validate(&region.polygon, &streets, &parcels);
+    let times = Times {
+        split: (t1 - t0).as_secs_f64(),
+        parcels: (t2 - t1).as_secs_f64(),
+        check: t2.elapsed().as_secs_f64(),
+    };
+    let split = SplitCounts { candidates: s.candidates, cuts: s.cuts, blocks: blocks.len() };
+    Ok(Layout {
+        name: region.name.clone(),
+        seed: opts.seed,
+        field: opts.field,
+        selection: opts.selection,
+        streets,
+        parcels,
+        metrics,
+        violations,
+        split,
+        times,
+    })
+}
+
+/// Coordinates rounded to the millimetre (compact, stable files).
+fn round(line: &[P]) -> Vec<P> {
+    let r = |x: f64| (x * 1000.0).round() / 1000.0;
+    let mut out: Vec<P> = Vec::with_capacity(line.len());
+    for p in line {
+        let q = [r(p[0]), r(p[1])];
+        if out.last() != Some(&q) {
+            out.push(q);
+        }
+    }
+    out
+}
+
+/// Writes `layout.json`, `layout.svg`, `layout.png` and (when the region has a projection)
+/// `layout.geojson` into `dir`.
+pub fn write_layout(dir: &Path, region: &Region, layout: &Layout) -> Result<(), LayoutError> {
+    let io = |path: &Path| {
+        let path = path.to_path_buf();
+        move |source| LayoutError::Io { path, source }
+    };
+    std::fs::create_dir_all(dir).map_err(io(dir))?;
+    let write = |name: &str, bytes: &[u8]| {
+        let path = dir.join(name);
+        std::fs::write(&path, bytes).map_err(io(&path))
+    };
+    write("layout.json", (serde_json::to_string_pretty(layout).expect("layout serialises") + "\n").as_bytes())?;
+    let svg = layout_svg(&scene(region, layout));
+    write("layout.svg", svg.as_bytes())?;
+    write("layout.png", &crate::render::png(&svg)?)?;
+    if let Some(proj) = &region.projection {
+        write("layout.geojson", (serde_json::to_string(&geojson(proj, layout)?).expect("GeoJSON serialises") + "\n").as_bytes())?;
+    }
+    Ok(())
+}
+
+/// The picture's plain data.
+pub fn scene(region: &Region, layout: &Layout) -> LayoutScene {
+    let m = &layout.metrics;
+    LayoutScene {
+        rings: region.polygon.rings().map(<[P]>::to_vec).collect(),
+        parcels: layout
+            .parcels
+            .iter()
+            .map(|p| ParcelShape {
+                ring: p.polygon.clone(),
+                use_: serde_json::to_value(p.use_).ok().and_then(|v| v.as_str().map(str::to_string)).unwrap_or_default(),
+                undesirable: parcel_shape(&p.polygon).undesirable(),
+            })
+            .collect(),
+        streets: layout.streets.iter().map(|s| (s.polyline.clone(), s.width, s.level)).collect(),
+        caption: format!(
+            "{}: {} parcels ({} undesirable), corners {:.1}° off, area ratio {:.3}, streets {:.1} %",
+            layout.name, m.parcels, m.undesirable, m.corner_deviation_mean, m.area_ratio_mean, m.land_use.streets
+        ),
+    }
+}
+
+fn geojson(proj: &crate::geometry::site::Projection, layout: &Layout) -> Result<serde_json::Value, LayoutError> {
+    let ll = |line: &[P]| -> Result<Vec<[f64; 2]>, LayoutError> {
+        line.iter()
+            .map(|&p| proj.to_wgs84(p).map(|q| [(q[0] * 1e8).round() / 1e8, (q[1] * 1e8).round() / 1e8]))
+            .collect::<Result<_, _>>()
+            .map_err(Into::into)
+    };
+    let mut features = Vec::new();
+    for s in &layout.streets {
+        features.push(serde_json::json!({"type": "Feature",
+            "properties": {"kind": "street", "level": s.level, "width": s.width},
+            "geometry": {"type": "LineString", "coordinates": ll(&s.polyline)?}}));
+    }
+    for p in &layout.parcels {
+        let mut ring = ll(&p.polygon)?;
+        ring.push(ring[0]);
+        features.push(serde_json::json!({"type": "Feature",
+            "properties": {"kind": "parcel", "use": p.use_},
+            "geometry": {"type": "Polygon", "coordinates": [ring]}}));
+    }
+    Ok(serde_json::json!({"type": "FeatureCollection", "features": features}))
+}

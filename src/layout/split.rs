@@ -1,0 +1,390 @@
+//! The hierarchical control loop (Yang et al. 2013 §3, §5): a region is cut along the given major
+//! roads, then each part, while it is too large for a block, along its best streamline; the
+//! field is recomputed for every part. Parts that fit a block (or that no streamline splits) are
+//! the blocks' regions, parcelled afterwards.
+//!
+//! **Scores** (§5, "Quality Score"): four costs per candidate, each min–max normalised over the
+//! candidates to `ĉ ∈ [0, 1]`, combined as `qual = Σ λ_k (1 − ĉ_k)` with every `λ = 1`:
+//! * divergence: `∫|∇·f| ds / length^p` with `p = 1.1` (a cost; the paper's `p = 0.9` on the
+//!   signed integral would favour short streamlines for a cost, so `p > 1` keeps its intent);
+//! * distance to the boundary: along the streamline, the distances to the boundary on both sides
+//!   along its normal, each compared with the nearest sum of block widths (a double-loaded block
+//!   `2·depth + street`, a single row `depth + street/2`), the misfit over the narrowest width,
+//!   capped at 1, averaged;
+//! * distance to singularities: the smallest distance from the streamline to a singularity
+//!   (near is good: cutting there removes singularities from the parts);
+//! * continuity: 0 when both ends continue an earlier street end (within 4 m and 20° across the
+//!   street), 0.5 for one, 1 for none.
+//!
+//! In comparison mode the best candidate is cut; in variation mode one is drawn with probability
+//! proportional to its quality, from the seeded generator.
+
+use super::field::{CrossField, FieldError, FieldMethod, FieldOptions};
+use super::region::Region;
+use super::streamline::{candidates, BoundaryIndex, Candidate, TraceOptions};
+use super::Street;
+use crate::geometry::{dist, dot, norm, scale, segment_intersection, sub, Polygon, P};
+use geo::MinimumRotatedRect;
+use rand::rngs::Xoshiro256PlusPlus;
+use rand::RngExt;
+use serde::{Deserialize, Serialize};
+
+/// How a streamline is chosen among the candidates.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Selection {
+    /// The highest quality (the paper's comparison mode).
+    Best,
+    /// Drawn with probability proportional to quality (variation mode).
+    Random,
+}
+
+/// What the control loop is run with.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SplitOptions {
+    /// The field construction.
+    pub field: FieldMethod,
+    /// The field's smallest triangle size (metres); a large part gets about 40 triangles across.
+    pub h: f64,
+    /// The streamline tracing.
+    pub trace: TraceOptions,
+    /// How the cut is chosen.
+    pub selection: Selection,
+    /// Parts longer than this (their minimum rotated rectangle's long side, metres) are split
+    /// even when narrow enough for a block.
+    pub max_block_length: f64,
+}
+
+impl SplitOptions {
+    /// The paper's settings for a region: `dε = 0.3 × depth`, triangles of about a third of the
+    /// parcel depth, a step of a quarter of `dε`, blocks at most 14 parcels long.
+    pub fn for_region(region: &Region, field: FieldMethod, selection: Selection) -> SplitOptions {
+        let d = region.parcel.depth;
+        let [lo, hi] = region.polygon.bounds();
+        let diameter = dist(lo, hi);
+        SplitOptions {
+            field,
+            h: d / 3.0,
+            trace: TraceOptions { separation: 0.3 * d, step: 0.075 * d, min_magnitude: 0.05, max_length: 3.0 * diameter },
+            selection,
+            max_block_length: 14.0 * region.parcel.width,
+        }
+    }
+}
+
+/// The result of the control loop.
+#[derive(Clone, Debug)]
+pub struct Split {
+    /// The parts left when nothing more is cut, in the order they were settled.
+    pub parts: Vec<Polygon>,
+    /// The streets: major roads (level 0) and every cut streamline (level = its depth + 1).
+    pub streets: Vec<Street>,
+    /// Candidates traced over the whole loop.
+    pub candidates: usize,
+    /// Cuts made along streamlines.
+    pub cuts: usize,
+}
+
+/// Why the loop failed.
+#[derive(Debug, thiserror::Error)]
+pub enum SplitError {
+    /// A field could not be built.
+    #[error(transparent)]
+    Field(#[from] FieldError),
+}
+
+/// Runs the control loop on a region.
+pub fn split(region: &Region, opts: &SplitOptions, rng: &mut Xoshiro256PlusPlus) -> Result<Split, SplitError> {
+    let (mut work, mut streets) = major_roads(region);
+    let mut ends: Vec<(P, P)> = streets.iter().flat_map(|s| street_ends(&s.polyline)).collect();
+    let (mut parts, mut total, mut cuts) = (Vec::new(), 0, 0);
+    while let Some((poly, level)) = work.pop() {
+        if fits_block(&poly, region, opts) {
+            parts.push(poly);
+            continue;
+        }
+        // Triangles scale with the part (about 40 across), never finer than `opts.h`.
+        let h = opts.h.max(poly.area().sqrt() / 40.0);
+        // The chosen field first; where none of its streamlines cuts the part (a disc's distance
+        // field is all circles and radii), the other construction.
+        let mut scored = Vec::new();
+        for method in [opts.field, other(opts.field)] {
+            let field = CrossField::new(&poly, &FieldOptions { method, h })?;
+            let cands = candidates(&field, &poly, &opts.trace, rng);
+            total += cands.len();
+            scored = score(&field, &poly, region, &cands, &ends);
+            if !scored.is_empty() {
+                break;
+            }
+        }
+        match choose(&scored, opts.selection, rng) {
+            Some(i) => {
+                let (c, (a, b)) = (&scored[i].0, scored[i].2.clone());
+                let line = simplify(&c.points, 0.05);
+                ends.extend(street_ends(&line));
+                streets.push(Street { polyline: line, width: region.street_width(level + 1), level: level + 1 });
+                cuts += 1;
+                // Right part first on the stack, so the left one is settled first.
+                work.push((b, level + 1));
+                work.push((a, level + 1));
+            }
+            None => parts.push(poly),
+        }
+    }
+    Ok(Split { parts, streets, candidates: total, cuts })
+}
+
+fn other(m: FieldMethod) -> FieldMethod {
+    match m {
+        FieldMethod::Smooth => FieldMethod::Distance,
+        FieldMethod::Distance => FieldMethod::Smooth,
+    }
+}
+
+/// The region cut along its major roads (each split at its crossings with earlier ones); roads
+/// that split nothing stay as streets. Returns the parts to work on (with level 0) and the level-0
+/// streets, the boundary street first when the boundary is one.
+fn major_roads(region: &Region) -> (Vec<(Polygon, usize)>, Vec<Street>) {
+    let w = region.street_width(0);
+    let mut streets = Vec::new();
+    if region.boundary == super::region::Boundary::Street {
+        for ring in region.polygon.rings().take(1) {
+            let mut closed = ring.to_vec();
+            closed.push(ring[0]);
+            streets.push(Street { polyline: closed, width: w, level: 0 });
+        }
+    }
+    let mut parts = vec![region.polygon.clone()];
+    let mut placed: Vec<Vec<P>> = Vec::new();
+    for road in &region.roads {
+        for piece in split_at_crossings(road, &placed) {
+            if let Some(k) = parts.iter().position(|p| p.contains(midpoint(&piece))) {
+                if let Some((a, b)) = parts[k].cut(&piece, 1e-4) {
+                    parts.splice(k..=k, [a, b]);
+                }
+            }
+        }
+        placed.push(road.clone());
+        streets.push(Street { polyline: road.clone(), width: w, level: 0 });
+    }
+    (parts.into_iter().rev().map(|p| (p, 0)).collect(), streets)
+}
+
+fn midpoint(line: &[P]) -> P {
+    let total = crate::geometry::polyline_length(line);
+    let mut run = 0.0;
+    for w in line.windows(2) {
+        let l = dist(w[0], w[1]);
+        if run + l >= total / 2.0 && l > 0.0 {
+            let t = (total / 2.0 - run) / l;
+            return [w[0][0] + t * (w[1][0] - w[0][0]), w[0][1] + t * (w[1][1] - w[0][1])];
+        }
+        run += l;
+    }
+    line[0]
+}
+
+/// A road cut into pieces at its crossings with other roads.
+fn split_at_crossings(road: &[P], others: &[Vec<P>]) -> Vec<Vec<P>> {
+    let mut pieces = vec![vec![road[0]]];
+    for w in road.windows(2) {
+        let mut hits: Vec<f64> = others
+            .iter()
+            .flat_map(|o| o.windows(2).filter_map(|v| segment_intersection(w[0], w[1], v[0], v[1]).map(|h| h.0)))
+            .filter(|&s| s > 1e-9 && s < 1.0 - 1e-9)
+            .collect();
+        hits.sort_by(f64::total_cmp);
+        for s in hits {
+            let p = [w[0][0] + s * (w[1][0] - w[0][0]), w[0][1] + s * (w[1][1] - w[0][1])];
+            if let Some(last) = pieces.last_mut() {
+                last.push(p);
+            }
+            pieces.push(vec![p]);
+        }
+        if let Some(last) = pieces.last_mut() {
+            last.push(w[1]);
+        }
+    }
+    pieces.retain(|p| p.len() >= 2 && crate::geometry::polyline_length(p) > 0.0);
+    pieces
+}
+
+/// Whether a part is a block: narrow enough for two rows of parcels back to back (its inscribed
+/// width at most 1.2 block widths) and not longer than the longest block, or smaller than four
+/// parcels.
+fn fits_block(poly: &Polygon, region: &Region, opts: &SplitOptions) -> bool {
+    let parcel = region.parcel.depth * region.parcel.width;
+    if poly.area() < 4.0 * parcel {
+        return true;
+    }
+    let block = 2.0 * region.parcel.depth + region.street_width(1);
+    let long = poly.to_geo().minimum_rotated_rect().map_or(f64::INFINITY, |r| {
+        let c = &r.exterior().0;
+        let (a, b) = (dist([c[0].x, c[0].y], [c[1].x, c[1].y]), dist([c[1].x, c[1].y], [c[2].x, c[2].y]));
+        a.max(b)
+    });
+    inscribed_width(poly, region.parcel.depth / 3.0) <= 1.2 * block && long <= opts.max_block_length
+}
+
+/// Twice the largest distance from an inside point to the boundary, sampled on a grid of `step`
+/// (at most 200 × 200 points).
+pub fn inscribed_width(poly: &Polygon, step: f64) -> f64 {
+    let [lo, hi] = poly.bounds();
+    let step = step.max((hi[0] - lo[0]).max(hi[1] - lo[1]) / 200.0);
+    let mut best: f64 = 0.0;
+    let mut y = lo[1] + step / 2.0;
+    while y < hi[1] {
+        let mut x = lo[0] + step / 2.0;
+        while x < hi[0] {
+            if poly.contains([x, y]) {
+                best = best.max(poly.boundary_distance([x, y]));
+            }
+            x += step;
+        }
+        y += step;
+    }
+    2.0 * best
+}
+
+/// A street's ends with their outward directions.
+fn street_ends(line: &[P]) -> Vec<(P, P)> {
+    if line.len() < 2 || line.first() == line.last() {
+        return Vec::new();
+    }
+    let n = line.len();
+    let unit = |d: P| scale(d, 1.0 / norm(d).max(1e-300));
+    vec![(line[0], unit(sub(line[0], line[1]))), (line[n - 1], unit(sub(line[n - 1], line[n - 2])))]
+}
+
+/// Douglas–Peucker simplification of an open polyline (ends kept).
+fn simplify(line: &[P], tol: f64) -> Vec<P> {
+    use geo::Simplify;
+    let ls = geo::LineString::from(line.iter().map(|p| (p[0], p[1])).collect::<Vec<_>>());
+    ls.simplify(tol).0.iter().map(|c| [c.x, c.y]).collect()
+}
+
+/// A candidate that cuts the part, its quality, and the two parts.
+pub type Scored = (Candidate, f64, (Polygon, Polygon));
+
+/// Scores the candidates that cut the part into two pieces at least a parcel deep.
+fn score(field: &CrossField, poly: &Polygon, region: &Region, cands: &[Candidate], ends: &[(P, P)]) -> Vec<Scored> {
+    let depth = region.parcel.depth;
+    let widths = [2.0 * depth + region.street_width(1), depth + region.street_width(1) / 2.0];
+    let boundary = BoundaryIndex::new(poly);
+    let [lo, hi] = poly.bounds();
+    let reach = 2.0 * dist(lo, hi);
+    let mut rows: Vec<([f64; 4], Candidate, (Polygon, Polygon))> = Vec::new();
+    for c in cands {
+        if c.ends[0].ring != 0 || c.ends[1].ring != 0 {
+            continue;
+        }
+        let Some(parts) = poly.cut(&c.points, 1e-6) else { continue };
+        if parts.0.area() < depth * region.parcel.width || parts.1.area() < depth * region.parcel.width {
+            continue;
+        }
+        let (db, median_gap) = boundary_fit(c, &boundary, &widths, reach);
+        // Each side must hold at least a row of parcels and half a street.
+        if median_gap < 0.9 * widths[1] {
+            continue;
+        }
+        let div = c.divergence / c.length.max(1e-9).powf(1.1);
+        let ds = field.singularities().iter().map(|s| polyline_distance(s.at, &c.points)).fold(f64::INFINITY, f64::min);
+        let ds = if ds.is_finite() { ds } else { 0.0 };
+        let ct = 1.0 - 0.5 * c.ends.iter().filter(|e| continues(e.at, e.direction, ends)).count() as f64;
+        rows.push(([div, db, ds, ct], c.clone(), parts));
+    }
+    let mut lo_hi = [[f64::INFINITY, f64::NEG_INFINITY]; 4];
+    for (costs, ..) in &rows {
+        for k in 0..4 {
+            lo_hi[k] = [lo_hi[k][0].min(costs[k]), lo_hi[k][1].max(costs[k])];
+        }
+    }
+    rows.into_iter()
+        .map(|(costs, c, parts)| {
+            let q: f64 = (0..4)
+                .map(|k| {
+                    let span = lo_hi[k][1] - lo_hi[k][0];
+                    1.0 - if span > 0.0 { (costs[k] - lo_hi[k][0]) / span } else { 0.0 }
+                })
+                .sum();
+            (c, q, parts)
+        })
+        .collect()
+}
+
+/// The mean misfit of the distances to the boundary on both sides with sums of block widths,
+/// and the median over the streamline of the nearer side's distance.
+fn boundary_fit(c: &Candidate, boundary: &BoundaryIndex, widths: &[f64; 2], reach: f64) -> (f64, f64) {
+    let wmin = widths[0].min(widths[1]);
+    let opt = |y: f64| {
+        // The nearest n·W₀ + m·W₁ to y.
+        let mut best = y;
+        let mut a = 0.0;
+        while a <= y + widths[0] {
+            let rest = y - a;
+            let m = (rest / widths[1]).round().max(0.0);
+            best = best.min((rest - m * widths[1]).abs());
+            a += widths[0];
+        }
+        (best / wmin).min(1.0)
+    };
+    let (mut sum, mut n, mut gaps) = (0.0, 0, Vec::new());
+    let spacing = (c.length / 20.0).max(1.0);
+    let mut run = 0.0;
+    for w in c.points.windows(2) {
+        let l = dist(w[0], w[1]);
+        run += l;
+        if run < spacing || l <= 0.0 {
+            continue;
+        }
+        run = 0.0;
+        let t = scale(sub(w[1], w[0]), 1.0 / l);
+        let nrm = [-t[1], t[0]];
+        let mut gap = reach;
+        for side in [nrm, scale(nrm, -1.0)] {
+            let from = [w[0][0] + side[0] * 1e-6, w[0][1] + side[1] * 1e-6];
+            let d = boundary.ray(from, side, reach);
+            sum += d.map_or(1.0, opt);
+            n += 1;
+            gap = gap.min(d.unwrap_or(reach));
+        }
+        gaps.push(gap);
+    }
+    if n == 0 {
+        return (1.0, 0.0);
+    }
+    gaps.sort_by(f64::total_cmp);
+    (sum / n as f64, gaps[gaps.len() / 2])
+}
+
+fn polyline_distance(p: P, line: &[P]) -> f64 {
+    line.windows(2).map(|w| dist(p, crate::geometry::closest_on_segment(p, w[0], w[1]).0)).fold(f64::INFINITY, f64::min)
+}
+
+/// Whether an end at `at`, travelling `dir`, continues an earlier street end across a street:
+/// within 4 m of it and within 20° of its line.
+fn continues(at: P, dir: P, ends: &[(P, P)]) -> bool {
+    let cos20 = 20f64.to_radians().cos();
+    ends.iter().any(|&(q, d)| dist(at, q) <= 4.0 + 1e-9 && dot(dir, d).abs() >= cos20)
+}
+
+/// The index of the chosen candidate.
+fn choose(scored: &[Scored], selection: Selection, rng: &mut Xoshiro256PlusPlus) -> Option<usize> {
+    if scored.is_empty() {
+        return None;
+    }
+    match selection {
+        Selection::Best => (0..scored.len()).max_by(|&a, &b| scored[a].1.total_cmp(&scored[b].1).then(b.cmp(&a))),
+        Selection::Random => {
+            let total: f64 = scored.iter().map(|s| s.1.max(0.0)).sum();
+            let mut r = rng.random::<f64>() * total;
+            for (i, s) in scored.iter().enumerate() {
+                r -= s.1.max(0.0);
+                if r <= 0.0 {
+                    return Some(i);
+                }
+            }
+            Some(scored.len() - 1)
+        }
+    }
+}
