@@ -14,8 +14,8 @@
 //!   to the boundary (its level sets are offsets of the boundary), lightly smoothed to round the
 //!   medial axis' kinks — [`methods::distance`].
 //!
-//! Singularities are found per triangle (§5: streets avoid and end at them): the turning of `u`
-//! around a triangle is `2πk`, its index `k/4` ([`singular`]). The queries a streamline tracer
+//! Singularities are found per triangle: the turning of `u` around a triangle is `2πk`, its
+//! index `k/4` ([`singular`]). The queries a streamline tracer
 //! needs ([`CrossField::locate`], [`CrossField::sample`], [`CrossField::direction`],
 //! [`CrossField::divergence`]) go through a uniform grid of triangle buckets ([`grid`]).
 //! [`output`] writes `field.json` and a picture.
