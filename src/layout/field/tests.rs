@@ -354,3 +354,26 @@ fn adjacent_opposite_pairs_cancel() {
     let apart = vec![s(0, 0.25), s(far, -0.25)];
     assert_eq!(singular::cancel_pairs(&mesh.triangles, apart.clone()), apart);
 }
+
+/// Sharper and reflex corners: a five-pointed star (36° tips count 0 quarter turns, 252° notches
+/// 3) has one `−1/4`; a quadrilateral with a 114° and a 170° corner around a thin triangular hole
+/// (its 22° corner counts 4 quarter turns from the region) has none.
+#[test]
+fn sharp_and_reflex_corners_follow_poincare_hopf() {
+    let star: Vec<P> = (0..10)
+        .map(|k| (PI * k as f64 / 5.0 + 0.1, if k % 2 == 0 { 60.0 } else { 25.0 }))
+        .map(|(a, r)| [r * a.cos(), r * a.sin()])
+        .collect();
+    let star = Polygon::new(star, vec![]).unwrap();
+    let hole = vec![[90.0, 1.0], [95.0, 1.0], [95.0, 3.0]];
+    let holed =
+        Polygon::new(vec![[0.0, 0.0], [100.0, 0.0], [100.0, 8.0], [50.0, 30.0], [0.0, 40.0]], vec![hole]).unwrap();
+    for (name, region, expected) in [("star", star, (0, 1)), ("holed", holed, (0, 0))] {
+        for method in [FieldMethod::Smooth, FieldMethod::Distance] {
+            let f = field(&region, method, 4.0);
+            let total: f64 = f.singularities().iter().map(|s| s.index).sum();
+            assert_eq!(total, poincare_hopf(&region), "{name} {method:?}");
+            assert_eq!(counts(&f), expected, "{name} {method:?}: {:?}", f.singularities());
+        }
+    }
+}
