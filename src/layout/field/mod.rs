@@ -220,7 +220,8 @@ impl CrossField {
 
     /// The divergence of the unit vector field in `triangle` whose vertex values are each
     /// vertex's cross direction nearest to `along`, interpolated linearly (a constant per
-    /// triangle). Positive where streamlines along that direction spread apart.
+    /// triangle). Positive where streamlines along that direction spread apart. Panics if
+    /// `triangle` is not a triangle index (take it from [`CrossField::locate`] or a [`Sample`]).
     pub fn divergence(&self, triangle: usize, along: P) -> f64 {
         let tri = self.triangles[triangle];
         let [a, b, c] = tri.map(|v| self.vertices[v]);
