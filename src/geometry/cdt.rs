@@ -98,7 +98,7 @@ pub fn triangulate(polygon: &Polygon, h: f64) -> Result<Mesh, CdtError> {
         return Err(CdtError::BadEdgeLength(h));
     }
     let estimate = estimate_triangles(polygon, h);
-    if !(estimate <= MAX_TRIANGLES as f64) {
+    if estimate > MAX_TRIANGLES as f64 {
         return Err(CdtError::TooManyTriangles { h, estimate: estimate.round(), limit: MAX_TRIANGLES });
     }
     let mut cdt = ConstrainedDelaunayTriangulation::<Point2<f64>>::new();

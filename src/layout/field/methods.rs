@@ -39,11 +39,12 @@ pub fn smooth(mesh: &Mesh) -> Vec<C> {
 pub fn distance(mesh: &Mesh, region: &Polygon, h: f64) -> Vec<C> {
     let fixed = boundary_data(mesh);
     let edges = boundary_edges(region);
+    let tree = edge_tree(&edges);
     let data: Vec<C> = mesh
         .vertices
         .iter()
         .zip(&fixed)
-        .map(|(&x, f)| f.unwrap_or_else(|| pow4(distance_gradient(&edges, x))))
+        .map(|(&x, f)| f.unwrap_or_else(|| pow4(distance_gradient(&edges, &tree, x))))
         .collect();
     let weights = cotan_weights(mesh);
     let mass = lumped_mass(mesh);
@@ -87,26 +88,31 @@ fn boundary_edges(region: &Polygon) -> Vec<Edge> {
     out
 }
 
-/// The unit gradient of the distance to the boundary at `x` (the first nearest edge wins ties);
-/// at a corner, the normal of whichever of its two edges faces `x` more.
-fn distance_gradient(edges: &[Edge], x: P) -> P {
-    let mut best = (f64::INFINITY, [1.0, 0.0]);
-    for &(a, b, n, n_prev, n_next) in edges {
-        let (q, t) = geometry::closest_on_segment(x, a, b);
-        let d = geometry::dist(x, q);
-        if d < best.0 {
-            let r = geometry::sub(x, q);
-            let g = if t <= 0.0 {
-                nearer(r, n_prev, n)
-            } else if t >= 1.0 {
-                nearer(r, n, n_next)
-            } else {
-                n
-            };
-            best = (d, g);
-        }
+/// The boundary edges in an R-tree, for nearest-edge queries in `O(log n)`.
+type EdgeTree = rstar::RTree<rstar::primitives::GeomWithData<rstar::primitives::Line<P>, usize>>;
+
+fn edge_tree(edges: &[Edge]) -> EdgeTree {
+    let items = edges
+        .iter()
+        .enumerate()
+        .map(|(i, e)| rstar::primitives::GeomWithData::new(rstar::primitives::Line::new(e.0, e.1), i));
+    rstar::RTree::bulk_load(items.collect())
+}
+
+/// The unit gradient of the distance to the boundary at `x`: the inward normal of the nearest
+/// edge; at a corner, the normal of whichever of its two edges faces `x` more.
+fn distance_gradient(edges: &[Edge], tree: &EdgeTree, x: P) -> P {
+    let Some(nearest) = tree.nearest_neighbor(&x) else { return [1.0, 0.0] };
+    let (a, b, n, n_prev, n_next) = edges[nearest.data];
+    let (q, t) = geometry::closest_on_segment(x, a, b);
+    let r = geometry::sub(x, q);
+    if t <= 0.0 {
+        nearer(r, n_prev, n)
+    } else if t >= 1.0 {
+        nearer(r, n, n_next)
+    } else {
+        n
     }
-    best.1
 }
 
 /// Of two unit normals, the one with the larger dot product with `r` (the first on ties).

@@ -14,8 +14,8 @@
 //!   to the boundary (its level sets are offsets of the boundary), lightly smoothed to round the
 //!   medial axis' kinks — [`methods::distance`].
 //!
-//! Singularities are found per triangle (§5: streets avoid and end at them): the turning of `u`
-//! around a triangle is `2πk`, its index `k/4` ([`singular`]). The queries a streamline tracer
+//! Singularities are found per triangle: the turning of `u` around a triangle is `2πk`, its
+//! index `k/4` ([`singular`]). The queries a streamline tracer
 //! needs ([`CrossField::locate`], [`CrossField::sample`], [`CrossField::direction`],
 //! [`CrossField::divergence`]) go through a uniform grid of triangle buckets ([`grid`]).
 //! [`output`] writes `field.json` and a picture.
@@ -220,7 +220,8 @@ impl CrossField {
 
     /// The divergence of the unit vector field in `triangle` whose vertex values are each
     /// vertex's cross direction nearest to `along`, interpolated linearly (a constant per
-    /// triangle). Positive where streamlines along that direction spread apart.
+    /// triangle). Positive where streamlines along that direction spread apart. Panics if
+    /// `triangle` is not a triangle index (take it from [`CrossField::locate`] or a [`Sample`]).
     pub fn divergence(&self, triangle: usize, along: P) -> f64 {
         let tri = self.triangles[triangle];
         let [a, b, c] = tri.map(|v| self.vertices[v]);

@@ -72,20 +72,24 @@ pub fn field_json(field: &CrossField) -> FieldJson {
     }
 }
 
-/// The picture's contents: crosses at the first inner vertex (in index order) of each cell of a
-/// grid about 40 cells across, singularities, and `streamlines`.
+/// The picture's contents: crosses at the inner vertex nearest each cell centre of a grid
+/// about 30 cells across (no finer than 1.5 h), singularities, and `streamlines`.
 pub fn field_scene(field: &CrossField, streamlines: &[Vec<P>]) -> FieldScene {
     let [lo, hi] = crate::geometry::polygon::bounds(field.vertices());
-    let spacing = ((hi[0] - lo[0]).max(hi[1] - lo[1]) / 40.0).max(field.h());
-    let mut taken = std::collections::HashSet::new();
-    let mut crosses = Vec::new();
+    let spacing = ((hi[0] - lo[0]).max(hi[1] - lo[1]) / 30.0).max(1.5 * field.h());
+    let mut best: std::collections::BTreeMap<(i64, i64), (f64, usize)> = std::collections::BTreeMap::new();
     for v in field.inner_vertices() {
         let p = field.vertices()[v];
-        let cell = (((p[0] - lo[0]) / spacing) as i64, ((p[1] - lo[1]) / spacing) as i64);
-        if taken.insert(cell) {
-            crosses.push((p, field.theta(v)));
+        let (fx, fy) = ((p[0] - lo[0]) / spacing, (p[1] - lo[1]) / spacing);
+        let off = (fx - fx.floor() - 0.5).hypot(fy - fy.floor() - 0.5);
+        let slot = best.entry((fx.floor() as i64, fy.floor() as i64)).or_insert((f64::INFINITY, v));
+        if off < slot.0 {
+            *slot = (off, v);
         }
     }
+    let mut picked: Vec<usize> = best.values().map(|&(_, v)| v).collect();
+    picked.sort_unstable();
+    let crosses = picked.into_iter().map(|v| (field.vertices()[v], field.theta(v))).collect();
     let counts = |sign: f64| field.singularities().iter().filter(|s| s.index * sign > 0.0).count();
     FieldScene {
         rings: field.boundary().to_vec(),

@@ -3,6 +3,15 @@
 //! `Δ_bc`, `Δ_ca` sum to `2πk`; the triangle holds a singularity of index `k/4` (a cross turns by
 //! a quarter of `u`'s turn). The sign follows the orientation: `u = z` around a counter-clockwise
 //! triangle is `+1/4`, `u = z̄` is `−1/4` (libigl's version reports every index as positive).
+//!
+//! **Pairs at the mesh scale cancel.** A `+1/4` and a `−1/4` in two triangles sharing a vertex
+//! are dropped together ([`cancel_pairs`]). Such a pair is not resolved by the mesh: changing
+//! the one shared vertex's value slightly creates or removes it, and it carries no net turning
+//! (a loop around both triangles sees index 0), so no street could tell it from no singularity.
+//! It appears where `|u|` is tiny over several triangles — a degenerate zero, as at the middle
+//! of a disc, where the smooth field is `z⁴` (one `+1` zero) and rounding and the mesh's
+//! irregularity split it into five `+1/4` around a `−1/4` instead of four `+1/4`. Signs are still
+//! counted after cancelling: the sum is unchanged, and the remaining indices all keep theirs.
 
 use super::C;
 use crate::geometry::P;
@@ -37,8 +46,13 @@ pub fn turns(power: &[C], tri: [usize; 3]) -> i64 {
     (total / (2.0 * PI)).round() as i64
 }
 
-/// Every triangle with a nonzero index, in triangle order.
+/// Every triangle with a nonzero index, in triangle order, after [`cancel_pairs`].
 pub fn singularities(vertices: &[P], triangles: &[[usize; 3]], power: &[C]) -> Vec<Singularity> {
+    cancel_pairs(triangles, raw_singularities(vertices, triangles, power))
+}
+
+/// Every triangle with a nonzero index, in triangle order.
+pub fn raw_singularities(vertices: &[P], triangles: &[[usize; 3]], power: &[C]) -> Vec<Singularity> {
     let mut out = Vec::new();
     for (t, &tri) in triangles.iter().enumerate() {
         let k = turns(power, tri);
@@ -49,4 +63,35 @@ pub fn singularities(vertices: &[P], triangles: &[[usize; 3]], power: &[C]) -> V
         }
     }
     out
+}
+
+/// Drops pairs of opposite singularities (`±1/4` and `∓1/4`) in triangles sharing a vertex,
+/// closest barycentres first (ties by triangle), each singularity in at most one pair; the rest
+/// keep their order.
+pub fn cancel_pairs(triangles: &[[usize; 3]], found: Vec<Singularity>) -> Vec<Singularity> {
+    let mut at_vertex: std::collections::BTreeMap<usize, Vec<usize>> = std::collections::BTreeMap::new();
+    for (k, s) in found.iter().enumerate() {
+        for v in triangles[s.triangle] {
+            at_vertex.entry(v).or_default().push(k);
+        }
+    }
+    let mut pairs: Vec<(f64, usize, usize)> = Vec::new();
+    for (i, s) in found.iter().enumerate() {
+        for v in triangles[s.triangle] {
+            for &j in &at_vertex[&v] {
+                if i < j && s.index == -found[j].index {
+                    pairs.push((crate::geometry::dist(s.at, found[j].at), i, j));
+                }
+            }
+        }
+    }
+    pairs.sort_by(|a, b| a.0.total_cmp(&b.0).then((a.1, a.2).cmp(&(b.1, b.2))));
+    pairs.dedup();
+    let mut gone = vec![false; found.len()];
+    for (_, i, j) in pairs {
+        if !gone[i] && !gone[j] {
+            (gone[i], gone[j]) = (true, true);
+        }
+    }
+    found.into_iter().zip(gone).filter(|(_, g)| !g).map(|(s, _)| s).collect()
 }

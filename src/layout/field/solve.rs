@@ -95,12 +95,11 @@ pub(super) fn solve(n: usize, weights: &Weights, fixed: &[Option<C>], screen: Op
         a.start.push(a.col.len());
     }
     let mut out: Vec<C> = fixed.iter().map(|f| f.unwrap_or([0.0; 2])).collect();
-    for part in 0..2 {
-        let b: Vec<f64> = rhs.iter().map(|r| r[part]).collect();
-        let x = pcg(&a, &diag, &b);
-        for (k, &v) in free.iter().enumerate() {
-            out[v][part] = x[k];
-        }
+    // The real and imaginary parts are independent solves: two threads, the same bits.
+    let part = |p: usize| pcg(&a, &diag, &rhs.iter().map(|r| r[p]).collect::<Vec<f64>>());
+    let (re, im) = rayon::join(|| part(0), || part(1));
+    for (k, &v) in free.iter().enumerate() {
+        out[v] = [re[k], im[k]];
     }
     out
 }
