@@ -45,8 +45,13 @@ const POLL: Duration = Duration::from_millis(25);
 const INLINE: &str = "<inline>";
 
 fn spec_error(py: Python<'_>, path: &Path, kind: &SpecErrorKind, field: Option<String>) -> PyErr {
+    // A field found by reading again is named in the message as the library names its own.
+    let message = match (kind.field(), &field) {
+        (None, Some(f)) => format!("{}: field `{f}`: {kind}", path.display()),
+        _ => format!("{}: {kind}", path.display()),
+    };
     let field = kind.field().or(field);
-    let err = SpecError::new_err(format!("{}: {kind}", path.display()));
+    let err = SpecError::new_err(message);
     let value = err.value(py);
     // Attributes on a fresh exception instance cannot fail.
     let _ = value.setattr("field", field);
@@ -74,6 +79,19 @@ fn run_error(py: Python<'_>, e: netspec::run::RunError) -> PyErr {
             NetspecError::new_err(format!("{place}: {}", s.reason))
         }
         other => NetspecError::new_err(other.to_string()),
+    }
+}
+
+/// An optional number as Python writes it.
+fn py_num(v: Option<f64>) -> String {
+    v.map_or("None".to_string(), |v| format!("{v:?}"))
+}
+
+fn py_bool(b: bool) -> &'static str {
+    if b {
+        "True"
+    } else {
+        "False"
     }
 }
 
@@ -119,8 +137,11 @@ struct PyProgress {
 impl PyProgress {
     fn __repr__(&self) -> String {
         format!(
-            "Progress(elapsed={:.2}, incumbent={:?}, bound={:?}, nodes={})",
-            self.elapsed, self.incumbent, self.bound, self.nodes
+            "Progress(elapsed={:.2}, incumbent={}, bound={}, nodes={})",
+            self.elapsed,
+            py_num(self.incumbent),
+            py_num(self.bound),
+            self.nodes
         )
     }
 }
@@ -302,13 +323,21 @@ impl PySpec {
     fn build(&self, py: Python<'_>, formulation: Option<&str>, max_cells: Option<usize>) -> PyResult<PyModel> {
         let variant = parse_variant(formulation)?;
         let problem = self.problem(py, variant.as_ref(), max_cells)?;
-        let f = py.allow_threads(|| netspec::pipeline::build(&problem));
-        let complete = f.is_complete();
-        Ok(PyModel { model: Arc::new(f.model), complete })
+        // As `--export` writes it: a recipe whose cutset rows are separated during the solve
+        // gives its complete equivalent (the single-commodity flow), the same optimum.
+        let (model, compact) = py.allow_threads(|| {
+            let f = netspec::pipeline::build(&problem);
+            match f.is_complete() {
+                true => (f.model, false),
+                false => (netspec::formulations::build_compact(&problem).model, true),
+            }
+        });
+        Ok(PyModel { model: Arc::new(model), compact })
     }
 
     fn __repr__(&self) -> String {
-        format!("Spec(name={:?}, path={:?})", self.spec.name, self.path.as_ref().map(|p| p.display().to_string()))
+        let path = self.path.as_ref().map_or("None".to_string(), |p| format!("{:?}", p.display().to_string()));
+        format!("Spec(name={:?}, path={path})", self.spec.name)
     }
 }
 
@@ -326,9 +355,9 @@ fn read_spec(py: Python<'_>, path: PathBuf) -> PyResult<PySpec> {
 #[pyclass(module = "netspec", name = "Model", frozen)]
 struct PyModel {
     model: Arc<Model>,
-    /// Whether every row is in the model (a recipe with lazily separated rows adds them during
-    /// the solve; its `write` writes them in a compact equivalent form).
-    complete: bool,
+    /// Whether the recipe separates rows during the solve, so that this is its complete
+    /// equivalent (the cutset rows replaced by a single-commodity flow).
+    compact: bool,
 }
 
 fn kind_name(k: VarKind) -> &'static str {
@@ -429,11 +458,12 @@ impl PyModel {
         self.model.vars().iter().filter(|v| v.kind.is_integral()).count()
     }
 
-    /// Whether every row is in the model (False for a recipe whose cutset rows are separated
-    /// during the solve; `write` then writes the equivalent compact model).
+    /// True when the spec's recipe separates its cutset rows during the solve, so that this
+    /// model is its complete equivalent (a single-commodity flow in their place, the same
+    /// optimum), as `netspec solve --export` writes it.
     #[getter]
-    fn complete(&self) -> bool {
-        self.complete
+    fn compact(&self) -> bool {
+        self.compact
     }
 
     /// The column names, in column order.
@@ -638,11 +668,11 @@ impl PyModelResult {
 
     fn __repr__(&self) -> String {
         format!(
-            "ModelResult(solver={:?}, termination={:?}, objective={:?}, valid={})",
+            "ModelResult(solver={:?}, termination={:?}, objective={}, valid={})",
             self.report.result.solver.name(),
             self.report.result.termination.label(),
-            self.report.result.objective,
-            self.report.valid
+            py_num(self.report.result.objective),
+            py_bool(self.report.valid)
         )
     }
 }
@@ -655,7 +685,7 @@ fn read_model(py: Python<'_>, path: PathBuf) -> PyResult<PyModel> {
     for w in &read.warnings {
         warnings.call_method1("warn", (format!("{}: {w}", path.display()),))?;
     }
-    Ok(PyModel { model: Arc::new(read.model), complete: true })
+    Ok(PyModel { model: Arc::new(read.model), compact: false })
 }
 
 /// The independent checker: every bound, row and integrality requirement at a point (a
@@ -849,10 +879,10 @@ impl PyResultObj {
 
     fn __repr__(&self) -> String {
         format!(
-            "Result(status={:?}, objective={:?}, valid={})",
+            "Result(status={:?}, objective={}, valid={})",
             self.design.status_line(),
-            self.design.objective(),
-            self.valid()
+            py_num(self.design.objective()),
+            py_bool(self.valid())
         )
     }
 }
