@@ -180,7 +180,8 @@ fn run_blocking<T: Send>(
                 Python::with_gil(|py| {
                     if let Some(cb) = &on_progress {
                         for p in reports {
-                            let report = PyProgress { elapsed: p.elapsed, incumbent: p.primal, bound: p.dual, nodes: p.nodes };
+                            let report =
+                                PyProgress { elapsed: p.elapsed, incumbent: p.primal, bound: p.dual, nodes: p.nodes };
                             if let Err(e) = cb.call1(py, (report,)) {
                                 raised.get_or_insert(e);
                                 interrupt.trigger();
@@ -401,16 +402,11 @@ fn model_options(
     gap: Option<f64>,
     seed: Option<u64>,
 ) -> PyResult<(SolverKind, SolveOptions)> {
-    let settings = Settings {
-        method: parse_method(solver)?,
-        time_limit,
-        gap,
-        threads,
-        seed,
-        ..Settings::default()
-    };
-    let (method, options) = netspec::pipeline::settings::resolve(&[(netspec::pipeline::settings::Origin::Flags, settings)])
-        .map_err(|s| NetspecError::new_err(format!("{}: {}", s.place.trim_start_matches("--").replace('-', "_"), s.reason)))?;
+    let settings = Settings { method: parse_method(solver)?, time_limit, gap, threads, seed, ..Settings::default() };
+    let (method, options) =
+        netspec::pipeline::settings::resolve(&[(netspec::pipeline::settings::Origin::Flags, settings)]).map_err(
+            |s| NetspecError::new_err(format!("{}: {}", s.place.trim_start_matches("--").replace('-', "_"), s.reason)),
+        )?;
     match method {
         Method::Milp(k) => Ok((k, options)),
         m => Err(PyValueError::new_err(format!("solver: `{m}` is a design search, not a MILP backend"))),
@@ -745,18 +741,42 @@ impl PyResultObj {
             Design::Search(r) => (&r.mesh, &r.active_edges),
         }
     }
-    fn solve_fields(&self) -> (Option<f64>, Option<f64>, Option<f64>, f64, Option<f64>, Option<u64>) {
+    fn solve_fields(&self) -> SolveFields {
         match &*self.design {
             Design::Milp(r) => {
                 let s = &r.solve;
-                (s.objective, s.dual_bound, s.gap, s.wall_time, s.solver_time, s.nodes)
+                SolveFields {
+                    objective: s.objective,
+                    bound: s.dual_bound,
+                    gap: s.gap,
+                    wall_time: s.wall_time,
+                    solver_time: s.solver_time,
+                    nodes: s.nodes,
+                }
             }
             Design::Search(r) => {
                 let s = &r.solve;
-                (s.objective, None, None, s.wall_time, s.solver_time, None)
+                SolveFields {
+                    objective: s.objective,
+                    bound: None,
+                    gap: None,
+                    wall_time: s.wall_time,
+                    solver_time: s.solver_time,
+                    nodes: None,
+                }
             }
         }
     }
+}
+
+/// What a MILP solve and a search both report.
+struct SolveFields {
+    objective: Option<f64>,
+    bound: Option<f64>,
+    gap: Option<f64>,
+    wall_time: f64,
+    solver_time: Option<f64>,
+    nodes: Option<u64>,
 }
 
 #[pymethods]
@@ -778,37 +798,37 @@ impl PyResultObj {
     /// The objective.
     #[getter]
     fn objective(&self) -> Option<f64> {
-        self.solve_fields().0
+        self.solve_fields().objective
     }
 
     /// The proven bound (None for the searches).
     #[getter]
     fn bound(&self) -> Option<f64> {
-        self.solve_fields().1
+        self.solve_fields().bound
     }
 
     /// The relative gap.
     #[getter]
     fn gap(&self) -> Option<f64> {
-        self.solve_fields().2
+        self.solve_fields().gap
     }
 
     /// Wall time of the solve, seconds.
     #[getter]
     fn time(&self) -> f64 {
-        self.solve_fields().3
+        self.solve_fields().wall_time
     }
 
     /// The backend's own time, seconds.
     #[getter]
     fn solver_time(&self) -> Option<f64> {
-        self.solve_fields().4
+        self.solve_fields().solver_time
     }
 
     /// Branch-and-bound nodes.
     #[getter]
     fn nodes(&self) -> Option<u64> {
-        self.solve_fields().5
+        self.solve_fields().nodes
     }
 
     /// Whether a design exists and passed every independent check.
@@ -892,9 +912,9 @@ fn spec_arg(py: Python<'_>, spec: &Bound<'_, PyAny>) -> PyResult<PySpec> {
     if let Ok(s) = spec.downcast::<PySpec>() {
         return Ok(s.get().clone());
     }
-    let path: PathBuf = spec.extract().map_err(|_| {
-        pyo3::exceptions::PyTypeError::new_err("spec: give a netspec.Spec or the path of a spec file")
-    })?;
+    let path: PathBuf = spec
+        .extract()
+        .map_err(|_| pyo3::exceptions::PyTypeError::new_err("spec: give a netspec.Spec or the path of a spec file"))?;
     PySpec::load_file(py, &path)
 }
 
@@ -912,12 +932,7 @@ struct SolveArgs {
 
 /// One solve of a spec, as `netspec solve` makes it but writing nothing; `on_progress` as in
 /// [`run_blocking`].
-fn solve_spec(
-    py: Python<'_>,
-    spec: &PySpec,
-    a: &SolveArgs,
-    on_progress: Option<PyObject>,
-) -> PyResult<PyResultObj> {
+fn solve_spec(py: Python<'_>, spec: &PySpec, a: &SolveArgs, on_progress: Option<PyObject>) -> PyResult<PyResultObj> {
     let t0 = Instant::now();
     let problem = spec.problem(py, a.variant.as_ref(), None)?;
     let req = SolveRequest {
@@ -996,7 +1011,8 @@ fn csv_columns() -> Vec<String> {
 #[pyfunction]
 fn records_csv(py: Python<'_>, records: &Bound<'_, PyList>) -> PyResult<String> {
     let text: String = py.import("json")?.call_method1("dumps", (records,))?.extract()?;
-    let records: Vec<RunRecord> = serde_json::from_str(&text).map_err(|e| PyValueError::new_err(format!("records: {e}")))?;
+    let records: Vec<RunRecord> =
+        serde_json::from_str(&text).map_err(|e| PyValueError::new_err(format!("records: {e}")))?;
     Ok(netspec::compare::csv(&records))
 }
 
@@ -1036,17 +1052,17 @@ fn fill_record(mut rec: RunRecord, r: &PyResultObj) -> RunRecord {
         Design::Milp(d) => (&d.mesh, &d.model_stats, d.solve.termination.label(), d.solve.solver_version.clone()),
         Design::Search(d) => (&d.mesh, &d.model_stats, d.solve.termination.label(), d.solve.solver_version.clone()),
     };
-    let (objective, dual_bound, gap, _, solver_time, nodes) = r.solve_fields();
+    let f = r.solve_fields();
     rec.edges = Some(mesh.num_edges());
     rec.vars = Some(model_stats.vars);
     rec.rows = Some(model_stats.rows);
     rec.nonzeros = Some(model_stats.nonzeros);
     rec.status = status;
-    rec.objective = objective;
-    rec.dual_bound = dual_bound;
-    rec.gap = gap;
-    rec.nodes = nodes;
-    rec.solver_time = solver_time;
+    rec.objective = f.objective;
+    rec.dual_bound = f.bound;
+    rec.gap = f.gap;
+    rec.nodes = f.nodes;
+    rec.solver_time = f.solver_time;
     rec.valid = r.design.validity().valid;
     rec.solver_version = Some(version);
     rec.exit_code = Some(0);
@@ -1074,8 +1090,10 @@ fn compare(
     rows: Option<Vec<String>>,
     out: Option<PathBuf>,
 ) -> PyResult<Vec<PyObject>> {
-    if !(time_limit > 0.0) {
-        return Err(PyValueError::new_err(format!("time_limit must be a positive number of seconds, got {time_limit}")));
+    if time_limit.is_nan() || time_limit <= 0.0 {
+        return Err(PyValueError::new_err(format!(
+            "time_limit must be a positive number of seconds, got {time_limit}"
+        )));
     }
     let manifest = match specs.extract::<PathBuf>() {
         Ok(path) if path.extension().is_some_and(|e| e == "toml") && !looks_like_spec(&path) => {
@@ -1203,7 +1221,9 @@ fn level(
         m => return Err(PyValueError::new_err(format!("method: `{m}` is not one of anneal, milp, both"))),
     };
     if !(time_limit > 0.0 && time_limit.is_finite()) {
-        return Err(PyValueError::new_err(format!("time_limit must be a positive number of seconds, got {time_limit}")));
+        return Err(PyValueError::new_err(format!(
+            "time_limit must be a positive number of seconds, got {time_limit}"
+        )));
     }
     if count == 0 {
         return Err(PyValueError::new_err("count must be at least 1"));
@@ -1259,7 +1279,9 @@ fn city(
         threads_per_solve,
         netspec::spec::DEFAULT_MAX_CELLS,
     )
-    .map_err(|s| NetspecError::new_err(format!("{}: {}", s.place.trim_start_matches("--").replace('-', "_"), s.reason)))?;
+    .map_err(|s| {
+        NetspecError::new_err(format!("{}: {}", s.place.trim_start_matches("--").replace('-', "_"), s.reason))
+    })?;
     opts.resume = !fresh;
     let out = out.unwrap_or_else(|| netspec::run::default_out_dir(&spec));
     let result = run_blocking(py, on_progress, move |interrupt, sink| {
@@ -1267,7 +1289,7 @@ fn city(
         if let Some(sink) = sink {
             opts.observer = Some(Arc::new(move |e: &netspec::urban::CityEvent| {
                 if let netspec::urban::CityEvent::LevelProgress { progress, .. } = e {
-                    (sink.0)(progress.clone());
+                    (sink.0)(*progress);
                 }
             }));
         }
