@@ -156,27 +156,46 @@ fn run_blocking<T: Send>(
     on_progress: Option<PyObject>,
     work: impl FnOnce(Interrupt, Option<ProgressSink>) -> T + Send,
 ) -> PyResult<T> {
+    /// What the waiting thread hears from the solving one.
+    enum Heard {
+        Progress(Progress),
+        Done,
+    }
     let interrupt = Interrupt::new();
-    let (tx, rx) = mpsc::channel::<Progress>();
+    let (tx, rx) = mpsc::channel::<Heard>();
     let sink = on_progress.as_ref().map(|_| {
-        let tx = std::sync::Mutex::new(tx);
+        let tx = tx.clone();
         ProgressSink(Arc::new(move |p: Progress| {
-            if let Ok(tx) = tx.lock() {
-                let _ = tx.send(p);
-            }
+            let _ = tx.send(Heard::Progress(p));
         }))
     });
     let stop = interrupt.clone();
     let (out, raised) = py.allow_threads(move || {
         let mut raised: Option<PyErr> = None;
         let out = std::thread::scope(|scope| {
-            let handle = scope.spawn(move || work(stop, sink));
-            loop {
-                let finished = handle.is_finished();
-                let reports: Vec<Progress> = match rx.recv_timeout(POLL) {
-                    Ok(p) => std::iter::once(p).chain(rx.try_iter()).collect(),
-                    Err(_) => Vec::new(),
+            let handle = scope.spawn(move || {
+                let out = work(stop, sink);
+                let _ = tx.send(Heard::Done);
+                out
+            });
+            let mut finished = false;
+            while !finished {
+                // Blocks until a report, the end, or the next look for a signal. (A worker that
+                // panicked drops its sender: disconnected is the end too.)
+                let mut reports = Vec::new();
+                let mut hear = |h: Result<Heard, ()>| match h {
+                    Ok(Heard::Progress(p)) => reports.push(p),
+                    Ok(Heard::Done) | Err(()) => finished = true,
                 };
+                match rx.recv_timeout(POLL) {
+                    Ok(h) => hear(Ok(h)),
+                    Err(mpsc::RecvTimeoutError::Timeout) => {}
+                    Err(mpsc::RecvTimeoutError::Disconnected) => hear(Err(())),
+                }
+                rx.try_iter().for_each(|h| hear(Ok(h)));
+                if finished && reports.is_empty() {
+                    break;
+                }
                 Python::with_gil(|py| {
                     if let Some(cb) = &on_progress {
                         for p in reports {
@@ -190,17 +209,12 @@ fn run_blocking<T: Send>(
                     }
                     // Only the main thread sees signals; elsewhere this returns Ok.
                     if let Err(e) = py.check_signals() {
-                        if e.is_instance_of::<pyo3::exceptions::PyKeyboardInterrupt>(py) {
-                            interrupt.trigger();
-                        } else {
+                        if !e.is_instance_of::<pyo3::exceptions::PyKeyboardInterrupt>(py) {
                             raised.get_or_insert(e);
-                            interrupt.trigger();
                         }
+                        interrupt.trigger();
                     }
                 });
-                if finished {
-                    break;
-                }
             }
             handle.join()
         });
