@@ -50,7 +50,11 @@ fn spec_error(py: Python<'_>, path: &Path, kind: &SpecErrorKind, field: Option<S
         (None, Some(f)) => format!("{}: field `{f}`: {kind}", path.display()),
         _ => format!("{}: {kind}", path.display()),
     };
-    let field = kind.field().or(field);
+    new_spec_error(py, message, kind.field().or(field), path)
+}
+
+/// A `SpecError` with its `field` and `path` attributes.
+fn new_spec_error(py: Python<'_>, message: String, field: Option<String>, path: &Path) -> PyErr {
     let err = SpecError::new_err(message);
     let value = err.value(py);
     // Attributes on a fresh exception instance cannot fail.
@@ -1278,7 +1282,13 @@ fn city(
     out: Option<PathBuf>,
     on_progress: Option<PyObject>,
 ) -> PyResult<PyObject> {
-    let city = netspec::urban::CitySpec::load(&spec).map_err(|e| SpecError::new_err(e.to_string()))?;
+    let city = netspec::urban::CitySpec::load(&spec).map_err(|e| {
+        let field = match &e.kind {
+            netspec::urban::CitySpecErrorKind::Field { field, .. } => Some(field.clone()),
+            _ => None,
+        };
+        new_spec_error(py, e.to_string(), field, &e.path)
+    })?;
     let flags = Settings {
         method: solver.map(parse_kind).transpose()?.map(Method::Milp),
         time_limit,

@@ -247,3 +247,8 @@ def test_level_and_city_run_as_the_binary_does(tmp_path: Path) -> None:
     assert (tmp_path / "city" / "city.json").is_file()
     with pytest.raises(ValueError, match="method"):
         netspec.level(ROOT / "models" / "levels" / "fig1.toml", method="guess")
+    bad = tmp_path / "bad-city.toml"
+    bad.write_text((ROOT / "fixtures" / "city" / "two-regions.toml").read_text().replace("metres_per_unit = 100", "metres_per_unit = -1"))
+    with pytest.raises(netspec.SpecError) as e:
+        netspec.city(bad, out=tmp_path / "bad")
+    assert e.value.path == str(bad) and e.value.field is not None and e.value.field in str(e.value)
