@@ -301,6 +301,14 @@ impl Design {
         verdict_line(self.network().is_some(), self.validity(), none)
     }
 
+    /// The status line `netspec solve` prints: [`milp_status_line`] or [`search_status_line`].
+    pub fn status_line(&self) -> String {
+        match self {
+            Design::Milp(r) => milp_status_line(r),
+            Design::Search(r) => search_status_line(r),
+        }
+    }
+
     /// Whether a design exists and failed an independent check.
     pub fn is_invalid(&self) -> bool {
         self.network().is_some() && !self.validity().valid
@@ -309,6 +317,36 @@ impl Design {
     /// Whether the run was stopped by an interrupt.
     pub fn interrupted(&self) -> bool {
         *self.termination() == Termination::Limit(crate::solvers::LimitKind::Interrupt)
+    }
+}
+
+/// Why the solver stopped and whether a design exists: `optimal, design found (47 edges)`,
+/// `limit(time), design found (47 edges, gap 12 %)`, `limit(time), no design`.
+pub fn milp_status_line(r: &DesignResult) -> String {
+    let s = &r.solve;
+    if let (Termination::Infeasible, Some(why)) = (&s.termination, &s.infeasibility) {
+        return format!("infeasible (found by netspec before solving): {why}");
+    }
+    let design = match &r.metrics {
+        Some(m) => {
+            let gap = match (&s.termination, s.gap) {
+                (Termination::Optimal, _) | (_, None) => String::new(),
+                (_, Some(g)) => format!(", gap {}", crate::solvers::percent(g)),
+            };
+            format!("design found ({} edges{gap})", m.edges)
+        }
+        None => "no design".to_string(),
+    };
+    format!("{}, {design}", s.termination)
+}
+
+/// A search's status line: `optimal`, `limit(time)`, or with ` (no design)` when it found none.
+pub fn search_status_line(r: &SearchResult) -> String {
+    let label = r.solve.termination.label();
+    if r.network.is_some() {
+        label
+    } else {
+        format!("{label} (no design)")
     }
 }
 
@@ -370,6 +408,21 @@ pub fn solve_spec(req: &SolveRequest, on: &mut dyn FnMut(Event)) -> Result<Solve
     // The time limit covers loading the spec, building the mesh and the model.
     let t0 = Instant::now();
     let problem = load(&req.spec, req.variant.as_ref(), req.max_cells.unwrap_or(crate::spec::DEFAULT_MAX_CELLS))?;
+    let out = req.out.clone().unwrap_or_else(|| default_out_dir(&req.spec));
+    Ok(solve_loaded(&problem, req, t0, Some(&out), on)?.1)
+}
+
+/// [`solve_spec`] on a problem already loaded (with `req.variant` applied; `req.spec` names its
+/// `[solver]` section in errors), timed from `t0`. The outputs go into `out`; with `None`
+/// nothing is written (the library callers that keep the design in memory, such as the Python
+/// package). Returns the formulation built with what was solved.
+pub fn solve_loaded(
+    problem: &Problem,
+    req: &SolveRequest,
+    t0: Instant,
+    out: Option<&Path>,
+    on: &mut dyn FnMut(Event),
+) -> Result<(Formulation, Solved), RunError> {
     // Every setting is checked before any work: the flags over the spec's [solver] section.
     let layers =
         [(Origin::Flags, req.flags.clone()), (Origin::Spec(req.spec.clone()), Settings::of_spec(&problem.spec.solver))];
@@ -385,10 +438,10 @@ pub fn solve_spec(req: &SolveRequest, on: &mut dyn FnMut(Event)) -> Result<Solve
             on(Event::LimitExtended { what: "explain", seconds, limit });
         }
     }
-    let f = pipeline::build(&problem);
-    on(Event::Built { problem: &problem, formulation: &f, millis: t0.elapsed().as_secs_f64() * 1e3 });
+    let f = pipeline::build(problem);
+    on(Event::Built { problem, formulation: &f, millis: t0.elapsed().as_secs_f64() * 1e3 });
     if let Some(path) = &req.export {
-        let compact = export(&problem, &f, path)?;
+        let compact = export(problem, &f, path)?;
         on(Event::Exported { path, compact });
     }
     if req.relax {
@@ -404,11 +457,11 @@ pub fn solve_spec(req: &SolveRequest, on: &mut dyn FnMut(Event)) -> Result<Solve
         }
     }
     if req.no_solve || req.relax {
-        return Ok(Solved { design: None, explanation: None });
+        return Ok((f, Solved { design: None, explanation: None }));
     }
     options.interrupt = req.interrupt.clone();
     options.progress = req.progress.clone();
-    options.incumbents = req.incumbents.clone().map(|sink| point_sink(&problem, &f, sink));
+    options.incumbents = req.incumbents.clone().map(|sink| point_sink(problem, &f, sink));
     if let Some(limit) = options.finite_time_limit() {
         options.time_limit = Some((limit - output_reserve(limit) - t0.elapsed().as_secs_f64()).max(0.0));
     }
@@ -416,12 +469,15 @@ pub fn solve_spec(req: &SolveRequest, on: &mut dyn FnMut(Event)) -> Result<Solve
         StartChoice::Nothing => StartFrom::Nothing,
         StartChoice::Heuristic => pipeline::default_start(options.finite_time_limit()),
         StartChoice::File(file) => {
-            StartFrom::Design { network: start_design(file, &problem, &f)?, source: file.display().to_string() }
+            StartFrom::Design { network: start_design(file, problem, &f)?, source: file.display().to_string() }
         }
     };
     let run = Run { method, options, start, explain: req.explain, sol: req.sol.clone(), deadline };
-    let out = req.out.clone().unwrap_or_else(|| default_out_dir(&req.spec));
-    solve_problem(&problem, &f, &run, &out, on).map_err(|e| name_origin(e, &layers))
+    let solved = match out {
+        Some(out) => solve_problem(problem, &f, &run, out, on),
+        None => design_problem(problem, &f, &run, on),
+    };
+    Ok((f, solved.map_err(|e| name_origin(e, &layers))?))
 }
 
 /// An option a backend refuses, named as the layer that set it gives it (`--seed`, or the spec
@@ -481,9 +537,32 @@ pub fn solve_problem(
     out: &Path,
     on: &mut dyn FnMut(Event),
 ) -> Result<Solved, RunError> {
-    let design = match run.method {
-        Method::Search(m) => Design::Search(Box::new(search(p, f, m, &run.options, on)?)),
-        Method::Milp(kind) => Design::Milp(Box::new(milp_writing(p, f, kind, run, out, on)?)),
+    let solved = design_into(p, f, run, Some(out), on)?;
+    let design = solved.design.as_ref().expect("a design run");
+    write_outputs(out, p, f, design, solved.explanation.as_ref(), on)?;
+    Ok(solved)
+}
+
+/// Designs a built problem and explains it if infeasible, writing nothing (a `.sol` file only
+/// when `run.sol` asks for one): [`solve_problem`] for callers that keep the design in memory
+/// and write it later, if at all, with [`write_outputs`].
+pub fn design_problem(p: &Problem, f: &Formulation, run: &Run, on: &mut dyn FnMut(Event)) -> Result<Solved, RunError> {
+    design_into(p, f, run, None, on)
+}
+
+/// The design run of [`solve_problem`]; a MILP solve's designs found on the way are written
+/// into `out` as they arrive when it is given.
+fn design_into(
+    p: &Problem,
+    f: &Formulation,
+    run: &Run,
+    out: Option<&Path>,
+    on: &mut dyn FnMut(Event),
+) -> Result<Solved, RunError> {
+    let design = match (run.method, out) {
+        (Method::Search(m), _) => Design::Search(Box::new(search(p, f, m, &run.options, on)?)),
+        (Method::Milp(kind), Some(out)) => Design::Milp(Box::new(milp_writing(p, f, kind, run, out, on)?)),
+        (Method::Milp(kind), None) => Design::Milp(Box::new(milp(p, f, kind, run, on)?)),
     };
     on(Event::Designed(&design));
     if let (Some(path), Design::Milp(r)) = (&run.sol, &design) {
@@ -510,7 +589,6 @@ pub fn solve_problem(
         }
         _ => None,
     };
-    write_outputs(out, p, f, &design, explanation.as_ref(), on)?;
     Ok(Solved { design: Some(design), explanation })
 }
 
@@ -701,15 +779,7 @@ pub fn write_outputs(
     }
     .expect("results serialise");
     let spec = &p.spec;
-    let caption = caption(spec, design);
-    let picture = match design.network() {
-        Some(net) => {
-            let placements = f.placements.as_ref().map(|r| r.placements.as_slice());
-            Some(network_svg(p, net, f.path_sets.as_ref(), placements, &caption))
-        }
-        None => explanation.filter(|e| !e.conflicts.is_empty()).map(|e| conflict_svg(p, e, &caption)),
-    };
-    if let Some(svg) = picture {
+    if let Some(svg) = picture(p, f, design, explanation) {
         let svg_path = dir.join("network.svg");
         write(&svg_path, svg.as_bytes())?;
         let png_path = dir.join("network.png");
@@ -736,6 +806,19 @@ pub fn write_outputs(
     write(&json, (text + "\n").as_bytes())?;
     on(Event::Wrote { what: "result", path: &json });
     Ok(())
+}
+
+/// The picture `network.svg` holds: the design with its caption, or without one the conflicting
+/// requirements of an explained infeasible spec (`None` when there is neither).
+pub fn picture(p: &Problem, f: &Formulation, design: &Design, explanation: Option<&Explanation>) -> Option<String> {
+    let caption = caption(&p.spec, design);
+    match design.network() {
+        Some(net) => {
+            let placements = f.placements.as_ref().map(|r| r.placements.as_slice());
+            Some(network_svg(p, net, f.path_sets.as_ref(), placements, &caption))
+        }
+        None => explanation.filter(|e| !e.conflicts.is_empty()).map(|e| conflict_svg(p, e, &caption)),
+    }
 }
 
 /// The picture's title: spec, solver, status, objective, gap, verdict.

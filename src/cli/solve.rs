@@ -5,7 +5,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use netspec::pipeline::search::SearchResult;
 use netspec::pipeline::DesignResult;
 use netspec::run::{Design, Event, SolveRequest};
-use netspec::solvers::{Progress, ProgressSink, Termination};
+use netspec::solvers::{Progress, ProgressSink};
 use std::process::ExitCode;
 use std::sync::Arc;
 use std::time::Duration;
@@ -139,26 +139,6 @@ fn print_event(e: &Event, bar: &ProgressBar) {
     }
 }
 
-/// Why the solver stopped and whether a design exists: `optimal, design found (47 edges)`,
-/// `limit(time), design found (47 edges, gap 12 %)`, `limit(time), no design`.
-fn status_line(r: &DesignResult) -> String {
-    let s = &r.solve;
-    if let (Termination::Infeasible, Some(why)) = (&s.termination, &s.infeasibility) {
-        return format!("infeasible (found by netspec before solving): {why}");
-    }
-    let design = match &r.metrics {
-        Some(m) => {
-            let gap = match (&s.termination, s.gap) {
-                (Termination::Optimal, _) | (_, None) => String::new(),
-                (_, Some(g)) => format!(", gap {}", netspec::solvers::percent(g)),
-            };
-            format!("design found ({} edges{gap})", m.edges)
-        }
-        None => "no design".to_string(),
-    };
-    format!("{}, {design}", s.termination)
-}
-
 fn print_milp(r: &DesignResult, verdict: &str) {
     let s = &r.solve;
     let num = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.6}"));
@@ -166,7 +146,7 @@ fn print_milp(r: &DesignResult, verdict: &str) {
     for w in &s.warnings {
         println!("warning    {w}");
     }
-    println!("status     {}", status_line(r));
+    println!("status     {}", netspec::run::milp_status_line(r));
     println!("objective  {}", num(s.objective));
     println!("bound      {}", num(s.dual_bound));
     println!("gap        {}", s.gap.map_or("-".into(), |g| format!("{:.2}%", 100.0 * g)));
@@ -268,10 +248,7 @@ fn print_milp(r: &DesignResult, verdict: &str) {
 fn print_search(r: &SearchResult, verdict: &str) {
     let s = &r.solve;
     let num = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.6}"));
-    println!(
-        "status     {}",
-        if r.network.is_some() { s.termination.label() } else { format!("{} (no design)", s.termination.label()) }
-    );
+    println!("status     {}", netspec::run::search_status_line(r));
     if let Some(why) = &s.infeasible_because {
         println!("reason     {why}");
     }

@@ -154,12 +154,7 @@ pub fn under_root(root: &Path, rel: &str, field: &str) -> Result<PathBuf, ApiErr
 
 /// A spec error as the command line words it, with the field it names.
 pub fn spec_error(kind: SpecErrorKind) -> ApiError {
-    let field = match &kind {
-        SpecErrorKind::Field { field, .. } => Some(field.clone()),
-        SpecErrorKind::Mesh(_) => Some("mesh".to_string()),
-        _ => None,
-    };
-    ApiError::invalid(field, kind.to_string())
+    ApiError::invalid(kind.field(), kind.to_string())
 }
 
 /// Parses a spec sent as JSON (the page's form of it), naming the field of a type error.

@@ -545,6 +545,28 @@ pub enum SpecErrorKind {
     Mesh(String),
 }
 
+impl SpecErrorKind {
+    /// The field the error names, dotted (`sinks.vertices[3]`; `mesh` for the mesh), if it names
+    /// one.
+    pub fn field(&self) -> Option<String> {
+        match self {
+            SpecErrorKind::Field { field, .. } => Some(field.clone()),
+            SpecErrorKind::Mesh(_) => Some("mesh".to_string()),
+            _ => None,
+        }
+    }
+}
+
+/// The dotted field of a TOML spec a schema error is at (`mesh.grid.width`), found by reading
+/// `text` again with the path tracked; `None` for valid text, a syntax error, or an error of the
+/// whole document. ([`SpecErrorKind::Toml`]'s message names the line.)
+pub fn toml_error_field(text: &str) -> Option<String> {
+    let value: toml::Value = toml::from_str(text).ok()?;
+    let e = serde_path_to_error::deserialize::<_, Spec>(value).err()?;
+    let path = e.path().to_string();
+    (path != ".").then_some(path)
+}
+
 /// A spec error, naming the file.
 #[derive(Debug, thiserror::Error)]
 #[error("{}: {kind}", path.display())]

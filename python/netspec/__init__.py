@@ -1,0 +1,69 @@
+"""netspec: network design from functional specifications by integer programming, on
+interchangeable MILP backends (HiGHS, CBC, SCIP, microlp).
+
+The library's own API: read a spec, build its MILP, solve it on any compiled backend, check
+the answer independently, compare backends. See docs/python.md.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Iterable, Mapping, Sequence
+
+from ._netspec import (
+    Design,
+    Model,
+    ModelResult,
+    NetspecError,
+    Progress,
+    Result,
+    Spec,
+    SpecError,
+    check,
+    city,
+    compare,
+    csv_columns,
+    level,
+    read_model,
+    read_spec,
+    records_csv,
+    solve,
+    solvers,
+    version,
+)
+
+__all__ = [
+    "Design",
+    "Model",
+    "ModelResult",
+    "NetspecError",
+    "Progress",
+    "Result",
+    "Spec",
+    "SpecError",
+    "check",
+    "city",
+    "compare",
+    "csv_columns",
+    "level",
+    "read_model",
+    "read_spec",
+    "records_csv",
+    "records_frame",
+    "solve",
+    "solvers",
+    "version",
+]
+
+__version__: str = version()
+
+
+def records_frame(records: Iterable[Mapping[str, Any]]) -> Any:
+    """The records of `compare` as a pandas DataFrame with the columns of `results.csv`, in
+    its order (pandas is an optional dependency: `pip install netspec[pandas]`)."""
+    try:
+        import pandas as pd
+    except ImportError as e:  # pragma: no cover - depends on the environment
+        raise ImportError("records_frame needs pandas: pip install pandas") from e
+    columns: Sequence[str] = csv_columns()
+    rows = [{c: r.get(c) for c in columns} for r in records]
+    return pd.DataFrame(rows, columns=list(columns))
