@@ -59,3 +59,5 @@ pub fn setup_part(part: &'static str) {
         panic!("{e}");
     }
 }
+// Urban layouts by domain splitting (Yang et al. 2013): validity, seeds, GeoJSON sites, errors.
+mod layout;

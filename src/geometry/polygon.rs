@@ -400,7 +400,9 @@ mod tests {
         let (a, b) = p.cut(&[[8.0, 0.0], [10.0, 2.0]], 1e-9).unwrap();
         assert!((a.area() - 94.0).abs() < 1e-9 && (b.area() - 2.0).abs() < 1e-9, "{} {}", a.area(), b.area());
         // Both ends on one edge: a pocket.
-        assert!(p.cut(&[[2.0, 0.0], [3.0, 1.0], [4.0, 0.0]], 1e-9).is_some_and(|(x, y)| (x.area() - 1.0).abs() < 1e-9 || (y.area() - 1.0).abs() < 1e-9));
+        assert!(p
+            .cut(&[[2.0, 0.0], [3.0, 1.0], [4.0, 0.0]], 1e-9)
+            .is_some_and(|(x, y)| (x.area() - 1.0).abs() < 1e-9 || (y.area() - 1.0).abs() < 1e-9));
         assert!(p.cut(&[[5.0, 0.0], [5.0, 5.0]], 1e-9).is_none(), "an end inside");
     }
 

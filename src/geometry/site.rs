@@ -151,6 +151,9 @@ pub struct Site {
     pub properties: Map<String, Value>,
 }
 
+/// The region feature: its index, rings (WGS 84) and properties.
+type RegionFeature = (usize, Vec<Vec<[f64; 2]>>, Map<String, Value>);
+
 /// Reads a site from GeoJSON text (see the module documentation).
 pub fn read_geojson(text: &str) -> Result<Site, SiteError> {
     let gj: geojson::GeoJson = text.parse().map_err(|e: geojson::Error| SiteError::Json(e.to_string()))?;
@@ -159,7 +162,7 @@ pub fn read_geojson(text: &str) -> Result<Site, SiteError> {
         geojson::GeoJson::Feature(f) => vec![f],
         geojson::GeoJson::Geometry(g) => vec![geojson::Feature { geometry: Some(g), ..Default::default() }],
     };
-    let mut region: Option<(usize, Vec<Vec<[f64; 2]>>, Map<String, Value>)> = None;
+    let mut region: Option<RegionFeature> = None;
     let mut roads: Vec<(usize, Vec<[f64; 2]>)> = Vec::new();
     for (i, f) in features.iter().enumerate() {
         let Some(g) = &f.geometry else { continue };

@@ -5,9 +5,9 @@
 //!
 //! **The row parceller** (the fallback of Yang et al. 2013 §3 where no template fits, in the
 //! spirit of the oriented-bounding-box subdivision of Vanegas et al. 2012): take the block's
-//! minimum rotated rectangle; while it is deeper than 1.6 parcel depths, cut it in two along its
-//! long axis (a double-loaded block becomes two rows, back to back); a row is then cut across
-//! into `round(length / width)` parcels of equal frontage. Parcels with no street within reach
+//! minimum rotated rectangle; up to 1.6 parcel depths deep it is one row, up to 3.2 two rows back
+//! to back (cut along its long axis), deeper a row along each long side and the middle worked on
+//! again; a row is then cut across into `round(length / width)` parcels of equal frontage. Parcels with no street within reach
 //! (an inner row of a deep block) are parks; remnants under a quarter of a parcel's area are
 //! "other".
 
@@ -128,9 +128,18 @@ pub fn ring_of(p: &geo::Polygon<f64>) -> Vec<P> {
 fn rows_and_parcels(block: &geo::Polygon<f64>, depth: f64, width: f64) -> Vec<geo::Polygon<f64>> {
     let Some((c, u, long, short)) = frame(block) else { return vec![block.clone()] };
     let v = [-u[1], u[0]];
+    let r = long + short;
+    if short > 2.0 * ROW_DEPTH_FACTOR * depth {
+        // Deeper than two rows: a row along each long side, the middle worked on again.
+        let cuts = [(-r, -short / 2.0 + depth), (-short / 2.0 + depth, short / 2.0 - depth), (short / 2.0 - depth, r)];
+        return cuts
+            .into_iter()
+            .flat_map(|(t0, t1)| slab(block, c, v, u, t0, t1, r).0)
+            .flat_map(|part| rows_and_parcels(&part, depth, width))
+            .collect();
+    }
     if short > ROW_DEPTH_FACTOR * depth {
-        // Too deep for one row: cut along the long axis, through the rectangle's centre.
-        let r = long + short;
+        // Two rows back to back: cut along the long axis, through the rectangle's centre.
         return [(-r, 0.0), (0.0, r)]
             .into_iter()
             .flat_map(|(t0, t1)| slab(block, c, v, u, t0, t1, r).0)
@@ -138,7 +147,6 @@ fn rows_and_parcels(block: &geo::Polygon<f64>, depth: f64, width: f64) -> Vec<ge
             .collect();
     }
     let n = (long / width).round().max(1.0) as usize;
-    let r = long + short;
     (0..n)
         .flat_map(|i| {
             let t0 = if i == 0 { -r } else { -long / 2.0 + long * i as f64 / n as f64 };

@@ -143,10 +143,16 @@ pub fn run(req: &LayoutRequest) -> Result<Vec<Layout>, LayoutError> {
 
 /// `netspec field`: the region's cross field, written as `field.json`, `field.svg` and `field.png`
 /// with a few of its streamline candidates drawn over it.
-pub fn field_command(region: &Path, method: FieldMethod, h: Option<f64>, out: &Path) -> Result<super::field::CrossField, LayoutError> {
+pub fn field_command(
+    region: &Path,
+    method: FieldMethod,
+    h: Option<f64>,
+    out: &Path,
+) -> Result<super::field::CrossField, LayoutError> {
     let region = super::region::read_region(region)?;
     let opts = SplitOptions::for_region(&region, method, Selection::Best);
-    let field = super::field::CrossField::new(&region.polygon, &super::field::FieldOptions { method, h: h.unwrap_or(opts.h) })?;
+    let field =
+        super::field::CrossField::new(&region.polygon, &super::field::FieldOptions { method, h: h.unwrap_or(opts.h) })?;
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(region.seed);
     // Streamlines at four times the layout's separation, so the picture stays readable.
     let sparse = super::streamline::TraceOptions { separation: 4.0 * opts.trace.separation, ..opts.trace };
@@ -164,20 +170,19 @@ pub fn layout(region: &Region, opts: &LayoutOptions) -> Result<Layout, LayoutErr
     let t0 = Instant::now();
     let s = split(region, &SplitOptions::for_region(region, opts.field, opts.selection), &mut rng)?;
     let t1 = Instant::now();
-    let streets: Vec<Street> = s.streets.iter().map(|st| Street { polyline: round(&st.polyline), ..st.clone() }).collect();
+    let streets: Vec<Street> =
+        s.streets.iter().map(|st| Street { polyline: round(&st.polyline), ..st.clone() }).collect();
     let blocks = blocks(&region.polygon, &streets);
-    let parcels: Vec<Parcel> = parcellate(&blocks, &StreetIndex::new(&streets), region.parcel.depth, region.parcel.width)
-        .into_iter()
-        .map(|p| Parcel { polygon: round(&p.polygon), ..p })
-        .collect();
+    let parcels: Vec<Parcel> =
+        parcellate(&blocks, &StreetIndex::new(&streets), region.parcel.depth, region.parcel.width)
+            .into_iter()
+            .map(|p| Parcel { polygon: round(&p.polygon), ..p })
+            .collect();
     let t2 = Instant::now();
     let metrics = metrics(&region.polygon, &streets, &blocks, &parcels);
     let violations = validate(&region.polygon, &streets, &parcels);
-    let times = Times {
-        split: (t1 - t0).as_secs_f64(),
-        parcels: (t2 - t1).as_secs_f64(),
-        check: t2.elapsed().as_secs_f64(),
-    };
+    let times =
+        Times { split: (t1 - t0).as_secs_f64(), parcels: (t2 - t1).as_secs_f64(), check: t2.elapsed().as_secs_f64() };
     let split = SplitCounts { candidates: s.candidates, cuts: s.cuts, blocks: blocks.len() };
     Ok(Layout {
         name: region.name.clone(),
@@ -223,7 +228,10 @@ pub fn write_layout(dir: &Path, region: &Region, layout: &Layout) -> Result<(), 
     write("layout.svg", svg.as_bytes())?;
     write("layout.png", &crate::render::png(&svg)?)?;
     if let Some(proj) = &region.projection {
-        write("layout.geojson", (serde_json::to_string(&geojson(proj, layout)?).expect("GeoJSON serialises") + "\n").as_bytes())?;
+        write(
+            "layout.geojson",
+            (serde_json::to_string(&geojson(proj, layout)?).expect("GeoJSON serialises") + "\n").as_bytes(),
+        )?;
     }
     Ok(())
 }
@@ -238,7 +246,10 @@ pub fn scene(region: &Region, layout: &Layout) -> LayoutScene {
             .iter()
             .map(|p| ParcelShape {
                 ring: p.polygon.clone(),
-                use_: serde_json::to_value(p.use_).ok().and_then(|v| v.as_str().map(str::to_string)).unwrap_or_default(),
+                use_: serde_json::to_value(p.use_)
+                    .ok()
+                    .and_then(|v| v.as_str().map(str::to_string))
+                    .unwrap_or_default(),
                 undesirable: parcel_shape(&p.polygon).undesirable(),
             })
             .collect(),

@@ -9,7 +9,8 @@
 //!   signed integral would favour short streamlines for a cost, so `p > 1` keeps its intent);
 //! * distance to the boundary: along the streamline, the distances to the boundary on both sides
 //!   along its normal, each compared with the nearest sum of block widths (a double-loaded block
-//!   `2·depth + street`, a single row `depth + street/2`), the misfit over the narrowest width,
+//!   `2·depth + street`; where the boundary is not a street, also a single row
+//!   `depth + street/2`), the misfit over the narrowest width,
 //!   capped at 1, averaged;
 //! * distance to singularities: the smallest distance from the streamline to a singularity
 //!   (near is good: cutting there removes singularities from the parts);
@@ -65,7 +66,12 @@ impl SplitOptions {
         SplitOptions {
             field,
             h: d / 3.0,
-            trace: TraceOptions { separation: 0.3 * d, step: 0.075 * d, min_magnitude: 0.05, max_length: 3.0 * diameter },
+            trace: TraceOptions {
+                separation: 0.3 * d,
+                step: 0.075 * d,
+                min_magnitude: 1e-4,
+                max_length: 3.0 * diameter,
+            },
             selection,
             max_block_length: 14.0 * region.parcel.width,
         }
@@ -210,7 +216,7 @@ fn split_at_crossings(road: &[P], others: &[Vec<P>]) -> Vec<Vec<P>> {
 }
 
 /// Whether a part is a block: narrow enough for two rows of parcels back to back (its inscribed
-/// width at most 1.2 block widths) and not longer than the longest block, or smaller than four
+/// width at most 1.35 block widths, so that a cut would leave parts narrower than a block) and not longer than the longest block, or smaller than four
 /// parcels.
 fn fits_block(poly: &Polygon, region: &Region, opts: &SplitOptions) -> bool {
     let parcel = region.parcel.depth * region.parcel.width;
@@ -223,7 +229,7 @@ fn fits_block(poly: &Polygon, region: &Region, opts: &SplitOptions) -> bool {
         let (a, b) = (dist([c[0].x, c[0].y], [c[1].x, c[1].y]), dist([c[1].x, c[1].y], [c[2].x, c[2].y]));
         a.max(b)
     });
-    inscribed_width(poly, region.parcel.depth / 3.0) <= 1.2 * block && long <= opts.max_block_length
+    inscribed_width(poly, region.parcel.depth / 3.0) <= 1.35 * block && long <= opts.max_block_length
 }
 
 /// Twice the largest distance from an inside point to the boundary, sampled on a grid of `step`
@@ -269,7 +275,12 @@ pub type Scored = (Candidate, f64, (Polygon, Polygon));
 /// Scores the candidates that cut the part into two pieces at least a parcel deep.
 fn score(field: &CrossField, poly: &Polygon, region: &Region, cands: &[Candidate], ends: &[(P, P)]) -> Vec<Scored> {
     let depth = region.parcel.depth;
-    let widths = [2.0 * depth + region.street_width(1), depth + region.street_width(1) / 2.0];
+    // Between two streets a block is double-loaded; a single row backs onto a boundary without
+    // a street.
+    let mut widths = vec![2.0 * depth + region.street_width(1)];
+    if region.boundary == super::region::Boundary::None {
+        widths.push(depth + region.street_width(1) / 2.0);
+    }
     let boundary = BoundaryIndex::new(poly);
     let [lo, hi] = poly.bounds();
     let reach = 2.0 * dist(lo, hi);
@@ -284,7 +295,7 @@ fn score(field: &CrossField, poly: &Polygon, region: &Region, cands: &[Candidate
         }
         let (db, median_gap) = boundary_fit(c, &boundary, &widths, reach);
         // Each side must hold at least a row of parcels and half a street.
-        if median_gap < 0.9 * widths[1] {
+        if median_gap < 0.9 * (depth + region.street_width(1) / 2.0) {
             continue;
         }
         let div = c.divergence / c.length.max(1e-9).powf(1.1);
@@ -314,17 +325,19 @@ fn score(field: &CrossField, poly: &Polygon, region: &Region, cands: &[Candidate
 
 /// The mean misfit of the distances to the boundary on both sides with sums of block widths,
 /// and the median over the streamline of the nearer side's distance.
-fn boundary_fit(c: &Candidate, boundary: &BoundaryIndex, widths: &[f64; 2], reach: f64) -> (f64, f64) {
-    let wmin = widths[0].min(widths[1]);
+fn boundary_fit(c: &Candidate, boundary: &BoundaryIndex, widths: &[f64], reach: f64) -> (f64, f64) {
+    let wmin = widths.iter().copied().fold(f64::INFINITY, f64::min);
+    let w0 = widths[0];
+    let w1 = widths.get(1).copied().unwrap_or(w0);
     let opt = |y: f64| {
-        // The nearest n·W₀ + m·W₁ to y.
-        let mut best = y;
+        // The nearest positive n·W₀ + m·W₁ to y.
+        let mut best = f64::INFINITY;
         let mut a = 0.0;
-        while a <= y + widths[0] {
+        while a <= y + w0 {
             let rest = y - a;
-            let m = (rest / widths[1]).round().max(0.0);
-            best = best.min((rest - m * widths[1]).abs());
-            a += widths[0];
+            let m = (rest / w1).round().max(if a == 0.0 { 1.0 } else { 0.0 });
+            best = best.min((rest - m * w1).abs());
+            a += w0;
         }
         (best / wmin).min(1.0)
     };

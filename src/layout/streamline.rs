@@ -7,7 +7,9 @@
 //!
 //! At every Runge–Kutta stage the cross branch nearest the current travel direction is taken
 //! (the four directions `θ + kπ/2` of a cross are otherwise ambiguous). A streamline is discarded
-//! when it reaches a singularity (the interpolated `|u|` falls below [`TraceOptions::min_magnitude`]),
+//! when it reaches a singularity (enters a singular triangle, or the interpolated `|u|` falls below
+//! [`TraceOptions::min_magnitude`] — small, since a smooth field's `|u|` decays like `r⁴` towards
+//! the centre of a disc without being singular there),
 //! crosses itself, leaves the triangulation without meeting the boundary, or grows longer than
 //! [`TraceOptions::max_length`] (a spiral or a closed orbit).
 
@@ -103,7 +105,12 @@ impl BoundaryIndex {
 }
 
 /// Every candidate streamline of a region's field, in the order traced.
-pub fn candidates(field: &CrossField, region: &Polygon, opts: &TraceOptions, rng: &mut Xoshiro256PlusPlus) -> Vec<Candidate> {
+pub fn candidates(
+    field: &CrossField,
+    region: &Polygon,
+    opts: &TraceOptions,
+    rng: &mut Xoshiro256PlusPlus,
+) -> Vec<Candidate> {
     let boundary = BoundaryIndex::new(region);
     let verts = field.vertices();
     let mut seeds: Vec<usize> = field.inner_vertices().collect();
@@ -137,7 +144,14 @@ pub fn candidates(field: &CrossField, region: &Polygon, opts: &TraceOptions, rng
 
 /// Turns off, on every seed within `sep` of the streamline, the cross line closest to its
 /// tangent there.
-fn deactivate(field: &CrossField, index: &SegmentIndex, seeds: &[usize], active: &mut [[bool; 2]], line: &[P], sep: f64) {
+fn deactivate(
+    field: &CrossField,
+    index: &SegmentIndex,
+    seeds: &[usize],
+    active: &mut [[bool; 2]],
+    line: &[P],
+    sep: f64,
+) {
     let mut last: Option<P> = None;
     for w in line.windows(2) {
         if last.is_some_and(|q| dist(q, w[0]) < sep / 2.0) {
@@ -165,7 +179,13 @@ fn deactivate(field: &CrossField, index: &SegmentIndex, seeds: &[usize], active:
 
 /// Traces from `p` both ways along the cross line nearest `d`; a discarded streamline gives the
 /// points traced before it was discarded.
-pub fn trace(field: &CrossField, boundary: &BoundaryIndex, p: P, d: P, opts: &TraceOptions) -> Result<Candidate, Vec<P>> {
+pub fn trace(
+    field: &CrossField,
+    boundary: &BoundaryIndex,
+    p: P,
+    d: P,
+    opts: &TraceOptions,
+) -> Result<Candidate, Vec<P>> {
     let (fwd, end1, div1) = half(field, boundary, p, d, opts)?;
     let (bwd, end0, div0) = half(field, boundary, p, scale(d, -1.0), opts).map_err(|mut b| {
         b.extend(fwd.iter().copied());
@@ -183,14 +203,23 @@ pub fn trace(field: &CrossField, boundary: &BoundaryIndex, p: P, d: P, opts: &Tr
 
 /// One direction: points from `p` to the boundary, the hit, and `∫|∇·f|`; or the points traced
 /// before a singularity, a closed orbit, the length limit or the triangulation's edge stopped it.
-fn half(field: &CrossField, boundary: &BoundaryIndex, p: P, d: P, opts: &TraceOptions) -> Result<(Vec<P>, BoundaryHit, f64), Vec<P>> {
+fn half(
+    field: &CrossField,
+    boundary: &BoundaryIndex,
+    p: P,
+    d: P,
+    opts: &TraceOptions,
+) -> Result<(Vec<P>, BoundaryHit, f64), Vec<P>> {
     let h = opts.step;
     let mut x = p;
     let Some(mut dir) = field.direction(x, d) else { return Err(vec![p]) };
     let mut pts = vec![x];
     let (mut length, mut div) = (0.0, 0.0);
     while length <= opts.max_length {
-        let Some(s) = field.sample(x).filter(|s| s.magnitude >= opts.min_magnitude) else { return Err(pts) };
+        let singular = |t: usize| field.singularities().iter().any(|s| s.triangle == t);
+        let Some(s) = field.sample(x).filter(|s| s.magnitude >= opts.min_magnitude && !singular(s.triangle)) else {
+            return Err(pts);
+        };
         if length > 4.0 * h && dist(x, p) < h {
             // Back at the start: a closed orbit.
             return Err(pts);
@@ -242,9 +271,10 @@ fn self_crossing(points: &[P]) -> bool {
     let index = SegmentIndex::new(segs.clone(), (step * 4.0).max(1e-6));
     segs.iter().enumerate().any(|(i, s)| {
         let mid = scale(add(s.0, s.1), 0.5);
-        index.near(mid, dist(s.0, s.1) / 2.0 + 1e-9).into_iter().any(|j| {
-            j > i + 2 && segment_intersection(s.0, s.1, segs[j].0, segs[j].1).is_some()
-        })
+        index
+            .near(mid, dist(s.0, s.1) / 2.0 + 1e-9)
+            .into_iter()
+            .any(|j| j > i + 2 && segment_intersection(s.0, s.1, segs[j].0, segs[j].1).is_some())
     })
 }
 
@@ -259,7 +289,7 @@ mod tests {
         let region = Polygon::new(vec![[0.0, 0.0], [200.0, 0.0], [200.0, 100.0], [0.0, 100.0]], vec![]).unwrap();
         for method in [FieldMethod::Smooth, FieldMethod::Distance] {
             let field = CrossField::new(&region, &FieldOptions { method, h: 10.0 }).unwrap();
-            let opts = TraceOptions { separation: 9.0, step: 2.0, min_magnitude: 0.05, max_length: 600.0 };
+            let opts = TraceOptions { separation: 9.0, step: 2.0, min_magnitude: 1e-4, max_length: 600.0 };
             let mut rng = Xoshiro256PlusPlus::seed_from_u64(1);
             let cs = candidates(&field, &region, &opts, &mut rng);
             assert!(cs.len() >= 10, "{method:?}: {} candidates", cs.len());

@@ -52,10 +52,15 @@ pub fn layout_svg(scene: &LayoutScene) -> String {
     let scale = 760.0 / (x1 - x0).max(y1 - y0).max(1e-9);
     let (w, h) = ((x1 - x0) * scale + 2.0 * margin, (y1 - y0) * scale + 2.0 * margin + 24.0);
     let tx = |p: [f64; 2]| (margin + (p[0] - x0) * scale, margin + (y1 - p[1]) * scale);
-    let pts = |r: &[[f64; 2]]| r.iter().map(|&p| tx(p)).map(|(x, y)| format!("{x:.2},{y:.2}")).collect::<Vec<_>>().join(" ");
+    let pts =
+        |r: &[[f64; 2]]| r.iter().map(|&p| tx(p)).map(|(x, y)| format!("{x:.2},{y:.2}")).collect::<Vec<_>>().join(" ");
     let mut svg = Svg::new(w, h, Some(12.0));
     if let Some(outer) = scene.rings.first() {
-        let _ = writeln!(svg, r##"<polygon class="region" points="{}" fill="#ffffff" stroke="#252525" stroke-width="1"/>"##, pts(outer));
+        let _ = writeln!(
+            svg,
+            r##"<polygon class="region" points="{}" fill="#ffffff" stroke="#252525" stroke-width="1"/>"##,
+            pts(outer)
+        );
     }
     for p in &scene.parcels {
         let _ = writeln!(
@@ -67,7 +72,11 @@ pub fn layout_svg(scene: &LayoutScene) -> String {
         );
     }
     for p in scene.parcels.iter().filter(|p| p.undesirable) {
-        let _ = writeln!(svg, r##"<polygon class="undesirable" points="{}" fill="none" stroke="#e31a1c" stroke-width="1.2"/>"##, pts(&p.ring));
+        let _ = writeln!(
+            svg,
+            r##"<polygon class="undesirable" points="{}" fill="none" stroke="#e31a1c" stroke-width="1.2"/>"##,
+            pts(&p.ring)
+        );
     }
     let mut streets: Vec<&(Vec<[f64; 2]>, f64, usize)> = scene.streets.iter().collect();
     streets.sort_by_key(|s| std::cmp::Reverse(s.2));
@@ -81,7 +90,11 @@ pub fn layout_svg(scene: &LayoutScene) -> String {
         );
     }
     for hole in scene.rings.iter().skip(1) {
-        let _ = writeln!(svg, r##"<polygon class="hole" points="{}" fill="#9ecae1" stroke="#3182bd" stroke-width="1"/>"##, pts(hole));
+        let _ = writeln!(
+            svg,
+            r##"<polygon class="hole" points="{}" fill="#9ecae1" stroke="#3182bd" stroke-width="1"/>"##,
+            pts(hole)
+        );
     }
     svg.text(margin, h - 8.0, "", &scene.caption);
     svg.finish()

@@ -1,0 +1,119 @@
+//! `netspec layout` and `netspec field` (Yang et al. 2013): layouts checked by the independent
+//! validator, reproducible from their seed, GeoJSON sites, and refused inputs.
+
+use netspec::layout::field::FieldMethod;
+use netspec::layout::region::read_region;
+use netspec::layout::run::{layout, LayoutOptions};
+use netspec::layout::split::Selection;
+use netspec::layout::validate::validate;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn model(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("models/layout").join(name)
+}
+
+fn netspec() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_netspec"))
+}
+
+#[test]
+fn every_example_region_is_laid_out_validly() {
+    for name in ["lake.toml", "disc.toml", "irregular.geojson"] {
+        let region = read_region(&model(name)).unwrap();
+        let l = layout(
+            &region,
+            &LayoutOptions { field: FieldMethod::Distance, selection: Selection::Best, seed: region.seed },
+        )
+        .unwrap();
+        // The library's own check, and the validator run again here on the returned data.
+        assert_eq!(l.violations, vec![], "{name}");
+        assert_eq!(validate(&region.polygon, &l.streets, &l.parcels), vec![], "{name}");
+        let lu = &l.metrics.land_use;
+        let sum = lu.streets + lu.residential + lu.parks + lu.other;
+        assert!((sum - 100.0).abs() < 1.0, "{name}: land use sums to {sum}");
+        assert!(l.split.cuts > 5 && l.metrics.parcels > 100, "{name}: {:?}", l.split);
+        assert!(lu.streets > 15.0 && lu.streets < 40.0, "{name}: streets {} %", lu.streets);
+    }
+}
+
+#[test]
+fn same_seed_same_bytes_other_seed_other_layout() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = |seed: &str, out: &str| {
+        let o = netspec()
+            .args(["layout", model("lake.toml").to_str().unwrap(), "--mode", "random", "--seed", seed, "--out"])
+            .arg(dir.path().join(out))
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        assert!(String::from_utf8_lossy(&o.stdout).contains("valid"));
+        std::fs::read(dir.path().join(out).join("layout.json")).unwrap()
+    };
+    let (a, b, c) = (run("7", "a"), run("7", "b"), run("8", "c"));
+    assert_eq!(a, b, "same seed, same layout.json");
+    assert_ne!(a, c, "another seed, another layout");
+    for f in ["layout.svg", "layout.png", "run.json"] {
+        assert!(dir.path().join("a").join(f).is_file(), "{f}");
+    }
+    let json: serde_json::Value = serde_json::from_slice(&a).unwrap();
+    assert!(json["streets"][0]["polyline"].is_array() && json["parcels"][0]["use"].is_string());
+    assert!(json["metrics"]["corner_deviation_mean"].is_number());
+}
+
+#[test]
+fn a_geojson_site_gives_geojson_in_wgs84_and_variations() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = netspec()
+        .args(["layout", model("irregular.geojson").to_str().unwrap(), "--variations", "2", "--out"])
+        .arg(dir.path())
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let gj: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.path().join("layout.geojson")).unwrap()).unwrap();
+    let first = &gj["features"][0]["geometry"]["coordinates"][0];
+    let (lon, lat) = (first[0].as_f64().unwrap(), first[1].as_f64().unwrap());
+    assert!((lon - 11.57).abs() < 0.01 && (lat - 48.14).abs() < 0.01, "{lon} {lat}");
+    assert!(dir.path().join("variation-2/layout.json").is_file());
+}
+
+#[test]
+fn the_field_command_writes_singularities() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = netspec()
+        .args(["field", model("disc.toml").to_str().unwrap(), "--method", "smooth", "--out"])
+        .arg(dir.path())
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let f: serde_json::Value = serde_json::from_slice(&std::fs::read(dir.path().join("field.json")).unwrap()).unwrap();
+    let sum: f64 = f["singularities"].as_array().unwrap().iter().map(|s| s["index"].as_f64().unwrap()).sum();
+    assert_eq!(sum, 1.0, "a disc's indices sum to its Euler characteristic");
+    assert!(f["vertices"].as_u64().unwrap() > 100 && dir.path().join("field.png").is_file());
+}
+
+#[test]
+fn bad_regions_are_refused_naming_the_field() {
+    let dir = tempfile::tempdir().unwrap();
+    let cases = [
+        (
+            "hole.toml",
+            "outer = [[0, 0], [100, 0], [100, 100], [0, 100]]\nholes = [[[200, 0], [300, 0], [300, 50]]]\n",
+            "holes[0]",
+        ),
+        ("bow.toml", "outer = [[0, 0], [100, 100], [100, 0], [0, 100]]\n", "outer: the outer ring intersects itself"),
+        ("road.toml", "outer = [[0, 0], [100, 0], [100, 100], [0, 100]]\nroads = [[[200, 0], [300, 0]]]\n", "roads[0]"),
+        ("big.toml", "outer = [[0, 0], [1e5, 0], [1e5, 1e5], [0, 1e5]]\n", "parcels"),
+        ("nan.geojson", "{\"type\": \"Polygon\", \"coordinates\": [[[0, 0], [1, 0], [1, 91], [0, 0]]]}", "features[0]"),
+    ];
+    for (file, text, needle) in cases {
+        let path = dir.path().join(file);
+        std::fs::write(&path, text).unwrap();
+        let o = netspec().args(["layout"]).arg(&path).output().unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(1), "{file}: {err}");
+        assert!(err.contains(file) && err.contains(needle), "{file}: {err}");
+        assert!(!err.contains("panicked"), "{file}: {err}");
+    }
+}
