@@ -1,0 +1,38 @@
+//! `netspec layout` on a square kilometre (`models/layout/km2.toml`, about 1,500 parcels: the
+//! size of the paper's Table 2, whose split took 28 s), beside a peer in the same run: the
+//! blocks, parcels and metrics of the same streets, and the independent validator. Run with
+//! `cargo bench --bench layout`.
+
+use criterion::{criterion_group, criterion_main, Criterion};
+use netspec::layout::field::FieldMethod;
+use netspec::layout::metrics::metrics;
+use netspec::layout::parcels::{blocks, parcellate, StreetIndex};
+use netspec::layout::region::read_region;
+use netspec::layout::run::{layout, LayoutOptions};
+use netspec::layout::split::Selection;
+use netspec::layout::validate::validate;
+use std::hint::black_box;
+use std::path::Path;
+
+fn km2(c: &mut Criterion) {
+    let region = read_region(&Path::new(env!("CARGO_MANIFEST_DIR")).join("models/layout/km2.toml")).unwrap();
+    let opts = LayoutOptions { field: FieldMethod::Distance, selection: Selection::Best, seed: region.seed };
+    let mut g = c.benchmark_group("layout");
+    g.sample_size(10);
+    g.bench_function("km2: split, parcels, metrics, check", |b| b.iter(|| layout(black_box(&region), &opts).unwrap()));
+    let l = layout(&region, &opts).unwrap();
+    g.bench_function("peer: km2 blocks, parcels and metrics of the same streets", |b| {
+        b.iter(|| {
+            let bl = blocks(&region.polygon, black_box(&l.streets));
+            let p = parcellate(&bl, &StreetIndex::new(&l.streets), region.parcel.depth, region.parcel.width);
+            metrics(&region.polygon, &l.streets, &bl, &p)
+        })
+    });
+    g.bench_function("peer: km2 validator", |b| {
+        b.iter(|| validate(&region.polygon, black_box(&l.streets), &l.parcels))
+    });
+    g.finish();
+}
+
+criterion_group!(benches, km2);
+criterion_main!(benches);
