@@ -191,6 +191,11 @@ fn outputs_and_metrics() {
     assert_eq!(features.iter().filter(|f| f["properties"]["kind"] == "sub-region").count(), 2);
     // 8 × 4 units at 100 m: 0.32 km².
     assert!((r.metrics.area_km2 - 0.32).abs() < 1e-9, "{:?}", r.metrics);
+    // The layout metrics of `netspec layout`, parcels from its parceller on the city's blocks.
+    let lm = r.layout_metrics.as_ref().expect("a rectangular domain is a polygon");
+    assert!((lm.area_km2 - 0.32).abs() < 1e-9 && lm.parcels > 100 && lm.blocks >= 2, "{lm:?}");
+    let lu = &lm.land_use;
+    assert!((lu.streets + lu.residential + lu.parks + lu.other - 100.0).abs() < 1.0, "{lu:?}");
     assert!(r.smoothing.energy_after < r.smoothing.energy_before);
     let png = std::fs::read(dir.path().join("city.png")).unwrap();
     assert_eq!(&png[1..4], b"PNG");

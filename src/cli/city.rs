@@ -193,6 +193,12 @@ pub fn run_city(path: &Path, args: CityArgs) -> Result<ExitCode> {
     println!("levels     {}", urban::city::levels_summary(&result.regions));
     let m = &result.metrics;
     println!("metrics    {} ({} m per unit)", m.summary(), spec.metres_per_unit);
+    if let Some(l) = &result.layout_metrics {
+        println!(
+            "parcels    {} of 30 × 18 m on 15 m streets ({} undesirable) · corners {:.2}° · area ratio {:.3} · streets {:.1} % · residential {:.1} %",
+            l.parcels, l.undesirable, l.corner_deviation_mean, l.area_ratio_mean, l.land_use.streets, l.land_use.residential
+        );
+    }
     println!(
         "smoothing  {:?}: {} snakes, energy {:.4} → {:.4}",
         result.smoothing.method, result.smoothing.snakes, result.smoothing.energy_before, result.smoothing.energy_after
