@@ -1,6 +1,7 @@
 //! `netspec layout REGION` and `netspec field REGION`: urban layouts by domain splitting.
 
 use anyhow::Result;
+use indicatif::{ProgressBar, ProgressStyle};
 use netspec::layout::field::FieldMethod;
 use netspec::layout::run::{self, LayoutRequest};
 use std::path::Path;
@@ -9,9 +10,19 @@ use std::process::ExitCode;
 /// Exit code when a layout breaks a rule of the independent check.
 const EXIT_INVALID: u8 = 3;
 
-/// Runs the library entry point and prints one line per layout.
+/// Runs the library entry point, with a bar of the area settled, and prints one line per layout.
 pub fn run(req: &LayoutRequest) -> Result<ExitCode> {
-    let layouts = run::run(req)?;
+    let bar = ProgressBar::new(1000);
+    bar.set_style(
+        ProgressStyle::with_template("{prefix} {bar:30} {percent:>3}% of the area {elapsed}").expect("static template"),
+    );
+    let n = req.variations.max(1);
+    let layouts = run::run(req, &mut |k, f| {
+        bar.set_prefix(format!("layout {}/{n}", k + 1));
+        bar.set_position((f * 1000.0).round() as u64);
+    });
+    bar.finish_and_clear();
+    let layouts = layouts?;
     let mut valid = true;
     for l in &layouts {
         let m = &l.metrics;

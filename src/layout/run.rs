@@ -5,7 +5,7 @@ use super::field::FieldMethod;
 use super::metrics::{metrics, parcel_shape, Metrics};
 use super::parcels::{blocks, parcellate, StreetIndex};
 use super::region::Region;
-use super::split::{split, Selection, SplitError, SplitOptions};
+use super::split::{split_with_progress, Selection, SplitError, SplitOptions};
 use super::validate::{validate, Violation};
 use super::{Parcel, Street};
 use crate::geometry::P;
@@ -120,14 +120,16 @@ pub struct LayoutRequest {
     pub out: Option<PathBuf>,
 }
 
-/// Reads the region, makes the layouts and writes them (with `run.json`: the seconds per stage).
-pub fn run(req: &LayoutRequest) -> Result<Vec<Layout>, LayoutError> {
+/// Reads the region, makes the layouts and writes them (with `run.json`: the seconds per stage),
+/// telling `progress` which variation runs (from 0) and the share of its region settled.
+pub fn run(req: &LayoutRequest, progress: &mut dyn FnMut(usize, f64)) -> Result<Vec<Layout>, LayoutError> {
     let region = super::region::read_region(&req.region)?;
     let seed = req.seed.unwrap_or(region.seed);
     let mut out = Vec::new();
     for k in 0..req.variations.max(1) {
         let selection = if k == 0 { req.selection } else { Selection::Random };
-        let l = layout(&region, &LayoutOptions { field: req.field, selection, seed: seed + k as u64 })?;
+        let opts = LayoutOptions { field: req.field, selection, seed: seed + k as u64 };
+        let l = layout_with_progress(&region, &opts, &mut |f| progress(k, f))?;
         if let Some(dir) = &req.out {
             let dir = if k == 0 { dir.clone() } else { dir.join(format!("variation-{}", k + 1)) };
             write_layout(&dir, &region, &l)?;
@@ -166,9 +168,19 @@ pub fn field_command(
 
 /// Lays a region out.
 pub fn layout(region: &Region, opts: &LayoutOptions) -> Result<Layout, LayoutError> {
+    layout_with_progress(region, opts, &mut |_| {})
+}
+
+/// [`layout`], telling `progress` the share of the region settled by the control loop (0 to 1).
+pub fn layout_with_progress(
+    region: &Region,
+    opts: &LayoutOptions,
+    progress: &mut dyn FnMut(f64),
+) -> Result<Layout, LayoutError> {
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(opts.seed);
     let t0 = Instant::now();
-    let s = split(region, &SplitOptions::for_region(region, opts.field, opts.selection), &mut rng)?;
+    let s =
+        split_with_progress(region, &SplitOptions::for_region(region, opts.field, opts.selection), &mut rng, progress)?;
     let t1 = Instant::now();
     let streets: Vec<Street> =
         s.streets.iter().map(|st| Street { polyline: round(&st.polyline), ..st.clone() }).collect();

@@ -101,11 +101,26 @@ pub enum SplitError {
 
 /// Runs the control loop on a region.
 pub fn split(region: &Region, opts: &SplitOptions, rng: &mut Xoshiro256PlusPlus) -> Result<Split, SplitError> {
+    split_with_progress(region, opts, rng, &mut |_| {})
+}
+
+/// [`split`], telling `progress` the share of the region's area settled so far (0 to 1) after
+/// every part.
+pub fn split_with_progress(
+    region: &Region,
+    opts: &SplitOptions,
+    rng: &mut Xoshiro256PlusPlus,
+    progress: &mut dyn FnMut(f64),
+) -> Result<Split, SplitError> {
+    let total_area = region.polygon.area();
+    let mut settled = 0.0;
     let (mut work, mut streets) = major_roads(region);
     let mut ends: Vec<(P, P)> = streets.iter().flat_map(|s| street_ends(&s.polyline)).collect();
     let (mut parts, mut total, mut cuts) = (Vec::new(), 0, 0);
     while let Some((poly, level)) = work.pop() {
         if fits_block(&poly, region, opts) {
+            settled += poly.area();
+            progress(settled / total_area);
             parts.push(poly);
             continue;
         }
@@ -134,7 +149,11 @@ pub fn split(region: &Region, opts: &SplitOptions, rng: &mut Xoshiro256PlusPlus)
                 work.push((b, level + 1));
                 work.push((a, level + 1));
             }
-            None => parts.push(poly),
+            None => {
+                settled += poly.area();
+                progress(settled / total_area);
+                parts.push(poly);
+            }
         }
     }
     Ok(Split { parts, streets, candidates: total, cuts })
