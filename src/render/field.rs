@@ -2,7 +2,7 @@
 //! as dots (`+1/4` red, `−1/4` blue, larger for larger indices), and optional polylines
 //! (streamlines) over them. Plain data in metres (y up).
 
-use super::writer::Svg;
+use super::writer::{Fit, Svg};
 use std::fmt::Write;
 
 /// What a field picture shows.
@@ -24,17 +24,9 @@ pub struct FieldScene {
 
 /// The picture as SVG text (about 640 pixels across).
 pub fn field_svg(scene: &FieldScene) -> String {
-    let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
-    for p in scene.rings.iter().flatten() {
-        (x0, x1, y0, y1) = (x0.min(p[0]), x1.max(p[0]), y0.min(p[1]), y1.max(p[1]));
-    }
-    if !x0.is_finite() {
-        (x0, x1, y0, y1) = (0.0, 1.0, 0.0, 1.0);
-    }
-    let margin = 20.0;
-    let scale = 600.0 / (x1 - x0).max(y1 - y0).max(1e-9);
-    let (w, h) = ((x1 - x0) * scale + 2.0 * margin, (y1 - y0) * scale + 2.0 * margin + 24.0);
-    let tx = |p: [f64; 2]| (margin + (p[0] - x0) * scale, margin + (y1 - p[1]) * scale);
+    let fit = Fit::new(scene.rings.iter().flatten(), 600.0);
+    let (margin, scale, w, h) = (fit.margin, fit.scale, fit.width, fit.height);
+    let tx = |p: [f64; 2]| fit.tx(p);
     let mut svg = Svg::new(w, h, Some(12.0));
     let path: String = scene
         .rings

@@ -1,7 +1,7 @@
 //! An urban layout: parcels coloured by use (undesirable ones outlined in red), streets drawn at
 //! their width and coloured by level, holes as water. Plain data in metres (y up).
 
-use super::writer::Svg;
+use super::writer::{Fit, Svg};
 use std::fmt::Write;
 
 /// A parcel to draw.
@@ -41,17 +41,9 @@ const LEVEL_COLOURS: [&str; 4] = ["#252525", "#636363", "#969696", "#bdbdbd"];
 
 /// The picture as SVG text (about 800 pixels across).
 pub fn layout_svg(scene: &LayoutScene) -> String {
-    let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
-    for p in scene.rings.iter().flatten() {
-        (x0, x1, y0, y1) = (x0.min(p[0]), x1.max(p[0]), y0.min(p[1]), y1.max(p[1]));
-    }
-    if !x0.is_finite() {
-        (x0, x1, y0, y1) = (0.0, 1.0, 0.0, 1.0);
-    }
-    let margin = 20.0;
-    let scale = 760.0 / (x1 - x0).max(y1 - y0).max(1e-9);
-    let (w, h) = ((x1 - x0) * scale + 2.0 * margin, (y1 - y0) * scale + 2.0 * margin + 24.0);
-    let tx = |p: [f64; 2]| (margin + (p[0] - x0) * scale, margin + (y1 - p[1]) * scale);
+    let fit = Fit::new(scene.rings.iter().flatten(), 760.0);
+    let (margin, scale, w, h) = (fit.margin, fit.scale, fit.width, fit.height);
+    let tx = |p: [f64; 2]| fit.tx(p);
     let pts =
         |r: &[[f64; 2]]| r.iter().map(|&p| tx(p)).map(|(x, y)| format!("{x:.2},{y:.2}")).collect::<Vec<_>>().join(" ");
     let mut svg = Svg::new(w, h, Some(12.0));

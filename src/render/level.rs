@@ -2,7 +2,7 @@
 //! connectivity graph drawn over them (block centres joined through the doors), and the
 //! obstacles, dark grey.
 
-use super::writer::Svg;
+use super::writer::{Fit, Svg};
 use std::fmt::Write;
 
 /// A placed block.
@@ -34,17 +34,9 @@ const PALETTE: [&str; 8] = ["#c6dbef", "#fdd0a2", "#c7e9c0", "#dadaeb", "#fcbba1
 /// The picture as SVG text (about 640 pixels across).
 pub fn level_svg(scene: &LevelScene) -> String {
     let pts = scene.blocks.iter().flat_map(|b| b.polygon.iter()).chain(scene.obstacles.iter().flatten());
-    let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
-    for p in pts {
-        (x0, x1, y0, y1) = (x0.min(p[0]), x1.max(p[0]), y0.min(p[1]), y1.max(p[1]));
-    }
-    if !x0.is_finite() {
-        (x0, x1, y0, y1) = (0.0, 1.0, 0.0, 1.0);
-    }
-    let margin = 20.0;
-    let scale = 600.0 / (x1 - x0).max(y1 - y0).max(1e-9);
-    let (w, h) = ((x1 - x0) * scale + 2.0 * margin, (y1 - y0) * scale + 2.0 * margin + 24.0);
-    let tx = |p: [f64; 2]| (margin + (p[0] - x0) * scale, margin + (y1 - p[1]) * scale);
+    let fit = Fit::new(pts, 600.0);
+    let (margin, w, h) = (fit.margin, fit.width, fit.height);
+    let tx = |p: [f64; 2]| fit.tx(p);
     let mut svg = Svg::new(w, h, Some(12.0));
     for o in &scene.obstacles {
         let d: Vec<String> = o.iter().map(|&p| tx(p)).map(|(x, y)| format!("{x:.2},{y:.2}")).collect();

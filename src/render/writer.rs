@@ -20,6 +20,44 @@ pub fn escape(s: &str) -> String {
     out
 }
 
+/// A page for plane figures (y up): the points' bounding box scaled to `size` pixels across its
+/// longer side, a 20-pixel margin, and a 24-pixel caption line below.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Fit {
+    x0: f64,
+    y1: f64,
+    /// Pixels per unit.
+    pub scale: f64,
+    /// The margin (pixels).
+    pub margin: f64,
+    /// The page's width (pixels).
+    pub width: f64,
+    /// The page's height (pixels), caption line included.
+    pub height: f64,
+}
+
+impl Fit {
+    /// The page for `points` (the unit square when there are none).
+    pub fn new<'a>(points: impl IntoIterator<Item = &'a [f64; 2]>, size: f64) -> Fit {
+        let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
+        for p in points {
+            (x0, x1, y0, y1) = (x0.min(p[0]), x1.max(p[0]), y0.min(p[1]), y1.max(p[1]));
+        }
+        if !x0.is_finite() {
+            (x0, x1, y0, y1) = (0.0, 1.0, 0.0, 1.0);
+        }
+        let margin = 20.0;
+        let scale = size / (x1 - x0).max(y1 - y0).max(1e-9);
+        let (width, height) = ((x1 - x0) * scale + 2.0 * margin, (y1 - y0) * scale + 2.0 * margin + 24.0);
+        Fit { x0, y1, scale, margin, width, height }
+    }
+
+    /// A point's position on the page.
+    pub fn tx(&self, p: [f64; 2]) -> (f64, f64) {
+        (self.margin + (p[0] - self.x0) * self.scale, self.margin + (self.y1 - p[1]) * self.scale)
+    }
+}
+
 /// An SVG document being written: [`Svg::new`] writes the header and a white background; the
 /// body is written with `write!`/`writeln!` (escape text with [`escape`]); [`Svg::finish`]
 /// closes the document.
