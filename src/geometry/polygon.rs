@@ -329,39 +329,30 @@ fn ring_edges(r: &[P]) -> Vec<(P, P)> {
     (0..r.len()).map(|i| (r[i], r[(i + 1) % r.len()])).collect()
 }
 
-/// The first pair of non-adjacent edges of a ring that meet, and where.
+/// The first pair of non-adjacent edges of a ring that meet (lower index first), and where.
 fn self_crossing(r: &[P]) -> Option<(usize, usize, P)> {
     let edges = ring_edges(r);
     let n = edges.len();
-    let mut found = None;
-    sweep_pairs(&edges, &edges, |i, j| {
-        let (i, j) = (i.min(j), i.max(j));
-        if i == j || j == i + 1 || (i == 0 && j == n - 1) {
-            return false;
-        }
-        let (a, b) = edges[i];
-        let (c, d) = edges[j];
-        if let Some((s, _)) = segment_intersection(a, b, c, d) {
-            found = Some((i, j, [a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1])]));
-            return true;
-        }
-        false
-    });
-    found
+    let adjacent = |i: usize, j: usize| i == j || j == i + 1 || (i == 0 && j == n - 1);
+    crossing(&edges, &edges, |i, j| adjacent(i.min(j), i.max(j))).map(|(i, j, at)| (i.min(j), i.max(j), at))
 }
 
 /// The first pair of edges, one from each ring, that meet.
 fn first_crossing(r: &[P], s: &[P]) -> Option<(usize, usize, P)> {
-    let (er, es) = (ring_edges(r), ring_edges(s));
+    crossing(&ring_edges(r), &ring_edges(s), |_, _| false)
+}
+
+/// The first pair of edges `(a[i], b[j])` not skipped that meet, and where.
+fn crossing(a: &[(P, P)], b: &[(P, P)], skip: impl Fn(usize, usize) -> bool) -> Option<(usize, usize, P)> {
     let mut found = None;
-    sweep_pairs(&er, &es, |i, j| {
-        let (a, b) = er[i];
-        let (c, d) = es[j];
-        if let Some((t, _)) = segment_intersection(a, b, c, d) {
-            found = Some((i, j, [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])]));
-            return true;
+    sweep_pairs(a, b, |i, j| {
+        if skip(i, j) {
+            return false;
         }
-        false
+        let ((p, q), (c, d)) = (a[i], b[j]);
+        let Some((t, _)) = segment_intersection(p, q, c, d) else { return false };
+        found = Some((i, j, [p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1])]));
+        true
     });
     found
 }

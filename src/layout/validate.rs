@@ -102,8 +102,9 @@ fn to_geo(ring: &[P]) -> geo::Polygon<f64> {
     )
 }
 
-/// The streets' area inside the region, with round joins and caps (a different buffer from the
-/// parceller's mitred one; the 1 % coverage tolerance absorbs the corner difference).
+/// The streets' area inside the region: each centreline buffered by half its width (mitred joins,
+/// butt ends, as streets are drawn), computed here again so the check does not rest on the
+/// parceller's own street area.
 fn streets_area(region: &Polygon, streets: &[Street]) -> f64 {
     let bufs: Vec<geo::MultiPolygon<f64>> = streets
         .iter()
