@@ -327,6 +327,11 @@ enum Command {
         /// Streamline choice: the best (comparison mode) or drawn by quality (variation mode).
         #[arg(long, value_enum, default_value = "best")]
         mode: SelectionKind,
+        /// Iterations of the global optimisation of the streets (fairness and strip fitting,
+        /// the paper's §6, which runs 10); 0 for none. Off by default: with the row parceller
+        /// it costs parcel quality (docs/layout.md).
+        #[arg(long, value_name = "N", default_value_t = 0, value_parser = clap::value_parser!(u64).range(0..=100))]
+        optimise: u64,
         /// Output directory.
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
@@ -636,13 +641,14 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 seeds: seeds as usize,
             })
         }
-        Command::Layout { region, seed, variations, field, mode, out } => {
+        Command::Layout { region, seed, variations, field, mode, optimise, out } => {
             cli::layout::run(&netspec::layout::run::LayoutRequest {
                 region,
                 field: field.into(),
                 selection: mode.into(),
                 seed,
                 variations: variations as usize,
+                optimise: optimise as usize,
                 out,
             })
         }

@@ -23,7 +23,12 @@ fn every_example_region_is_laid_out_validly() {
         let region = read_region(&model(name)).unwrap();
         let l = layout(
             &region,
-            &LayoutOptions { field: FieldMethod::Distance, selection: Selection::Best, seed: region.seed },
+            &LayoutOptions {
+                field: FieldMethod::Distance,
+                selection: Selection::Best,
+                seed: region.seed,
+                optimise: 10,
+            },
         )
         .unwrap();
         // The library's own check, and the validator run again here on the returned data.

@@ -7,6 +7,7 @@ pub mod cdt;
 pub mod index;
 pub mod polygon;
 pub mod site;
+pub mod sparse;
 
 pub use polygon::{Polygon, PolygonError};
 

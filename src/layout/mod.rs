@@ -4,6 +4,7 @@
 
 pub mod field;
 pub mod metrics;
+pub mod optimise;
 pub mod parcels;
 pub mod region;
 pub mod run;

@@ -3,6 +3,7 @@
 
 use super::field::FieldMethod;
 use super::metrics::{metrics, parcel_shape, Metrics};
+use super::optimise::{optimise, OptimiseOptions};
 use super::parcels::{blocks, parcellate, StreetIndex};
 use super::region::Region;
 use super::split::{split_with_progress, Selection, SplitError, SplitOptions};
@@ -25,6 +26,8 @@ pub struct LayoutOptions {
     pub selection: Selection,
     /// The seed (the region's own unless overridden).
     pub seed: u64,
+    /// Iterations of the global optimisation (§6; the paper's 10, 0 for none).
+    pub optimise: usize,
 }
 
 /// A layout, checked.
@@ -48,6 +51,8 @@ pub struct Layout {
     pub violations: Vec<Violation>,
     /// Counts of the control loop.
     pub split: SplitCounts,
+    /// The global optimisation's iterations and whether its streets were kept.
+    pub optimisation: Optimisation,
     /// Seconds per stage (not written to `layout.json`, so equal seeds give equal bytes).
     #[serde(skip)]
     pub times: Times,
@@ -64,11 +69,23 @@ pub struct SplitCounts {
     pub blocks: usize,
 }
 
+/// What the global optimisation did.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Optimisation {
+    /// Iterations asked for (0: not run).
+    pub iterations: usize,
+    /// Whether the optimised streets were kept: they are dropped, and the split's streets used,
+    /// when the layout they give fails the independent check and the split's does not.
+    pub kept: bool,
+}
+
 /// Seconds per stage.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
 pub struct Times {
     /// Splitting (fields, candidates, cuts).
     pub split: f64,
+    /// The global optimisation.
+    pub optimise: f64,
     /// Blocks and parcels.
     pub parcels: f64,
     /// Metrics and the check.
@@ -116,6 +133,8 @@ pub struct LayoutRequest {
     pub seed: Option<u64>,
     /// How many layouts (seeds `seed`, `seed + 1`, …).
     pub variations: usize,
+    /// Iterations of the global optimisation (0: none).
+    pub optimise: usize,
     /// Where to write them: the first in the directory, variation `k ≥ 2` in `variation-k/`.
     pub out: Option<PathBuf>,
 }
@@ -128,7 +147,7 @@ pub fn run(req: &LayoutRequest, progress: &mut dyn FnMut(usize, f64)) -> Result<
     let mut out = Vec::new();
     for k in 0..req.variations.max(1) {
         let selection = if k == 0 { req.selection } else { Selection::Random };
-        let opts = LayoutOptions { field: req.field, selection, seed: seed + k as u64 };
+        let opts = LayoutOptions { field: req.field, selection, seed: seed + k as u64, optimise: req.optimise };
         let l = layout_with_progress(&region, &opts, &mut |f| progress(k, f))?;
         if let Some(dir) = &req.out {
             let dir = if k == 0 { dir.clone() } else { dir.join(format!("variation-{}", k + 1)) };
@@ -182,32 +201,73 @@ pub fn layout_with_progress(
     let s =
         split_with_progress(region, &SplitOptions::for_region(region, opts.field, opts.selection), &mut rng, progress)?;
     let t1 = Instant::now();
-    let streets: Vec<Street> =
+    let split_streets: Vec<Street> =
         s.streets.iter().map(|st| Street { polyline: round(&st.polyline), ..st.clone() }).collect();
-    let blocks = blocks(&region.polygon, &streets);
-    let parcels: Vec<Parcel> =
-        parcellate(&blocks, &StreetIndex::new(&streets), region.parcel.depth, region.parcel.width)
-            .into_iter()
-            .map(|p| Parcel { polygon: round(&p.polygon), ..p })
-            .collect();
+    let optimised: Vec<Street> = optimise(
+        region,
+        &split_streets,
+        &OptimiseOptions { iterations: opts.optimise, ..OptimiseOptions::for_region(region) },
+    )
+    .into_iter()
+    .map(|st| Street { polyline: round(&st.polyline), ..st })
+    .collect();
     let t2 = Instant::now();
-    let metrics = metrics(&region.polygon, &streets, &blocks, &parcels);
-    let violations = validate(&region.polygon, &streets, &parcels);
-    let times =
-        Times { split: (t1 - t0).as_secs_f64(), parcels: (t2 - t1).as_secs_f64(), check: t2.elapsed().as_secs_f64() };
-    let split = SplitCounts { candidates: s.candidates, cuts: s.cuts, blocks: blocks.len() };
+    let mut done = Finished::new(region, optimised);
+    let mut kept = opts.optimise > 0;
+    if kept && !done.violations.is_empty() {
+        let plain = Finished::new(region, split_streets);
+        if plain.violations.is_empty() {
+            done = plain;
+            kept = false;
+        }
+    }
+    let t3 = Instant::now();
+    let times = Times {
+        split: (t1 - t0).as_secs_f64(),
+        optimise: (t2 - t1).as_secs_f64(),
+        parcels: done.parcel_seconds,
+        check: (t3 - t2).as_secs_f64() - done.parcel_seconds,
+    };
+    let split = SplitCounts { candidates: s.candidates, cuts: s.cuts, blocks: done.blocks };
     Ok(Layout {
         name: region.name.clone(),
         seed: opts.seed,
         field: opts.field,
         selection: opts.selection,
-        streets,
-        parcels,
-        metrics,
-        violations,
+        streets: done.streets,
+        parcels: done.parcels,
+        metrics: done.metrics,
+        violations: done.violations,
         split,
+        optimisation: Optimisation { iterations: opts.optimise, kept },
         times,
     })
+}
+
+/// Streets with their blocks, parcels, metrics and check.
+struct Finished {
+    streets: Vec<Street>,
+    parcels: Vec<Parcel>,
+    blocks: usize,
+    metrics: Metrics,
+    violations: Vec<Violation>,
+    parcel_seconds: f64,
+}
+
+impl Finished {
+    fn new(region: &Region, streets: Vec<Street>) -> Finished {
+        let t = Instant::now();
+        let blocks = blocks(&region.polygon, &streets);
+        let parcels: Vec<Parcel> =
+            parcellate(&blocks, &StreetIndex::new(&streets), region.parcel.depth, region.parcel.width)
+                .into_iter()
+                .map(|p| Parcel { polygon: round(&p.polygon), ..p })
+                .collect();
+        let parcel_seconds = t.elapsed().as_secs_f64();
+        let metrics = metrics(&region.polygon, &streets, &blocks, &parcels);
+        let violations = validate(&region.polygon, &streets, &parcels);
+        Finished { streets, parcels, blocks: blocks.len(), metrics, violations, parcel_seconds }
+    }
 }
 
 /// Coordinates rounded to the millimetre (compact, stable files).
