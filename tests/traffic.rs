@@ -440,3 +440,35 @@ fn setup_installs_the_named_sumo_version() {
     let setup = std::fs::read_to_string(root.join("scripts/setup.sh")).unwrap();
     assert!(setup.contains("SUMO_VERSION=$(pinned eclipse-sumo)"), "setup.sh reads the pin");
 }
+
+/// A `netspec layout` output is a design for traffic: its streets become one graph (every metre
+/// of street in it, junctions as nodes), its region is the layout's outer ring — so a city on
+/// the same site meets the same trips — and SUMO runs it with every street present.
+#[test]
+fn a_layout_is_simulated_on_its_own_region() {
+    use netspec::layout::region::region_from_toml;
+    use netspec::layout::run::{layout, write_layout, LayoutOptions};
+    let text = "outer = [[0, 0], [320, 0], [320, 200], [0, 200]]\nroads = [[[160, 0], [160, 200]]]\n";
+    let region = region_from_toml(text, Path::new("site.toml"), "site").unwrap();
+    let opts = LayoutOptions {
+        field: netspec::layout::field::FieldMethod::Distance,
+        selection: netspec::layout::split::Selection::Best,
+        seed: 1,
+        optimise: 0,
+    };
+    let l = layout(&region, &opts).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    write_layout(dir.path(), &region, &l).unwrap();
+    let net = network::load(dir.path(), &LoadOptions::default()).unwrap_or_else(|e| panic!("{e}"));
+    let square = vec![[0.0, 0.0], [320.0, 0.0], [320.0, 200.0], [0.0, 200.0]];
+    assert_eq!(net.region, Region { boundary: square.clone(), areas: vec![square] });
+    let designed: f64 = l.streets.iter().map(|s| netspec::geometry::polyline_length(&s.polyline)).sum();
+    let graph: f64 = net.edges.iter().map(|e| e.length()).sum();
+    assert!((designed - graph).abs() < 1e-6 * designed, "{designed} m of street, {graph} m in the graph");
+    assert!(net.nodes.iter().any(|n| n.entrance), "the major road's ends are entrances");
+    let settings = DemandSettings { duration: 600.0, through_per_hour: 120.0, local_per_hour: 240.0, seed: 3 };
+    let out = tempfile::tempdir().unwrap();
+    let r = evaluate(&net, &settings, &sumo(), out.path()).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(r.network.streets_in_net, r.network.streets);
+    assert!(r.vehicles.inserted > 10 && r.vehicles.arrived == r.vehicles.inserted, "{:?}", r.vehicles);
+}

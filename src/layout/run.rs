@@ -41,6 +41,10 @@ pub struct Layout {
     pub field: FieldMethod,
     /// The selection mode.
     pub selection: Selection,
+    /// The region's outer ring (counter-clockwise, metres), which traffic demand is drawn in.
+    pub outer: Vec<P>,
+    /// The region's holes (clockwise).
+    pub holes: Vec<Vec<P>>,
     /// Streets.
     pub streets: Vec<Street>,
     /// Parcels.
@@ -234,6 +238,8 @@ pub fn layout_with_progress(
         seed: opts.seed,
         field: opts.field,
         selection: opts.selection,
+        outer: region.polygon.outer().to_vec(),
+        holes: region.polygon.holes().to_vec(),
         streets: done.streets,
         parcels: done.parcels,
         metrics: done.metrics,

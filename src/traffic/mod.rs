@@ -21,6 +21,7 @@ pub mod network;
 pub mod parse;
 pub mod picture;
 pub mod report;
+pub mod streets;
 pub mod sumo;
 
 pub use demand::DemandSettings;
@@ -46,7 +47,7 @@ pub struct TrafficError {
 #[derive(Debug, thiserror::Error)]
 pub enum TrafficErrorKind {
     /// The directory holds neither a design nor a city result.
-    #[error("no design here: expected result.json (a `netspec solve` output) or city.json (a `netspec city` output)")]
+    #[error("no design here: expected result.json (a `netspec solve` output), city.json (a `netspec city` output) or layout.json (a `netspec layout` output)")]
     NoResult,
     /// A file could not be read or written.
     #[error("{0}")]

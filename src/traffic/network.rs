@@ -113,12 +113,16 @@ pub struct LoadOptions {
 }
 
 /// Reads a design: a `result.json` file, a directory with one (a `netspec solve` output or a
-/// city level's directory), or a `netspec city` output directory (with `city.json`).
+/// city level's directory), a `netspec city` output directory (with `city.json`) or a
+/// `netspec layout` output directory (with `layout.json`).
 pub fn load(path: &Path, opts: &LoadOptions) -> Result<RoadNetwork, TrafficError> {
     let md = std::fs::metadata(path).map_err(|e| TrafficError::new(path, e.into()))?;
     let file = if md.is_dir() {
         if path.join("city.json").is_file() {
             return from_city(path, opts);
+        }
+        if path.join("layout.json").is_file() {
+            return super::streets::from_layout(path);
         }
         let f = path.join("result.json");
         if !f.is_file() {
