@@ -295,6 +295,12 @@ fn demand_is_seeded_and_placed() {
     for t in a.iter().filter(|t| t.class == TripClass::Local) {
         assert!(t.from.iter().chain(&t.to).all(|c| (0.0..=400.0).contains(c)));
     }
+    // The same site written another way (clockwise, from another vertex, closed, a hair off)
+    // meets the same trips.
+    let mut other: Vec<[f64; 2]> = square.iter().rev().map(|p| [p[0] + 1e-7, p[1] - 1e-7]).collect();
+    other.rotate_left(2);
+    other.push(other[0]);
+    assert_eq!(a, demand::generate(&Region { boundary: other.clone(), areas: vec![other] }, &s));
     assert_eq!(percentile(&[3.0, 1.0, 2.0, 4.0], 0.95), Some(4.0));
     assert_eq!(percentile(&(1..=20).map(f64::from).collect::<Vec<_>>(), 0.95), Some(19.0));
     assert_eq!(percentile(&[], 0.95), None);

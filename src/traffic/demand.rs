@@ -83,8 +83,11 @@ pub struct Trip {
     pub forward: [bool; 2],
 }
 
-/// Draws the trips of a region (sorted by departure).
+/// Draws the trips of a region (sorted by departure). The region is first made canonical
+/// ([`Region::canonical`]), so designs of one site from different methods — whose rings may
+/// start elsewhere, run the other way or differ below a millimetre — meet the same trips.
 pub fn generate(region: &Region, s: &DemandSettings) -> Vec<Trip> {
+    let region = &region.canonical();
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(s.seed);
     let mut trips = Vec::new();
     let perimeter = closed_length(&region.boundary);

@@ -88,6 +88,35 @@ pub struct Region {
     pub areas: Vec<Vec<[f64; 2]>>,
 }
 
+impl Region {
+    /// The same region written one way: coordinates rounded to the millimetre, every ring
+    /// counter-clockwise and starting at its lowest vertex (smallest y, then x), without a
+    /// repeated closing point.
+    pub fn canonical(&self) -> Region {
+        Region {
+            boundary: canonical_ring(&self.boundary),
+            areas: self.areas.iter().map(|a| canonical_ring(a)).collect(),
+        }
+    }
+}
+
+fn canonical_ring(ring: &[[f64; 2]]) -> Vec<[f64; 2]> {
+    let mm = |x: f64| (x * 1000.0).round() / 1000.0;
+    let mut r: Vec<[f64; 2]> = ring.iter().map(|p| [mm(p[0]), mm(p[1])]).collect();
+    r.dedup();
+    if r.len() > 1 && r.first() == r.last() {
+        r.pop();
+    }
+    if geom::signed_area(&r) < 0.0 {
+        r.reverse();
+    }
+    if let Some(k) = (0..r.len()).min_by(|&i, &j| (r[i][1], r[i][0]).partial_cmp(&(r[j][1], r[j][0])).expect("finite"))
+    {
+        r.rotate_left(k);
+    }
+    r
+}
+
 /// Which run produced a design.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Provenance {

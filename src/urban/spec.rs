@@ -36,6 +36,10 @@ pub struct CitySpec {
     /// Major roads (level 1): polylines that split the domain into sub-regions.
     #[serde(default, rename = "road")]
     pub roads: Vec<RoadSpec>,
+    /// Where further major roads come from (`[major] method = "streamlines"`); expanded into
+    /// `roads` when the spec is read, so it is `None` in a read spec.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub major: Option<super::major::MajorSpec>,
     /// Mesh resolution for every sub-region.
     pub mesh: CityMeshSpec,
     /// Default spec per level (`"2"`, `"3"`, `"4"`); a level that is absent is not run.
@@ -304,7 +308,7 @@ impl CitySpec {
     pub fn from_toml(text: &str) -> Result<CitySpec, CitySpecErrorKind> {
         let spec: CitySpec = toml::from_str(text).map_err(|e| CitySpecErrorKind::Toml(e.to_string()))?;
         spec.check()?;
-        Ok(spec)
+        super::major::expand(spec)
     }
 
     fn check(&self) -> Result<(), CitySpecErrorKind> {

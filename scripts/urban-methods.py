@@ -1,0 +1,231 @@
+#!/usr/bin/env python3
+"""The urban-methods comparison: netspec layout (domain splitting) against netspec city (IP
+street design) on the same sites, by the same metrics, under the same SUMO demand.
+
+    scripts/urban-methods.py run [--time-limit S] [--bin PATH] [--out DIR]
+        runs every layout, city and traffic evaluation under DIR (default out/urban-methods),
+        writes the compact records to docs/urban-methods/records.json, the pictures to
+        docs/img/urban-*.png, and the page docs/urban-methods.md;
+    scripts/urban-methods.py page [--check]
+        writes docs/urban-methods.md from the committed records (with --check, fails when the
+        committed page differs).
+"""
+import argparse
+import json
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+RECORDS = ROOT / "docs/urban-methods/records.json"
+PAGE = ROOT / "docs/urban-methods.md"
+
+# Each site: the layout region and the city specs on the same ground (same outer ring in metres).
+SITES = [
+    ("fig7", "models/layout/fig7.toml", ["models/city/fig7a.toml", "models/city/fig7b.toml"]),
+    ("lake", "models/layout/lake.toml", ["models/city/lake.toml"]),
+    ("irregular", "models/layout/irregular.geojson", ["models/city/irregular.toml"]),
+]
+
+PARCEL_KEYS = ["parcels", "corner_deviation_mean", "area_ratio_mean", "undesirable"]
+TRAFFIC_KEYS = ["travel_time_mean", "travel_time_p95", "time_loss_mean", "route_length_mean"]
+
+
+def sh(cmd):
+    print("+", " ".join(str(c) for c in cmd), file=sys.stderr, flush=True)
+    subprocess.run([str(c) for c in cmd], check=True, stdout=subprocess.DEVNULL)
+
+
+def load(path):
+    return json.loads(Path(path).read_text())
+
+
+def r(x, k=3):
+    return None if x is None else round(x, k)
+
+
+def layout_record(d, run):
+    m = d["metrics"]
+    return {
+        "method": "layout",
+        "land_use": {k: r(v, 2) for k, v in m["land_use"].items()},
+        "blocks_per_km2": r(m["blocks_per_km2"], 1),
+        "block_perimeter_mean": r(m["block_perimeter_mean"], 1),
+        "street_km_per_km2": r(m["street_km_per_km2"], 2),
+        "intersections_per_km2": r(m["intersections_per_km2"], 1),
+        "dead_ends_per_km2": r(m["dead_ends_per_km2"], 1),
+        **{k: r(m[k], 3) for k in PARCEL_KEYS},
+        "seconds": {k: r(v, 2) for k, v in run["times"].items()},
+    }
+
+
+def city_record(c):
+    m = c["layout_metrics"]
+    levels = [lv for reg in c["regions"] for lv in reg["levels"]]
+    gaps = [lv.get("gap") for lv in levels if lv.get("gap") is not None]
+    return {
+        "method": "city",
+        "land_use": {k: r(v, 2) for k, v in m["land_use"].items()},
+        "blocks_per_km2": r(m["blocks_per_km2"], 1),
+        "block_perimeter_mean": r(m["block_perimeter_mean"], 1),
+        "street_km_per_km2": r(m["street_km_per_km2"], 2),
+        "intersections_per_km2": r(m["intersections_per_km2"], 1),
+        "dead_ends_per_km2": r(m["dead_ends_per_km2"], 1),
+        **{k: r(m[k], 3) for k in PARCEL_KEYS},
+        "max_gap": r(max(gaps), 4) if gaps else None,
+        "seconds": {"total": r(c["wall_time"], 1)},
+    }
+
+
+def run(args):
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    (ROOT / "docs/img").mkdir(exist_ok=True)
+    sites = []
+    for site, region, cities in SITES:
+        sdir = out / site
+        designs, labels, records = [], [], []
+        for opt in (0, 10):
+            ldir = sdir / f"layout-optimise{opt}"
+            sh([args.bin, "layout", ROOT / region, "--optimise", opt, "--out", ldir])
+            rec = layout_record(load(ldir / "layout.json"), load(ldir / "run.json"))
+            rec["label"] = "layout" if opt == 0 else "layout --optimise 10"
+            records.append(rec)
+            designs.append(ldir)
+            labels.append(f"layout-o{opt}")
+        shutil.copy(sdir / "layout-optimise0/layout.png", ROOT / f"docs/img/urban-{site}-layout.png")
+        for spec in cities:
+            name = Path(spec).stem
+            cdir = sdir / f"city-{name}"
+            sh([args.bin, "city", ROOT / spec, "--time-limit", args.time_limit, "--out", cdir])
+            rec = city_record(load(cdir / "city.json"))
+            rec["label"] = f"city {name}"
+            records.append(rec)
+            designs.append(cdir)
+            labels.append(f"city-{name}")
+            shutil.copy(cdir / "city.png", ROOT / f"docs/img/urban-{site}-city-{name}.png")
+        tdir = sdir / "traffic"
+        sh([args.bin, "traffic", *designs, "--labels", ",".join(labels), "--out", tdir])
+        cmp = load(tdir / "comparison.json")["designs"]
+        digests = sorted({d["report"]["demand"]["digest"] for d in cmp})
+        for rec, d in zip(records, cmp):
+            rep = d["report"]
+            rec["traffic"] = {
+                **{k: r(rep["all"][k], 1) for k in TRAFFIC_KEYS},
+                "arrived": rep["vehicles"]["arrived"],
+                "inserted": rep["vehicles"]["inserted"],
+                "teleported": rep["vehicles"]["teleported"],
+                "through_on_local": r((rep.get("through_on_local") or {}).get("distance_share"), 4),
+            }
+        sites.append({"site": site, "region": region, "cities": cities, "demand_digests": digests, "designs": records})
+    RECORDS.parent.mkdir(parents=True, exist_ok=True)
+    records = {"time_limit": float(args.time_limit), "demand": "3600 s, 300 through + 600 local trips per hour, seed 1", "sites": sites}
+    RECORDS.write_text(json.dumps(records, indent=1, sort_keys=True) + "\n")
+    PAGE.write_text(page(records))
+    print(f"wrote {RECORDS.relative_to(ROOT)}, {PAGE.relative_to(ROOT)}", file=sys.stderr)
+
+
+def fmt(x, k=1, pct=False):
+    if x is None:
+        return "–"
+    x += 0.0  # no "-0.0"
+    return f"{100 * x:.{k}f} %" if pct else f"{x:.{k}f}"
+
+
+def page(rec):
+    t = rec["time_limit"]
+    lines = [
+        "# Urban methods side by side",
+        "",
+        "netspec makes street layouts two ways: `netspec layout` splits a region along streamlines",
+        "of a cross field down to blocks and parcels (Yang et al. 2013, [layout.md](layout.md)), and",
+        "`netspec city` designs the streets level by level as integer programs (Peng et al. 2016,",
+        "[city.md](city.md)). Here both run on the same sites; every design's blocks are cut into",
+        "parcels by the same row parceller, so the parcel columns compare street layouts, not",
+        "parcellers; and every design meets the same SUMO demand (the same trips, drawn in the",
+        "site's outer ring — equal demand digests below) through `netspec traffic`.",
+        "",
+        "Regenerate everything (layouts, cities, SUMO, this page) with",
+        "",
+        "```sh",
+        f"scripts/urban-methods.py run --time-limit {t:g}",
+        "```",
+        "",
+        f"(cities with every level's time limit set to {t:g} s, HiGHS, 2 threads; records in",
+        "[urban-methods/records.json](urban-methods/records.json); `scripts/urban-methods.py page`",
+        "rewrites this page from them, and the tests check that it matches).",
+        "",
+        "Sites: **fig7** is the quadrilateral of the Fig. 7 cities (`models/city/fig7a.toml`,",
+        "`fig7b.toml`: minimum length, minimum travel distance); **lake** an L-shaped site with a",
+        "lake (the city's lake is a sub-region inside a ring road that runs no level, since a city",
+        "domain has no holes); **irregular** a pentagon in WGS 84 with one major road (the city spec",
+        "holds its corners projected to metres). Layout rows: the split with the row parceller",
+        "(default) and with the global optimisation of §6 (`--optimise 10`, the ablation).",
+        "",
+        f"Demand: {rec['demand']}.",
+        "",
+    ]
+    for s in rec["sites"]:
+        lines += [f"## {s['site']}", ""]
+        lines += [f"Demand digest: {', '.join(f'`{d}`' for d in s['demand_digests'])}.", ""]
+        lines += [
+            "| design | streets % | residential % | parks % | blocks /km² | block perimeter (m) | street km/km² "
+            "| intersections /km² | dead-ends /km² | parcels | corner deviation (°) | area ratio | undesirable |",
+            "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
+        ]
+        for d in s["designs"]:
+            lu = d["land_use"]
+            lines.append(
+                f"| {d['label']} | {fmt(lu['streets'])} | {fmt(lu['residential'])} | {fmt(lu['parks'])} "
+                f"| {fmt(d['blocks_per_km2'])} | {fmt(d['block_perimeter_mean'], 0)} | {fmt(d['street_km_per_km2'])} "
+                f"| {fmt(d['intersections_per_km2'])} | {fmt(d['dead_ends_per_km2'])} | {d['parcels']} "
+                f"| {fmt(d['corner_deviation_mean'], 2)} | {fmt(d['area_ratio_mean'], 3)} | {d['undesirable']} |"
+            )
+        lines += [
+            "",
+            "| design | vehicles arrived / inserted | teleported | travel time mean (s) | p95 (s) | time loss mean (s) "
+            "| route mean (m) | through traffic on local streets (distance) | time to design (s) |",
+            "|---|---:|---:|---:|---:|---:|---:|---:|---:|",
+        ]
+        for d in s["designs"]:
+            tr = d["traffic"]
+            secs = d["seconds"]
+            total = secs.get("total", sum(v for v in secs.values() if v is not None))
+            lines.append(
+                f"| {d['label']} | {tr['arrived']} / {tr['inserted']} | {tr['teleported']} "
+                f"| {fmt(tr['travel_time_mean'])} | {fmt(tr['travel_time_p95'], 0)} | {fmt(tr['time_loss_mean'])} "
+                f"| {fmt(tr['route_length_mean'], 0)} | {fmt(tr['through_on_local'], 1, pct=True)} | {fmt(total)} |"
+            )
+        pics = [f"![layout](img/urban-{s['site']}-layout.png)"] + [
+            f"![city {Path(c).stem}](img/urban-{s['site']}-city-{Path(c).stem}.png)" for c in s["cities"]
+        ]
+        lines += ["", " ".join(pics), ""]
+    return "\n".join(lines)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    sub = ap.add_subparsers(dest="cmd", required=True)
+    a = sub.add_parser("run")
+    a.add_argument("--time-limit", default="20")
+    target = os.environ.get("CARGO_TARGET_DIR", str(ROOT / "target"))
+    a.add_argument("--bin", default=f"{target}/release/netspec")
+    a.add_argument("--out", default="out/urban-methods")
+    p = sub.add_parser("page")
+    p.add_argument("--check", action="store_true")
+    args = ap.parse_args()
+    if args.cmd == "run":
+        run(args)
+    else:
+        text = page(json.loads(RECORDS.read_text()))
+        if args.check:
+            if PAGE.read_text() != text:
+                sys.exit(f"{PAGE.relative_to(ROOT)} differs from its records: run scripts/urban-methods.py page")
+        else:
+            PAGE.write_text(text)
+
+
+if __name__ == "__main__":
+    main()
