@@ -3,9 +3,10 @@
 
 use super::field::FieldMethod;
 use super::metrics::{metrics, parcel_shape, Metrics};
-use super::parcels::{blocks, parcellate, StreetIndex};
+use super::parcels::blocks;
 use super::region::Region;
 use super::split::{split_with_progress, Selection, SplitError, SplitOptions};
+use super::template::parcellate_with_templates;
 use super::validate::{validate, Violation};
 use super::{Parcel, Street};
 use crate::geometry::P;
@@ -48,6 +49,8 @@ pub struct Layout {
     pub violations: Vec<Violation>,
     /// Counts of the control loop.
     pub split: SplitCounts,
+    /// Blocks parcelled per template (the others by the row parceller).
+    pub templates: std::collections::BTreeMap<String, usize>,
     /// Seconds per stage (not written to `layout.json`, so equal seeds give equal bytes).
     #[serde(skip)]
     pub times: Times,
@@ -184,12 +187,11 @@ pub fn layout_with_progress(
     let t1 = Instant::now();
     let streets: Vec<Street> =
         s.streets.iter().map(|st| Street { polyline: round(&st.polyline), ..st.clone() }).collect();
+    let mut streets = streets;
     let blocks = blocks(&region.polygon, &streets);
-    let parcels: Vec<Parcel> =
-        parcellate(&blocks, &StreetIndex::new(&streets), region.parcel.depth, region.parcel.width)
-            .into_iter()
-            .map(|p| Parcel { polygon: round(&p.polygon), ..p })
-            .collect();
+    let t = parcellate_with_templates(&blocks, &streets, region, &region.templates, opts.selection, &mut rng);
+    streets.extend(t.streets.into_iter().map(|st| Street { polyline: round(&st.polyline), ..st }));
+    let parcels: Vec<Parcel> = t.parcels.into_iter().map(|p| Parcel { polygon: round(&p.polygon), ..p }).collect();
     let t2 = Instant::now();
     let metrics = metrics(&region.polygon, &streets, &blocks, &parcels);
     let violations = validate(&region.polygon, &streets, &parcels);
@@ -206,6 +208,7 @@ pub fn layout_with_progress(
         metrics,
         violations,
         split,
+        templates: t.uses,
         times,
     })
 }
