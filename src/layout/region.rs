@@ -75,11 +75,19 @@ struct RegionToml {
     templates: Option<TemplatesToml>,
 }
 
-/// `[templates]`: a directory of the user's template files (relative to the region file).
+/// `[templates]`: a directory of the user's template files (relative to the region file), and
+/// whether the built-in ones are used.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct TemplatesToml {
-    dir: PathBuf,
+    #[serde(default)]
+    dir: Option<PathBuf>,
+    #[serde(default = "yes")]
+    builtin: bool,
+}
+
+fn yes() -> bool {
+    true
 }
 
 /// A region, checked.
@@ -224,8 +232,11 @@ pub fn region_from_toml(text: &str, path: &Path, stem: &str) -> Result<Region, R
             .map_err(|source| RegionError::Site { path: path.into(), source })?;
         roads.extend(pieces);
     }
-    let dir = t.templates.map(|d| path.parent().unwrap_or(Path::new("")).join(d.dir));
-    let templates = library(dir.as_deref())?;
+    let (dir, builtin) = match t.templates {
+        Some(d) => (d.dir.map(|d| path.parent().unwrap_or(Path::new("")).join(d)), d.builtin),
+        None => (None, true),
+    };
+    let templates = library(dir.as_deref(), builtin)?;
     let projection =
         t.origin.map(Projection::new).transpose().map_err(|source| RegionError::Site { path: path.into(), source })?;
     let region = Region {

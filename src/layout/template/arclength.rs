@@ -80,22 +80,25 @@ impl Ring {
         if end < best.0 {
             best = (end, s1);
         }
-        let l = self.length();
+        // Only the edges the arc spans, from the one holding s0.
         let n = self.pts.len();
-        let base = (s0 / l).floor() * l;
-        for lap in 0..2 {
-            for i in 0..n {
-                let (a, b) = (base + lap as f64 * l + self.cum[i], base + lap as f64 * l + self.cum[i + 1]);
-                let (lo, hi) = (a.max(s0), b.min(s1));
-                if lo >= hi {
-                    continue;
-                }
+        let (mut i, _) = self.locate(s0);
+        let mut a = s0 - (self.wrap(s0) - self.cum[i]);
+        for _ in 0..=2 * n {
+            let b = a + (self.cum[i + 1] - self.cum[i]);
+            let (lo, hi) = (a.max(s0), b.min(s1));
+            if lo < hi {
                 let (q, t) = closest_on_segment(p, self.at(lo), self.at(hi));
                 let d = dist(p, q);
                 if d < best.0 {
                     best = (d, lo + t * (hi - lo));
                 }
             }
+            if b >= s1 {
+                break;
+            }
+            a = b;
+            i = (i + 1) % n;
         }
         best.1
     }

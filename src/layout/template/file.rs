@@ -328,7 +328,7 @@ pub fn parse_template(text: &str, path: &str, stem: &str) -> Result<Template, Te
             return Err(bad(format!("corner[{i}].at"), "is not a vertex of a face".into()));
         }
     }
-    Ok(Template {
+    let template = Template {
         name: t.name.unwrap_or_else(|| stem.to_string()),
         kind: t.kind,
         faces,
@@ -339,7 +339,10 @@ pub fn parse_template(text: &str, path: &str, stem: &str) -> Result<Template, Te
         max_uses: t.max_uses,
         threshold,
         source: path.into(),
-    })
+    };
+    let units = template.repeat.map_or(1, |r| r.min);
+    super::instance::instantiate(&template, units, 1.0).map_err(|e| bad("face".into(), e.to_string()))?;
+    Ok(template)
 }
 
 /// The built-in templates.
@@ -353,10 +356,10 @@ pub fn builtin() -> Vec<Template> {
         .collect()
 }
 
-/// The built-in templates with the `*.toml` files of `dir` (in file-name order); a user template
-/// replaces the built-in one of the same name.
-pub fn library(dir: Option<&Path>) -> Result<Vec<Template>, TemplateError> {
-    let mut out = builtin();
+/// The built-in templates (unless `with_builtin` is false) with the `*.toml` files of `dir` (in
+/// file-name order); a user template replaces the built-in one of the same name.
+pub fn library(dir: Option<&Path>, with_builtin: bool) -> Result<Vec<Template>, TemplateError> {
+    let mut out = if with_builtin { builtin() } else { vec![] };
     let Some(dir) = dir else { return Ok(out) };
     let io = |source| TemplateError::Io { path: dir.into(), source };
     let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
@@ -415,5 +418,7 @@ mod tests {
         let e = err(&format!("colour = 3\n{ROW}"));
         assert!(e.contains("colour"), "{e}");
         assert!(err("kind = \"row\"\n").contains("face"));
+        let apart = format!("{ROW}[[face]]\npolygon = [[50, 0], [60, 0], [60, 10]]\nuse = \"park\"\n");
+        assert_eq!(err(&apart), "t.toml: face: the faces do not form one polygon without holes");
     }
 }

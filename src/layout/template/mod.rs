@@ -1,5 +1,7 @@
 //! Warped templates (Yang et al. 2013 §4): blocks are parcelled by the template that warps onto
 //! them with the least distortion, the row parceller taking the blocks no template fits.
+//! A region's `[templates]` table adds a directory of the user's files (`dir`) or leaves the
+//! built-in ones out (`builtin = false`: the row parceller alone).
 //!
 //! * [`file`]: template files (TOML) and the embedded library;
 //! * [`instance`]: a template made concrete (its repetition unrolled, shared vertices merged);

@@ -194,3 +194,51 @@ pub fn simple_ccw(ring: &[P]) -> bool {
     }
     true
 }
+
+#[cfg(test)]
+mod tests {
+    use super::super::arclength::matches;
+    use super::super::file::builtin;
+    use super::super::instance::instantiate;
+    use super::*;
+    use crate::layout::parcels::StreetIndex;
+    use crate::layout::Street;
+
+    fn block(pts: Vec<P>) -> Block {
+        let street = Street { polyline: vec![[-50.0, -7.5], [400.0, -7.5]], width: 15.0, level: 0 };
+        Block::new(pts, &StreetIndex::new(&[street]), 10.0)
+    }
+
+    #[test]
+    fn a_row_warps_exactly_onto_its_own_rectangle_and_along_the_street() {
+        let row = builtin().into_iter().find(|t| t.name == "row").unwrap();
+        let inst = instantiate(&row, 10, 1.0).unwrap();
+        let b = block(vec![[0.0, 0.0], [180.0, 0.0], [180.0, 30.0], [0.0, 30.0]]);
+        let m = matches(&inst, &b);
+        // Only the rotation that puts the template's street side on the block's street side.
+        assert_eq!(m.len(), 1);
+        assert!(m[0].distortion < 1e-12 && m[0].s[0] == 0.0);
+        let w = warp(&row, &inst, &b, &m[0], ROUNDS);
+        assert!(w.energy < 1e-9 && w.within_tolerance);
+        for (p, q) in w.pos.iter().zip(&inst.verts) {
+            assert!(dist(*p, *q) < 1e-9);
+        }
+        let faces = face_polygons(&inst, &b, &w);
+        let area: f64 = faces.iter().map(|f| crate::geometry::ring_area2(f) / 2.0).sum();
+        assert!((area - 180.0 * 30.0).abs() < 1e-6 && faces.iter().all(|f| simple_ccw(f)));
+    }
+
+    #[test]
+    fn registration_rounds_lower_the_distance_of_the_initial_warp() {
+        let row = builtin().into_iter().find(|t| t.name == "row").unwrap();
+        let inst = instantiate(&row, 10, 1.0).unwrap();
+        // A trapezoid: the back side shorter and shifted.
+        let b = block(vec![[0.0, 0.0], [190.0, 0.0], [170.0, 32.0], [10.0, 30.0]]);
+        let m = &matches(&inst, &b)[0];
+        let (w0, w) = (warp(&row, &inst, &b, m, 0), warp(&row, &inst, &b, m, ROUNDS));
+        assert!(w.distance < w0.distance, "{} ≥ {}", w.distance, w0.distance);
+        let faces = face_polygons(&inst, &b, &w);
+        let area: f64 = faces.iter().map(|f| crate::geometry::ring_area2(f) / 2.0).sum();
+        assert!((area - b.area).abs() < 1e-6 * b.area && faces.iter().all(|f| simple_ccw(f)));
+    }
+}
