@@ -122,3 +122,46 @@ fn bad_regions_are_refused_naming_the_field() {
         assert!(!err.contains("panicked"), "{file}: {err}");
     }
 }
+
+#[test]
+fn templates_parcel_some_lake_blocks_and_the_layout_still_validates() {
+    let region = read_region(&model("lake.toml")).unwrap();
+    let l = layout(
+        &region,
+        &LayoutOptions { field: FieldMethod::Distance, selection: Selection::Best, seed: 3, optimise: 0 },
+    )
+    .unwrap();
+    assert_eq!(l.violations, vec![]);
+    assert_eq!(validate(&region.polygon, &l.streets, &l.parcels), vec![]);
+    let used: usize = l.templates.values().sum();
+    assert!(used >= 5 && used <= l.split.blocks, "{:?}", l.templates);
+    assert!(l.parcels.iter().any(|p| p.template.is_some()) && l.parcels.iter().any(|p| p.template.is_none()));
+    // Counts from the template files are kept.
+    for t in &region.templates {
+        if let Some(k) = t.max_uses {
+            assert!(l.templates.get(&t.name).copied().unwrap_or(0) <= k, "{}", t.name);
+        }
+    }
+    // Fig. 6: the full warp registers the parcels closer to their ideal than mean-value
+    // coordinates alone.
+    let f = netspec::layout::template::fig6::fig6(&region, &region.templates).unwrap();
+    assert!(f.matched >= 5 && f.faces > 100, "{f:?}");
+    assert!(f.warp < f.mvc && f.ratio < 0.9, "{f:?}");
+}
+
+#[test]
+fn a_regions_template_dir_adds_its_templates_and_bad_files_are_named() {
+    let dir = tempfile::tempdir().unwrap();
+    let lake = std::fs::read_to_string(model("lake.toml")).unwrap();
+    std::fs::write(dir.path().join("r.toml"), format!("{lake}\n[templates]\ndir = \"mine\"\n")).unwrap();
+    std::fs::create_dir(dir.path().join("mine")).unwrap();
+    // A user's row template replaces the built-in one of the same name.
+    let row = "name = \"row\"\nkind = \"row\"\nmax_uses = 0\n[[face]]\npolygon = [[0, 0], [18, 0], [18, 30], [0, 30]]\nuse = \"commercial\"\n";
+    std::fs::write(dir.path().join("mine/a.toml"), row).unwrap();
+    let region = read_region(&dir.path().join("r.toml")).unwrap();
+    let mine = region.templates.iter().find(|t| t.name == "row").unwrap();
+    assert_eq!((mine.max_uses, region.templates.len()), (Some(0), 5));
+    std::fs::write(dir.path().join("mine/b.toml"), format!("{row}class = \"fluid\"\n")).unwrap();
+    let e = read_region(&dir.path().join("r.toml")).unwrap_err().to_string();
+    assert!(e.contains("mine/b.toml") && e.contains("face[0].class"), "{e}");
+}

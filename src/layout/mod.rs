@@ -10,6 +10,7 @@ pub mod region;
 pub mod run;
 pub mod split;
 pub mod streamline;
+pub mod template;
 pub mod validate;
 
 use crate::geometry::P;
@@ -49,4 +50,7 @@ pub struct Parcel {
     /// Its use.
     #[serde(rename = "use")]
     pub use_: Use,
+    /// The template it comes from (`None`: the row parceller).
+    #[serde(default)]
+    pub template: Option<String>,
 }

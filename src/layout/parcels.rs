@@ -30,7 +30,8 @@ pub fn street_area(region: &Polygon, streets: &[Street]) -> geo::MultiPolygon<f6
     region.to_geo().intersection(&union)
 }
 
-fn street_buffer(s: &Street) -> geo::MultiPolygon<f64> {
+/// A street's area: its centreline buffered by half its width (mitred joins, butt ends).
+pub fn street_buffer(s: &Street) -> geo::MultiPolygon<f64> {
     let line = geo::LineString::from(s.polyline.iter().map(|p| (p[0], p[1])).collect::<Vec<_>>());
     let style = geo::algorithm::buffer::BufferStyle::new(s.width / 2.0)
         .line_join(geo::algorithm::buffer::LineJoin::Miter(4.0))
@@ -107,7 +108,7 @@ pub fn parcellate(blocks: &[geo::Polygon<f64>], streets: &StreetIndex, depth: f6
             } else {
                 Use::Park
             };
-            out.push(Parcel { polygon: ring, use_ });
+            out.push(Parcel { polygon: ring, use_, template: None });
         }
     }
     out

@@ -2,6 +2,7 @@
 //! major roads) with the street widths, the parcel size and a seed, from TOML (local metres) or
 //! GeoJSON (WGS 84, projected to local metres by [`crate::geometry::site`]).
 
+use super::template::{library, Template, TemplateError};
 use crate::geometry::polygon::{Polygon, PolygonError, Ring};
 use crate::geometry::site::{self, Projection, SiteError};
 use crate::geometry::P;
@@ -70,6 +71,23 @@ struct RegionToml {
     parcel: ParcelSize,
     #[serde(default)]
     origin: Option<[f64; 2]>,
+    #[serde(default)]
+    templates: Option<TemplatesToml>,
+}
+
+/// `[templates]`: a directory of the user's template files (relative to the region file), and
+/// whether the built-in ones are used.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct TemplatesToml {
+    #[serde(default)]
+    dir: Option<PathBuf>,
+    #[serde(default = "yes")]
+    builtin: bool,
+}
+
+fn yes() -> bool {
+    true
 }
 
 /// A region, checked.
@@ -92,6 +110,8 @@ pub struct Region {
     pub seed: u64,
     /// WGS 84 ↔ local metres (GeoJSON regions, or a TOML `origin`); `None` writes no GeoJSON.
     pub projection: Option<Projection>,
+    /// The block templates: the built-in library, with a TOML region's `[templates] dir` added.
+    pub templates: Vec<Template>,
 }
 
 impl Region {
@@ -159,6 +179,9 @@ pub enum RegionError {
         /// What is expected.
         expected: &'static str,
     },
+    /// A template file was refused (the message names the file and the field).
+    #[error(transparent)]
+    Template(#[from] TemplateError),
     /// Refused up front: the layout would take too long.
     #[error(
         "{path}: the region ({area_km2:.1} km²) would hold about {parcels:.0} parcels of {depth} × {width} m; \
@@ -209,6 +232,11 @@ pub fn region_from_toml(text: &str, path: &Path, stem: &str) -> Result<Region, R
             .map_err(|source| RegionError::Site { path: path.into(), source })?;
         roads.extend(pieces);
     }
+    let (dir, builtin) = match t.templates {
+        Some(d) => (d.dir.map(|d| path.parent().unwrap_or(Path::new("")).join(d)), d.builtin),
+        None => (None, true),
+    };
+    let templates = library(dir.as_deref(), builtin)?;
     let projection =
         t.origin.map(Projection::new).transpose().map_err(|source| RegionError::Site { path: path.into(), source })?;
     let region = Region {
@@ -220,6 +248,7 @@ pub fn region_from_toml(text: &str, path: &Path, stem: &str) -> Result<Region, R
         parcel: t.parcel,
         seed: t.seed,
         projection,
+        templates,
     };
     check(region, path)
 }
@@ -266,6 +295,7 @@ pub fn region_from_geojson(text: &str, path: &Path, stem: &str) -> Result<Region
         },
         seed,
         projection: Some(s.projection),
+        templates: super::template::file::builtin(),
     };
     check(region, path)
 }

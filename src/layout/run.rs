@@ -4,9 +4,10 @@
 use super::field::FieldMethod;
 use super::metrics::{metrics, parcel_shape, Metrics};
 use super::optimise::{optimise, OptimiseOptions};
-use super::parcels::{blocks, parcellate, StreetIndex};
+use super::parcels::blocks;
 use super::region::Region;
 use super::split::{split_with_progress, Selection, SplitError, SplitOptions};
+use super::template::parcellate_with_templates;
 use super::validate::{validate, Violation};
 use super::{Parcel, Street};
 use crate::geometry::P;
@@ -57,6 +58,8 @@ pub struct Layout {
     pub split: SplitCounts,
     /// The global optimisation's iterations and whether its streets were kept.
     pub optimisation: Optimisation,
+    /// Blocks parcelled per template (the others by the row parceller).
+    pub templates: std::collections::BTreeMap<String, usize>,
     /// Seconds per stage (not written to `layout.json`, so equal seeds give equal bytes).
     #[serde(skip)]
     pub times: Times,
@@ -216,10 +219,10 @@ pub fn layout_with_progress(
     .map(|st| Street { polyline: round(&st.polyline), ..st })
     .collect();
     let t2 = Instant::now();
-    let mut done = Finished::new(region, optimised);
+    let mut done = Finished::new(region, optimised, opts.selection, &mut rng);
     let mut kept = opts.optimise > 0;
     if kept && !done.violations.is_empty() {
-        let plain = Finished::new(region, split_streets);
+        let plain = Finished::new(region, split_streets, opts.selection, &mut rng);
         if plain.violations.is_empty() {
             done = plain;
             kept = false;
@@ -246,14 +249,17 @@ pub fn layout_with_progress(
         violations: done.violations,
         split,
         optimisation: Optimisation { iterations: opts.optimise, kept },
+        templates: done.templates,
         times,
     })
 }
 
-/// Streets with their blocks, parcels, metrics and check.
+/// Streets with their blocks, parcels (templates first, the row parceller where none fits),
+/// metrics and check.
 struct Finished {
     streets: Vec<Street>,
     parcels: Vec<Parcel>,
+    templates: std::collections::BTreeMap<String, usize>,
     blocks: usize,
     metrics: Metrics,
     violations: Vec<Violation>,
@@ -261,18 +267,25 @@ struct Finished {
 }
 
 impl Finished {
-    fn new(region: &Region, streets: Vec<Street>) -> Finished {
+    fn new(region: &Region, mut streets: Vec<Street>, selection: Selection, rng: &mut Xoshiro256PlusPlus) -> Finished {
         let t = Instant::now();
         let blocks = blocks(&region.polygon, &streets);
+        let parcelled = parcellate_with_templates(&blocks, &streets, region, &region.templates, selection, rng);
+        streets.extend(parcelled.streets.into_iter().map(|st| Street { polyline: round(&st.polyline), ..st }));
         let parcels: Vec<Parcel> =
-            parcellate(&blocks, &StreetIndex::new(&streets), region.parcel.depth, region.parcel.width)
-                .into_iter()
-                .map(|p| Parcel { polygon: round(&p.polygon), ..p })
-                .collect();
+            parcelled.parcels.into_iter().map(|p| Parcel { polygon: round(&p.polygon), ..p }).collect();
         let parcel_seconds = t.elapsed().as_secs_f64();
         let metrics = metrics(&region.polygon, &streets, &blocks, &parcels);
         let violations = validate(&region.polygon, &streets, &parcels);
-        Finished { streets, parcels, blocks: blocks.len(), metrics, violations, parcel_seconds }
+        Finished {
+            streets,
+            parcels,
+            templates: parcelled.uses,
+            blocks: blocks.len(),
+            metrics,
+            violations,
+            parcel_seconds,
+        }
     }
 }
 

@@ -76,6 +76,7 @@ pub fn expand(mut spec: CitySpec) -> Result<CitySpec, CitySpecErrorKind> {
         parcel: ParcelSize::default(),
         seed: major.seed,
         projection: None,
+        templates: Vec::new(),
     };
     let opts = SplitOptions::for_region(&region, major.field, Selection::Best);
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(major.seed);

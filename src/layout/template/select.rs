@@ -1,0 +1,252 @@
+//! Hierarchical matching with repetition, per block: for every template, the number of units
+//! (parcels per row) and the corner match are tried in order of boundary distortion, the three
+//! best warped, the lowest energy kept; a template is acceptable when its energy is below its
+//! threshold, every face is within its tolerance, its faces tile the block, and its count
+//! (`max_uses`) is not used up. `Selection::Best` takes the lowest energy; `Selection::Random`
+//! draws uniformly (seeded) among the acceptable ones within [`SELECT_TOLERANCE`] of the lowest.
+//! When a choice fails (its faces fold, or its count is used up) the next is taken; when none is
+//! left the block goes to the row parceller.
+//!
+//! Template streets (the cul-de-sac of a spike) become streets one level below the deepest, at
+//! the narrowest street width, extended to the centreline of the street they leave; they are
+//! carved out of the template's faces. A residential face without street access is a park, a
+//! piece under a quarter of a parcel's area "other", as in the row parceller.
+
+use super::arclength::{matches, Block};
+use super::file::Template;
+use super::instance::{instantiate, Instance};
+use super::warp::{face_polygons, simple_ccw, warp, Warp, ROUNDS};
+use crate::geometry::{closest_on_segment, dist, P};
+use crate::layout::parcels::{parcellate, ring_of, street_buffer, StreetIndex};
+use crate::layout::region::Region;
+use crate::layout::split::Selection;
+use crate::layout::{Parcel, Street, Use};
+use geo::{Area, BooleanOps};
+use rand::rngs::Xoshiro256PlusPlus;
+use rand::RngExt;
+use std::collections::BTreeMap;
+
+/// Candidates within this energy of the best are drawn among in `Selection::Random`.
+pub const SELECT_TOLERANCE: f64 = 0.005;
+/// Corner matches warped per template (the least distorted).
+const WARPED_PER_TEMPLATE: usize = 3;
+
+/// The parcels of all blocks, the template streets, and how often each template was used.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct TemplateParcels {
+    /// Parcels in block order (each names its template, or none from the row parceller).
+    pub parcels: Vec<Parcel>,
+    /// Streets the templates made.
+    pub streets: Vec<Street>,
+    /// Uses per template name.
+    pub uses: BTreeMap<String, usize>,
+}
+
+/// A warped candidate for a block.
+#[derive(Clone, Debug)]
+pub struct Candidate {
+    /// The template's index in the library.
+    pub template: usize,
+    /// The concrete template.
+    pub instance: Instance,
+    /// The warp.
+    pub warp: Warp,
+}
+
+/// Concrete templates per (template, units), built once.
+pub struct Instances<'a> {
+    library: &'a [Template],
+    k: f64,
+    cache: BTreeMap<(usize, usize), Option<Instance>>,
+}
+
+impl<'a> Instances<'a> {
+    /// For a library and a region's parcel depth.
+    pub fn new(library: &'a [Template], depth: f64) -> Instances<'a> {
+        Instances { library, k: depth / 30.0, cache: BTreeMap::new() }
+    }
+
+    fn get(&mut self, t: usize, units: usize) -> Option<&Instance> {
+        let (lib, k) = (self.library, self.k);
+        self.cache.entry((t, units)).or_insert_with(|| instantiate(&lib[t], units, k).ok()).as_ref()
+    }
+}
+
+/// Every template's best warp onto the block (lowest energy over its least distorted matches),
+/// in library order; `rounds` as in [`warp`].
+pub fn candidates(block: &Block, instances: &mut Instances, rounds: usize) -> Vec<Candidate> {
+    let mut out = Vec::new();
+    for t in 0..instances.library.len() {
+        let tpl = &instances.library[t];
+        let units = tpl.repeat.map_or(1..=1, |r| r.min..=r.max);
+        let mut tried: Vec<(f64, usize, super::arclength::Match)> = Vec::new();
+        for u in units {
+            let Some(inst) = instances.get(t, u) else { continue };
+            if let Some(m) = matches(inst, block).into_iter().next() {
+                tried.push((m.distortion, u, m));
+            }
+        }
+        tried.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        let mut best: Option<Candidate> = None;
+        for (_, u, m) in tried.into_iter().take(WARPED_PER_TEMPLATE) {
+            let Some(inst) = instances.get(t, u) else { continue };
+            let w = warp(tpl, inst, block, &m, rounds);
+            if best.as_ref().is_none_or(|b| w.energy < b.warp.energy) {
+                best = Some(Candidate { template: t, instance: inst.clone(), warp: w });
+            }
+        }
+        out.extend(best);
+    }
+    out
+}
+
+/// Parcels every block: templates first, the row parceller where none is accepted.
+pub fn parcellate_with_templates(
+    blocks: &[geo::Polygon<f64>],
+    streets: &[Street],
+    region: &Region,
+    library: &[Template],
+    selection: Selection,
+    rng: &mut Xoshiro256PlusPlus,
+) -> TemplateParcels {
+    let (depth, width) = (region.parcel.depth, region.parcel.width);
+    let index = StreetIndex::new(streets);
+    let level = streets.iter().map(|s| s.level).max().map_or(0, |l| l + 1);
+    let street_width = region.street_widths.iter().copied().fold(f64::INFINITY, f64::min);
+    let mut instances = Instances::new(library, depth);
+    let mut out = TemplateParcels::default();
+    for b in blocks {
+        let placed = if b.interiors().is_empty() {
+            let block = Block::new(ring_of(b), &index, depth / 3.0);
+            let mut cands: Vec<Candidate> = candidates(&block, &mut instances, ROUNDS)
+                .into_iter()
+                .filter(|c| c.warp.energy < library[c.template].threshold && c.warp.within_tolerance)
+                .collect();
+            cands.sort_by(|a, b| a.warp.energy.total_cmp(&b.warp.energy).then(a.template.cmp(&b.template)));
+            place(
+                &block,
+                cands,
+                library,
+                &mut out,
+                selection,
+                rng,
+                streets,
+                &index,
+                (level, street_width),
+                depth * width,
+            )
+        } else {
+            false
+        };
+        if !placed {
+            out.parcels.extend(parcellate(std::slice::from_ref(b), &index, depth, width));
+        }
+    }
+    out
+}
+
+/// Places the first acceptable candidate (drawn in random mode); false when none is left.
+#[allow(clippy::too_many_arguments)]
+fn place(
+    block: &Block,
+    mut cands: Vec<Candidate>,
+    library: &[Template],
+    out: &mut TemplateParcels,
+    selection: Selection,
+    rng: &mut Xoshiro256PlusPlus,
+    streets: &[Street],
+    index: &StreetIndex,
+    (level, width): (usize, f64),
+    parcel_area: f64,
+) -> bool {
+    cands.retain(|c| {
+        let t = &library[c.template];
+        t.max_uses.is_none_or(|k| out.uses.get(&t.name).copied().unwrap_or(0) < k)
+    });
+    while !cands.is_empty() {
+        let pick = match selection {
+            Selection::Best => 0,
+            Selection::Random => {
+                let best = cands[0].warp.energy;
+                let near = cands.iter().take_while(|c| c.warp.energy <= best + SELECT_TOLERANCE).count();
+                rng.random_range(0..near)
+            }
+        };
+        let c = cands.remove(pick);
+        let t = &library[c.template];
+        let faces = face_polygons(&c.instance, block, &c.warp);
+        if !faces.iter().all(|f| simple_ccw(f)) {
+            continue;
+        }
+        let new_streets: Vec<Street> = c
+            .instance
+            .streets
+            .iter()
+            .map(|chain| Street { polyline: extend(chain, &c, streets), width, level })
+            .collect();
+        let carve = (!new_streets.is_empty()).then(|| {
+            let bufs: Vec<geo::MultiPolygon<f64>> = new_streets.iter().map(street_buffer).collect();
+            geo::unary_union(bufs.iter())
+        });
+        let local = StreetIndex::new(&new_streets);
+        for (fi, ring) in faces.iter().enumerate() {
+            let face = &t.faces[c.instance.face_of[fi]];
+            let poly = to_geo(ring);
+            let pieces = match &carve {
+                Some(cut) => poly.difference(cut).0,
+                None => vec![poly],
+            };
+            for piece in pieces {
+                let ring = ring_of(&piece);
+                let area = piece.unsigned_area();
+                if ring.len() < 3 || area < 1e-3 * parcel_area {
+                    continue;
+                }
+                let use_ = match face.use_ {
+                    _ if area < 0.25 * parcel_area => Use::Other,
+                    Use::Residential if !(index.fronts(&ring) || local.fronts(&ring)) => Use::Park,
+                    u => u,
+                };
+                out.parcels.push(Parcel { polygon: ring, use_, template: Some(t.name.clone()) });
+            }
+        }
+        out.streets.extend(new_streets);
+        *out.uses.entry(t.name.clone()).or_default() += 1;
+        return true;
+    }
+    false
+}
+
+/// A template street's warped centreline, each end on the block's boundary extended to the
+/// nearest point of an existing street's centreline (within that street's half width plus 1 m).
+fn extend(chain: &[usize], c: &Candidate, streets: &[Street]) -> Vec<P> {
+    let mut line: Vec<P> = chain.iter().map(|&v| c.warp.pos[v]).collect();
+    let on_boundary = |v: usize| c.instance.boundary.contains(&v);
+    let nearest = |p: P| -> Option<P> {
+        streets
+            .iter()
+            .flat_map(|s| s.polyline.windows(2).map(move |w| (closest_on_segment(p, w[0], w[1]).0, s.width)))
+            .filter(|(q, w)| dist(p, *q) <= w / 2.0 + 1.0)
+            .min_by(|a, b| dist(p, a.0).total_cmp(&dist(p, b.0)))
+            .map(|(q, _)| q)
+    };
+    if on_boundary(chain[0]) {
+        if let Some(q) = nearest(line[0]) {
+            line.insert(0, q);
+        }
+    }
+    if chain.len() > 1 && on_boundary(chain[chain.len() - 1]) {
+        if let Some(q) = nearest(line[line.len() - 1]) {
+            line.push(q);
+        }
+    }
+    line.dedup_by(|a, b| dist(*a, *b) < 1e-6);
+    line
+}
+
+fn to_geo(ring: &[P]) -> geo::Polygon<f64> {
+    geo::Polygon::new(
+        geo::LineString::from(ring.iter().chain(ring.first()).map(|p| (p[0], p[1])).collect::<Vec<_>>()),
+        vec![],
+    )
+}
