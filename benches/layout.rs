@@ -17,7 +17,7 @@ use std::path::Path;
 fn km2(c: &mut Criterion) {
     let region = read_region(&Path::new(env!("CARGO_MANIFEST_DIR")).join("models/layout/km2.toml")).unwrap();
     let opts =
-        LayoutOptions { field: FieldMethod::Distance, selection: Selection::Best, seed: region.seed, optimise: 10 };
+        LayoutOptions { field: FieldMethod::Distance, selection: Selection::Best, seed: region.seed, optimise: 0 };
     let mut g = c.benchmark_group("layout");
     g.sample_size(10);
     g.bench_function("km2: split, parcels, metrics, check", |b| b.iter(|| layout(black_box(&region), &opts).unwrap()));

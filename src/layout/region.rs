@@ -115,6 +115,23 @@ pub struct Region {
 }
 
 impl Region {
+    /// A region with every setting at its default — streets 15 m wide, a boundary street,
+    /// 30 × 18 m parcels, seed 0, the built-in templates — for a site given by another command
+    /// (a city's domain).
+    pub fn with_defaults(name: &str, polygon: Polygon, roads: Vec<Vec<P>>) -> Region {
+        Region {
+            name: name.to_string(),
+            polygon,
+            roads,
+            street_widths: default_widths(),
+            boundary: Boundary::Street,
+            parcel: ParcelSize::default(),
+            seed: 0,
+            projection: None,
+            templates: super::template::file::builtin(),
+        }
+    }
+
     /// The street width of a level.
     pub fn street_width(&self, level: usize) -> f64 {
         let w = &self.street_widths;

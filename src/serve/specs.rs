@@ -74,19 +74,25 @@ pub fn list(root: &Path) -> Vec<Listed> {
 }
 
 /// The pictures of `netspec city` and `netspec traffic` outputs that the page shows.
-pub const OUTPUT_PICTURES: &[(&str, &str)] =
-    &[("city.svg", "city"), ("volume.svg", "traffic"), ("traveltime.svg", "traffic"), ("comparison.svg", "traffic")];
+pub const OUTPUT_PICTURES: &[(&str, &str)] = &[
+    ("city.svg", "city"),
+    ("volume.svg", "traffic"),
+    ("traveltime.svg", "traffic"),
+    ("comparison.svg", "traffic"),
+    ("layout.svg", "layout"),
+    ("field.svg", "field"),
+];
 
-/// One city or traffic picture under the root.
+/// One city, traffic, layout or field picture under the root.
 #[derive(Serialize)]
 pub struct Output {
-    /// `city` or `traffic`.
+    /// `city`, `traffic`, `layout` or `field`.
     pub kind: &'static str,
     /// The picture's path under the root.
     pub path: String,
 }
 
-/// Every city and traffic picture under the root (four folders deep, runs left out), in path
+/// Every city, traffic, layout and field picture under the root (four folders deep, runs left out), in path
 /// order.
 pub fn outputs(root: &Path) -> Vec<Output> {
     let mut found = Vec::new();

@@ -5,7 +5,7 @@
 use super::spec::{CitySpec, CitySpecErrorKind, RoadSpec};
 use crate::geometry::{site, Polygon};
 use crate::layout::field::FieldMethod;
-use crate::layout::region::{Boundary, ParcelSize, Region};
+use crate::layout::region::Region;
 use crate::layout::split::{split, Selection, SplitOptions};
 use rand::rngs::Xoshiro256PlusPlus;
 use rand::SeedableRng;
@@ -67,17 +67,7 @@ pub fn expand(mut spec: CitySpec) -> Result<CitySpec, CitySpecErrorKind> {
         let line: Vec<[f64; 2]> = r.points.iter().map(metres).collect();
         roads.extend(site::clip_road(&polygon, &line, &format!("road[{i}]")).map_err(|e| err(e.to_string()))?);
     }
-    let region = Region {
-        name: spec.name.clone(),
-        polygon,
-        roads,
-        street_widths: vec![15.0],
-        boundary: Boundary::Street,
-        parcel: ParcelSize::default(),
-        seed: major.seed,
-        projection: None,
-        templates: Vec::new(),
-    };
+    let region = Region { seed: major.seed, ..Region::with_defaults(&spec.name, polygon, roads) };
     let opts = SplitOptions::for_region(&region, major.field, Selection::Best);
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(major.seed);
     let s = split(&region, &opts, &mut rng).map_err(|e| err(e.to_string()))?;

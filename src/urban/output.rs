@@ -113,18 +113,22 @@ fn polyline_length(points: &[[f64; 2]]) -> f64 {
 }
 
 /// The layout metrics of a city's streets (see [`CityResult::layout_metrics`]): the domain and the
-/// streets in metres, the major roads and the domain boundary as level-0 streets.
+/// streets in metres, the major roads and the domain boundary as level-0 streets, parcels from
+/// the built-in templates and the row parceller (as `netspec layout` makes them).
 pub fn layout_metrics(
     spec: &CitySpec,
     major: &[[[f64; 2]; 2]],
     streets: &[Snake],
 ) -> Option<crate::layout::metrics::Metrics> {
+    use crate::layout::split::Selection;
+    use crate::layout::template::parcellate_with_templates;
     use crate::layout::{metrics, parcels, Street};
     let m = spec.metres_per_unit;
     let scale = |pts: &[[f64; 2]]| pts.iter().map(|p| [p[0] * m, p[1] * m]).collect::<Vec<_>>();
     let polygon = crate::geometry::Polygon::new(scale(&spec.domain.outer), Vec::new()).ok()?;
-    let (width, depth, frontage) = (15.0, 30.0, 18.0);
-    let all: Vec<Street> = major
+    let region = crate::layout::region::Region::with_defaults(&spec.name, polygon, Vec::new());
+    let width = region.street_width(0);
+    let mut all: Vec<Street> = major
         .iter()
         .map(|g| Street { polyline: scale(g), width, level: 0 })
         .chain(streets.iter().filter(|s| s.points.len() >= 2).map(|s| Street {
@@ -133,9 +137,11 @@ pub fn layout_metrics(
             level: s.level as usize,
         }))
         .collect();
-    let blocks = parcels::blocks(&polygon, &all);
-    let parcels = parcels::parcellate(&blocks, &parcels::StreetIndex::new(&all), depth, frontage);
-    Some(metrics::metrics(&polygon, &all, &blocks, &parcels))
+    let blocks = parcels::blocks(&region.polygon, &all);
+    let mut rng = <rand::rngs::Xoshiro256PlusPlus as rand::SeedableRng>::seed_from_u64(region.seed);
+    let t = parcellate_with_templates(&blocks, &all, &region, &region.templates, Selection::Best, &mut rng);
+    all.extend(t.streets);
+    Some(metrics::metrics(&region.polygon, &all, &blocks, &t.parcels))
 }
 
 /// Runs a city end to end and writes every output under `out`.

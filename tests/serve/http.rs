@@ -283,13 +283,14 @@ fn stop_and_a_closed_page_keep_the_best_design() {
 }
 
 #[test]
-fn city_and_traffic_pictures_are_listed_and_served_only_under_the_root() {
+fn city_layout_and_traffic_pictures_are_listed_and_served_only_under_the_root() {
     let root = tempfile::tempdir().unwrap();
     let city = r#"<svg xmlns="http://www.w3.org/2000/svg"><path d="M0 0L1 1" data-level="1"/><path d="M1 1L2 2" data-level="3"/></svg>"#;
     for (dir, name, text) in [
         ("out/fig7a", "city.svg", city),
         ("out/traffic/a", "volume.svg", "<svg></svg>"),
         ("out/traffic", "comparison.svg", "<svg></svg>"),
+        ("out/lake", "layout.svg", "<svg></svg>"),
         ("out/other", "notes.svg", "<svg></svg>"),
         ("runs/r0001", "city.svg", city),
     ] {
@@ -311,6 +312,7 @@ fn city_and_traffic_pictures_are_listed_and_served_only_under_the_root() {
             .collect();
         let want = [
             ("city", "out/fig7a/city.svg"),
+            ("layout", "out/lake/layout.svg"),
             ("traffic", "out/traffic/a/volume.svg"),
             ("traffic", "out/traffic/comparison.svg"),
         ];
