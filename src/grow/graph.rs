@@ -187,9 +187,13 @@ impl Graph {
     }
 
     /// Splits segment `s` at node `x` (on it): `s` keeps `a–x`, a new segment `x–b` with the same
-    /// class, width, age and traffic is returned.
-    pub fn split(&mut self, s: u32, x: u32) -> u32 {
+    /// class, width, age and traffic is returned. Refused (`None`) when `x` is an end or already
+    /// joined to one (the pieces would duplicate segments).
+    pub fn split(&mut self, s: u32, x: u32) -> Option<u32> {
         let Segment { a, b, class, width, born, load } = self.segs[s as usize].clone();
+        if x == a || x == b || self.find(a, x).is_some() || self.find(x, b).is_some() {
+            return None;
+        }
         self.by_ends.remove(&key(a, b));
         self.adj[b as usize].retain(|&t| t != s);
         self.segs[s as usize].b = x;
@@ -198,7 +202,7 @@ impl Graph {
         let (pa, px) = (self.nodes[a as usize].pos, self.nodes[x as usize].pos);
         self.index.shrink(s as usize, pa, px);
         self.splits.push((a, b, x));
-        self.add_seg(x, b, class, width, born, load)
+        Some(self.add_seg(x, b, class, width, born, load))
     }
 
     /// The node at `p`: an existing one within [`SNAP`], else a new one (splitting a segment of
@@ -239,9 +243,9 @@ impl Graph {
             }
             let (pc, pd) = (self.nodes[g.a as usize].pos, self.nodes[g.b as usize].pos);
             let shares = g.a == a || g.a == b || g.b == a || g.b == b;
-            // Segments sharing an end meet only there, unless collinear (then the ends of one
-            // lying inside the other are cuts or splits).
-            let tol = if shares { 1e-6 } else { SNAP };
+            // Segments sharing an end meet only there, unless (nearly) collinear: then the ends
+            // of one lying within the tolerance of the other are cuts or splits.
+            let tol = SNAP;
             let mut touched = false;
             for (n, p) in [(g.a, pc), (g.b, pd)] {
                 let (q, t) = closest_on_segment(p, pa, pb);

@@ -45,6 +45,15 @@ pub enum EdgeKind {
     Bridge,
 }
 
+/// One step of a direction along its major axis: the vertex at or below the point, and the
+/// vertex above it with the point's fraction between them when it lies between two.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Step {
+    da: i64,
+    db: i64,
+    f: f64,
+}
+
 /// The implicit lattice graph over a terrain.
 #[derive(Clone, Debug)]
 pub struct Lattice {
@@ -62,6 +71,8 @@ pub struct Lattice {
     pub harbour_factor: f64,
     /// Weight factor of an unbuilt bridge edge (C₅).
     pub bridge_factor: f64,
+    steps: Vec<Vec<Step>>,
+    lens: Vec<(f64, f64)>,
 }
 
 /// One generated edge.
@@ -76,6 +87,43 @@ pub struct Edge {
 }
 
 impl Lattice {
+    /// The lattice over `terrain` with the radius-`r` mask and its edge rules.
+    pub fn new(
+        terrain: Terrain,
+        r: u32,
+        slope_cut: f64,
+        o1: f64,
+        bridge_max: f64,
+        harbour_factor: f64,
+        bridge_factor: f64,
+    ) -> Lattice {
+        let dirs = directions(r);
+        let nx = terrain.nx as i64;
+        let mut steps = Vec::with_capacity(dirs.len());
+        let mut lens = Vec::with_capacity(dirs.len());
+        for d in &dirs {
+            let k = d[0].abs().max(d[1].abs()) as i64;
+            let len = ((d[0] * d[0] + d[1] * d[1]) as f64).sqrt() * terrain.spacing;
+            lens.push((len, len / k as f64));
+            let mut list = Vec::new();
+            for i in 1..=k {
+                let (px, py) = (d[0] as i64 * i, d[1] as i64 * i);
+                let (kx, ky) = (px.div_euclid(k), py.div_euclid(k));
+                let (rx, ry) = (px.rem_euclid(k), py.rem_euclid(k));
+                let (db, f) = if rx != 0 {
+                    (1, rx as f64 / k as f64)
+                } else if ry != 0 {
+                    (nx, ry as f64 / k as f64)
+                } else {
+                    (0, 0.0)
+                };
+                list.push(Step { da: ky * nx + kx, db, f });
+            }
+            steps.push(list);
+        }
+        Lattice { terrain, dirs, slope_cut, o1, bridge_max, harbour_factor, bridge_factor, steps, lens }
+    }
+
     /// Vertex count.
     pub fn len(&self) -> usize {
         self.terrain.nx * self.terrain.ny
@@ -123,30 +171,43 @@ impl Lattice {
         }
     }
 
-    /// The land edge from `v` by `d`, if every vertex it passes is land and not `blocked`, and its
-    /// steepest grade is within the cut-off: weight LENGTH · max(1, O₁ · grade).
-    pub fn land_edge(&self, v: u32, d: [i32; 2], blocked: &dyn Fn(u32) -> bool, buf: &mut Vec<u32>) -> Option<f64> {
-        let to = self.offset(v, d, 1)?;
-        if self.class(to) != LAND || blocked(to) {
-            return None;
-        }
-        self.samples(v, d, buf);
-        if buf.iter().any(|&u| self.class(u) != LAND || blocked(u)) {
-            return None;
-        }
+    /// The land edge from `v` in direction `k`, if every vertex it passes is land and not
+    /// `blocked`, and its steepest grade is within the cut-off: weight LENGTH · max(1, O₁ ·
+    /// grade). Elevations along the edge are interpolated between the two vertices it passes
+    /// between at each step along its major axis.
+    pub fn land_edge<B: Fn(u32) -> bool>(&self, v: u32, k: usize, blocked: &B) -> Option<f64> {
+        let to = self.offset(v, self.dirs[k], 1)?;
         let t = &self.terrain;
-        let k = d[0].abs().max(d[1].abs());
-        let len = ((d[0] * d[0] + d[1] * d[1]) as f64).sqrt() * t.spacing;
-        let (p, q) = (self.pos(v), self.pos(to));
-        let mut grade: f64 = 0.0;
+        if t.class[to as usize] != LAND || blocked(to) {
+            return None;
+        }
+        let (len, run) = self.lens[k];
+        let limit = self.slope_cut * run;
+        let mut worst: f64 = 0.0;
         let mut prev = t.z[v as usize] as f64;
-        for i in 1..=k {
-            let f = i as f64 / k as f64;
-            let z = t.elevation([p[0] + (q[0] - p[0]) * f, p[1] + (q[1] - p[1]) * f]);
-            grade = grade.max((z - prev).abs() / (len / k as f64));
+        let steps = &self.steps[k];
+        for (i, st) in steps.iter().enumerate() {
+            let a = (v as i64 + st.da) as usize;
+            let z = if st.db == 0 {
+                if i + 1 < steps.len() && (t.class[a] != LAND || blocked(a as u32)) {
+                    return None;
+                }
+                t.z[a] as f64
+            } else {
+                let b = (a as i64 + st.db) as usize;
+                if t.class[a] != LAND || t.class[b] != LAND || blocked(a as u32) || blocked(b as u32) {
+                    return None;
+                }
+                t.z[a] as f64 * (1.0 - st.f) + t.z[b] as f64 * st.f
+            };
+            let rise = (z - prev).abs();
+            if rise > limit {
+                return None;
+            }
+            worst = worst.max(rise);
             prev = z;
         }
-        (grade <= self.slope_cut).then(|| len * (self.o1 * grade).max(1.0))
+        Some(len * (self.o1 * worst / run).max(1.0))
     }
 
     /// The water edge from `v` by `d`, if it runs over water only: weight LENGTH.
@@ -164,7 +225,7 @@ impl Lattice {
 
     /// The bridge from land vertex `v` in direction `d`: over water vertices `v + d, v + 2d, …`
     /// to the first land vertex, within the longest span.
-    fn bridge_edge(&self, v: u32, d: [i32; 2], blocked: &dyn Fn(u32) -> bool) -> Option<(u32, f64)> {
+    fn bridge_edge<B: Fn(u32) -> bool>(&self, v: u32, d: [i32; 2], blocked: &B) -> Option<(u32, f64)> {
         let step = ((d[0] * d[0] + d[1] * d[1]) as f64).sqrt() * self.terrain.spacing;
         let first = self.offset(v, d, 1)?;
         if self.class(first) != WATER {
@@ -186,15 +247,15 @@ impl Lattice {
 
     /// Every edge from `v` not touching a `blocked` vertex: land or water edges in the mask's
     /// directions, harbour edges to the 8 neighbours of the other class, bridges.
-    pub fn edges(&self, v: u32, blocked: &dyn Fn(u32) -> bool, out: &mut Vec<Edge>, buf: &mut Vec<u32>) {
+    pub fn edges<B: Fn(u32) -> bool>(&self, v: u32, blocked: &B, out: &mut Vec<Edge>, buf: &mut Vec<u32>) {
         out.clear();
         let class = self.class(v);
         if class == FORBIDDEN || blocked(v) {
             return;
         }
-        for &d in &self.dirs {
+        for (k, &d) in self.dirs.iter().enumerate() {
             if class == LAND {
-                if let Some(w) = self.land_edge(v, d, blocked, buf) {
+                if let Some(w) = self.land_edge(v, k, blocked) {
                     out.push(Edge { to: self.offset(v, d, 1).expect("checked"), weight: w, kind: EdgeKind::Land });
                 } else if let Some((to, w)) = self.bridge_edge(v, d, blocked) {
                     out.push(Edge { to, weight: w, kind: EdgeKind::Bridge });
@@ -229,19 +290,14 @@ mod tests {
     #[test]
     fn samples_cover_the_line() {
         let t = Terrain { nx: 10, ny: 10, spacing: 1.0, z: vec![0.0; 100], class: vec![LAND; 100] };
-        let l = Lattice {
-            terrain: t,
-            dirs: directions(3),
-            slope_cut: 1.0,
-            o1: 1.0,
-            bridge_max: 10.0,
-            harbour_factor: 1.0,
-            bridge_factor: 1.0,
-        };
+        let l = Lattice::new(t, 3, 1.0, 1.0, 10.0, 1.0, 1.0);
         let mut buf = Vec::new();
         l.samples(0, [3, 0], &mut buf);
         assert_eq!(buf, vec![1, 2]);
         l.samples(0, [3, 1], &mut buf);
         assert_eq!(buf, vec![1, 11, 2, 12]);
+        let k = l.dirs.iter().position(|&d| d == [3, 1]).unwrap();
+        assert!((l.land_edge(0, k, &|_| false).unwrap() - 10f64.sqrt()).abs() < 1e-12);
+        assert!(l.land_edge(0, k, &|u| u == 12).is_none());
     }
 }

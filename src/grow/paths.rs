@@ -51,7 +51,8 @@ pub trait Space {
 
 /// The least-cost path from `source` to `target`; `h_factor` times the straight distance is the
 /// A* heuristic (0 for Dijkstra; admissible when no edge costs less per metre), `turn` the
-/// penalty of the angle at a state between its incoming and outgoing edges.
+/// penalty of the angle at a state between its incoming and outgoing edges, given as its cosine
+/// (−1 straight on, 1 turning back).
 pub fn shortest(
     space: &mut dyn Space,
     source: u32,
@@ -59,12 +60,13 @@ pub fn shortest(
     h_factor: f64,
     turn: Option<&dyn Fn(f64) -> f64>,
 ) -> Option<Found> {
+    let length = |d: P| (d[0] * d[0] + d[1] * d[1]).sqrt();
     let n = space.len();
     let mut g = vec![f64::INFINITY; n];
     let mut prev = vec![u32::MAX; n];
     let mut done = vec![false; n];
     let goal = space.pos(target);
-    let h = |p: P| h_factor * norm(sub(p, goal));
+    let h = |p: P| h_factor * length(sub(p, goal));
     let mut heap = BinaryHeap::new();
     g[source as usize] = 0.0;
     heap.push(Entry { key: h(space.pos(source)), v: source });
@@ -86,7 +88,9 @@ pub fn shortest(
             }
             let mut c = g[v as usize] + w;
             if let (Some(f), Some(pp)) = (turn, incoming) {
-                c += f(angle(pp, pv, space.pos(u)));
+                let (a, b) = (sub(pp, pv), sub(space.pos(u), pv));
+                let l = length(a) * length(b);
+                c += f(if l > 0.0 { (dot(a, b) / l).clamp(-1.0, 1.0) } else { -1.0 });
             }
             if c < g[u as usize] {
                 g[u as usize] = c;
@@ -123,6 +127,19 @@ pub fn turn_penalty(alpha: f64, center: f64, width: f64, height: f64) -> f64 {
     height * (1.0 - x * x * (3.0 - 2.0 * x))
 }
 
+/// [`turn_penalty`] of the angle whose cosine is `cos_alpha`, without an arc cosine where the
+/// penalty is nothing or full.
+pub fn turn_penalty_cos(cos_alpha: f64, center: f64, width: f64, height: f64) -> f64 {
+    let (lo, hi) = ((center - width / 2.0).max(0.0), (center + width / 2.0).min(std::f64::consts::PI));
+    if cos_alpha <= hi.cos() {
+        0.0
+    } else if cos_alpha >= lo.cos() {
+        height
+    } else {
+        turn_penalty(cos_alpha.acos(), center, width, height)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -156,5 +173,10 @@ mod tests {
         assert_eq!(turn_penalty(pi, 0.6 * pi, 0.4 * pi, 200.0), 0.0);
         assert_eq!(turn_penalty(0.0, 0.6 * pi, 0.4 * pi, 200.0), 200.0);
         assert!((angle([0.0, 0.0], [1.0, 0.0], [2.0, 0.0]) - pi).abs() < 1e-12);
+        for a in [0.0, 0.5, 1.0, 1.5, 2.0, 2.5, 3.0, pi] {
+            let (x, y) =
+                (turn_penalty(a, 0.6 * pi, 0.4 * pi, 200.0), turn_penalty_cos(a.cos(), 0.6 * pi, 0.4 * pi, 200.0));
+            assert!((x - y).abs() < 1e-9, "{a}: {x} {y}");
+        }
     }
 }

@@ -5,9 +5,9 @@
 use super::blocks::{self, Blocks};
 use super::context::Context;
 use super::graph::{Class, Graph};
-use super::lattice::{directions, Lattice};
+use super::lattice::Lattice;
 use super::minor::{Grower, Growth, Nucleus};
-use super::paths::{shortest, turn_penalty, Found};
+use super::paths::{shortest, turn_penalty_cos, Found};
 use super::spaces::{Costs, InitialSpace, MajorSpace, NewSpace, Stitches};
 use super::terrain::{Terrain, FORBIDDEN, LAND, WATER};
 use super::traffic::{self, Pair, Route, Traffic};
@@ -65,6 +65,7 @@ pub struct StepStats {
 }
 
 /// A running simulation.
+#[derive(Clone)]
 pub struct Sim {
     /// The context.
     pub ctx: Context,
@@ -102,15 +103,7 @@ impl Sim {
         let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
         let terrain = Terrain::build(ctx, seed)?;
         let p = &ctx.params;
-        let lattice = Lattice {
-            terrain,
-            dirs: directions(ctx.radius),
-            slope_cut: p.slope_cut,
-            o1: p.o[0],
-            bridge_max: p.bridge,
-            harbour_factor: p.c[2],
-            bridge_factor: p.c[4],
-        };
+        let lattice = Lattice::new(terrain, ctx.radius, p.slope_cut, p.o[0], p.bridge, p.c[2], p.c[4]);
         let mu = p.mu.unwrap_or_else(|| 0.5 + 0.4 * rng.random::<f64>());
         let b = p.b.unwrap_or_else(|| 0.7 + 0.6 * rng.random::<f64>());
         let vertices = place_cities(ctx, &lattice, &mut rng)?;
@@ -395,7 +388,7 @@ impl Sim {
         let p = &self.ctx.params;
         let costs = Costs { c: p.c, per_lane: self.traffic.per_lane, delta };
         let [sc, sw, sh] = p.turn;
-        let turn = move |a: f64| turn_penalty(a, sc.to_radians(), sw.to_radians(), sh);
+        let turn = move |c: f64| turn_penalty_cos(c, sc.to_radians(), sw.to_radians(), sh);
         let [a, b] = self.traffic.pairs[pair].cities;
         let (u, v) = (self.cities[a].node, self.cities[b].node);
         let nl = self.lattice.len() as u32;
