@@ -130,13 +130,35 @@ pub fn turn_penalty(alpha: f64, center: f64, width: f64, height: f64) -> f64 {
 /// [`turn_penalty`] of the angle whose cosine is `cos_alpha`, without an arc cosine where the
 /// penalty is nothing or full.
 pub fn turn_penalty_cos(cos_alpha: f64, center: f64, width: f64, height: f64) -> f64 {
-    let (lo, hi) = ((center - width / 2.0).max(0.0), (center + width / 2.0).min(std::f64::consts::PI));
-    if cos_alpha <= hi.cos() {
-        0.0
-    } else if cos_alpha >= lo.cos() {
-        height
-    } else {
-        turn_penalty(cos_alpha.acos(), center, width, height)
+    TurnPenalty::new(center, width, height).at_cos(cos_alpha)
+}
+
+/// The turn penalty P(α) with its zero and full ranges as cosines, for many evaluations.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TurnPenalty {
+    center: f64,
+    width: f64,
+    height: f64,
+    cos_lo: f64,
+    cos_hi: f64,
+}
+
+impl TurnPenalty {
+    /// P with centre and width in radians and height in metres.
+    pub fn new(center: f64, width: f64, height: f64) -> TurnPenalty {
+        let (lo, hi) = ((center - width / 2.0).max(0.0), (center + width / 2.0).min(std::f64::consts::PI));
+        TurnPenalty { center, width, height, cos_lo: lo.cos(), cos_hi: hi.cos() }
+    }
+
+    /// P at the angle whose cosine is `c`.
+    pub fn at_cos(&self, c: f64) -> f64 {
+        if c <= self.cos_hi {
+            0.0
+        } else if c >= self.cos_lo {
+            self.height
+        } else {
+            turn_penalty(c.acos(), self.center, self.width, self.height)
+        }
     }
 }
 

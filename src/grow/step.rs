@@ -7,7 +7,7 @@ use super::context::Context;
 use super::graph::{Class, Graph};
 use super::lattice::Lattice;
 use super::minor::{Grower, Growth, Nucleus};
-use super::paths::{shortest, turn_penalty_cos, Found};
+use super::paths::{shortest, Found, TurnPenalty};
 use super::spaces::{Costs, InitialSpace, MajorSpace, NewSpace, Stitches};
 use super::terrain::{Terrain, FORBIDDEN, LAND, WATER};
 use super::traffic::{self, Pair, Route, Traffic};
@@ -388,7 +388,8 @@ impl Sim {
         let p = &self.ctx.params;
         let costs = Costs { c: p.c, per_lane: self.traffic.per_lane, delta };
         let [sc, sw, sh] = p.turn;
-        let turn = move |c: f64| turn_penalty_cos(c, sc.to_radians(), sw.to_radians(), sh);
+        let penalty = TurnPenalty::new(sc.to_radians(), sw.to_radians(), sh);
+        let turn = move |c: f64| penalty.at_cos(c);
         let [a, b] = self.traffic.pairs[pair].cities;
         let (u, v) = (self.cities[a].node, self.cities[b].node);
         let nl = self.lattice.len() as u32;
