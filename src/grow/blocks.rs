@@ -1,8 +1,8 @@
 //! Blocks and the built-up area (§3.4.2, Eq. 1): the faces of the planar road graph, classified
 //! by area into built-up blocks and terrain blocks; the built-up area B rasterised on the
 //! lattice as FILL(built-up blocks) ∪ NB(outlines of every block) (the shell taken as the union
-//! of bounded faces, so dangling roads are not built up, reading A9); its settlements; and which
-//! segments are extendible (no built-up block on either side, A11).
+//! of bounded faces, so dangling roads are not built up); its settlements; and which
+//! segments are extendible (no built-up block on either side).
 
 use super::graph::Graph;
 use super::terrain::Terrain;
@@ -15,7 +15,7 @@ pub struct Face {
     pub ring: Vec<P>,
     /// Its area (m²).
     pub area: f64,
-    /// The step its last boundary segment was built in (its age, A21).
+    /// The step its last boundary segment was built in (its age).
     pub born: u32,
     /// A built-up block (not larger than the terrain-block threshold).
     pub built_up: bool,

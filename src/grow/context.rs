@@ -1,6 +1,6 @@
 //! The historical context file (TOML): the map, its terrain and water, the cities, and the time
 //! table of the growth parameters. Every key but `size` has a default (the paper's where it gives
-//! one, else the reading's); unknown keys are refused and every error names its field
+//! one, else netspec's, docs/grow.md); unknown keys are refused and every error names its field
 //! (`water[1].river`).
 
 use super::GrowError;
@@ -127,7 +127,7 @@ impl Default for Terrain {
     }
 }
 
-/// Coefficients and the time table (§2.2 of the reading).
+/// Coefficients and the time table (docs/grow.md lists the defaults).
 #[derive(Clone, Debug, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct Params {

@@ -335,7 +335,7 @@ impl Sim {
         true
     }
 
-    /// Nuclei weaken towards the map's border (reading A6).
+    /// Nuclei weaken towards the map's border.
     fn attenuation(&self, p: P) -> f64 {
         let [w, h] = self.ctx.size;
         let d = p[0].min(p[1]).min(w - p[0]).min(h - p[1]).max(0.0);
@@ -709,7 +709,7 @@ fn place_cities(ctx: &Context, lattice: &Lattice, rng: &mut Xoshiro256PlusPlus) 
 
 /// The pair lists: all pairs sorted by the angle they span at the centre, the smallest removed
 /// while the remaining pair graph stays connected (stopping at the first that would disconnect
-/// it, reading A4); the rest permuted is γ′ (built), the removed pairs are only found in G.
+/// it); the rest permuted is γ′ (built), the removed pairs are only found in G.
 fn pairs(ctx: &Context, cities: &[City], rng: &mut Xoshiro256PlusPlus) -> (Vec<[usize; 2]>, Vec<[usize; 2]>) {
     let x = ctx.center_position();
     let mut all: Vec<(f64, [usize; 2])> = Vec::new();

@@ -3,7 +3,7 @@
 //! T(s) = Σ T(P), available capacities T_A(s) = O₂ · WIDTH(s) − T(s), T_A(P) = min T_A(s), the
 //! available capacity of a route list T_A(𝒫) (routes saturated one by one, shortest first), and
 //! the greedy redistribution of a pair's demand (what does not fit goes on the shortest route
-//! and is recorded as overflow, reading A16).
+//! and is recorded as overflow).
 
 use super::graph::{Class, Graph};
 use std::collections::HashMap;
