@@ -17,6 +17,7 @@ pub mod design;
 pub mod explain;
 pub mod formulations;
 pub mod geometry;
+pub mod grow;
 pub mod heuristics;
 pub mod io;
 pub mod layout;

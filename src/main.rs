@@ -12,6 +12,7 @@ mod cli {
     pub mod args;
     pub mod city;
     pub mod compare;
+    pub mod grow;
     pub mod interrupt;
     pub mod layout;
     pub mod level;
@@ -336,6 +337,26 @@ enum Command {
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
     },
+    /// Grow a road network by traffic (Beneš, Wilkie & Křivánek 2014): settlements, minor streets
+    /// around growth nuclei and major roads built where trade between neighbouring cities
+    /// saturates the routes. CONTEXT is a TOML historical context (docs/grow.md). Writes
+    /// network.json, series.csv, network.svg/.png (and network.geojson with an origin) into DIR.
+    Grow {
+        /// The context file.
+        context: PathBuf,
+        /// Output directory.
+        #[arg(long, value_name = "DIR")]
+        out: PathBuf,
+        /// Seed of every random choice (default: the context's `seed`).
+        #[arg(long)]
+        seed: Option<u64>,
+        /// Time steps (default: the context's `steps`).
+        #[arg(long, value_name = "N")]
+        steps: Option<u32>,
+        /// Also write step-NNN.svg every K steps (and at step 0).
+        #[arg(long, value_name = "K", value_parser = clap::value_parser!(u32).range(1..))]
+        every: Option<u32>,
+    },
     /// A region's cross field (smooth or distance): field.json (singularities with their index,
     /// the field per vertex), field.svg and field.png with a few streamlines.
     Field {
@@ -651,6 +672,9 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 optimise: optimise as usize,
                 out,
             })
+        }
+        Command::Grow { context, out, seed, steps, every } => {
+            cli::grow::run(&netspec::grow::GrowRequest { context, out, seed, steps, every })
         }
         Command::Field { region, method, h, out } => {
             if let Some(h) = h.filter(|h| !(h.is_finite() && *h > 0.0)) {

@@ -37,6 +37,8 @@ mod levels;
 mod level_families;
 // A laid-out level exported as a mesh and a network spec, solved, crossings checked by geometry.
 mod level_bridge;
+// Road networks grown by traffic (Beneš et al. 2014) on small maps.
+mod grow;
 // One time limit per command; nothing found is lost (processes killed with SIGKILL).
 mod promises;
 

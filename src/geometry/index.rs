@@ -35,6 +35,35 @@ impl SegmentIndex {
         index
     }
 
+    /// An empty index over the box `lo`–`hi` with cells of about `cell` metres (at most 4 million
+    /// cells), grown with [`SegmentIndex::push`]. Segments outside the box land in its border
+    /// cells (still found, only slower).
+    pub fn with_bounds(lo: P, hi: P, cell: f64) -> SegmentIndex {
+        let extent = (hi[0] - lo[0]).max(hi[1] - lo[1]).max(1e-9);
+        let cell = cell.max(extent / 2000.0).max(1e-9);
+        let dims = [((hi[0] - lo[0]) / cell) as usize + 1, ((hi[1] - lo[1]) / cell) as usize + 1];
+        SegmentIndex { segments: Vec::new(), origin: lo, cell, dims, buckets: vec![Vec::new(); dims[0] * dims[1]] }
+    }
+
+    /// Adds segment `ab`; returns its index.
+    pub fn push(&mut self, a: P, b: P) -> usize {
+        let i = self.segments.len();
+        self.segments.push((a, b));
+        let (c0, c1) = (self.cell_of([a[0].min(b[0]), a[1].min(b[1])]), self.cell_of([a[0].max(b[0]), a[1].max(b[1])]));
+        for x in c0[0]..=c1[0] {
+            for y in c0[1]..=c1[1] {
+                self.buckets[y * self.dims[0] + x].push(i as u32);
+            }
+        }
+        i
+    }
+
+    /// Replaces segment `i` by a piece of it (`ab` on the old segment): its buckets are kept,
+    /// a superset of the piece's.
+    pub fn shrink(&mut self, i: usize, a: P, b: P) {
+        self.segments[i] = (a, b);
+    }
+
     fn cell_of(&self, p: P) -> [usize; 2] {
         let f = |k: usize| (((p[k] - self.origin[k]) / self.cell).floor().max(0.0) as usize).min(self.dims[k] - 1);
         [f(0), f(1)]
@@ -83,5 +112,15 @@ mod tests {
         assert_eq!(idx.distance_within([50.0, 3.0], 5.0), Some(3.0));
         assert_eq!(idx.distance_within([50.0, 30.0], 5.0), None);
         assert_eq!(idx.near([1.0, 60.0], 2.0), vec![1]);
+    }
+
+    #[test]
+    fn grows_and_shrinks() {
+        let mut idx = SegmentIndex::with_bounds([0.0, 0.0], [100.0, 100.0], 10.0);
+        assert_eq!(idx.push([0.0, 0.0], [100.0, 0.0]), 0);
+        idx.shrink(0, [0.0, 0.0], [50.0, 0.0]);
+        assert_eq!(idx.push([50.0, 0.0], [100.0, 0.0]), 1);
+        assert_eq!(idx.distance_within([80.0, 2.0], 5.0), Some(2.0));
+        assert_eq!(idx.segments()[0].1, [50.0, 0.0]);
     }
 }

@@ -18,6 +18,7 @@
 pub mod chart;
 pub mod city;
 pub mod field;
+pub mod grow;
 pub mod layout;
 pub mod level;
 pub mod network;

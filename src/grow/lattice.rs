@@ -1,0 +1,303 @@
+//! The pathfinding graph 𝒢 on the terrain lattice (§3.2.2), implicit: a vertex's edges are
+//! generated when a search asks for them, never stored. Land edges run in the primitive
+//! directions of the radius-r mask (32 for r = 3, 176 for r = 8), water edges likewise over
+//! water, harbour edges join adjacent land and water vertices, and bridge edges join land
+//! vertices across water along a mask direction.
+
+use super::terrain::{Terrain, FORBIDDEN, LAND, WATER};
+use crate::geometry::P;
+
+/// The primitive offsets `(dx, dy)` with `max(|dx|, |dy|) ≤ r` and `gcd(|dx|, |dy|) = 1`: one
+/// direction per line through the origin and a lattice vertex within the mask, nearest vertex
+/// only. Sorted by angle from the +x axis.
+pub fn directions(r: u32) -> Vec<[i32; 2]> {
+    let r = r as i32;
+    let mut out: Vec<[i32; 2]> = Vec::new();
+    for dy in -r..=r {
+        for dx in -r..=r {
+            if (dx, dy) != (0, 0) && gcd(dx.unsigned_abs(), dy.unsigned_abs()) == 1 {
+                out.push([dx, dy]);
+            }
+        }
+    }
+    out.sort_by(|a, b| (a[1] as f64).atan2(a[0] as f64).total_cmp(&(b[1] as f64).atan2(b[0] as f64)));
+    out
+}
+
+fn gcd(a: u32, b: u32) -> u32 {
+    if b == 0 {
+        a
+    } else {
+        gcd(b, a % b)
+    }
+}
+
+/// What a lattice edge is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum EdgeKind {
+    /// Over land.
+    Land,
+    /// Over water.
+    Water,
+    /// Between adjacent land and water vertices.
+    Harbour,
+    /// Between land vertices across water.
+    Bridge,
+}
+
+/// One step of a direction along its major axis: the vertex at or below the point, and the
+/// vertex above it with the point's fraction between them when it lies between two.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Step {
+    da: i64,
+    db: i64,
+    f: f64,
+}
+
+/// The implicit lattice graph over a terrain.
+#[derive(Clone, Debug)]
+pub struct Lattice {
+    /// The terrain.
+    pub terrain: Terrain,
+    /// The mask's directions.
+    pub dirs: Vec<[i32; 2]>,
+    /// The steepest grade of a land edge.
+    pub slope_cut: f64,
+    /// O₁: the slope weight.
+    pub o1: f64,
+    /// The longest water span of a bridge (metres).
+    pub bridge_max: f64,
+    /// Weight factor of an unbuilt harbour edge (C₃).
+    pub harbour_factor: f64,
+    /// Weight factor of an unbuilt bridge edge (C₅).
+    pub bridge_factor: f64,
+    steps: Vec<Vec<Step>>,
+    lens: Vec<(f64, f64)>,
+}
+
+/// One generated edge.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Edge {
+    /// The far vertex.
+    pub to: u32,
+    /// Its weight.
+    pub weight: f64,
+    /// Its kind.
+    pub kind: EdgeKind,
+}
+
+impl Lattice {
+    /// The lattice over `terrain` with the radius-`r` mask and its edge rules.
+    pub fn new(
+        terrain: Terrain,
+        r: u32,
+        slope_cut: f64,
+        o1: f64,
+        bridge_max: f64,
+        harbour_factor: f64,
+        bridge_factor: f64,
+    ) -> Lattice {
+        let dirs = directions(r);
+        let nx = terrain.nx as i64;
+        let mut steps = Vec::with_capacity(dirs.len());
+        let mut lens = Vec::with_capacity(dirs.len());
+        for d in &dirs {
+            let k = d[0].abs().max(d[1].abs()) as i64;
+            let len = ((d[0] * d[0] + d[1] * d[1]) as f64).sqrt() * terrain.spacing;
+            lens.push((len, len / k as f64));
+            let mut list = Vec::new();
+            for i in 1..=k {
+                let (px, py) = (d[0] as i64 * i, d[1] as i64 * i);
+                let (kx, ky) = (px.div_euclid(k), py.div_euclid(k));
+                let (rx, ry) = (px.rem_euclid(k), py.rem_euclid(k));
+                let (db, f) = if rx != 0 {
+                    (1, rx as f64 / k as f64)
+                } else if ry != 0 {
+                    (nx, ry as f64 / k as f64)
+                } else {
+                    (0, 0.0)
+                };
+                list.push(Step { da: ky * nx + kx, db, f });
+            }
+            steps.push(list);
+        }
+        Lattice { terrain, dirs, slope_cut, o1, bridge_max, harbour_factor, bridge_factor, steps, lens }
+    }
+
+    /// Vertex count.
+    pub fn len(&self) -> usize {
+        self.terrain.nx * self.terrain.ny
+    }
+
+    /// Whether there are no vertices (never, for a checked context).
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// A vertex's position (metres).
+    pub fn pos(&self, v: u32) -> P {
+        let nx = self.terrain.nx;
+        let s = self.terrain.spacing;
+        [(v as usize % nx) as f64 * s, (v as usize / nx) as f64 * s]
+    }
+
+    /// A vertex's class.
+    pub fn class(&self, v: u32) -> u8 {
+        self.terrain.class[v as usize]
+    }
+
+    fn offset(&self, v: u32, d: [i32; 2], m: i32) -> Option<u32> {
+        let nx = self.terrain.nx as i64;
+        let (x, y) = (v as i64 % nx + (d[0] * m) as i64, v as i64 / nx + (d[1] * m) as i64);
+        (x >= 0 && y >= 0 && x < nx && y < self.terrain.ny as i64).then(|| (y * nx + x) as u32)
+    }
+
+    /// The vertices a straight edge from `v` by `d` passes nearest to, one or two per step along
+    /// its major axis (both neighbours where it passes between two), the ends excluded.
+    fn samples(&self, v: u32, d: [i32; 2], out: &mut Vec<u32>) {
+        out.clear();
+        let k = d[0].abs().max(d[1].abs());
+        let nx = self.terrain.nx as i64;
+        let (x0, y0) = (v as i64 % nx, v as i64 / nx);
+        for i in 1..k {
+            let (num_x, num_y) = (d[0] as i64 * i as i64, d[1] as i64 * i as i64);
+            let (kx, ky) = (num_x.div_euclid(k as i64), num_y.div_euclid(k as i64));
+            let (rx, ry) = (num_x.rem_euclid(k as i64), num_y.rem_euclid(k as i64));
+            for ox in 0..=(rx != 0) as i64 {
+                for oy in 0..=(ry != 0) as i64 {
+                    out.push(((y0 + ky + oy) * nx + x0 + kx + ox) as u32);
+                }
+            }
+        }
+    }
+
+    /// The land edge from `v` in direction `k`, if every vertex it passes is land and not
+    /// `blocked`, and its steepest grade is within the cut-off: weight LENGTH · max(1, O₁ ·
+    /// grade). Elevations along the edge are interpolated between the two vertices it passes
+    /// between at each step along its major axis.
+    pub fn land_edge<B: Fn(u32) -> bool>(&self, v: u32, k: usize, blocked: &B) -> Option<f64> {
+        let to = self.offset(v, self.dirs[k], 1)?;
+        let t = &self.terrain;
+        if t.class[to as usize] != LAND || blocked(to) {
+            return None;
+        }
+        let (len, run) = self.lens[k];
+        let limit = self.slope_cut * run;
+        let mut worst: f64 = 0.0;
+        let mut prev = t.z[v as usize] as f64;
+        let steps = &self.steps[k];
+        for (i, st) in steps.iter().enumerate() {
+            let a = (v as i64 + st.da) as usize;
+            let z = if st.db == 0 {
+                if i + 1 < steps.len() && (t.class[a] != LAND || blocked(a as u32)) {
+                    return None;
+                }
+                t.z[a] as f64
+            } else {
+                let b = (a as i64 + st.db) as usize;
+                if t.class[a] != LAND || t.class[b] != LAND || blocked(a as u32) || blocked(b as u32) {
+                    return None;
+                }
+                t.z[a] as f64 * (1.0 - st.f) + t.z[b] as f64 * st.f
+            };
+            let rise = (z - prev).abs();
+            if rise > limit {
+                return None;
+            }
+            worst = worst.max(rise);
+            prev = z;
+        }
+        Some(len * (self.o1 * worst / run).max(1.0))
+    }
+
+    /// The water edge from `v` by `d`, if it runs over water only: weight LENGTH.
+    fn water_edge(&self, v: u32, d: [i32; 2], buf: &mut Vec<u32>) -> Option<(u32, f64)> {
+        let to = self.offset(v, d, 1)?;
+        if self.class(to) != WATER {
+            return None;
+        }
+        self.samples(v, d, buf);
+        if buf.iter().any(|&u| self.class(u) != WATER) {
+            return None;
+        }
+        Some((to, ((d[0] * d[0] + d[1] * d[1]) as f64).sqrt() * self.terrain.spacing))
+    }
+
+    /// The bridge from land vertex `v` in direction `d`: over water vertices `v + d, v + 2d, …`
+    /// to the first land vertex, within the longest span.
+    fn bridge_edge<B: Fn(u32) -> bool>(&self, v: u32, d: [i32; 2], blocked: &B) -> Option<(u32, f64)> {
+        let step = ((d[0] * d[0] + d[1] * d[1]) as f64).sqrt() * self.terrain.spacing;
+        let first = self.offset(v, d, 1)?;
+        if self.class(first) != WATER {
+            return None;
+        }
+        let mut m = 2;
+        loop {
+            if step * m as f64 > self.bridge_max + step {
+                return None;
+            }
+            let u = self.offset(v, d, m)?;
+            match self.class(u) {
+                WATER => m += 1,
+                FORBIDDEN => return None,
+                _ => return (!blocked(u)).then_some((u, step * m as f64 * self.bridge_factor)),
+            }
+        }
+    }
+
+    /// Every edge from `v` not touching a `blocked` vertex: land or water edges in the mask's
+    /// directions, harbour edges to the 8 neighbours of the other class, bridges.
+    pub fn edges<B: Fn(u32) -> bool>(&self, v: u32, blocked: &B, out: &mut Vec<Edge>, buf: &mut Vec<u32>) {
+        out.clear();
+        let class = self.class(v);
+        if class == FORBIDDEN || blocked(v) {
+            return;
+        }
+        for (k, &d) in self.dirs.iter().enumerate() {
+            if class == LAND {
+                if let Some(w) = self.land_edge(v, k, blocked) {
+                    out.push(Edge { to: self.offset(v, d, 1).expect("checked"), weight: w, kind: EdgeKind::Land });
+                } else if let Some((to, w)) = self.bridge_edge(v, d, blocked) {
+                    out.push(Edge { to, weight: w, kind: EdgeKind::Bridge });
+                }
+            } else if let Some((to, w)) = self.water_edge(v, d, buf) {
+                out.push(Edge { to, weight: w, kind: EdgeKind::Water });
+            }
+            if d[0].abs() <= 1 && d[1].abs() <= 1 {
+                if let Some(u) = self.offset(v, d, 1) {
+                    let c = self.class(u);
+                    if (class == LAND && c == WATER) || (class == WATER && c == LAND && !blocked(u)) {
+                        let len = ((d[0] * d[0] + d[1] * d[1]) as f64).sqrt() * self.terrain.spacing;
+                        out.push(Edge { to: u, weight: len * self.harbour_factor, kind: EdgeKind::Harbour });
+                    }
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn mask_direction_counts() {
+        assert_eq!(directions(1).len(), 8);
+        assert_eq!(directions(3).len(), 32);
+        assert_eq!(directions(8).len(), 176);
+    }
+
+    #[test]
+    fn samples_cover_the_line() {
+        let t = Terrain { nx: 10, ny: 10, spacing: 1.0, z: vec![0.0; 100], class: vec![LAND; 100] };
+        let l = Lattice::new(t, 3, 1.0, 1.0, 10.0, 1.0, 1.0);
+        let mut buf = Vec::new();
+        l.samples(0, [3, 0], &mut buf);
+        assert_eq!(buf, vec![1, 2]);
+        l.samples(0, [3, 1], &mut buf);
+        assert_eq!(buf, vec![1, 11, 2, 12]);
+        let k = l.dirs.iter().position(|&d| d == [3, 1]).unwrap();
+        assert!((l.land_edge(0, k, &|_| false).unwrap() - 10f64.sqrt()).abs() < 1e-12);
+        assert!(l.land_edge(0, k, &|u| u == 12).is_none());
+    }
+}

@@ -1,0 +1,394 @@
+//! Minor-road growth (§3.3): candidates Z (nodes that have not spawned streets, and temporary
+//! nodes every 1.25 ℓ along segments longer than 2 ℓ), ranked by distance to the nearest
+//! nucleus times (1 − its strength); the first G(t) grow one street each in the pattern K(t),
+//! under the local rules of Parish & Müller: a crossing ends the street at a new junction, an
+//! end near a node snaps to it, an end near a segment makes a T, junction angles below the
+//! minimum are refused, and no minor road crosses water, forbidden ground or too steep a slope.
+
+use super::context::{Pattern, PatternKind};
+use super::graph::{Class, Graph};
+use super::terrain::{Terrain, LAND};
+use crate::geometry::{closest_on_segment, dist, dot, segment_intersection, sub, P};
+use rand::rngs::Xoshiro256PlusPlus;
+use rand::RngExt;
+use std::collections::HashSet;
+
+/// A growth nucleus.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Nucleus {
+    /// Position (metres).
+    pub pos: P,
+    /// STRENGTH(q) ∈ (0, 1].
+    pub strength: f64,
+    /// The step it appeared in.
+    pub born: u32,
+}
+
+/// Where a candidate sits.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Seat {
+    Node(u32),
+    OnSegment(u32, P),
+}
+
+/// What local rules make of a proposed street segment.
+enum End {
+    New(P),
+    Node(u32),
+    Split(P),
+}
+
+/// The growth state kept between steps: temporary candidates already tried.
+#[derive(Clone, Debug, Default)]
+pub struct Growth {
+    tried: HashSet<(i64, i64)>,
+}
+
+fn key(p: P) -> (i64, i64) {
+    ((p[0] * 100.0).round() as i64, (p[1] * 100.0).round() as i64)
+}
+
+/// Everything minor growth reads and writes.
+pub struct Grower<'a> {
+    /// The road graph.
+    pub graph: &'a mut Graph,
+    /// The terrain.
+    pub terrain: &'a Terrain,
+    /// The nuclei.
+    pub nuclei: &'a [Nucleus],
+    /// The pattern K(t).
+    pub pattern: &'a Pattern,
+    /// The steepest grade.
+    pub slope_cut: f64,
+    /// The step.
+    pub step: u32,
+    /// Random choices.
+    pub rng: &'a mut Xoshiro256PlusPlus,
+    /// Candidates already tried.
+    pub growth: &'a mut Growth,
+}
+
+impl Grower<'_> {
+    /// Grows streets from the first `count` ranked candidates; returns the segments added.
+    pub fn grow(&mut self, count: usize) -> usize {
+        let spacing = self.terrain.spacing;
+        let mut cands: Vec<(f64, f64, P, Seat)> = Vec::new();
+        let rank = |p: P| -> (f64, f64) {
+            self.nuclei
+                .iter()
+                .map(|q| (dist(q.pos, p) * (1.0 - q.strength), dist(q.pos, p)))
+                .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)))
+                .unwrap_or((0.0, 0.0))
+        };
+        for (n, node) in self.graph.nodes.iter().enumerate() {
+            if !node.spawned && self.graph.road_degree(n as u32) > 0 && self.terrain.class_at(node.pos) == LAND {
+                let (r, d) = rank(node.pos);
+                cands.push((r, d, node.pos, Seat::Node(n as u32)));
+            }
+        }
+        for (s, g) in self.graph.segs.iter().enumerate() {
+            if !matches!(g.class, Class::Minor | Class::Major) {
+                continue;
+            }
+            let (a, b) = self.graph.ends(s as u32);
+            let len = dist(a, b);
+            if len <= 2.0 * spacing {
+                continue;
+            }
+            let k = (len / (1.25 * spacing)).floor() as usize;
+            for i in 1..=k {
+                let f = i as f64 / (k + 1) as f64;
+                let p = [a[0] + (b[0] - a[0]) * f, a[1] + (b[1] - a[1]) * f];
+                if !self.growth.tried.contains(&key(p)) {
+                    let (r, d) = rank(p);
+                    cands.push((r, d, p, Seat::OnSegment(s as u32, p)));
+                }
+            }
+        }
+        cands.sort_by(|x, y| {
+            x.0.total_cmp(&y.0)
+                .then(x.1.total_cmp(&y.1))
+                .then(x.2[0].total_cmp(&y.2[0]))
+                .then(x.2[1].total_cmp(&y.2[1]))
+        });
+        let before = self.graph.segs.len();
+        for &(_, _, p, seat) in cands.iter().take(count) {
+            match seat {
+                Seat::Node(n) => self.graph.nodes[n as usize].spawned = true,
+                Seat::OnSegment(..) => {
+                    self.growth.tried.insert(key(p));
+                }
+            }
+            self.street(seat);
+        }
+        self.graph.segs.len() - before
+    }
+
+    /// The base heading of a street from a seat.
+    fn base_heading(&mut self, seat: Seat) -> f64 {
+        match seat {
+            Seat::OnSegment(s, _) => {
+                let (a, b) = self.graph.ends(s);
+                let side = if self.rng.random::<bool>() { 1.0 } else { -1.0 };
+                (b[1] - a[1]).atan2(b[0] - a[0]) + side * std::f64::consts::FRAC_PI_2
+            }
+            Seat::Node(n) => {
+                let mut angles: Vec<f64> = self.graph.adj[n as usize]
+                    .iter()
+                    .filter(|&&s| self.graph.segs[s as usize].class.is_road())
+                    .map(|&s| {
+                        let h = self.graph.heading(s, n);
+                        h[1].atan2(h[0])
+                    })
+                    .collect();
+                if angles.is_empty() {
+                    return self.rng.random::<f64>() * std::f64::consts::TAU;
+                }
+                angles.sort_by(f64::total_cmp);
+                let mut best = (0.0, 0.0);
+                for i in 0..angles.len() {
+                    let a = angles[i];
+                    let b = if i + 1 < angles.len() { angles[i + 1] } else { angles[0] + std::f64::consts::TAU };
+                    if b - a > best.0 {
+                        best = (b - a, a + (b - a) / 2.0);
+                    }
+                }
+                best.1
+            }
+        }
+    }
+
+    /// One street from a seat: up to the pattern's segment count, with branches for grids.
+    fn street(&mut self, seat: Seat) {
+        let p = self.pattern.clone();
+        let origin = match seat {
+            Seat::Node(n) => self.graph.nodes[n as usize].pos,
+            Seat::OnSegment(_, q) => q,
+        };
+        let mut heading = self.base_heading(seat);
+        if p.kind == PatternKind::Radial {
+            if let Some(q) = self.nuclei.iter().min_by(|a, b| dist(a.pos, origin).total_cmp(&dist(b.pos, origin))) {
+                let d = sub(origin, q.pos);
+                if d[0].hypot(d[1]) > 1.0 {
+                    let radial = d[1].atan2(d[0]);
+                    // Along or across the radial direction, whichever is nearer the base heading.
+                    let options = [radial, radial + std::f64::consts::FRAC_PI_2, radial - std::f64::consts::FRAC_PI_2];
+                    heading = options
+                        .into_iter()
+                        .min_by(|a, b| ang_diff(*a, heading).total_cmp(&ang_diff(*b, heading)))
+                        .expect("three options");
+                }
+            }
+        }
+        let mut queue: Vec<(Seat, f64)> = vec![(seat, heading)];
+        let mut budget = p.segments as usize;
+        while let Some((from, mut h)) = queue.pop() {
+            let mut at = from;
+            while budget > 0 {
+                budget -= 1;
+                match p.kind {
+                    PatternKind::Organic => h += normal(self.rng) * p.heading.to_radians(),
+                    PatternKind::Grid => {}
+                    PatternKind::Radial => h += normal(self.rng) * p.heading.to_radians() * 0.25,
+                }
+                let len = p.length * (1.0 + p.jitter * (2.0 * self.rng.random::<f64>() - 1.0));
+                let Some((node, stop)) = self.extend(at, h, len) else { break };
+                at = Seat::Node(node);
+                if p.kind == PatternKind::Grid && self.rng.random::<f64>() < p.branch {
+                    let side = if self.rng.random::<bool>() { 1.0 } else { -1.0 };
+                    queue.push((at, h + side * std::f64::consts::FRAC_PI_2));
+                }
+                if stop {
+                    break;
+                }
+            }
+        }
+    }
+
+    /// Adds one street segment from `at` heading `h` of length `len` under the local rules;
+    /// returns its far node and whether the street stops there.
+    fn extend(&mut self, at: Seat, h: f64, len: f64) -> Option<(u32, bool)> {
+        let p = self.pattern.clone();
+        let (start, start_node, on_seg) = match at {
+            Seat::Node(n) => (self.graph.nodes[n as usize].pos, Some(n), None),
+            Seat::OnSegment(s, q) => (q, None, Some(s)),
+        };
+        let q = [start[0] + len * h.cos(), start[1] + len * h.sin()];
+        let min_angle = p.min_angle.to_radians();
+        let dir = [h.cos(), h.sin()];
+        // The angle to the streets at the start.
+        if let Some(n) = start_node {
+            for &s in &self.graph.adj[n as usize] {
+                if self.graph.segs[s as usize].class.is_road()
+                    && dot(self.graph.heading(s, n), dir).clamp(-1.0, 1.0).acos() < min_angle
+                {
+                    return None;
+                }
+            }
+        }
+        let (end, stop) = self.constrain(start, q, start_node, on_seg, min_angle, p.snap)?;
+        let end_pos = match end {
+            End::New(x) | End::Split(x) => x,
+            End::Node(n) => self.graph.nodes[n as usize].pos,
+        };
+        if dist(start, end_pos) < self.terrain.spacing / 4.0 || !self.passable(start, end_pos) {
+            return None;
+        }
+        let a = match at {
+            Seat::Node(n) => n,
+            Seat::OnSegment(..) => self.graph.node_at(start, true),
+        };
+        let b = match end {
+            End::Node(n) => n,
+            End::New(x) | End::Split(x) => self.graph.node_at(x, true),
+        };
+        if a == b || self.graph.find(a, b).is_some() {
+            return None;
+        }
+        self.graph.nodes[a as usize].spawned = true;
+        let chain = self.graph.insert(a, b, Class::Minor, 1.0, self.step);
+        let last = *chain.last().expect("a chain has ends");
+        Some((last, stop || chain.len() > 2))
+    }
+
+    /// The local rules for a proposed segment `start → q`: the first crossing ends it at a
+    /// junction; else an end near a node snaps to it; else an end near a segment makes a T.
+    fn constrain(
+        &self,
+        start: P,
+        q: P,
+        from: Option<u32>,
+        on_seg: Option<u32>,
+        min_angle: f64,
+        snap: f64,
+    ) -> Option<(End, bool)> {
+        let touches = |s: u32| {
+            let g = &self.graph.segs[s as usize];
+            Some(s) == on_seg || from.is_some_and(|n| g.a == n || g.b == n)
+        };
+        let len = dist(start, q);
+        let mid = [(start[0] + q[0]) / 2.0, (start[1] + q[1]) / 2.0];
+        let mut first: Option<(f64, u32, P)> = None;
+        for s in self.graph.segs_near(mid, len / 2.0 + 1.0) {
+            let s = s as u32;
+            if !self.graph.segs[s as usize].class.is_road() || touches(s) {
+                continue;
+            }
+            let (c, d) = self.graph.ends(s);
+            if let Some((t, _)) = segment_intersection(start, q, c, d) {
+                if t > 1e-6 && first.is_none_or(|f| t < f.0) {
+                    first = Some((t, s, [start[0] + (q[0] - start[0]) * t, start[1] + (q[1] - start[1]) * t]));
+                }
+            }
+        }
+        let angle_ok = |s: u32| {
+            let (c, d) = self.graph.ends(s);
+            let u = sub(d, c);
+            let v = sub(q, start);
+            let cos = (dot(u, v) / (u[0].hypot(u[1]) * v[0].hypot(v[1])).max(1e-12)).abs().clamp(0.0, 1.0);
+            cos.acos() >= min_angle
+        };
+        if let Some((_, s, x)) = first {
+            if !angle_ok(s) {
+                return None;
+            }
+            let (c, d) = self.graph.ends(s);
+            let g = &self.graph.segs[s as usize];
+            let end = if dist(x, c) <= snap.min(dist(c, d) / 3.0) {
+                End::Node(g.a)
+            } else if dist(x, d) <= snap.min(dist(c, d) / 3.0) {
+                End::Node(g.b)
+            } else {
+                End::Split(x)
+            };
+            return Some((end, true));
+        }
+        if let Some(&n) =
+            self.graph.nodes_near(q, snap).iter().filter(|&&n| Some(n) != from && self.graph.road_degree(n) > 0).min_by(
+                |&&a, &&b| {
+                    dist(self.graph.nodes[a as usize].pos, q).total_cmp(&dist(self.graph.nodes[b as usize].pos, q))
+                },
+            )
+        {
+            let to = self.graph.nodes[n as usize].pos;
+            if self.clear(start, to, from, on_seg, Some(n)) && self.end_angle_ok(n, start, min_angle) {
+                return Some((End::Node(n), true));
+            }
+            return None;
+        }
+        for s in self.graph.segs_near(q, snap) {
+            let s = s as u32;
+            if !self.graph.segs[s as usize].class.is_road() || touches(s) {
+                continue;
+            }
+            let (c, d) = self.graph.ends(s);
+            let (x, t) = closest_on_segment(q, c, d);
+            if t > 0.0 && t < 1.0 && dist(x, q) <= snap {
+                if self.clear(start, x, from, on_seg, None) && angle_ok(s) {
+                    return Some((End::Split(x), true));
+                }
+                return None;
+            }
+        }
+        Some((End::New(q), false))
+    }
+
+    /// No road segment crosses `a → b` (other than at `from`, `on_seg` or the node `to`).
+    fn clear(&self, a: P, b: P, from: Option<u32>, on_seg: Option<u32>, to: Option<u32>) -> bool {
+        let mid = [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0];
+        self.graph.segs_near(mid, dist(a, b) / 2.0 + 1.0).into_iter().all(|s| {
+            let g = &self.graph.segs[s];
+            if !g.class.is_road() || Some(s as u32) == on_seg {
+                return true;
+            }
+            if [from, to].iter().flatten().any(|&n| g.a == n || g.b == n) {
+                return true;
+            }
+            let (c, d) = self.graph.ends(s as u32);
+            segment_intersection(a, b, c, d).is_none_or(|(t, _)| !(1e-6..=1.0 - 1e-6).contains(&t))
+        })
+    }
+
+    fn end_angle_ok(&self, n: u32, from: P, min_angle: f64) -> bool {
+        let p = self.graph.nodes[n as usize].pos;
+        let v = sub(from, p);
+        let l = v[0].hypot(v[1]).max(1e-12);
+        let v = [v[0] / l, v[1] / l];
+        self.graph.adj[n as usize].iter().all(|&s| {
+            !self.graph.segs[s as usize].class.is_road()
+                || dot(self.graph.heading(s, n), v).clamp(-1.0, 1.0).acos() >= min_angle
+        })
+    }
+
+    /// Land all along, within the slope cut-off (minor roads never bridge).
+    fn passable(&self, a: P, b: P) -> bool {
+        let step = self.terrain.spacing / 2.0;
+        let n = (dist(a, b) / step).ceil().max(1.0) as usize;
+        let mut prev = self.terrain.elevation(a);
+        for i in 0..=n {
+            let f = i as f64 / n as f64;
+            let p = [a[0] + (b[0] - a[0]) * f, a[1] + (b[1] - a[1]) * f];
+            if self.terrain.class_at(p) != LAND {
+                return false;
+            }
+            let z = self.terrain.elevation(p);
+            if i > 0 && (z - prev).abs() / (dist(a, b) / n as f64) > self.slope_cut {
+                return false;
+            }
+            prev = z;
+        }
+        true
+    }
+}
+
+fn ang_diff(a: f64, b: f64) -> f64 {
+    let d = (a - b).rem_euclid(std::f64::consts::TAU);
+    d.min(std::f64::consts::TAU - d)
+}
+
+/// A standard normal draw (Box–Muller).
+fn normal(rng: &mut Xoshiro256PlusPlus) -> f64 {
+    let u = 1.0 - rng.random::<f64>();
+    let v = rng.random::<f64>();
+    (-2.0 * u.ln()).sqrt() * (std::f64::consts::TAU * v).cos()
+}

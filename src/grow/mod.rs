@@ -1,0 +1,157 @@
+//! Road networks grown by traffic (Beneš, Wilkie & Křivánek 2014, "Procedural Modelling of
+//! Urban Road Networks"): settlements in a landscape with terrain and water, joined to
+//! neighbouring cities by trade routes; every time step minor streets grow around growth
+//! nuclei, a simple traffic model loads the routes, and where a pair's routes are saturated a
+//! new or widened major road is built along a turn-penalised shortest path. docs/grow.md
+//! describes the model, the context file and the outputs.
+//!
+//! One concern per file: [`context`] (the context file), [`terrain`] (heights and classes),
+//! [`lattice`] (the implicit pathfinding graph), [`paths`] (shortest paths), [`spaces`] (the
+//! graphs searched), [`graph`] (the planar road graph), [`blocks`] (faces and the built-up area),
+//! [`minor`] (minor-road growth), [`traffic`] (trade routes and capacities), [`step`] (the
+//! simulation), [`output`] (files); [`run`] is the entry point of `netspec grow`.
+
+pub mod blocks;
+pub mod context;
+pub mod graph;
+pub mod lattice;
+pub mod minor;
+pub mod output;
+pub mod paths;
+pub mod spaces;
+pub mod step;
+pub mod terrain;
+pub mod traffic;
+
+use crate::geometry::P;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// Why growing failed.
+#[derive(Debug, thiserror::Error)]
+pub enum GrowError {
+    /// A file could not be read or written.
+    #[error("{}: {source}", path.display())]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// The cause.
+        source: std::io::Error,
+    },
+    /// The context is not TOML.
+    #[error("{}: {message}", path.display())]
+    Toml {
+        /// The file.
+        path: PathBuf,
+        /// The parser's message.
+        message: String,
+    },
+    /// A field of the context is wrong.
+    #[error("{}: `{field}`: {message}", path.display())]
+    Field {
+        /// The file.
+        path: PathBuf,
+        /// The field (`water[1].river`).
+        field: String,
+        /// What is wrong.
+        message: String,
+    },
+    /// Two cities have no path between them over land, water, harbours and bridges.
+    #[error("no path between the cities at ({:.0}, {:.0}) and ({:.0}, {:.0}): water, forbidden areas or slopes cut the map", from[0], from[1], to[0], to[1])]
+    Unreachable {
+        /// One city.
+        from: P,
+        /// The other.
+        to: P,
+    },
+    /// A picture could not be made.
+    #[error(transparent)]
+    Render(#[from] crate::render::RenderError),
+    /// The WGS 84 projection failed.
+    #[error(transparent)]
+    Site(#[from] crate::geometry::site::SiteError),
+}
+
+impl GrowError {
+    /// The same error, naming `path` as its file.
+    pub fn in_file(self, path: &Path) -> GrowError {
+        match self {
+            GrowError::Toml { message, .. } => GrowError::Toml { path: path.to_path_buf(), message },
+            GrowError::Field { field, message, .. } => GrowError::Field { path: path.to_path_buf(), field, message },
+            e => e,
+        }
+    }
+
+    /// The field an error is about, if any.
+    pub fn field(&self) -> Option<&str> {
+        match self {
+            GrowError::Field { field, .. } => Some(field),
+            _ => None,
+        }
+    }
+}
+
+/// What `netspec grow` is asked to do.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GrowRequest {
+    /// The context file.
+    pub context: PathBuf,
+    /// The output directory.
+    pub out: PathBuf,
+    /// Overrides the context's seed.
+    pub seed: Option<u64>,
+    /// Overrides the context's step count.
+    pub steps: Option<u32>,
+    /// Writes `step-NNN.svg` every K steps (and at step 0).
+    pub every: Option<u32>,
+}
+
+/// What a run did.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GrowSummary {
+    /// The seed used.
+    pub seed: u64,
+    /// The last row of the series.
+    pub last: step::StepStats,
+    /// Seconds for the initial network.
+    pub init_seconds: f64,
+    /// Seconds for the time steps.
+    pub step_seconds: f64,
+    /// Files written.
+    pub files: Vec<PathBuf>,
+}
+
+/// Runs `netspec grow`: reads the context, builds the initial network, runs the steps (calling
+/// `progress(step, steps)` after each), and writes the outputs into the request's directory.
+pub fn run(req: &GrowRequest, progress: &mut dyn FnMut(u32, u32)) -> Result<GrowSummary, GrowError> {
+    let ctx = context::Context::load(&req.context)?;
+    let seed = req.seed.unwrap_or(ctx.seed);
+    let steps = req.steps.unwrap_or(ctx.steps);
+    std::fs::create_dir_all(&req.out).map_err(|source| GrowError::Io { path: req.out.clone(), source })?;
+    let t0 = Instant::now();
+    let mut sim = step::Sim::new(&ctx, seed)?;
+    let init_seconds = t0.elapsed().as_secs_f64();
+    let mut files = Vec::new();
+    let every = req.every.filter(|&k| k > 0);
+    if every.is_some() {
+        files.push(output::write_snapshot(&req.out, &sim)?);
+    }
+    progress(0, steps);
+    let t1 = Instant::now();
+    for k in 1..=steps {
+        sim.step();
+        if every.is_some_and(|e| k % e == 0) {
+            files.push(output::write_snapshot(&req.out, &sim)?);
+        }
+        progress(k, steps);
+    }
+    let step_seconds = t1.elapsed().as_secs_f64();
+    files.extend(output::write_all(&req.out, &sim)?);
+    Ok(GrowSummary {
+        seed,
+        last: sim.series.last().expect("step 0 is always there").clone(),
+        init_seconds,
+        step_seconds,
+        files,
+    })
+}

@@ -1,0 +1,255 @@
+//! The files of a grown network: `network.json` (metres), `series.csv` (one row per step),
+//! `network.svg`/`.png`, `step-NNN.svg` snapshots and, with an `origin`, `network.geojson`
+//! (WGS 84). Coordinates are rounded to the millimetre; the same seed gives the same bytes.
+
+use super::graph::Class;
+use super::step::Sim;
+use super::GrowError;
+use crate::geometry::site::Projection;
+use crate::geometry::P;
+use crate::render::grow::{grow_svg, Bands, GrowScene, RoadLine};
+use serde_json::{json, Value};
+use std::path::{Path, PathBuf};
+
+fn mm(x: f64) -> f64 {
+    (x * 1000.0).round() / 1000.0
+}
+
+fn pt(p: P) -> [f64; 2] {
+    [mm(p[0]), mm(p[1])]
+}
+
+/// The node ids written: nodes with at least one segment, numbered in order.
+fn node_ids(sim: &Sim) -> Vec<Option<usize>> {
+    let mut ids = vec![None; sim.graph.nodes.len()];
+    let mut next = 0;
+    for (n, adj) in sim.graph.adj.iter().enumerate() {
+        if !adj.is_empty() {
+            ids[n] = Some(next);
+            next += 1;
+        }
+    }
+    ids
+}
+
+/// `network.json`: nodes, road segments, waterways, water, settlements, cities, nuclei and the
+/// trade routes (as node lists).
+pub fn network_json(sim: &Sim) -> Value {
+    let ids = node_ids(sim);
+    let g = &sim.graph;
+    let nodes: Vec<Value> = g
+        .nodes
+        .iter()
+        .enumerate()
+        .filter_map(|(n, node)| ids[n].map(|id| json!({"id": id, "x": mm(node.pos[0]), "y": mm(node.pos[1])})))
+        .collect();
+    let seg = |s: &super::graph::Segment| {
+        json!({"a": ids[s.a as usize], "b": ids[s.b as usize], "class": s.class.name(), "width": s.width, "step": s.born,
+               "traffic": mm(s.load)})
+    };
+    let segments: Vec<Value> = g.segs.iter().filter(|s| s.class.is_road()).map(seg).collect();
+    let waterways: Vec<Value> = g.segs.iter().filter(|s| s.class == Class::Water).map(seg).collect();
+    let ctx = &sim.ctx;
+    let water: Vec<Value> = ctx
+        .water
+        .iter()
+        .map(|w| match (&w.polygon, &w.river) {
+            (Some(p), _) => json!({"polygon": p.iter().map(|&q| pt(q)).collect::<Vec<_>>()}),
+            (None, Some(r)) => json!({"river": r.iter().map(|&q| pt(q)).collect::<Vec<_>>(), "width": w.width}),
+            _ => Value::Null,
+        })
+        .collect();
+    let settlements: Vec<Value> = sim
+        .blocks
+        .settlements
+        .iter()
+        .map(|s| json!({"x": mm(s.center[0]), "y": mm(s.center[1]), "area": mm(s.area)}))
+        .collect();
+    let cities: Vec<Value> = sim
+        .cities
+        .iter()
+        .map(|c| json!({"x": mm(c.pos[0]), "y": mm(c.pos[1]), "node": ids[c.node as usize], "water": c.water}))
+        .collect();
+    let nuclei: Vec<Value> = sim
+        .nuclei
+        .iter()
+        .map(|q| json!({"x": mm(q.pos[0]), "y": mm(q.pos[1]), "strength": mm(q.strength), "step": q.born}))
+        .collect();
+    let routes: Vec<Value> = sim
+        .traffic
+        .routes
+        .iter()
+        .map(|r| {
+            json!({"pair": sim.traffic.pairs[r.pair].cities, "traffic": mm(r.traffic), "step": r.born,
+                   "nodes": r.nodes.iter().map(|&n| ids[n as usize]).collect::<Vec<_>>()})
+        })
+        .collect();
+    json!({
+        "size": ctx.size,
+        "spacing": ctx.spacing,
+        "seed": sim.seed,
+        "step": sim.step,
+        "mu": mm(sim.mu),
+        "b": mm(sim.b),
+        "nodes": nodes,
+        "segments": segments,
+        "waterways": waterways,
+        "water": water,
+        "settlements": settlements,
+        "cities": cities,
+        "nuclei": nuclei,
+        "routes": routes,
+    })
+}
+
+/// `series.csv`: a header and one row per step.
+pub fn series_csv(sim: &Sim) -> String {
+    let mut out = String::from(
+        "step,settlements,built_up_ha,blocks,minor_km,major_km,nuclei,ports,bridges,trade_routes,new_routes,overflow,four_way_share,orientation_entropy\n",
+    );
+    for r in &sim.series {
+        out.push_str(&format!(
+            "{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
+            r.step,
+            r.settlements,
+            r.built_up_ha,
+            r.blocks,
+            r.minor_km,
+            r.major_km,
+            r.nuclei,
+            r.ports,
+            r.bridges,
+            r.trade_routes,
+            r.new_routes,
+            r.overflow,
+            r.four_way_share,
+            r.orientation_entropy
+        ));
+    }
+    out
+}
+
+/// The picture's plain data.
+pub fn scene(sim: &Sim) -> GrowScene {
+    let t = &sim.lattice.terrain;
+    // Contour bands of 60 m would leave flat maps in one band: the band height is the larger of
+    // 10 m and a sixth of the relief.
+    let (lo, hi) = t.z.iter().fold((f32::INFINITY, f32::NEG_INFINITY), |(l, h), &z| (l.min(z), h.max(z)));
+    let step = ((hi - lo) as f64 / 6.0).max(10.0);
+    let k = (t.nx.max(t.ny) / 200).max(1);
+    let (bx, by) = (t.nx.div_ceil(k), t.ny.div_ceil(k));
+    let mut band = Vec::with_capacity(bx * by);
+    for y in 0..by {
+        for x in 0..bx {
+            let z = t.z[(y * k).min(t.ny - 1) * t.nx + (x * k).min(t.nx - 1)];
+            band.push((((z - lo) as f64 / step).floor() as u8).min(7));
+        }
+    }
+    let last = sim.step.max(1) as f64;
+    let g = &sim.graph;
+    GrowScene {
+        size: sim.ctx.size,
+        bands: Bands { nx: bx, ny: by, cell: t.spacing * k as f64, band },
+        water: sim.ctx.water.iter().filter_map(|w| w.polygon.clone()).collect(),
+        rivers: sim.ctx.water.iter().filter_map(|w| Some((w.river.clone()?, w.width?))).collect(),
+        forbidden: sim.ctx.forbidden.iter().map(|f| f.polygon.clone()).collect(),
+        blocks: sim
+            .blocks
+            .faces
+            .iter()
+            .filter(|f| f.built_up)
+            .map(|f| (f.ring.clone(), f.born as f64 / last))
+            .collect(),
+        roads: g
+            .segs
+            .iter()
+            .enumerate()
+            .map(|(s, seg)| {
+                let (a, b) = g.ends(s as u32);
+                RoadLine { a, b, class: seg.class.name(), width: seg.width }
+            })
+            .collect(),
+        cities: sim.cities.iter().map(|c| c.pos).collect(),
+        nuclei: sim.nuclei.iter().map(|q| q.pos).collect(),
+        caption: caption(sim),
+    }
+}
+
+fn caption(sim: &Sim) -> String {
+    let r = sim.series.last().expect("step 0 is always there");
+    format!(
+        "step {}: {} settlements, {:.0} ha built up, {} blocks, {:.1} km minor, {:.1} km major, {} ports, {} bridges, {} trade routes",
+        r.step, r.settlements, r.built_up_ha, r.blocks, r.minor_km, r.major_km, r.ports, r.bridges, r.trade_routes
+    )
+}
+
+fn write(dir: &Path, name: &str, bytes: &[u8]) -> Result<PathBuf, GrowError> {
+    let path = dir.join(name);
+    std::fs::write(&path, bytes).map_err(|source| GrowError::Io { path: path.clone(), source })?;
+    Ok(path)
+}
+
+/// Writes `step-NNN.svg` for the current step.
+pub fn write_snapshot(dir: &Path, sim: &Sim) -> Result<PathBuf, GrowError> {
+    write(dir, &format!("step-{:03}.svg", sim.step), grow_svg(&scene(sim)).as_bytes())
+}
+
+/// Writes `network.json`, `series.csv`, `network.svg`, `network.png` and (with an origin)
+/// `network.geojson`.
+pub fn write_all(dir: &Path, sim: &Sim) -> Result<Vec<PathBuf>, GrowError> {
+    let mut files = Vec::new();
+    let json = serde_json::to_string(&network_json(sim)).expect("JSON serialises") + "\n";
+    files.push(write(dir, "network.json", json.as_bytes())?);
+    files.push(write(dir, "series.csv", series_csv(sim).as_bytes())?);
+    let svg = grow_svg(&scene(sim));
+    files.push(write(dir, "network.svg", svg.as_bytes())?);
+    files.push(write(dir, "network.png", &crate::render::png(&svg)?)?);
+    if let Some(origin) = sim.ctx.origin {
+        let geo = geojson(sim, &Projection::new(origin)?)?;
+        files.push(write(
+            dir,
+            "network.geojson",
+            (serde_json::to_string(&geo).expect("JSON serialises") + "\n").as_bytes(),
+        )?);
+    }
+    Ok(files)
+}
+
+/// The network in WGS 84: road and waterway segments (`kind`, `class`, `width`, `step`), water,
+/// cities and settlements; the map's origin `(0, 0)` is the context's `origin`.
+pub fn geojson(sim: &Sim, proj: &Projection) -> Result<Value, GrowError> {
+    let ll = |p: P| -> Result<[f64; 2], GrowError> {
+        let q = proj.to_wgs84(p)?;
+        Ok([(q[0] * 1e8).round() / 1e8, (q[1] * 1e8).round() / 1e8])
+    };
+    let mut features = Vec::new();
+    for (s, g) in sim.graph.segs.iter().enumerate() {
+        let (a, b) = sim.graph.ends(s as u32);
+        let kind = if g.class == Class::Water { "waterway" } else { "road" };
+        features.push(json!({"type": "Feature",
+            "properties": {"kind": kind, "class": g.class.name(), "width": g.width, "step": g.born, "traffic": mm(g.load)},
+            "geometry": {"type": "LineString", "coordinates": [ll(a)?, ll(b)?]}}));
+    }
+    for w in &sim.ctx.water {
+        if let Some(poly) = &w.polygon {
+            let mut ring = poly.iter().map(|&p| ll(p)).collect::<Result<Vec<_>, _>>()?;
+            ring.push(ring[0]);
+            features.push(json!({"type": "Feature", "properties": {"kind": "water"},
+                "geometry": {"type": "Polygon", "coordinates": [ring]}}));
+        }
+        if let (Some(line), Some(width)) = (&w.river, w.width) {
+            let coords = line.iter().map(|&p| ll(p)).collect::<Result<Vec<_>, _>>()?;
+            features.push(json!({"type": "Feature", "properties": {"kind": "river", "width": width},
+                "geometry": {"type": "LineString", "coordinates": coords}}));
+        }
+    }
+    for c in &sim.cities {
+        features.push(json!({"type": "Feature", "properties": {"kind": "neighbour-city", "water": c.water},
+            "geometry": {"type": "Point", "coordinates": ll(c.pos)?}}));
+    }
+    for s in &sim.blocks.settlements {
+        features.push(json!({"type": "Feature", "properties": {"kind": "settlement", "area": mm(s.area)},
+            "geometry": {"type": "Point", "coordinates": ll(s.center)?}}));
+    }
+    Ok(json!({"type": "FeatureCollection", "features": features}))
+}

@@ -1,0 +1,257 @@
+//! `netspec grow` on small maps (a 64 × 64 lattice with a straight river, a lake): the lattice
+//! mask, water, connectivity, the traffic bookkeeping after every step, planarity by an
+//! independent segment-intersection check, a second harbour, determinism, and context errors.
+
+use netspec::grow::context::Context;
+use netspec::grow::graph::Class;
+use netspec::grow::lattice::directions;
+use netspec::grow::step::Sim;
+use netspec::grow::{self, GrowRequest};
+use std::collections::{BTreeMap, BTreeSet, VecDeque};
+use std::path::{Path, PathBuf};
+
+fn model(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("models/grow").join(name)
+}
+
+fn small(name: &str) -> Context {
+    Context::load(&model(name)).unwrap()
+}
+
+type P = [f64; 2];
+
+fn orient(a: P, b: P, c: P) -> f64 {
+    (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+}
+
+/// Whether closed segments `ab` and `cd` share a point (written for the test, independently of
+/// the library's geometry).
+fn meet(a: P, b: P, c: P, d: P) -> bool {
+    let on = |p: P, q: P, r: P| {
+        orient(p, q, r).abs() <= 1e-9 * (1.0 + (q[0] - p[0]).abs() + (q[1] - p[1]).abs())
+            && r[0] >= p[0].min(q[0]) - 1e-9
+            && r[0] <= p[0].max(q[0]) + 1e-9
+            && r[1] >= p[1].min(q[1]) - 1e-9
+            && r[1] <= p[1].max(q[1]) + 1e-9
+    };
+    let (d1, d2, d3, d4) = (orient(c, d, a), orient(c, d, b), orient(a, b, c), orient(a, b, d));
+    if ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0)) && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0)) {
+        return true;
+    }
+    on(c, d, a) || on(c, d, b) || on(a, b, c) || on(a, b, d)
+}
+
+/// Road segments that meet anywhere but at a shared node.
+fn planarity_violations(sim: &Sim) -> Vec<(usize, usize)> {
+    let g = &sim.graph;
+    let roads: Vec<(usize, u32, u32, P, P)> = g
+        .segs
+        .iter()
+        .enumerate()
+        .filter(|(_, s)| s.class.is_road())
+        .map(|(i, s)| (i, s.a, s.b, g.nodes[s.a as usize].pos, g.nodes[s.b as usize].pos))
+        .collect();
+    let mut bad = Vec::new();
+    for (k, &(i, a, b, pa, pb)) in roads.iter().enumerate() {
+        for &(j, c, d, pc, pd) in &roads[k + 1..] {
+            let shared: Vec<u32> = [a, b].into_iter().filter(|n| *n == c || *n == d).collect();
+            if shared.len() == 2 {
+                bad.push((i, j)); // a duplicate segment
+                continue;
+            }
+            if shared.len() == 1 {
+                // Meeting at the shared node only: the far ends must not lie on the other segment.
+                let n = shared[0];
+                let far1 = if a == n { pb } else { pa };
+                let far2 = if c == n { pd } else { pc };
+                let (s1, s2) = if a == n { (pa, pb) } else { (pb, pa) };
+                let (t1, t2) = if c == n { (pc, pd) } else { (pd, pc) };
+                if meet(s1, s2, far2, far2) || meet(t1, t2, far1, far1) {
+                    bad.push((i, j));
+                }
+                continue;
+            }
+            if meet(pa, pb, pc, pd) {
+                bad.push((i, j));
+            }
+        }
+    }
+    bad
+}
+
+/// Checks the traffic bookkeeping: T(s) = Σ T(P) over the routes through s; each pair's routes
+/// carry its demand; a segment over capacity only where some pair using it recorded overflow.
+fn check_traffic(sim: &Sim) {
+    let g = &sim.graph;
+    let mut by_ends: BTreeMap<(u32, u32), usize> = BTreeMap::new();
+    for (i, s) in g.segs.iter().enumerate() {
+        by_ends.insert((s.a.min(s.b), s.a.max(s.b)), i);
+    }
+    let mut load = vec![0.0; g.segs.len()];
+    let mut users: Vec<BTreeSet<usize>> = vec![BTreeSet::new(); g.segs.len()];
+    let demand = sim.demand(sim.step);
+    for (p, pair) in sim.traffic.pairs.iter().enumerate() {
+        let mut total = 0.0;
+        for &r in &pair.routes {
+            let route = &sim.traffic.routes[r];
+            assert_eq!(route.pair, p);
+            let ends = [sim.cities[pair.cities[0]].node, sim.cities[pair.cities[1]].node];
+            assert_eq!([route.nodes[0], *route.nodes.last().unwrap()], ends, "route {r} runs between its cities");
+            for w in route.nodes.windows(2) {
+                let s = *by_ends
+                    .get(&(w[0].min(w[1]), w[0].max(w[1])))
+                    .unwrap_or_else(|| panic!("route {r} leaves the segments"));
+                assert_ne!(g.segs[s].class, Class::Minor, "route {r} runs on a minor road");
+                load[s] += route.traffic;
+                users[s].insert(p);
+            }
+            assert!(route.traffic >= -1e-9);
+            total += route.traffic;
+        }
+        assert!(
+            (total - demand).abs() <= 1e-6 * demand.max(1.0),
+            "step {}: pair {p} carries {total} of {demand}",
+            sim.step
+        );
+    }
+    for (i, s) in g.segs.iter().enumerate() {
+        assert!(
+            (s.load - load[i]).abs() <= 1e-6 * load[i].max(1.0),
+            "segment {i}: T(s) {} ≠ Σ T(P) {}",
+            s.load,
+            load[i]
+        );
+        if s.class != Class::Water && load[i] > sim.traffic.per_lane * s.width + 1e-6 {
+            assert!(
+                users[i].iter().any(|&p| sim.traffic.pairs[p].overflow > 0.0),
+                "step {}: segment {i} over capacity ({} > {}) without a recorded overflow",
+                sim.step,
+                load[i],
+                sim.traffic.per_lane * s.width
+            );
+        }
+    }
+}
+
+#[test]
+fn mask_directions() {
+    assert_eq!(directions(3).len(), 32);
+    assert_eq!(directions(8).len(), 176);
+}
+
+#[test]
+fn river_map_invariants_hold_every_step() {
+    let ctx = small("small-river.toml");
+    let mut sim = Sim::new(&ctx, ctx.seed).unwrap();
+    let river = ctx.water[0].river.clone().unwrap();
+    // Every city pair is connected after step 0 by trade segments.
+    let g = &sim.graph;
+    let mut adj: BTreeMap<u32, Vec<u32>> = BTreeMap::new();
+    for s in g.segs.iter().filter(|s| s.class != Class::Minor) {
+        adj.entry(s.a).or_default().push(s.b);
+        adj.entry(s.b).or_default().push(s.a);
+    }
+    for pair in &sim.traffic.pairs {
+        let (from, to) = (sim.cities[pair.cities[0]].node, sim.cities[pair.cities[1]].node);
+        let mut seen = BTreeSet::from([from]);
+        let mut queue = VecDeque::from([from]);
+        while let Some(n) = queue.pop_front() {
+            for &m in adj.get(&n).into_iter().flatten() {
+                if seen.insert(m) {
+                    queue.push_back(m);
+                }
+            }
+        }
+        assert!(seen.contains(&to), "cities {:?} are not connected after step 0", pair.cities);
+    }
+    assert!(sim.series[0].bridges + sim.series[0].ports >= 1, "the river is crossed");
+    check_traffic(&sim);
+    for _ in 0..ctx.steps {
+        sim.step();
+        check_traffic(&sim);
+    }
+    assert!(planarity_violations(&sim).is_empty(), "{:?}", &planarity_violations(&sim)[..]);
+    // No road crosses the river's centre line except bridges (and harbours, which end at it).
+    for (i, s) in sim.graph.segs.iter().enumerate() {
+        if matches!(s.class, Class::Major | Class::Minor) {
+            let (a, b) = (sim.graph.nodes[s.a as usize].pos, sim.graph.nodes[s.b as usize].pos);
+            for w in river.windows(2) {
+                assert!(!meet(a, b, w[0], w[1]), "{:?} segment {i} crosses the river", s.class);
+            }
+        }
+    }
+    let last = sim.series.last().unwrap();
+    assert!(last.minor_km > 1.0 && last.blocks > 10 && last.built_up_ha > sim.series[0].built_up_ha, "{last:?}");
+}
+
+#[test]
+fn a_second_harbour_appears_when_the_first_saturates() {
+    let ctx = small("small-lake.toml");
+    let mut sim = Sim::new(&ctx, ctx.seed).unwrap();
+    assert_eq!(sim.series[0].ports, 1, "one harbour in the initial network");
+    for _ in 0..ctx.steps {
+        sim.step();
+        check_traffic(&sim);
+        if sim.series.last().unwrap().ports >= 2 {
+            break;
+        }
+    }
+    let s = &sim.series;
+    let second = s.iter().position(|r| r.ports >= 2).expect("a second harbour appears");
+    assert!(s[..second].iter().any(|r| r.overflow > 0.0), "the first harbour saturated before: {s:?}");
+    assert!(planarity_violations(&sim).is_empty());
+}
+
+fn run_to(dir: &Path, context: &Path, seed: Option<u64>) -> Vec<u8> {
+    let req =
+        GrowRequest { context: context.to_path_buf(), out: dir.to_path_buf(), seed, steps: Some(10), every: Some(5) };
+    grow::run(&req, &mut |_, _| {}).unwrap();
+    for f in ["network.json", "series.csv", "network.svg", "network.png", "step-000.svg", "step-010.svg"] {
+        assert!(dir.join(f).exists(), "{f}");
+    }
+    std::fs::read(dir.join("network.json")).unwrap()
+}
+
+#[test]
+fn same_seed_same_bytes_another_seed_differs() {
+    let tmp = tempfile::tempdir().unwrap();
+    let ctx = model("small-river.toml");
+    let a = run_to(&tmp.path().join("a"), &ctx, None);
+    let b = run_to(&tmp.path().join("b"), &ctx, None);
+    let c = run_to(&tmp.path().join("c"), &ctx, Some(99));
+    assert!(a == b, "same seed, different network.json");
+    assert!(a != c, "another seed, same network.json");
+    let v: serde_json::Value = serde_json::from_slice(&a).unwrap();
+    for k in ["nodes", "segments", "water", "settlements"] {
+        assert!(v[k].is_array(), "{k}");
+    }
+    let classes: BTreeSet<&str> =
+        v["segments"].as_array().unwrap().iter().map(|s| s["class"].as_str().unwrap()).collect();
+    assert!(classes.is_subset(&BTreeSet::from(["major", "minor", "bridge", "harbour"])), "{classes:?}");
+}
+
+#[test]
+fn bad_contexts_name_the_field() {
+    let tmp = tempfile::tempdir().unwrap();
+    let cases = [
+        ("size = [1000, 1000]\n[[water]]\nriver = [[0, 0], [500, 0]]\nwidth = 20\n[[water]]\nriver = [[0, 0]]\nwidth = 5", "water[1].river"),
+        ("size = [1000, 1000]\n[[water]]\npolygon = [[0, 0], [10, 0], [10, 10]]\nriver = [[0, 0], [1, 1]]", "water[0]"),
+        ("size = [1000, 1000]\n[[neighbour]]\nposition = [0, 0]\n[[neighbour]]\nposition = [5000, 0]", "neighbour[1].position"),
+        ("size = [1000, 1000]\n[center]\nposition = [1, 2]\nradius = 3", "center.radius"),
+        ("size = [1000, 1000]\n[params]\nwidths = [[0, 1], [0, 2]]", "params.widths[1]"),
+        ("size = [1000, 1000]\n[[pattern]]\nfrom = 0\nkind = \"spiral\"", "pattern[0].kind"),
+        ("size = [400000, 400000]\nspacing = 2", "size"),
+    ];
+    for (i, (text, field)) in cases.iter().enumerate() {
+        let path = tmp.path().join(format!("c{i}.toml"));
+        std::fs::write(&path, text).unwrap();
+        let req =
+            GrowRequest { context: path.clone(), out: tmp.path().join("out"), seed: None, steps: Some(1), every: None };
+        let e = grow::run(&req, &mut |_, _| {}).unwrap_err();
+        let msg = e.to_string();
+        assert!(msg.contains(field), "case {i}: {msg}");
+        assert!(msg.contains(&path.display().to_string()), "case {i} names the file: {msg}");
+    }
+    let e = Context::from_toml("size = [400000, 400000]\nspacing = 2").unwrap_err();
+    assert!(e.to_string().contains("GiB"), "the memory estimate: {e}");
+}
