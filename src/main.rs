@@ -230,6 +230,9 @@ enum Command {
         /// Level of a solve result's streets: 1 major, 2 collector, 3 local (default), 4 cul-de-sac.
         #[arg(long, value_parser = clap::value_parser!(u8).range(1..=4))]
         level: Option<u8>,
+        /// The window of a `netspec grow` network, metres: x0,y0,x1,y1 (default: its whole map).
+        #[arg(long, value_name = "X0,Y0,X1,Y1", value_parser = parse_window)]
+        window: Option<[f64; 4]>,
         /// SUMO_HOME to use (default: $SUMO_HOME, then the copy scripts/setup.sh installs, then PATH).
         #[arg(long, value_name = "DIR")]
         sumo_home: Option<PathBuf>,
@@ -398,6 +401,16 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+}
+
+/// `x0,y0,x1,y1` as four finite numbers with `x0 < x1`, `y0 < y1`.
+fn parse_window(s: &str) -> Result<[f64; 4], String> {
+    let v: Vec<f64> =
+        s.split(',').map(|x| x.trim().parse::<f64>()).collect::<Result<_, _>>().map_err(|e| e.to_string())?;
+    match v[..] {
+        [x0, y0, x1, y1] if v.iter().all(|x| x.is_finite()) && x0 < x1 && y0 < y1 => Ok([x0, y0, x1, y1]),
+        _ => Err(format!("expected x0,y0,x1,y1 with x0 < x1 and y0 < y1 (metres), got `{s}`")),
+    }
 }
 
 /// A cross field's construction.
@@ -604,6 +617,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
             seed,
             metres_per_unit,
             level,
+            window,
             sumo_home,
             out,
             time_limit,
@@ -616,7 +630,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 local_per_hour: local_rate,
                 seed,
             },
-            load: netspec::traffic::network::LoadOptions { metres_per_unit, level },
+            load: netspec::traffic::network::LoadOptions { metres_per_unit, level, window },
             sumo_home,
             out,
             time_limit,

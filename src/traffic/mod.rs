@@ -47,7 +47,7 @@ pub struct TrafficError {
 #[derive(Debug, thiserror::Error)]
 pub enum TrafficErrorKind {
     /// The directory holds neither a design nor a city result.
-    #[error("no design here: expected result.json (a `netspec solve` output), city.json (a `netspec city` output) or layout.json (a `netspec layout` output)")]
+    #[error("no design here: expected result.json (a `netspec solve` output), city.json (a `netspec city` output), layout.json (a `netspec layout` output) or network.json (a `netspec grow` output)")]
     NoResult,
     /// A file could not be read or written.
     #[error("{0}")]

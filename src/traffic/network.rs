@@ -139,11 +139,14 @@ pub struct LoadOptions {
     pub metres_per_unit: Option<f64>,
     /// The level of a `solve` design's streets (default [`DEFAULT_SOLVE_LEVEL`]).
     pub level: Option<u8>,
+    /// The window `[x0, y0, x1, y1]` (metres) of a `netspec grow` network (default: its map).
+    pub window: Option<[f64; 4]>,
 }
 
 /// Reads a design: a `result.json` file, a directory with one (a `netspec solve` output or a
-/// city level's directory), a `netspec city` output directory (with `city.json`) or a
-/// `netspec layout` output directory (with `layout.json`).
+/// city level's directory), a `netspec city` output directory (with `city.json`), a
+/// `netspec layout` output directory (with `layout.json`) or a `netspec grow` output directory
+/// (with `network.json` and `series.csv`).
 pub fn load(path: &Path, opts: &LoadOptions) -> Result<RoadNetwork, TrafficError> {
     let md = std::fs::metadata(path).map_err(|e| TrafficError::new(path, e.into()))?;
     let file = if md.is_dir() {
@@ -152,6 +155,9 @@ pub fn load(path: &Path, opts: &LoadOptions) -> Result<RoadNetwork, TrafficError
         }
         if path.join("layout.json").is_file() {
             return super::streets::from_layout(path);
+        }
+        if path.join("network.json").is_file() && path.join("series.csv").is_file() {
+            return super::streets::from_grow(path, opts.window);
         }
         let f = path.join("result.json");
         if !f.is_file() {

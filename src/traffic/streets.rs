@@ -1,6 +1,6 @@
-//! Networks given as street centrelines in metres (a `netspec layout` output): the polylines are
-//! split where one street ends on another or two cross, so that junctions are nodes, and their
-//! levels mapped to the hierarchy SUMO is given.
+//! Networks given as street centrelines in metres (a `netspec layout` or `netspec grow` output):
+//! the polylines are split where one street ends on another or two cross, so that junctions are
+//! nodes, and their levels mapped to the hierarchy SUMO is given.
 
 use super::network::{Provenance, Region, RoadEdge, RoadNetwork, RoadNode};
 use super::{read, TrafficError, TrafficErrorKind};
@@ -58,6 +58,105 @@ pub fn from_layout(dir: &Path) -> Result<RoadNetwork, TrafficError> {
     })
 }
 
+/// The part of a `netspec grow` `network.json` a traffic evaluation reads.
+#[derive(Deserialize)]
+struct GrowFile {
+    size: [f64; 2],
+    nodes: Vec<GrowNode>,
+    segments: Vec<GrowSegment>,
+}
+
+#[derive(Deserialize)]
+struct GrowNode {
+    id: u64,
+    x: f64,
+    y: f64,
+}
+
+#[derive(Deserialize)]
+struct GrowSegment {
+    a: u64,
+    b: u64,
+    class: String,
+}
+
+/// The network of a `netspec grow` output directory (`network.json`), inside `window`
+/// (`[x0, y0, x1, y1]`, metres; default the whole map): major roads and bridges as major roads,
+/// minor roads as local streets (harbour links are ferries, not roads), each segment clipped
+/// to the window; entrances where major roads cross the window's edge; demand drawn in the
+/// window — so a `netspec city` on the same window meets the same trips.
+pub fn from_grow(dir: &Path, window: Option<[f64; 4]>) -> Result<RoadNetwork, TrafficError> {
+    let file = dir.join("network.json");
+    let text = read(&file)?;
+    let bad =
+        |message: String| TrafficError::new(&file, TrafficErrorKind::Parse { what: "a netspec grow network", message });
+    let net: GrowFile = serde_json::from_str(&text).map_err(|e| bad(e.to_string()))?;
+    let [x0, y0, x1, y1] = window.unwrap_or([0.0, 0.0, net.size[0], net.size[1]]);
+    if !(x0 < x1 && y0 < y1) || ![x0, y0, x1, y1].iter().all(|v| v.is_finite()) {
+        return Err(TrafficError::new(
+            &file,
+            TrafficErrorKind::Invalid(format!("window {x0},{y0},{x1},{y1} is empty")),
+        ));
+    }
+    let pos: std::collections::BTreeMap<u64, P> = net.nodes.iter().map(|n| (n.id, [n.x, n.y])).collect();
+    let mut lines = Vec::new();
+    for (i, s) in net.segments.iter().enumerate() {
+        let level = match s.class.as_str() {
+            "major" | "bridge" => 1,
+            "minor" => 3,
+            "harbour" => continue,
+            other => return Err(bad(format!("segments[{i}].class: unknown class `{other}`"))),
+        };
+        let (Some(&a), Some(&b)) = (pos.get(&s.a), pos.get(&s.b)) else {
+            return Err(bad(format!("segments[{i}]: node {} or {} is not in `nodes`", s.a, s.b)));
+        };
+        if let Some((a, b)) = clip(a, b, [x0, y0, x1, y1]) {
+            lines.push((vec![a, b], level));
+        }
+    }
+    let ring = vec![[x0, y0], [x1, y0], [x1, y1], [x0, y1]];
+    let (nodes, edges) = graph(&lines, &ring);
+    if edges.is_empty() {
+        return Err(TrafficError::new(&file, TrafficErrorKind::NoNetwork("no road inside the window".into())));
+    }
+    Ok(RoadNetwork {
+        name: dir.file_name().map_or("grow".into(), |n| n.to_string_lossy().into_owned()),
+        source: Provenance {
+            kind: "grow".into(),
+            path: file.display().to_string(),
+            netspec_version: env!("CARGO_PKG_VERSION").into(),
+            description: format!("window {x0},{y0},{x1},{y1}"),
+            runs: Vec::new(),
+        },
+        metres_per_unit: 1.0,
+        nodes,
+        edges,
+        region: Region { boundary: ring.clone(), areas: vec![ring] },
+    })
+}
+
+/// Segment `ab` clipped to the rectangle `[x0, y0, x1, y1]` (Liang–Barsky), if any of it is in.
+fn clip(a: P, b: P, r: [f64; 4]) -> Option<(P, P)> {
+    let d = [b[0] - a[0], b[1] - a[1]];
+    let (mut t0, mut t1) = (0.0f64, 1.0f64);
+    for (p, q) in [(-d[0], a[0] - r[0]), (d[0], r[2] - a[0]), (-d[1], a[1] - r[1]), (d[1], r[3] - a[1])] {
+        if p == 0.0 {
+            if q < 0.0 {
+                return None;
+            }
+        } else {
+            let t = q / p;
+            if p < 0.0 {
+                t0 = t0.max(t);
+            } else {
+                t1 = t1.min(t);
+            }
+        }
+    }
+    let at = |t: f64| [a[0] + t * d[0], a[1] + t * d[1]];
+    (t0 < t1).then(|| (at(t0), at(t1)))
+}
+
 /// A layout level as a traffic level (1 major, 2 collector, 3 local).
 fn level_of(level: usize) -> u8 {
     (level + 1).min(3) as u8
@@ -68,6 +167,7 @@ fn level_of(level: usize) -> u8 {
 /// `outer` are entrances.
 pub fn graph(lines: &[(Vec<P>, u8)], outer: &[P]) -> (Vec<RoadNode>, Vec<RoadEdge>) {
     let mut nodes: Vec<RoadNode> = Vec::new();
+    let mut cells = Cells::new();
     let mut edges: Vec<RoadEdge> = Vec::new();
     let lines: Vec<&(Vec<P>, u8)> = lines.iter().filter(|(l, _)| l.len() >= 2 && polyline_length(l) > SNAP).collect();
     let ends = SegmentIndex::new(
@@ -89,8 +189,8 @@ pub fn graph(lines: &[(Vec<P>, u8)], outer: &[P]) -> (Vec<RoadNode>, Vec<RoadEdg
             if polyline_length(&piece) <= SNAP {
                 continue;
             }
-            let a = node(&mut nodes, piece[0]);
-            let b = node(&mut nodes, *piece.last().expect("a piece"));
+            let a = node(&mut nodes, &mut cells, piece[0]);
+            let b = node(&mut nodes, &mut cells, *piece.last().expect("a piece"));
             if a == b && piece.len() < 3 {
                 continue;
             }
@@ -116,12 +216,26 @@ struct Segments {
     owner: Vec<usize>,
 }
 
-/// The node at `p`: an existing one within [`SNAP`], else a new one.
-fn node(nodes: &mut Vec<RoadNode>, p: P) -> usize {
-    if let Some(k) = nodes.iter().position(|n| dist(n.pos, p) <= SNAP) {
+/// Nodes bucketed by grid cells of [`SNAP`] metres.
+type Cells = std::collections::BTreeMap<(i64, i64), Vec<usize>>;
+
+/// The node at `p`: an existing one within [`SNAP`] (the first made), else a new one.
+fn node(nodes: &mut Vec<RoadNode>, cells: &mut Cells, p: P) -> usize {
+    let cell = |x: f64| (x / SNAP).floor() as i64;
+    let (cx, cy) = (cell(p[0]), cell(p[1]));
+    let mut near: Vec<usize> = (cx - 1..=cx + 1)
+        .flat_map(|x| (cy - 1..=cy + 1).map(move |y| (x, y)))
+        .filter_map(|c| cells.get(&c))
+        .flatten()
+        .copied()
+        .filter(|&k| dist(nodes[k].pos, p) <= SNAP)
+        .collect();
+    near.sort_unstable();
+    if let Some(&k) = near.first() {
         return k;
     }
     nodes.push(RoadNode { id: nodes.len() as u32, pos: p, entrance: false });
+    cells.entry((cx, cy)).or_default().push(nodes.len() - 1);
     nodes.len() - 1
 }
 
@@ -211,5 +325,25 @@ mod tests {
         assert!(nodes.iter().any(|n| n.pos == [70.0, 50.0]), "the crossing is a node");
         let total: f64 = edges.iter().map(|e| e.length()).sum();
         assert!((total - (400.0 + 100.0 + 50.0 + 60.0)).abs() < 1e-9, "{total}");
+    }
+
+    /// A grown network clipped to a window: segments cut at its edge, harbours left out, the
+    /// major road's crossing of the edge an entrance, demand in the window.
+    #[test]
+    fn a_grown_network_is_clipped_to_its_window() {
+        let dir = tempfile::tempdir().expect("a temporary directory");
+        let json = r#"{"size": [1000, 1000], "nodes": [{"id": 0, "x": 100, "y": 500}, {"id": 1, "x": 900, "y": 500},
+            {"id": 2, "x": 500, "y": 500}, {"id": 3, "x": 500, "y": 700}, {"id": 4, "x": 500, "y": 300}],
+            "segments": [{"a": 0, "b": 2, "class": "major"}, {"a": 2, "b": 1, "class": "bridge"},
+            {"a": 2, "b": 3, "class": "minor"}, {"a": 2, "b": 4, "class": "harbour"}]}"#;
+        std::fs::write(dir.path().join("network.json"), json).expect("written");
+        let net = from_grow(dir.path(), Some([300.0, 200.0, 800.0, 800.0])).expect("a network");
+        let total: f64 = net.edges.iter().map(|e| e.length()).sum();
+        assert!((total - (200.0 + 300.0 + 200.0)).abs() < 1e-9, "{total}");
+        let entrances: Vec<P> = net.nodes.iter().filter(|n| n.entrance).map(|n| n.pos).collect();
+        assert_eq!(entrances, vec![[300.0, 500.0], [800.0, 500.0]]);
+        assert_eq!(net.region.boundary[2], [800.0, 800.0]);
+        let e = from_grow(dir.path(), Some([5.0, 5.0, 5.0, 9.0])).unwrap_err().to_string();
+        assert!(e.contains("network.json") && e.contains("empty"), "{e}");
     }
 }
