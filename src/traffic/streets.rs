@@ -92,7 +92,7 @@ pub fn from_grow(dir: &Path, window: Option<[f64; 4]>) -> Result<RoadNetwork, Tr
         |message: String| TrafficError::new(&file, TrafficErrorKind::Parse { what: "a netspec grow network", message });
     let net: GrowFile = serde_json::from_str(&text).map_err(|e| bad(e.to_string()))?;
     let [x0, y0, x1, y1] = window.unwrap_or([0.0, 0.0, net.size[0], net.size[1]]);
-    if !(x0 < x1 && y0 < y1) || ![x0, y0, x1, y1].iter().all(|v| v.is_finite()) {
+    if !(x0 < x1 && y0 < y1 && [x0, y0, x1, y1].iter().all(|v| v.is_finite())) {
         return Err(TrafficError::new(
             &file,
             TrafficErrorKind::Invalid(format!("window {x0},{y0},{x1},{y1} is empty")),
