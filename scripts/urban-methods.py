@@ -46,10 +46,10 @@ def r(x, k=3):
     return None if x is None else round(x, k)
 
 
-def layout_record(d, run):
-    m = d["metrics"]
+def metrics_record(method, m):
+    """The §7 metrics a page row shows, rounded (a layout's `metrics`, a city's `layout_metrics`)."""
     return {
-        "method": "layout",
+        "method": method,
         "land_use": {k: r(v, 2) for k, v in m["land_use"].items()},
         "blocks_per_km2": r(m["blocks_per_km2"], 1),
         "block_perimeter_mean": r(m["block_perimeter_mean"], 1),
@@ -57,23 +57,18 @@ def layout_record(d, run):
         "intersections_per_km2": r(m["intersections_per_km2"], 1),
         "dead_ends_per_km2": r(m["dead_ends_per_km2"], 1),
         **{k: r(m[k], 3) for k in PARCEL_KEYS},
-        "seconds": {k: r(v, 2) for k, v in run["times"].items()},
     }
 
 
+def layout_record(d, run):
+    return {**metrics_record("layout", d["metrics"]), "seconds": {k: r(v, 2) for k, v in run["times"].items()}}
+
+
 def city_record(c):
-    m = c["layout_metrics"]
     levels = [lv for reg in c["regions"] for lv in reg["levels"]]
     gaps = [lv.get("gap") for lv in levels if lv.get("gap") is not None]
     return {
-        "method": "city",
-        "land_use": {k: r(v, 2) for k, v in m["land_use"].items()},
-        "blocks_per_km2": r(m["blocks_per_km2"], 1),
-        "block_perimeter_mean": r(m["block_perimeter_mean"], 1),
-        "street_km_per_km2": r(m["street_km_per_km2"], 2),
-        "intersections_per_km2": r(m["intersections_per_km2"], 1),
-        "dead_ends_per_km2": r(m["dead_ends_per_km2"], 1),
-        **{k: r(m[k], 3) for k in PARCEL_KEYS},
+        **metrics_record("city", c["layout_metrics"]),
         "max_gap": r(max(gaps), 4) if gaps else None,
         # The levels' own solve times (a rerun reuses levels whose inputs are unchanged).
         "seconds": {"total": r(sum(lv.get("wall_time") or 0.0 for lv in levels), 1)},

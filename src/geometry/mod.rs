@@ -99,6 +99,24 @@ pub fn polyline_length(line: &[P]) -> f64 {
     line.windows(2).map(|w| dist(w[0], w[1])).sum()
 }
 
+/// The point at fraction `f` of the way from `a` to `b`.
+pub fn lerp(a: P, b: P, f: f64) -> P {
+    add(a, scale(sub(b, a), f))
+}
+
+/// The point at arc length `s` along a polyline (clamped to its ends).
+pub fn point_at_length(line: &[P], s: f64) -> P {
+    let mut left = s.max(0.0);
+    for w in line.windows(2) {
+        let l = dist(w[0], w[1]);
+        if left <= l && l > 0.0 {
+            return lerp(w[0], w[1], left / l);
+        }
+        left -= l;
+    }
+    *line.last().expect("a non-empty line")
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

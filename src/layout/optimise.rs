@@ -43,7 +43,9 @@ use super::region::Region;
 use super::Street;
 use crate::geometry::index::SegmentIndex;
 use crate::geometry::sparse::Csr;
-use crate::geometry::{add, closest_on_segment, dist, dot, norm, polyline_length, scale, sub, P};
+use crate::geometry::{
+    add, closest_on_segment, dist, dot, lerp, norm, point_at_length, polyline_length, scale, sub, P,
+};
 use geo::{Area, MinimumRotatedRect};
 
 /// The optimisation's settings.
@@ -181,20 +183,7 @@ fn end_vertex(mesh: &mut Mesh, p: P, boundary: &[(P, P)], earlier: &[Street]) ->
 fn resample(line: &[P], spacing: f64) -> Vec<P> {
     let len = polyline_length(line);
     let n = ((len / spacing).round() as usize).max(1);
-    (0..=n).map(|i| at_length(line, len * i as f64 / n as f64)).collect()
-}
-
-/// The point at arc length `s` along `line` (clamped to its ends).
-fn at_length(line: &[P], s: f64) -> P {
-    let mut left = s.max(0.0);
-    for w in line.windows(2) {
-        let l = dist(w[0], w[1]);
-        if left <= l && l > 0.0 {
-            return add(w[0], scale(sub(w[1], w[0]), left / l));
-        }
-        left -= l;
-    }
-    *line.last().expect("a non-empty line")
+    (0..=n).map(|i| point_at_length(line, len * i as f64 / n as f64)).collect()
 }
 
 /// Per vertex, the target `v̄` of strip fitting, if any block gives one.
@@ -340,14 +329,17 @@ impl Strip {
         (a, b)
     }
 
+    /// The arc lengths where side `k` (mod 4) starts and ends, the end past the perimeter for
+    /// the side that wraps round vertex 0.
+    fn span(&self, k: usize) -> (f64, f64) {
+        let s0 = self.corners[k % 4];
+        let s1 = self.corners[(k + 1) % 4];
+        (s0, if s1 <= s0 { s1 + self.cum[self.ring.len()] } else { s1 })
+    }
+
     /// The arc length of the point at fraction `f` of side `k` (mod 4).
     fn side_at(&self, k: usize, f: f64) -> f64 {
-        let per = self.cum[self.ring.len()];
-        let s0 = self.corners[k % 4];
-        let mut s1 = self.corners[(k + 1) % 4];
-        if s1 <= s0 {
-            s1 += per;
-        }
+        let (s0, s1) = self.span(k);
         s0 + f * (s1 - s0)
     }
 
@@ -368,11 +360,7 @@ impl Strip {
         // The side holding `s` and the fraction along it.
         let (mut side, mut f) = (0, 0.0);
         for k in 0..4 {
-            let s0 = self.corners[k];
-            let mut s1 = self.corners[(k + 1) % 4];
-            if s1 <= s0 {
-                s1 += per;
-            }
+            let (s0, s1) = self.span(k);
             let mut t = s;
             if t < s0 {
                 t += per;
@@ -393,10 +381,6 @@ impl Strip {
             _ => None,
         }
     }
-}
-
-fn lerp(a: P, b: P, f: f64) -> P {
-    add(a, scale(sub(b, a), f))
 }
 
 /// The point at fraction `f` of a polyline given by equally spaced parameter samples.

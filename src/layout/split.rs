@@ -196,17 +196,7 @@ fn major_roads(region: &Region) -> (Vec<(Polygon, usize)>, Vec<Street>) {
 }
 
 fn midpoint(line: &[P]) -> P {
-    let total = crate::geometry::polyline_length(line);
-    let mut run = 0.0;
-    for w in line.windows(2) {
-        let l = dist(w[0], w[1]);
-        if run + l >= total / 2.0 && l > 0.0 {
-            let t = (total / 2.0 - run) / l;
-            return [w[0][0] + t * (w[1][0] - w[0][0]), w[0][1] + t * (w[1][1] - w[0][1])];
-        }
-        run += l;
-    }
-    line[0]
+    crate::geometry::point_at_length(line, crate::geometry::polyline_length(line) / 2.0)
 }
 
 /// A road cut into pieces at its crossings with other roads.

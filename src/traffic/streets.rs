@@ -44,13 +44,7 @@ pub fn from_layout(dir: &Path) -> Result<RoadNetwork, TrafficError> {
     }
     Ok(RoadNetwork {
         name: layout.name,
-        source: Provenance {
-            kind: "layout".into(),
-            path: file.display().to_string(),
-            netspec_version: env!("CARGO_PKG_VERSION").into(),
-            description: String::new(),
-            runs: Vec::new(),
-        },
+        source: provenance("layout", &file, String::new()),
         metres_per_unit: 1.0,
         nodes,
         edges,
@@ -121,13 +115,7 @@ pub fn from_grow(dir: &Path, window: Option<[f64; 4]>) -> Result<RoadNetwork, Tr
     }
     Ok(RoadNetwork {
         name: dir.file_name().map_or("grow".into(), |n| n.to_string_lossy().into_owned()),
-        source: Provenance {
-            kind: "grow".into(),
-            path: file.display().to_string(),
-            netspec_version: env!("CARGO_PKG_VERSION").into(),
-            description: format!("window {x0},{y0},{x1},{y1}"),
-            runs: Vec::new(),
-        },
+        source: provenance("grow", &file, format!("window {x0},{y0},{x1},{y1}")),
         metres_per_unit: 1.0,
         nodes,
         edges,
@@ -155,6 +143,17 @@ fn clip(a: P, b: P, r: [f64; 4]) -> Option<(P, P)> {
     }
     let at = |t: f64| [a[0] + t * d[0], a[1] + t * d[1]];
     (t0 < t1).then(|| (at(t0), at(t1)))
+}
+
+/// Where a network of centrelines was read from (the files carry no solver runs).
+fn provenance(kind: &str, file: &Path, description: String) -> Provenance {
+    Provenance {
+        kind: kind.into(),
+        path: file.display().to_string(),
+        netspec_version: env!("CARGO_PKG_VERSION").into(),
+        description,
+        runs: Vec::new(),
+    }
 }
 
 /// A layout level as a traffic level (1 major, 2 collector, 3 local).
