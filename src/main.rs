@@ -233,6 +233,13 @@ enum Command {
         /// The window of a `netspec grow` network, metres: x0,y0,x1,y1 (default: its whole map).
         #[arg(long, value_name = "X0,Y0,X1,Y1", value_parser = parse_window)]
         window: Option<[f64; 4]>,
+        /// Trade flows (a trade.json of `netspec grow --window`): trade trips between the
+        /// entrances nearest to each flow's ends, for every design.
+        #[arg(long, value_name = "FILE")]
+        trade: Option<PathBuf>,
+        /// Trade trips per hour, shared among the flows by weight.
+        #[arg(long, default_value_t = 300.0, value_name = "PER_HOUR")]
+        trade_rate: f64,
         /// SUMO_HOME to use (default: $SUMO_HOME, then the copy scripts/setup.sh installs, then PATH).
         #[arg(long, value_name = "DIR")]
         sumo_home: Option<PathBuf>,
@@ -343,9 +350,11 @@ enum Command {
     /// Grow a road network by traffic (Beneš, Wilkie & Křivánek 2014): settlements, minor streets
     /// around growth nuclei and major roads built where trade between neighbouring cities
     /// saturates the routes. CONTEXT is a TOML historical context (docs/grow.md). Writes
-    /// network.json, series.csv, network.svg/.png (and network.geojson with an origin) into DIR.
+    /// network.json, series.csv, network.svg/.png (and network.geojson with an origin) into DIR;
+    /// with --window also city.toml and trade.json of that window (CONTEXT may then be a grown
+    /// output directory, which is windowed without growing again).
     Grow {
-        /// The context file.
+        /// The context file, or with --window a `netspec grow` output directory.
         context: PathBuf,
         /// Output directory.
         #[arg(long, value_name = "DIR")]
@@ -359,6 +368,11 @@ enum Command {
         /// Also write step-NNN.svg every K steps (and at step 0).
         #[arg(long, value_name = "K", value_parser = clap::value_parser!(u32).range(1..))]
         every: Option<u32>,
+        /// A window of the map, metres (x0,y0,x1,y1): writes city.toml (its grown major roads,
+        /// water as obstacles, unbuilt sub-regions running no level) and trade.json (the trade
+        /// flows across it).
+        #[arg(long, value_name = "X0,Y0,X1,Y1", value_parser = parse_window)]
+        window: Option<[f64; 4]>,
     },
     /// A region's cross field (smooth or distance): field.json (singularities with their index,
     /// the field per vertex), field.svg and field.png with a few streamlines.
@@ -618,6 +632,8 @@ fn run(cli: Cli) -> Result<ExitCode> {
             metres_per_unit,
             level,
             window,
+            trade,
+            trade_rate,
             sumo_home,
             out,
             time_limit,
@@ -629,6 +645,11 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 through_per_hour: through_rate,
                 local_per_hour: local_rate,
                 seed,
+                trade_per_hour: trade_rate,
+                trade: match &trade {
+                    Some(f) => netspec::traffic::demand::TradeFile::load(f)?.flows,
+                    None => Vec::new(),
+                },
             },
             load: netspec::traffic::network::LoadOptions { metres_per_unit, level, window },
             sumo_home,
@@ -687,8 +708,8 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 out,
             })
         }
-        Command::Grow { context, out, seed, steps, every } => {
-            cli::grow::run(&netspec::grow::GrowRequest { context, out, seed, steps, every })
+        Command::Grow { context, out, seed, steps, every, window } => {
+            cli::grow::run(&netspec::grow::GrowRequest { context, out, seed, steps, every }, window)
         }
         Command::Field { region, method, h, out } => {
             if let Some(h) = h.filter(|h| !(h.is_finite() && *h > 0.0)) {

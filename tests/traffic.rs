@@ -71,7 +71,13 @@ fn tiny_design_through_netconvert_and_sumo() {
     )
     .unwrap();
     let dir = tempfile::tempdir().unwrap();
-    let settings = DemandSettings { duration: 600.0, through_per_hour: 120.0, local_per_hour: 240.0, seed: 3 };
+    let settings = DemandSettings {
+        duration: 600.0,
+        through_per_hour: 120.0,
+        local_per_hour: 240.0,
+        seed: 3,
+        ..Default::default()
+    };
     let r = evaluate(&net, &settings, &sumo(), dir.path()).unwrap_or_else(|e| panic!("{e}"));
     let v = &r.vehicles;
     assert!(r.demand.placed > 10, "{:?}", r.demand);
@@ -260,7 +266,13 @@ fn city_export_is_exactly_the_street_graph() {
         assert_eq!(e.lanes, if graph.edges[k as usize].level == 1 { 2 } else { 1 });
     }
     // And it carries traffic: every vehicle inserted arrives; through traffic is measured.
-    let settings = DemandSettings { duration: 300.0, through_per_hour: 240.0, local_per_hour: 240.0, seed: 5 };
+    let settings = DemandSettings {
+        duration: 300.0,
+        through_per_hour: 240.0,
+        local_per_hour: 240.0,
+        seed: 5,
+        ..Default::default()
+    };
     let r = evaluate(&net, &settings, &sumo(), dir.path()).unwrap_or_else(|e| panic!("{e}"));
     assert!(r.vehicles.inserted > 10, "{:?}", r.vehicles);
     assert_eq!(r.vehicles.arrived, r.vehicles.inserted);
@@ -273,7 +285,13 @@ fn city_export_is_exactly_the_street_graph() {
 fn demand_is_seeded_and_placed() {
     let square = vec![[0.0, 0.0], [400.0, 0.0], [400.0, 400.0], [0.0, 400.0]];
     let region = Region { boundary: square.clone(), areas: vec![square.clone()] };
-    let s = DemandSettings { duration: 3600.0, through_per_hour: 200.0, local_per_hour: 400.0, seed: 7 };
+    let s = DemandSettings {
+        duration: 3600.0,
+        through_per_hour: 200.0,
+        local_per_hour: 400.0,
+        seed: 7,
+        ..Default::default()
+    };
     let a = demand::generate(&region, &s);
     assert_eq!(a, demand::generate(&region, &s));
     assert_ne!(a, demand::generate(&region, &DemandSettings { seed: 8, ..s.clone() }));
@@ -301,6 +319,22 @@ fn demand_is_seeded_and_placed() {
     other.rotate_left(2);
     other.push(other[0]);
     assert_eq!(a, demand::generate(&Region { boundary: other.clone(), areas: vec![other] }, &s));
+    // Trade flows add trips of their own, in proportion to the weights, and leave the others.
+    let flows = vec![
+        demand::TradeFlow { from: [0.0, 100.0], to: [400.0, 300.0], weight: 3.0 },
+        demand::TradeFlow { from: [200.0, 0.0], to: [200.0, 400.0], weight: 1.0 },
+    ];
+    let t = demand::generate(&region, &DemandSettings { trade_per_hour: 400.0, trade: flows, ..s.clone() });
+    let (trade, rest): (Vec<_>, Vec<_>) = t.into_iter().partition(|t| t.class == TripClass::Trade);
+    assert_eq!(rest, a);
+    let first = trade.iter().filter(|t| t.from == [0.0, 100.0] && t.to == [400.0, 300.0]).count();
+    assert!((trade.len() as f64 - 400.0).abs() < 4.0 * 20.0, "{}", trade.len());
+    assert!((first as f64 - 300.0).abs() < 4.0 * 300f64.sqrt(), "{first}");
+    assert_eq!(netspec::traffic::report::spearman(&[1.0, 2.0, 3.0, 4.0], &[10.0, 20.0, 30.0, 40.0]), Some(1.0));
+    assert_eq!(netspec::traffic::report::spearman(&[1.0, 2.0, 3.0], &[3.0, 2.0, 1.0]), Some(-1.0));
+    let tied = netspec::traffic::report::spearman(&[1.0, 1.0, 2.0, 3.0], &[5.0, 6.0, 7.0, 8.0]).unwrap();
+    assert!((tied - 0.9486832980505138).abs() < 1e-12, "{tied}");
+    assert_eq!(netspec::traffic::report::spearman(&[1.0, 1.0, 1.0], &[1.0, 2.0, 3.0]), None);
     assert_eq!(percentile(&[3.0, 1.0, 2.0, 4.0], 0.95), Some(4.0));
     assert_eq!(percentile(&(1..=20).map(f64::from).collect::<Vec<_>>(), 0.95), Some(19.0));
     assert_eq!(percentile(&[], 0.95), None);
@@ -472,9 +506,71 @@ fn a_layout_is_simulated_on_its_own_region() {
     let graph: f64 = net.edges.iter().map(|e| e.length()).sum();
     assert!((designed - graph).abs() < 1e-6 * designed, "{designed} m of street, {graph} m in the graph");
     assert!(net.nodes.iter().any(|n| n.entrance), "the major road's ends are entrances");
-    let settings = DemandSettings { duration: 600.0, through_per_hour: 120.0, local_per_hour: 240.0, seed: 3 };
+    let settings = DemandSettings {
+        duration: 600.0,
+        through_per_hour: 120.0,
+        local_per_hour: 240.0,
+        seed: 3,
+        ..Default::default()
+    };
     let out = tempfile::tempdir().unwrap();
     let r = evaluate(&net, &settings, &sumo(), out.path()).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(r.network.streets_in_net, r.network.streets);
     assert!(r.vehicles.inserted > 10 && r.vehicles.arrived == r.vehicles.inserted, "{:?}", r.vehicles);
+}
+
+/// A window of a grown network: `netspec grow --window` writes the trade flows across it, trade
+/// trips drive between the entrances, and the growth model's loads are ranked against SUMO's.
+#[test]
+fn a_grown_window_meets_trade_and_its_loads_are_ranked() {
+    let dir = tempfile::tempdir().unwrap();
+    // Two major roads crossing at (500, 500) (trade 9 east–west, 3 north–south) and a grid of
+    // minor streets (no trade) in the north-east quarter.
+    let mut nodes = vec![(0, 0.0, 500.0), (1, 500.0, 500.0), (2, 1000.0, 500.0), (3, 500.0, 0.0), (4, 500.0, 1000.0)];
+    let mut segs = vec![(0, 1, "major", 9.0), (1, 2, "major", 9.0), (3, 1, "major", 3.0), (1, 4, "major", 3.0)];
+    let mut id = 5;
+    for x in [650.0, 800.0] {
+        nodes.push((id, x, 500.0));
+        nodes.push((id + 1, x, 800.0));
+        segs.push((id, id + 1, "minor", 0.0));
+        id += 2;
+    }
+    // Split the east–west road at the minor streets' ends so the graph stays planar.
+    segs.retain(|s| !(s.0 == 1 && s.1 == 2));
+    segs.extend([(1, 5, "major", 9.0), (5, 7, "major", 9.0), (7, 2, "major", 9.0), (6, 8, "minor", 0.0)]);
+    let nodes: Vec<String> = nodes.iter().map(|(i, x, y)| format!(r#"{{"id": {i}, "x": {x}, "y": {y}}}"#)).collect();
+    let segments: Vec<String> = segs
+        .iter()
+        .map(|(a, b, c, t)| format!(r#"{{"a": {a}, "b": {b}, "class": "{c}", "width": 1, "step": 0, "traffic": {t}}}"#))
+        .collect();
+    let json = format!(
+        r#"{{"size": [1000, 1000], "spacing": 20, "nodes": [{}], "segments": [{}], "water": [],
+            "routes": [{{"traffic": 9, "nodes": [0, 1, 5, 7, 2]}}, {{"traffic": 3, "nodes": [3, 1, 4]}}]}}"#,
+        nodes.join(", "),
+        segments.join(", ")
+    );
+    std::fs::write(dir.path().join("network.json"), json).unwrap();
+    std::fs::write(dir.path().join("series.csv"), "step\n0\n").unwrap();
+    let window = [100.0, 100.0, 900.0, 900.0];
+    let w =
+        netspec::grow::window::write(dir.path(), window, "w", &dir.path().join("w")).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!((w.roads, w.regions, w.empty_regions, w.flows), (4, 4, 3, 2), "{w:?}");
+    let trade = demand::TradeFile::load(&dir.path().join("w/trade.json")).unwrap();
+    let net = network::load(dir.path(), &LoadOptions { window: Some(window), ..Default::default() }).unwrap();
+    assert!(net.edges.iter().filter(|e| e.level == 1).all(|e| e.predicted_load.is_some_and(|l| l > 0.0)));
+    let settings = DemandSettings {
+        duration: 600.0,
+        through_per_hour: 60.0,
+        local_per_hour: 120.0,
+        seed: 3,
+        trade_per_hour: 240.0,
+        trade: trade.flows,
+    };
+    let out = tempfile::tempdir().unwrap();
+    let r = evaluate(&net, &settings, &sumo(), out.path()).unwrap_or_else(|e| panic!("{e}"));
+    assert!(r.demand.trade_drawn > 10 && r.trade.vehicles > 10, "{:?} {:?}", r.demand, r.trade);
+    let p = r.predicted_loads.expect("predicted loads are ranked");
+    assert_eq!(p.streets, net.edges.len());
+    // Trade follows the loaded major roads: the busier road ranks above the minor streets.
+    assert!(p.spearman_trade.is_some_and(|rho| rho > 0.5), "{p:?}");
 }

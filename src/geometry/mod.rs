@@ -117,6 +117,27 @@ pub fn point_at_length(line: &[P], s: f64) -> P {
     *line.last().expect("a non-empty line")
 }
 
+/// Segment `ab` clipped to the rectangle `[x0, y0, x1, y1]` (Liang–Barsky), if any of it is in.
+pub fn clip_segment(a: P, b: P, r: [f64; 4]) -> Option<(P, P)> {
+    let d = [b[0] - a[0], b[1] - a[1]];
+    let (mut t0, mut t1) = (0.0f64, 1.0f64);
+    for (p, q) in [(-d[0], a[0] - r[0]), (d[0], r[2] - a[0]), (-d[1], a[1] - r[1]), (d[1], r[3] - a[1])] {
+        if p == 0.0 {
+            if q < 0.0 {
+                return None;
+            }
+        } else {
+            let t = q / p;
+            if p < 0.0 {
+                t0 = t0.max(t);
+            } else {
+                t1 = t1.min(t);
+            }
+        }
+    }
+    (t0 < t1).then(|| (lerp(a, b, t0), lerp(a, b, t1)))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

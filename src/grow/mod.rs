@@ -9,7 +9,8 @@
 //! [`lattice`] (the implicit pathfinding graph), [`paths`] (shortest paths), [`spaces`] (the
 //! graphs searched), [`graph`] (the planar road graph), [`blocks`] (faces and the built-up area),
 //! [`minor`] (minor-road growth), [`traffic`] (trade routes and capacities), [`step`] (the
-//! simulation), [`output`] (files); [`run`] is the entry point of `netspec grow`.
+//! simulation), [`output`] (files), [`window`] (a window as a city spec and trade flows); [`run`]
+//! is the entry point of `netspec grow`.
 
 pub mod blocks;
 pub mod context;
@@ -22,6 +23,7 @@ pub mod spaces;
 pub mod step;
 pub mod terrain;
 pub mod traffic;
+pub mod window;
 
 use crate::geometry::P;
 use std::path::{Path, PathBuf};

@@ -13,6 +13,10 @@
 //!   point's projection, driving in a direction drawn with the trip (a car parked one way or
 //!   the other: it may have to go round a block, as there are U-turns only at dead ends).
 //!
+//! * **Trade** (with `trade` flows, e.g. a `trade.json` of `netspec grow --window`): a Poisson
+//!   process of `trade_per_hour`, shared among the flows by weight; each trip from the flow's
+//!   entry point to its exit point, each end at the nearest entrance node.
+//!
 //! A trip whose two ends fall on the same street or junction is dropped (and counted). Routes
 //! are `duarouter`'s.
 
@@ -36,12 +40,69 @@ pub struct DemandSettings {
     pub local_per_hour: f64,
     /// Seed of the demand (and of `duarouter` and `sumo`).
     pub seed: u64,
+    /// Trade trips per hour, shared among the [`trade`](Self::trade) flows by weight.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub trade_per_hour: f64,
+    /// Trade flows between points of the region's boundary (a `trade.json` of
+    /// `netspec grow --window`); none by default.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub trade: Vec<TradeFlow>,
+}
+
+fn is_zero(v: &f64) -> bool {
+    *v == 0.0
 }
 
 impl Default for DemandSettings {
-    /// One hour; 300 through and 600 local trips per hour; seed 1.
+    /// One hour; 300 through and 600 local trips per hour; no trade; seed 1.
     fn default() -> Self {
-        DemandSettings { duration: 3600.0, through_per_hour: 300.0, local_per_hour: 600.0, seed: 1 }
+        DemandSettings {
+            duration: 3600.0,
+            through_per_hour: 300.0,
+            local_per_hour: 600.0,
+            seed: 1,
+            trade_per_hour: 0.0,
+            trade: Vec::new(),
+        }
+    }
+}
+
+/// Trade across a region: trips from one point to another (each end at the nearest entrance),
+/// as many as the flow's share of the weights.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TradeFlow {
+    /// Where the trade enters, metres.
+    pub from: [f64; 2],
+    /// Where it leaves, metres.
+    pub to: [f64; 2],
+    /// Its weight (a grown network's route traffic).
+    pub weight: f64,
+}
+
+/// A `trade.json` file: the trade flows across a window of a grown map.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TradeFile {
+    /// The window `[x0, y0, x1, y1]`, metres.
+    pub window: [f64; 4],
+    /// The flows, in order of their end points.
+    pub flows: Vec<TradeFlow>,
+}
+
+impl TradeFile {
+    /// Reads and checks a trade file: finite points, weights ≥ 0.
+    pub fn load(path: &std::path::Path) -> Result<TradeFile, super::TrafficError> {
+        use super::{TrafficError, TrafficErrorKind};
+        let text = super::read(path)?;
+        let bad = |message: String| TrafficError::new(path, TrafficErrorKind::Parse { what: "a trade file", message });
+        let f: TradeFile = serde_json::from_str(&text).map_err(|e| bad(e.to_string()))?;
+        for (i, t) in f.flows.iter().enumerate() {
+            if !(t.from.iter().chain(&t.to).all(|v| v.is_finite()) && t.weight.is_finite() && t.weight >= 0.0) {
+                return Err(bad(format!("flows[{i}]: points must be finite and the weight a number ≥ 0")));
+            }
+        }
+        Ok(f)
     }
 }
 
@@ -53,6 +114,8 @@ pub enum TripClass {
     Through,
     /// Between interior points.
     Local,
+    /// Along a trade flow, entrance to entrance.
+    Trade,
 }
 
 impl TripClass {
@@ -61,6 +124,7 @@ impl TripClass {
         match self {
             TripClass::Through => "through",
             TripClass::Local => "local",
+            TripClass::Trade => "trade",
         }
     }
 }
@@ -122,7 +186,27 @@ pub fn generate(region: &Region, s: &DemandSettings) -> Vec<Trip> {
             trips.push(Trip { id: format!("local{k}"), class: TripClass::Local, depart, from, to, forward });
         }
     }
+    trips.extend(trade(s));
     trips.sort_by(|a, b| a.depart.total_cmp(&b.depart).then(a.class.cmp(&b.class)));
+    trips
+}
+
+/// The trade trips: per flow in order, a Poisson process of its share of `trade_per_hour`, from
+/// a generator of its own (so adding trade leaves the through and local trips as they were).
+fn trade(s: &DemandSettings) -> Vec<Trip> {
+    let total: f64 = s.trade.iter().map(|f| f.weight.max(0.0)).sum();
+    let mut trips = Vec::new();
+    if !(total > 0.0) {
+        return trips;
+    }
+    // "trade" in ASCII, mixed into the seed.
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(s.seed ^ 0x74_7261_6465);
+    for f in &s.trade {
+        for depart in poisson(&mut rng, s.trade_per_hour * f.weight.max(0.0) / total, s.duration) {
+            let id = format!("trade{}", trips.len());
+            trips.push(Trip { id, class: TripClass::Trade, depart, from: f.from, to: f.to, forward: [true, true] });
+        }
+    }
     trips
 }
 
@@ -289,7 +373,7 @@ pub fn place(trips: &[Trip], net: &RoadNetwork, sumo_net: &SumoNet) -> Placement
     let mut out = Placement::default();
     for (i, t) in trips.iter().enumerate() {
         let ends = match t.class {
-            TripClass::Through => (gate(t.from), gate(t.to)),
+            TripClass::Through | TripClass::Trade => (gate(t.from), gate(t.to)),
             TripClass::Local => (street(t.from, t.forward[0]), street(t.to, t.forward[1])),
         };
         let (Some(from), Some(to)) = ends else {
@@ -305,11 +389,11 @@ pub fn place(trips: &[Trip], net: &RoadNetwork, sumo_net: &SumoNet) -> Placement
     out
 }
 
-/// The trips as a SUMO trip file (vehicle types `through` and `local`, both default passenger
+/// The trips as a SUMO trip file (vehicle types `through`, `local` and `trade`, all default passenger
 /// cars), sorted by departure.
 pub fn trips_xml(p: &Placement) -> String {
     let mut s = String::from("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<routes>\n");
-    for c in [TripClass::Through, TripClass::Local] {
+    for c in [TripClass::Through, TripClass::Local, TripClass::Trade] {
         let _ = writeln!(s, r#"    <vType id="{}" vClass="passenger"/>"#, c.name());
     }
     for t in &p.trips {

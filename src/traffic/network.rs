@@ -69,6 +69,9 @@ pub struct RoadEdge {
     /// Local traffic may start and end here (streets of levels ≥ 2 in a city; every street of
     /// a `solve` design).
     pub local: bool,
+    /// The load its generator predicted (a grown network's segment traffic), if any.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub predicted_load: Option<f64>,
 }
 
 impl RoadEdge {
@@ -219,6 +222,7 @@ pub fn from_design(res: &DesignResult, path: &Path, opts: &LoadOptions) -> Resul
             level,
             shape: vec![nodes[ends[0]].pos, nodes[ends[1]].pos],
             local: true,
+            predicted_load: None,
         });
     }
     if edges.is_empty() {
@@ -343,7 +347,15 @@ pub fn from_city(dir: &Path, opts: &LoadOptions) -> Result<RoadNetwork, TrafficE
             nodes[ends[0]].entrance = true;
             nodes[ends[1]].entrance = true;
         }
-        edges.push(RoadEdge { id: k as u32, a: ends[0], b: ends[1], level: e.level, shape, local: e.level >= 2 });
+        edges.push(RoadEdge {
+            id: k as u32,
+            a: ends[0],
+            b: ends[1],
+            level: e.level,
+            shape,
+            local: e.level >= 2,
+            predicted_load: None,
+        });
     }
     if edges.is_empty() {
         return Err(TrafficError::new(&file, TrafficErrorKind::NoNetwork("the city has no streets".into())));

@@ -7,7 +7,9 @@
 //! The share of through traffic on local streets is measured on the routes as driven
 //! (`vehroute` output) of through vehicles that arrived, over whole edges (`.net.xml` lane
 //! lengths): the share of their distance on levels ≥ 3 (local streets and cul-de-sacs), and
-//! the share of them that used any such street.
+//! the share of them that used any such street; trade vehicles count as through traffic there.
+//! For a design whose streets carry a generator's predicted loads (a grown network), the
+//! predictions are ranked against SUMO's volumes ([`spearman`]).
 
 use super::demand::{Placement, Trip, TripClass};
 use super::export::{parse_edge_id, road_types, RoadType};
@@ -51,8 +53,15 @@ pub struct TrafficReport {
     pub through: ClassStats,
     /// Local traffic.
     pub local: ClassStats,
-    /// How much through traffic used local streets.
+    /// Trade traffic (none without trade flows).
+    #[serde(default)]
+    pub trade: ClassStats,
+    /// How much through and trade traffic used local streets.
     pub through_on_local: LocalShare,
+    /// How the loads a generator predicted (a grown network's segment traffic) rank against
+    /// SUMO's; absent for designs without predictions.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub predicted_loads: Option<PredictedLoads>,
     /// Vehicles per street and direction.
     pub edge_volumes: Vec<EdgeVolume>,
     /// Travel times of the vehicles that arrived, s, per class (for histograms).
@@ -91,6 +100,9 @@ pub struct DemandSummary {
     pub through_drawn: usize,
     /// Local trips drawn.
     pub local_drawn: usize,
+    /// Trade trips drawn.
+    #[serde(default)]
+    pub trade_drawn: usize,
     /// Dropped: both ends at one street or junction.
     pub same_place: usize,
     /// Dropped: no street of the kind needed.
@@ -135,10 +147,22 @@ pub struct ClassStats {
     pub time_loss_mean: Option<f64>,
 }
 
-/// Through traffic on local streets (levels ≥ 3).
+/// Loads a generator predicted against SUMO's, per street: Spearman rank correlations over the
+/// streets with a prediction (ties ranked by their mean rank).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct PredictedLoads {
+    /// Streets with a predicted load.
+    pub streets: usize,
+    /// Against every vehicle on the street (both directions).
+    pub spearman_all: Option<f64>,
+    /// Against the trade vehicles that drove on the street (the traffic the generator models).
+    pub spearman_trade: Option<f64>,
+}
+
+/// Through and trade traffic on local streets (levels ≥ 3).
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct LocalShare {
-    /// Through vehicles measured (arrived, with a route).
+    /// Through and trade vehicles measured (arrived, with a route).
     pub vehicles: usize,
     /// Their vehicle-kilometres on each level 1–4.
     pub km_by_level: [f64; 4],
@@ -248,7 +272,16 @@ pub fn build(
     let street_of: BTreeMap<u32, usize> = net.edges.iter().enumerate().map(|(k, e)| (e.id, k)).collect();
     let (mut local_m, mut total_m, mut used_local, mut measured) = (0.0, 0.0, 0usize, 0usize);
     let mut km_by_level = [0.0; 4];
-    for t in of(Some(TripClass::Through)) {
+    let mut trade_count: BTreeMap<usize, f64> = BTreeMap::new();
+    for t in infos.iter().filter(|t| class_of[t.id.as_str()] == TripClass::Trade) {
+        let Some(edges) = routes.get(&t.id) else { continue };
+        for e in edges {
+            if let Some(&k) = parse_edge_id(e).and_then(|(id, _)| street_of.get(&id)) {
+                *trade_count.entry(k).or_default() += 1.0;
+            }
+        }
+    }
+    for t in infos.iter().filter(|t| class_of[t.id.as_str()] != TripClass::Local) {
         let Some(edges) = routes.get(&t.id) else { continue };
         measured += 1;
         let mut any = false;
@@ -288,8 +321,25 @@ pub fn build(
         summary.streets_in_net += usize::from(sumo_net.edges.contains_key(&f) && sumo_net.edges.contains_key(&b));
         edge_volumes.push(EdgeVolume { street: e.id, level: e.level, forward: vol(f), backward: vol(b) });
     }
+    let predicted: Vec<(f64, f64, f64)> = net
+        .edges
+        .iter()
+        .zip(&edge_volumes)
+        .enumerate()
+        .filter_map(|(k, (e, v))| {
+            Some((e.predicted_load?, v.forward + v.backward, trade_count.get(&k).copied().unwrap_or(0.0)))
+        })
+        .collect();
+    let predicted_loads = (!predicted.is_empty()).then(|| {
+        let p: Vec<f64> = predicted.iter().map(|t| t.0).collect();
+        PredictedLoads {
+            streets: predicted.len(),
+            spearman_all: spearman(&p, &predicted.iter().map(|t| t.1).collect::<Vec<_>>()),
+            spearman_trade: spearman(&p, &predicted.iter().map(|t| t.2).collect::<Vec<_>>()),
+        }
+    });
     let mut travel_times = BTreeMap::new();
-    for c in [TripClass::Through, TripClass::Local] {
+    for c in [TripClass::Through, TripClass::Local, TripClass::Trade] {
         travel_times.insert(c.name().to_string(), of(Some(c)).iter().map(|t| t.duration).collect());
     }
     let count = |c: TripClass| trips.iter().filter(|t| t.class == c).count();
@@ -307,6 +357,7 @@ pub fn build(
             digest: demand_digest(trips),
             through_drawn: count(TripClass::Through),
             local_drawn: count(TripClass::Local),
+            trade_drawn: count(TripClass::Trade),
             same_place: placed.same_place,
             no_street: placed.no_street,
             placed: placed.trips.len(),
@@ -323,11 +374,49 @@ pub fn build(
         all: class_stats(&of(None)),
         through: class_stats(&of(Some(TripClass::Through))),
         local: class_stats(&of(Some(TripClass::Local))),
+        trade: class_stats(&of(Some(TripClass::Trade))),
         through_on_local,
+        predicted_loads,
         edge_volumes,
         travel_times,
         timings: Timings::default(),
     })
+}
+
+/// Ranks with ties at their mean rank (1-based).
+fn ranks(v: &[f64]) -> Vec<f64> {
+    let mut order: Vec<usize> = (0..v.len()).collect();
+    order.sort_by(|&a, &b| v[a].total_cmp(&v[b]));
+    let mut r = vec![0.0; v.len()];
+    let mut i = 0;
+    while i < order.len() {
+        let mut j = i;
+        while j + 1 < order.len() && v[order[j + 1]] == v[order[i]] {
+            j += 1;
+        }
+        for &k in &order[i..=j] {
+            r[k] = (i + j) as f64 / 2.0 + 1.0;
+        }
+        i = j + 1;
+    }
+    r
+}
+
+/// Spearman's rank correlation of `x` and `y` (Pearson's on tie-averaged ranks); `None` with
+/// fewer than three values or when either is constant.
+pub fn spearman(x: &[f64], y: &[f64]) -> Option<f64> {
+    if x.len() != y.len() || x.len() < 3 {
+        return None;
+    }
+    let (rx, ry) = (ranks(x), ranks(y));
+    let mean = (x.len() as f64 + 1.0) / 2.0;
+    let (mut sxy, mut sxx, mut syy) = (0.0, 0.0, 0.0);
+    for (a, b) in rx.iter().zip(&ry) {
+        sxy += (a - mean) * (b - mean);
+        sxx += (a - mean) * (a - mean);
+        syy += (b - mean) * (b - mean);
+    }
+    (sxx > 0.0 && syy > 0.0).then(|| sxy / (sxx * syy).sqrt())
 }
 
 fn num(v: Option<f64>, digits: usize) -> String {
@@ -376,7 +465,20 @@ impl TrafficReport {
             "vehicles   inserted {}, arrived {}, teleported {}, still running {}, never inserted {}",
             v.inserted, v.arrived, v.teleported, v.running_at_end, v.waiting_at_end
         );
-        for (label, c) in [("all", &self.all), ("through", &self.through), ("local", &self.local)] {
+        if d.trade_drawn > 0 {
+            let _ = writeln!(
+                s,
+                "trade      {:.0} per hour over {} flows: drawn {}",
+                d.settings.trade_per_hour,
+                d.settings.trade.len(),
+                d.trade_drawn
+            );
+        }
+        let mut classes = vec![("all", &self.all), ("through", &self.through), ("local", &self.local)];
+        if d.trade_drawn > 0 {
+            classes.push(("trade", &self.trade));
+        }
+        for (label, c) in classes {
             let _ = writeln!(
                 s,
                 "{label:<10} {} vehicles: travel time mean {} s, p95 {} s; route {} m; waiting {} s",
@@ -392,7 +494,7 @@ impl TrafficReport {
         let share = |k: usize| pct((km > 0.0).then(|| l.km_by_level[k] / km));
         let _ = writeln!(
             s,
-            "through    on local streets: {} of the distance, {} of the vehicles ({} measured); distance by level 1–4: {} / {} / {} / {}",
+            "through    (and trade) on local streets: {} of the distance, {} of the vehicles ({} measured); distance by level 1–4: {} / {} / {} / {}",
             pct(l.distance_share),
             pct(l.vehicle_share),
             l.vehicles,
@@ -401,6 +503,15 @@ impl TrafficReport {
             share(2),
             share(3)
         );
+        if let Some(p) = &self.predicted_loads {
+            let _ = writeln!(
+                s,
+                "predicted  loads against SUMO's over {} streets: Spearman {} (all vehicles), {} (trade)",
+                p.streets,
+                num(p.spearman_all, 2),
+                num(p.spearman_trade, 2)
+            );
+        }
         let t = &self.timings;
         let _ = writeln!(
             s,

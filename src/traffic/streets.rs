@@ -5,7 +5,7 @@
 use super::network::{Provenance, Region, RoadEdge, RoadNetwork, RoadNode};
 use super::{read, TrafficError, TrafficErrorKind};
 use crate::geometry::index::SegmentIndex;
-use crate::geometry::{closest_on_segment, dist, polyline_length, segment_intersection, P};
+use crate::geometry::{clip_segment as clip, closest_on_segment, dist, polyline_length, segment_intersection, P};
 use crate::layout::Street;
 use serde::Deserialize;
 use std::path::Path;
@@ -37,7 +37,7 @@ pub fn from_layout(dir: &Path) -> Result<RoadNetwork, TrafficError> {
         let n = layout.violations.len();
         return Err(TrafficError::new(&file, TrafficErrorKind::Invalid(format!("{n} violations in layout.json"))));
     }
-    let lines: Vec<(Vec<P>, u8)> = layout.streets.iter().map(|s| (s.polyline.clone(), level_of(s.level))).collect();
+    let lines: Vec<Line> = layout.streets.iter().map(|s| (s.polyline.clone(), level_of(s.level), None)).collect();
     let (nodes, edges) = graph(&lines, &layout.outer);
     if edges.is_empty() {
         return Err(TrafficError::new(&file, TrafficErrorKind::NoNetwork("the layout has no streets".into())));
@@ -72,12 +72,14 @@ struct GrowSegment {
     a: u64,
     b: u64,
     class: String,
+    #[serde(default)]
+    traffic: Option<f64>,
 }
 
 /// The network of a `netspec grow` output directory (`network.json`), inside `window`
 /// (`[x0, y0, x1, y1]`, metres; default the whole map): major roads and bridges as major roads,
 /// minor roads as local streets (harbour links are ferries, not roads), each segment clipped
-/// to the window; entrances where major roads cross the window's edge; demand drawn in the
+/// to the window and carrying the traffic the growth model put on it (its predicted load); entrances where major roads cross the window's edge; demand drawn in the
 /// window — so a `netspec city` on the same window meets the same trips.
 pub fn from_grow(dir: &Path, window: Option<[f64; 4]>) -> Result<RoadNetwork, TrafficError> {
     let file = dir.join("network.json");
@@ -105,7 +107,7 @@ pub fn from_grow(dir: &Path, window: Option<[f64; 4]>) -> Result<RoadNetwork, Tr
             return Err(bad(format!("segments[{i}]: node {} or {} is not in `nodes`", s.a, s.b)));
         };
         if let Some((a, b)) = clip(a, b, [x0, y0, x1, y1]) {
-            lines.push((vec![a, b], level));
+            lines.push((vec![a, b], level, s.traffic));
         }
     }
     let ring = vec![[x0, y0], [x1, y0], [x1, y1], [x0, y1]];
@@ -121,28 +123,6 @@ pub fn from_grow(dir: &Path, window: Option<[f64; 4]>) -> Result<RoadNetwork, Tr
         edges,
         region: Region { boundary: ring.clone(), areas: vec![ring] },
     })
-}
-
-/// Segment `ab` clipped to the rectangle `[x0, y0, x1, y1]` (Liang–Barsky), if any of it is in.
-fn clip(a: P, b: P, r: [f64; 4]) -> Option<(P, P)> {
-    let d = [b[0] - a[0], b[1] - a[1]];
-    let (mut t0, mut t1) = (0.0f64, 1.0f64);
-    for (p, q) in [(-d[0], a[0] - r[0]), (d[0], r[2] - a[0]), (-d[1], a[1] - r[1]), (d[1], r[3] - a[1])] {
-        if p == 0.0 {
-            if q < 0.0 {
-                return None;
-            }
-        } else {
-            let t = q / p;
-            if p < 0.0 {
-                t0 = t0.max(t);
-            } else {
-                t1 = t1.min(t);
-            }
-        }
-    }
-    let at = |t: f64| [a[0] + t * d[0], a[1] + t * d[1]];
-    (t0 < t1).then(|| (at(t0), at(t1)))
 }
 
 /// Where a network of centrelines was read from (the files carry no solver runs).
@@ -161,28 +141,31 @@ fn level_of(level: usize) -> u8 {
     (level + 1).min(3) as u8
 }
 
+/// A street centreline in metres, its traffic level, and the load a generator predicted on it.
+pub type Line = (Vec<P>, u8, Option<f64>);
+
 /// The street graph of polylines with levels: nodes at street ends, at points where a street
-/// ends on another, and at crossings; an edge per piece between nodes. Nodes of major roads on
-/// `outer` are entrances.
-pub fn graph(lines: &[(Vec<P>, u8)], outer: &[P]) -> (Vec<RoadNode>, Vec<RoadEdge>) {
+/// ends on another, and at crossings; an edge per piece between nodes (with its line's
+/// predicted load). Nodes of major roads on `outer` are entrances.
+pub fn graph(lines: &[Line], outer: &[P]) -> (Vec<RoadNode>, Vec<RoadEdge>) {
     let mut nodes: Vec<RoadNode> = Vec::new();
     let mut cells = Cells::new();
     let mut edges: Vec<RoadEdge> = Vec::new();
-    let lines: Vec<&(Vec<P>, u8)> = lines.iter().filter(|(l, _)| l.len() >= 2 && polyline_length(l) > SNAP).collect();
+    let lines: Vec<&Line> = lines.iter().filter(|(l, _, _)| l.len() >= 2 && polyline_length(l) > SNAP).collect();
     let ends = SegmentIndex::new(
-        lines.iter().flat_map(|(l, _)| [(l[0], l[0]), (l[l.len() - 1], l[l.len() - 1])]).collect(),
+        lines.iter().flat_map(|(l, _, _)| [(l[0], l[0]), (l[l.len() - 1], l[l.len() - 1])]).collect(),
         20.0,
     );
     let mut owner = Vec::new();
     let mut segments = Vec::new();
-    for (i, (l, _)) in lines.iter().enumerate() {
+    for (i, (l, _, _)) in lines.iter().enumerate() {
         for w in l.windows(2) {
             owner.push(i);
             segments.push((w[0], w[1]));
         }
     }
     let index = Segments { index: SegmentIndex::new(segments, 20.0), owner };
-    for (i, (line, level)) in lines.iter().enumerate() {
+    for (i, (line, level, load)) in lines.iter().enumerate() {
         let cuts = cut_points(i, line, &index, &ends);
         for piece in split_at(line, &cuts) {
             if polyline_length(&piece) <= SNAP {
@@ -193,7 +176,15 @@ pub fn graph(lines: &[(Vec<P>, u8)], outer: &[P]) -> (Vec<RoadNode>, Vec<RoadEdg
             if a == b && piece.len() < 3 {
                 continue;
             }
-            edges.push(RoadEdge { id: edges.len() as u32, a, b, level: *level, shape: piece, local: *level >= 2 });
+            edges.push(RoadEdge {
+                id: edges.len() as u32,
+                a,
+                b,
+                level: *level,
+                shape: piece,
+                local: *level >= 2,
+                predicted_load: *load,
+            });
         }
     }
     let on_outer = |p: P| {
@@ -310,10 +301,10 @@ mod tests {
         let mut ring = outer.clone();
         ring.push(outer[0]);
         let lines = vec![
-            (ring, 1u8),
-            (vec![[0.0, 50.0], [100.0, 50.0]], 1),
-            (vec![[40.0, 50.0], [40.0, 100.0]], 2),
-            (vec![[70.0, 20.0], [70.0, 80.0]], 3),
+            (ring, 1u8, None),
+            (vec![[0.0, 50.0], [100.0, 50.0]], 1, None),
+            (vec![[40.0, 50.0], [40.0, 100.0]], 2, None),
+            (vec![[70.0, 20.0], [70.0, 80.0]], 3, Some(4.0)),
         ];
         let (nodes, edges) = graph(&lines, &outer);
         // The ring: cut at the road's ends and the street's end → 4 pieces; the road: 3 pieces

@@ -1,0 +1,466 @@
+//! A window of a grown network as the input of netspec's other designs: a **city spec** whose
+//! major roads are the grown major chains (bridges included) clipped to the window and smoothed,
+//! whose water is an obstacle of every level, and whose sub-regions without grown minor streets
+//! run no level; and the **trade flows** that cross the window (where the grown trade routes
+//! enter and leave it, weighted by their traffic), the demand `netspec traffic --trade` adds
+//! for every design of the window.
+//!
+//! Reads `network.json` only, so a grown map can be windowed many times without growing again.
+
+use super::GrowError;
+use crate::geometry::{clip_segment as clip, dist, lerp, polyline_length, P};
+use crate::traffic::demand::{TradeFile, TradeFlow};
+use crate::urban::spec::CitySpec;
+use geo::{ChaikinSmoothing, Simplify};
+use serde::Deserialize;
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+/// Metres per city unit of the spec written (the city mesh has one unit between vertices).
+pub const METRES_PER_UNIT: f64 = 20.0;
+
+/// The levels the city spec runs in every sub-region with grown streets: Fig. 7a's levels 2–4
+/// (collectors on the grid, local roads on the subdivided mesh, cul-de-sacs), water obstacles
+/// added to each.
+const LEVELS: &str = r#"
+[levels.2]
+time_limit = 1000
+coverage = { range = 3 }
+weights = { length = 1, distance = 1e-4, zigzag = "forbid", too_close = "forbid" }
+features = { dead_ends = "forbid" }
+
+[levels.3]
+subdivide = true
+time_limit = 1200
+coverage = { range = 3 }
+weights = { length = 1, distance = 1e-4, zigzag = "forbid", too_close = "forbid" }
+features = { dead_ends = "forbid" }
+
+[levels.4]
+time_limit = 100
+coverage = { range = 2 }
+weights = { length = 1, distance = 1e-4, zigzag = "forbid", too_close = "forbid" }
+features = { dead_ends = "allow" }
+"#;
+
+/// The part of `network.json` a window reads.
+#[derive(Deserialize)]
+struct Network {
+    size: [f64; 2],
+    spacing: f64,
+    nodes: Vec<Node>,
+    segments: Vec<Segment>,
+    #[serde(default)]
+    water: Vec<Water>,
+    #[serde(default)]
+    routes: Vec<Route>,
+}
+
+#[derive(Deserialize)]
+struct Node {
+    id: usize,
+    x: f64,
+    y: f64,
+}
+
+#[derive(Deserialize)]
+struct Segment {
+    a: usize,
+    b: usize,
+    class: String,
+}
+
+#[derive(Deserialize)]
+struct Water {
+    #[serde(default)]
+    polygon: Option<Vec<P>>,
+    #[serde(default)]
+    river: Option<Vec<P>>,
+    #[serde(default)]
+    width: Option<f64>,
+}
+
+#[derive(Deserialize)]
+struct Route {
+    traffic: f64,
+    nodes: Vec<Option<usize>>,
+}
+
+/// What [`write`] made.
+#[derive(Clone, Debug, PartialEq)]
+pub struct WindowSummary {
+    /// Major chains in the window (the city's `[[road]]` entries).
+    pub roads: usize,
+    /// Their length, metres.
+    pub road_m: f64,
+    /// Sub-regions of the city.
+    pub regions: usize,
+    /// Sub-regions that run no level (no grown minor street in them).
+    pub empty_regions: usize,
+    /// Water bodies that reach into the window (obstacles).
+    pub obstacles: usize,
+    /// Trade flows across the window.
+    pub flows: usize,
+    /// Routes that reach into the window but start or end inside it (not a flow across it).
+    pub routes_ending_inside: usize,
+    /// Files written.
+    pub files: Vec<PathBuf>,
+}
+
+/// A window `[x0, y0, x1, y1]` of the grown network in `dir` (`network.json`) written into `out`
+/// as `city.toml` (named `name`) and `trade.json`.
+pub fn write(dir: &Path, window: [f64; 4], name: &str, out: &Path) -> Result<WindowSummary, GrowError> {
+    let file = dir.join("network.json");
+    let text = std::fs::read_to_string(&file).map_err(|source| GrowError::Io { path: file.clone(), source })?;
+    let field = |field: &str, message: String| GrowError::Field { path: file.clone(), field: field.into(), message };
+    let net: Network =
+        serde_json::from_str(&text).map_err(|e| GrowError::Toml { path: file.clone(), message: e.to_string() })?;
+    let [x0, y0, x1, y1] = window;
+    if !(window.iter().all(|v| v.is_finite()) && x0 < x1 && y0 < y1) {
+        return Err(field("window", format!("{x0},{y0},{x1},{y1} is empty")));
+    }
+    if x1 <= 0.0 || y1 <= 0.0 || x0 >= net.size[0] || y0 >= net.size[1] {
+        return Err(field(
+            "window",
+            format!("{x0},{y0},{x1},{y1} is outside the map [0, {}] × [0, {}]", net.size[0], net.size[1]),
+        ));
+    }
+    let pos: BTreeMap<usize, P> = net.nodes.iter().map(|n| (n.id, [n.x, n.y])).collect();
+    let at = |i: usize, id: usize| {
+        pos.get(&id).copied().ok_or_else(|| field(&format!("segments[{i}]"), format!("node {id} is not in `nodes`")))
+    };
+    let mut major = Vec::new();
+    let mut minor = Vec::new();
+    for (i, s) in net.segments.iter().enumerate() {
+        let (a, b) = (at(i, s.a)?, at(i, s.b)?);
+        let Some(piece) = clip(a, b, window) else { continue };
+        match s.class.as_str() {
+            "major" | "bridge" => major.push(piece),
+            "minor" => minor.push(piece),
+            _ => {}
+        }
+    }
+    let chains: Vec<Vec<P>> = chains(&major)
+        .into_iter()
+        .map(|c| smooth(&c, net.spacing))
+        .filter(|c| polyline_length(c) > net.spacing)
+        .collect();
+    let obstacles: Vec<Vec<P>> = net.water.iter().filter_map(water_polygon).filter(|p| overlaps(p, window)).collect();
+    let mut routes = Vec::new();
+    for (i, r) in net.routes.iter().enumerate() {
+        let line: Option<Vec<P>> = r.nodes.iter().map(|n| n.and_then(|n| pos.get(&n).copied())).collect();
+        let line = line.ok_or_else(|| field(&format!("routes[{i}].nodes"), "a node is not in `nodes`".into()))?;
+        routes.push((line, r.traffic));
+    }
+    let (flows, inside) = trade_flows(&routes, window);
+    let spec = city_toml(name, window, &chains, &obstacles, &[]);
+    let parsed =
+        CitySpec::from_toml(&spec).map_err(|e| field("window", format!("the window's city spec is unusable: {e}")))?;
+    let regions =
+        crate::urban::city::regions(&parsed).map_err(|e| field("window", format!("the window's major roads: {e}")))?;
+    let empty: Vec<P> = regions
+        .iter()
+        .filter(|(r, _)| !minor.iter().any(|&(a, b)| inside_region(lerp(a, b, 0.5), r)))
+        .map(|(r, _)| r.label_point)
+        .collect();
+    let spec = city_toml(name, window, &chains, &obstacles, &empty);
+    std::fs::create_dir_all(out).map_err(|source| GrowError::Io { path: out.to_path_buf(), source })?;
+    let put = |f: &str, text: &str| {
+        let path = out.join(f);
+        std::fs::write(&path, text).map_err(|source| GrowError::Io { path: path.clone(), source })?;
+        Ok::<PathBuf, GrowError>(path)
+    };
+    let trade = TradeFile { window, flows };
+    let files = vec![
+        put("city.toml", &spec)?,
+        put("trade.json", &(serde_json::to_string_pretty(&trade).expect("trade flows serialise") + "\n"))?,
+    ];
+    Ok(WindowSummary {
+        roads: chains.len(),
+        road_m: chains.iter().map(|c| polyline_length(c)).sum(),
+        regions: regions.len(),
+        empty_regions: empty.len(),
+        obstacles: obstacles.len(),
+        flows: trade.flows.len(),
+        routes_ending_inside: inside,
+        files,
+    })
+}
+
+fn inside_region(p: P, r: &crate::urban::planar::Region) -> bool {
+    let u = [p[0] / METRES_PER_UNIT, p[1] / METRES_PER_UNIT];
+    crate::geometry::ring_contains(&r.outer, u) && !r.holes.iter().any(|h| crate::geometry::ring_contains(h, u))
+}
+
+/// Points within a millimetre are one.
+fn key(p: P) -> (i64, i64) {
+    ((p[0] * 1000.0).round() as i64, (p[1] * 1000.0).round() as i64)
+}
+
+/// The segments joined into maximal chains: a chain runs between nodes whose degree is not 2
+/// (ends, junctions); a closed loop of degree-2 nodes is one closed chain. Deterministic: chains
+/// start at the smallest node key.
+fn chains(segments: &[(P, P)]) -> Vec<Vec<P>> {
+    let mut adj: BTreeMap<(i64, i64), Vec<usize>> = BTreeMap::new();
+    let mut point: BTreeMap<(i64, i64), P> = BTreeMap::new();
+    for (k, &(a, b)) in segments.iter().enumerate() {
+        if key(a) == key(b) {
+            continue;
+        }
+        for p in [a, b] {
+            adj.entry(key(p)).or_default().push(k);
+            point.entry(key(p)).or_insert(p);
+        }
+    }
+    let mut used = vec![false; segments.len()];
+    let mut out = Vec::new();
+    let other = |k: usize, from: (i64, i64)| {
+        let (a, b) = segments[k];
+        if key(a) == from {
+            key(b)
+        } else {
+            key(a)
+        }
+    };
+    let walk = |start: (i64, i64), first: usize, used: &mut Vec<bool>| {
+        let mut line = vec![point[&start]];
+        let (mut at, mut k) = (start, first);
+        loop {
+            used[k] = true;
+            at = other(k, at);
+            line.push(point[&at]);
+            let next = adj[&at].iter().copied().find(|&j| !used[j]);
+            match next {
+                Some(j) if adj[&at].len() == 2 => k = j,
+                _ => return line,
+            }
+        }
+    };
+    for (&n, ks) in &adj {
+        if ks.len() != 2 {
+            for &k in ks {
+                if !used[k] {
+                    out.push(walk(n, k, &mut used));
+                }
+            }
+        }
+    }
+    for (&n, ks) in &adj {
+        for &k in ks {
+            if !used[k] {
+                out.push(walk(n, k, &mut used));
+            }
+        }
+    }
+    out
+}
+
+/// A grown chain as a city road: lattice zig-zags removed (Ramer–Douglas–Peucker within half the
+/// lattice spacing), then two rounds of Chaikin corner cutting; both ends stay where they are.
+fn smooth(chain: &[P], spacing: f64) -> Vec<P> {
+    let closed = chain.len() > 2 && key(chain[0]) == key(chain[chain.len() - 1]);
+    let line: geo::LineString<f64> = chain.iter().map(|p| geo::coord! { x: p[0], y: p[1] }).collect();
+    let line = line.simplify(spacing / 2.0).chaikin_smoothing(2);
+    let mut out: Vec<P> = line.coords().map(|c| [c.x, c.y]).collect();
+    if !closed {
+        // Chaikin keeps an open line's ends; restate them exactly (they are window or junction points).
+        out[0] = chain[0];
+        let n = out.len();
+        out[n - 1] = chain[chain.len() - 1];
+    }
+    out.dedup_by(|a, b| dist(*a, *b) < 1e-3);
+    out
+}
+
+/// A water body as a polygon: a lake or sea as it is, a river as its centre line buffered by half
+/// its width (round joins).
+fn water_polygon(w: &Water) -> Option<Vec<P>> {
+    if let Some(p) = &w.polygon {
+        return Some(p.clone());
+    }
+    let (r, width) = (w.river.as_ref()?, w.width?);
+    use geo::Buffer;
+    let line: geo::LineString<f64> = r.iter().map(|p| geo::coord! { x: p[0], y: p[1] }).collect();
+    let poly = line.buffer(width / 2.0);
+    let biggest = poly.0.into_iter().max_by(|a, b| {
+        use geo::Area;
+        a.unsigned_area().total_cmp(&b.unsigned_area())
+    })?;
+    Some(biggest.exterior().coords().map(|c| [c.x, c.y]).collect())
+}
+
+/// Whether a polygon's bounding box meets the window.
+fn overlaps(p: &[P], w: [f64; 4]) -> bool {
+    let (lo, hi) = p.iter().fold(([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]), |(lo, hi), q| {
+        ([lo[0].min(q[0]), lo[1].min(q[1])], [hi[0].max(q[0]), hi[1].max(q[1])])
+    });
+    lo[0] < w[2] && hi[0] > w[0] && lo[1] < w[3] && hi[1] > w[1]
+}
+
+/// Whether `p` is on the window's edge (within a millimetre).
+fn on_edge(p: P, w: [f64; 4]) -> bool {
+    let e = 1e-3;
+    (p[0] - w[0]).abs() <= e || (p[0] - w[2]).abs() <= e || (p[1] - w[1]).abs() <= e || (p[1] - w[3]).abs() <= e
+}
+
+/// The trade flows across the window: every piece of a route inside the window that enters and
+/// leaves through the window's edge is a flow from its entry point to its exit point, weighted by
+/// the route's traffic; flows between the same two points are summed. Pieces that start or end
+/// inside (a city or a harbour in the window) are counted, not flows.
+fn trade_flows(routes: &[(Vec<P>, f64)], w: [f64; 4]) -> (Vec<TradeFlow>, usize) {
+    let mut sum: BTreeMap<((i64, i64), (i64, i64)), (P, P, f64)> = BTreeMap::new();
+    let mut ending_inside = 0;
+    for (line, traffic) in routes {
+        if *traffic <= 0.0 {
+            continue;
+        }
+        let mut pieces: Vec<Vec<P>> = Vec::new();
+        let mut open = false;
+        for s in line.windows(2) {
+            let Some((a, b)) = clip(s[0], s[1], w) else {
+                open = false;
+                continue;
+            };
+            if open && pieces.last().is_some_and(|p| dist(*p.last().expect("a piece"), a) < 1e-6) {
+                pieces.last_mut().expect("a piece").push(b);
+            } else {
+                pieces.push(vec![a, b]);
+            }
+            open = dist(b, s[1]) < 1e-9;
+        }
+        for p in pieces {
+            let (a, b) = (p[0], p[p.len() - 1]);
+            if !(on_edge(a, w) && on_edge(b, w)) {
+                ending_inside += 1;
+                continue;
+            }
+            if key(a) == key(b) {
+                continue;
+            }
+            sum.entry((key(a), key(b))).or_insert((a, b, 0.0)).2 += traffic;
+        }
+    }
+    let mm = |x: f64| (x * 1000.0).round() / 1000.0;
+    let flows = sum
+        .into_values()
+        .map(|(a, b, t)| TradeFlow { from: [mm(a[0]), mm(a[1])], to: [mm(b[0]), mm(b[1])], weight: mm(t) })
+        .collect();
+    (flows, ending_inside)
+}
+
+/// TOML of an array of points in city units.
+fn points(ps: &[P]) -> String {
+    let u = |x: f64| {
+        let v = (x / METRES_PER_UNIT * 1000.0).round() / 1000.0;
+        format!("{}", v + 0.0)
+    };
+    let inner: Vec<String> = ps.iter().map(|p| format!("[{}, {}]", u(p[0]), u(p[1]))).collect();
+    format!("[{}]", inner.join(", "))
+}
+
+/// The city spec of a window: domain, major roads, water obstacles on every level, and one
+/// `[[region]]` entry that runs no level per point of `empty` (metres; label points are in city
+/// units already when they come from the spec's own sub-regions).
+fn city_toml(name: &str, w: [f64; 4], roads: &[Vec<P>], obstacles: &[Vec<P>], empty: &[P]) -> String {
+    let [x0, y0, x1, y1] = w;
+    let mut s = String::new();
+    let _ =
+        writeln!(s, "# Written by `netspec grow … --window {x0},{y0},{x1},{y1}`: the grown major roads (smoothed) as");
+    let _ =
+        writeln!(s, "# `[[road]]` entries, the water as obstacles of every level, and the sub-regions without grown");
+    let _ = writeln!(
+        s,
+        "# streets running no level. Coordinates are the grown map's metres / {METRES_PER_UNIT}, so `netspec traffic`"
+    );
+    let _ = writeln!(s, "# draws the same demand for this city and for the grown window.");
+    let _ = writeln!(s, "name = {}", toml::Value::from(name));
+    let _ = writeln!(s, "description = \"window {x0},{y0},{x1},{y1} of a grown network, streets by levels 2–4\"");
+    let _ = writeln!(s, "metres_per_unit = {METRES_PER_UNIT}");
+    let _ = writeln!(s, "domain = {{ outer = {} }}", points(&[[x0, y0], [x1, y0], [x1, y1], [x0, y1]]));
+    let _ = writeln!(s, "mesh = {{ spacing = 1 }}");
+    for (k, r) in roads.iter().enumerate() {
+        let _ = writeln!(s, "\n[[road]]\nname = \"grown major {k}\"\npoints = {}", points(r));
+    }
+    for p in empty {
+        let _ = writeln!(s, "\n[[region]]\nat = [{}, {}]\nname = \"unbuilt\"\nrun_levels = []", p[0], p[1]);
+    }
+    let mut levels = LEVELS.to_string();
+    if !obstacles.is_empty() {
+        let polys: Vec<String> = obstacles.iter().map(|p| points(p)).collect();
+        let user = format!("user = {{ obstacle_polygons = [{}] }}\n", polys.join(", "));
+        levels = levels.replace("\n\n[levels", &format!("\n{user}\n[levels")) + &user;
+    }
+    s.push_str(&levels);
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A road through the window, a junction, a loop: chains between junctions and ends.
+    #[test]
+    fn chains_run_between_junctions() {
+        let segs = vec![
+            ([0.0, 0.0], [10.0, 0.0]),
+            ([10.0, 0.0], [20.0, 0.0]),
+            ([20.0, 0.0], [30.0, 0.0]),
+            ([20.0, 0.0], [20.0, 10.0]),
+            ([50.0, 50.0], [60.0, 50.0]),
+            ([60.0, 50.0], [60.0, 60.0]),
+            ([60.0, 60.0], [50.0, 50.0]),
+        ];
+        let c = chains(&segs);
+        let lens: Vec<f64> = c.iter().map(|l| polyline_length(l)).collect();
+        assert_eq!(c.len(), 4, "{c:?}");
+        assert!(lens.contains(&20.0) && lens.contains(&10.0), "{lens:?}");
+        let total: f64 = lens.iter().sum();
+        assert!((total - (30.0 + 10.0 + 20.0 + 200f64.sqrt())).abs() < 1e-9, "{total}");
+    }
+
+    /// A route crossing the window is a flow from its entry to its exit; one ending inside is not.
+    #[test]
+    fn routes_across_the_window_are_flows() {
+        let w = [100.0, 100.0, 200.0, 200.0];
+        let across = (vec![[0.0, 150.0], [150.0, 150.0], [150.0, 300.0]], 2.0);
+        let same = (vec![[0.0, 150.0], [150.0, 150.0], [150.0, 300.0]], 1.0);
+        let ending = (vec![[0.0, 120.0], [150.0, 120.0]], 5.0);
+        let outside = (vec![[0.0, 0.0], [50.0, 50.0]], 5.0);
+        let (flows, inside) = trade_flows(&[across, same, ending, outside], w);
+        assert_eq!(inside, 1);
+        assert_eq!(flows, vec![TradeFlow { from: [100.0, 150.0], to: [150.0, 200.0], weight: 3.0 }]);
+    }
+
+    /// A grown network: a major road with a bridge across a river, minor streets on one side.
+    /// The city spec has the road, the river as an obstacle and the unbuilt side running no level.
+    #[test]
+    fn a_window_becomes_a_city_spec() {
+        let dir = tempfile::tempdir().expect("a temporary directory");
+        let json = r#"{"size": [2000, 2000], "spacing": 20,
+            "nodes": [{"id": 0, "x": 0, "y": 1000}, {"id": 1, "x": 950, "y": 1000}, {"id": 2, "x": 1050, "y": 1000},
+                      {"id": 3, "x": 2000, "y": 1000}, {"id": 4, "x": 600, "y": 1000}, {"id": 5, "x": 600, "y": 1300}],
+            "segments": [{"a": 0, "b": 4, "class": "major"}, {"a": 4, "b": 1, "class": "major"},
+                         {"a": 1, "b": 2, "class": "bridge"}, {"a": 2, "b": 3, "class": "major"},
+                         {"a": 4, "b": 5, "class": "minor"}],
+            "water": [{"river": [[1000, 0], [1000, 2000]], "width": 60}],
+            "routes": [{"traffic": 4, "nodes": [0, 4, 1, 2, 3]}]}"#;
+        std::fs::write(dir.path().join("network.json"), json).expect("written");
+        let out = dir.path().join("w");
+        let s = write(dir.path(), [400.0, 600.0, 1400.0, 1400.0], "w", &out).expect("a window");
+        assert_eq!((s.roads, s.regions, s.empty_regions, s.obstacles, s.flows), (1, 2, 1, 1, 1), "{s:?}");
+        assert!((s.road_m - 1000.0).abs() < 1e-6, "{}", s.road_m);
+        let spec = CitySpec::load(&out.join("city.toml")).expect("a city spec");
+        assert_eq!(spec.roads.len(), 1);
+        let regions = crate::urban::city::regions(&spec).expect("sub-regions");
+        let runs: Vec<Vec<u8>> = regions.iter().map(|(_, e)| spec.region_levels(*e)).collect();
+        assert!(runs.contains(&vec![]) && runs.contains(&vec![2, 3, 4]), "{runs:?}");
+        let level = spec.level(None, 2).expect("level 2");
+        assert_eq!(level.user.obstacle_polygons.len(), 1);
+        let trade: TradeFile = serde_json::from_str(&std::fs::read_to_string(out.join("trade.json")).unwrap()).unwrap();
+        assert_eq!(trade.flows[0].from, [400.0, 1000.0]);
+        assert_eq!(trade.flows[0].to, [1400.0, 1000.0]);
+        let e = write(dir.path(), [5000.0, 0.0, 6000.0, 10.0], "w", &out).unwrap_err().to_string();
+        assert!(e.contains("network.json") && e.contains("outside the map"), "{e}");
+    }
+}
