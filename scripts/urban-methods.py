@@ -1,11 +1,13 @@
 #!/usr/bin/env python3
-"""The urban-methods comparison: netspec layout (domain splitting) against netspec city (IP
-street design) on the same sites, by the same metrics, under the same SUMO demand.
+"""The urban-methods comparison: netspec layout (domain splitting) and netspec grow (road growth
+by traffic) against netspec city (IP street design) on the same sites, by the same metrics,
+under the same SUMO demand.
 
-    scripts/urban-methods.py run [--time-limit S] [--bin PATH] [--out DIR]
-        runs every layout, city and traffic evaluation under DIR (default out/urban-methods),
-        writes the compact records to docs/urban-methods/records.json, the pictures to
-        docs/img/urban-*.png, and the page docs/urban-methods.md;
+    scripts/urban-methods.py run [--time-limit S] [--bin PATH] [--out DIR] [--only SITE,...]
+        runs every layout, grow, city and traffic evaluation under DIR (default
+        out/urban-methods), writes the compact records to docs/urban-methods/records.json, the
+        pictures to docs/img/urban-*.png, and the page docs/urban-methods.md; with --only, only
+        the named sites run and the others keep their committed records;
     scripts/urban-methods.py page [--check]
         writes docs/urban-methods.md from the committed records (with --check, fails when the
         committed page differs).
@@ -29,13 +31,25 @@ SITES = [
     ("irregular", "models/layout/irregular.geojson", ["models/city/irregular.toml"]),
 ]
 
+# Each grown map: the context, its steps, the window (metres) a city is designed on, and the
+# trade trips per hour across it.
+GROW_SITES = [
+    ("river", "models/grow/river.toml", None, "3600,3600,4800,4800"),
+    ("coast", "models/grow/coast.toml", 30, "3800,3600,5000,4800"),
+    ("hills", "models/grow/hills.toml", None, "2600,3300,3800,4500"),
+]
+TRADE_PER_HOUR = 300
+
 PARCEL_KEYS = ["parcels", "corner_deviation_mean", "area_ratio_mean", "undesirable"]
 TRAFFIC_KEYS = ["travel_time_mean", "travel_time_p95", "time_loss_mean", "route_length_mean"]
 
 
-def sh(cmd):
+def sh(cmd, ok=(0,)):
+    """Runs a command; exit codes outside `ok` stop the script."""
     print("+", " ".join(str(c) for c in cmd), file=sys.stderr, flush=True)
-    subprocess.run([str(c) for c in cmd], check=True, stdout=subprocess.DEVNULL)
+    code = subprocess.run([str(c) for c in cmd], stdout=subprocess.DEVNULL).returncode
+    if code not in ok:
+        sys.exit(f"{cmd[1]} exited with {code}")
 
 
 def load(path):
@@ -75,12 +89,105 @@ def city_record(c):
     }
 
 
+def sh_out(cmd):
+    print("+", " ".join(str(c) for c in cmd), file=sys.stderr, flush=True)
+    return subprocess.run([str(c) for c in cmd], check=True, stdout=subprocess.PIPE, text=True).stdout
+
+
+def traffic_record(rep):
+    """SUMO's numbers of one design, rounded."""
+    return {
+        **{k: r(rep["all"][k], 1) for k in TRAFFIC_KEYS},
+        "arrived": rep["vehicles"]["arrived"],
+        "inserted": rep["vehicles"]["inserted"],
+        "teleported": rep["vehicles"]["teleported"],
+        "through_on_local": r((rep.get("through_on_local") or {}).get("distance_share"), 4),
+    }
+
+
+def streets_record(n):
+    """Street measures every traffic evaluation computes on the graph it simulates."""
+    area = n["area_km2"]
+    return {
+        "area_km2": r(area, 3),
+        "km_per_km2": [r(k / area, 2) for k in n["km_per_level"]],
+        "intersections_per_km2": r(n["intersections"] / area, 1),
+        "dead_ends_per_km2": r(n["dead_ends"] / area, 1),
+    }
+
+
+def grow_site(args, out, site, context, steps, window):
+    """Grows the map (once: an existing network.json is reused), windows it, designs the window
+    as a city and simulates both under the same demand with the window's trade."""
+    sdir = out / site
+    gdir = sdir / "grown"
+    seconds = None
+    if not (gdir / "network.json").is_file():
+        cmd = [args.bin, "grow", ROOT / context, "--out", gdir] + (["--steps", steps] if steps else [])
+        last = [ln for ln in sh_out(cmd).splitlines() if ln.startswith("seed ")][-1]
+        parts = last.split("·")[-1].split(",")
+        seconds = r(sum(float(p.split()[0]) for p in parts), 1)
+        (gdir / "seconds").write_text(f"{seconds}\n")
+    else:
+        seconds = float((gdir / "seconds").read_text()) if (gdir / "seconds").is_file() else None
+    wdir = sdir / "window"
+    summary = [ln for ln in sh_out([args.bin, "grow", gdir, "--window", window, "--out", wdir]).splitlines() if ln.startswith("window ")][0]
+    cdir = sdir / "city"
+    # Exit 4: some level ended without a network (reported in the table), the rest is designed.
+    sh([args.bin, "city", wdir / "city.toml", "--time-limit", args.time_limit, "--out", cdir], ok=(0, 4))
+    city = load(cdir / "city.json")
+    tdir = sdir / "traffic"
+    sh([args.bin, "traffic", gdir, cdir, "--labels", "grown,city", "--window", window,
+        "--trade", wdir / "trade.json", "--trade-rate", TRADE_PER_HOUR, "--out", tdir])
+    cmp = load(tdir / "comparison.json")["designs"]
+    records = []
+    for d in cmp:
+        rep = d["report"]
+        rec = {"label": d["label"], **streets_record(rep["network"]), "traffic": traffic_record(rep)}
+        rec["traffic"]["trade_travel_time_mean"] = r(rep["trade"]["travel_time_mean"], 1)
+        rec["traffic"]["trade_arrived"] = rep["trade"]["vehicles"]
+        p = rep.get("predicted_loads")
+        rec["spearman"] = None if p is None else {
+            "streets": p["streets"], "all": r(p["spearman_all"], 3), "trade": r(p["spearman_trade"], 3),
+            "loaded_streets": p["loaded_streets"], "loaded": r(p["spearman_loaded"], 3)}
+        if d["label"] == "city":
+            levels = [lv for reg in city["regions"] for lv in reg["levels"]]
+            gaps = [lv.get("gap") for lv in levels if lv.get("gap") is not None]
+            rec["max_gap"] = r(max(gaps), 4) if gaps else None
+            rec["seconds"] = r(sum(lv.get("wall_time") or 0.0 for lv in levels), 1)
+            rec["levels"] = len(levels)
+            rec["levels_without_network"] = sum(1 for lv in levels if lv.get("gap") is None and lv.get("termination") != "optimal")
+        else:
+            rec["max_gap"] = None
+            rec["seconds"] = seconds
+        records.append(rec)
+        shutil.copy(tdir / d["label"] / "volume.png", ROOT / f"docs/img/urban-grow-{site}-{d['label']}.png")
+    shutil.copy(gdir / "network.png", ROOT / f"docs/img/urban-grow-{site}-map.png")
+    digests = sorted({d["report"]["demand"]["digest"] for d in cmp})
+    return {"site": site, "context": context, "steps": steps, "window": window, "window_summary": summary,
+            "trade_per_hour": TRADE_PER_HOUR, "demand_digests": digests, "designs": records}
+
+
 def run(args):
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     (ROOT / "docs/img").mkdir(exist_ok=True)
+    only = set(args.only.split(",")) if args.only else None
+    old = json.loads(RECORDS.read_text()) if RECORDS.is_file() else {"sites": [], "grow_sites": []}
+    kept = {s["site"]: s for s in old.get("sites", [])}
+    kept_grow = {s["site"]: s for s in old.get("grow_sites", [])}
+    grow_sites = []
+    for site, context, steps, window in GROW_SITES:
+        if only is None or site in only:
+            grow_sites.append(grow_site(args, out, site, context, steps, window))
+        elif site in kept_grow:
+            grow_sites.append(kept_grow[site])
     sites = []
     for site, region, cities in SITES:
+        if only is not None and site not in only:
+            if site in kept:
+                sites.append(kept[site])
+            continue
         sdir = out / site
         designs, labels, records = [], [], []
         for opt in (0, 10):
@@ -107,17 +214,11 @@ def run(args):
         cmp = load(tdir / "comparison.json")["designs"]
         digests = sorted({d["report"]["demand"]["digest"] for d in cmp})
         for rec, d in zip(records, cmp):
-            rep = d["report"]
-            rec["traffic"] = {
-                **{k: r(rep["all"][k], 1) for k in TRAFFIC_KEYS},
-                "arrived": rep["vehicles"]["arrived"],
-                "inserted": rep["vehicles"]["inserted"],
-                "teleported": rep["vehicles"]["teleported"],
-                "through_on_local": r((rep.get("through_on_local") or {}).get("distance_share"), 4),
-            }
+            rec["traffic"] = traffic_record(d["report"])
         sites.append({"site": site, "region": region, "cities": cities, "demand_digests": digests, "designs": records})
     RECORDS.parent.mkdir(parents=True, exist_ok=True)
-    records = {"time_limit": float(args.time_limit), "demand": "3600 s, 300 through + 600 local trips per hour, seed 1", "sites": sites}
+    records = {"time_limit": float(args.time_limit), "demand": "3600 s, 300 through + 600 local trips per hour, seed 1",
+               "sites": sites, "grow_sites": grow_sites}
     RECORDS.write_text(json.dumps(records, indent=1, sort_keys=True) + "\n")
     PAGE.write_text(page(records))
     print(f"wrote {RECORDS.relative_to(ROOT)}, {PAGE.relative_to(ROOT)}", file=sys.stderr)
@@ -237,7 +338,72 @@ def page(rec):
             f"![city {Path(c).stem}](img/urban-{s['site']}-city-{Path(c).stem}.png)" for c in s["cities"]
         ]
         lines += ["", " ".join(pics), ""]
+    lines += grow_page(rec)
     return "\n".join(lines)
+
+
+def gap_cell(d):
+    """A city's worst level gap, and how many of its levels ended without a network."""
+    cell = fmt(d.get("max_gap"), 1, pct=True)
+    if d.get("levels_without_network"):
+        cell += f" ({d['levels_without_network']} of {d['levels']} levels without a network)"
+    return cell
+
+
+def grow_page(rec):
+    """The grown networks against IP cities on the same windows."""
+    gs = rec.get("grow_sites") or []
+    if not gs:
+        return []
+    lines = [
+        "## Grown networks against IP cities",
+        "",
+        "`netspec grow` grows a map by traffic (Beneš et al. 2014, [grow.md](grow.md)); `netspec grow",
+        "DIR --window X0,Y0,X1,Y1` turns a window of it into a city spec — the grown major roads",
+        "(smoothed) as the city's roads, water as obstacles, the sub-regions the growth left unbuilt",
+        "running no level — and `trade.json`, the trade routes that cross the window. `netspec city`",
+        "designs the window's streets; `netspec traffic` then simulates the grown window and the",
+        f"city under the same demand plus {gs[0]['trade_per_hour']} trade trips per hour between the",
+        "entrances where the trade routes cross the window (equal digests below). Street measures are",
+        "the ones `netspec traffic` takes on the graph it simulates (km of street per km² by level 1–4,",
+        "intersections and dead-ends per km² of the window). The last columns rank the growth",
+        "model's own predicted segment loads against SUMO's per street (Spearman's ρ: every street",
+        "against every vehicle and against the trade vehicles; then only the roads the model loaded,",
+        "against the trade vehicles — whether it ranks its own roads as SUMO loads them).",
+        "",
+        "| map | window (m) | what the window holds |",
+        "|---|---|---|",
+    ]
+    for s in gs:
+        steps = f", {s['steps']} steps" if s.get("steps") else ""
+        lines.append(f"| {s['site']} (`{s['context']}`{steps}) | {s['window']} | {s['window_summary'].split(': ', 1)[1]} |")
+    for s in gs:
+        lines += ["", f"### {s['site']}", "", f"Demand digest: {', '.join(f'`{d}`' for d in s['demand_digests'])}.", ""]
+        lines += [
+            "| design | km/km² L1 / L2 / L3 / L4 | intersections /km² | dead-ends /km² | vehicles arrived / inserted "
+            "| teleported | travel time mean (s) | p95 (s) | time loss mean (s) | trade travel time mean (s) "
+            "| through + trade on local streets (distance) | predicted loads ρ: all / trade; loaded roads | time to design (s) | worst level gap |",
+            "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
+        ]
+        for d in s["designs"]:
+            tr = d["traffic"]
+            km = " / ".join(fmt(k) for k in d["km_per_km2"])
+            sp = d.get("spearman")
+            rho = "–" if sp is None else (f"{fmt(sp['all'], 2)} / {fmt(sp['trade'], 2)} ({sp['streets']} streets); "
+                                          f"{fmt(sp['loaded'], 2)} ({sp['loaded_streets']} loaded)")
+            lines.append(
+                f"| {d['label']} | {km} | {fmt(d['intersections_per_km2'])} | {fmt(d['dead_ends_per_km2'])} "
+                f"| {tr['arrived']} / {tr['inserted']} | {tr['teleported']} | {fmt(tr['travel_time_mean'])} "
+                f"| {fmt(tr['travel_time_p95'], 0)} | {fmt(tr['time_loss_mean'])} | {fmt(tr['trade_travel_time_mean'])} "
+                f"| {fmt(tr['through_on_local'], 1, pct=True)} | {rho} | {fmt(d['seconds'])} | {gap_cell(d)} |"
+            )
+        lines += [
+            "",
+            f"![{s['site']} grown map](img/urban-grow-{s['site']}-map.png)",
+            f"![{s['site']} grown window, SUMO volumes](img/urban-grow-{s['site']}-grown.png)",
+            f"![{s['site']} city, SUMO volumes](img/urban-grow-{s['site']}-city.png)",
+        ]
+    return lines + [""]
 
 
 def main():
@@ -248,6 +414,7 @@ def main():
     target = os.environ.get("CARGO_TARGET_DIR", str(ROOT / "target"))
     a.add_argument("--bin", default=f"{target}/release/netspec")
     a.add_argument("--out", default="out/urban-methods")
+    a.add_argument("--only", help="comma-separated sites to run; the others keep their records")
     p = sub.add_parser("page")
     p.add_argument("--check", action="store_true")
     args = ap.parse_args()

@@ -255,3 +255,59 @@ fn bad_contexts_name_the_field() {
     let e = Context::from_toml("size = [400000, 400000]\nspacing = 2").unwrap_err();
     assert!(e.to_string().contains("GiB"), "the memory estimate: {e}");
 }
+
+/// `netspec grow --window`: a grown map's window as a city spec and trade flows, the same from
+/// the grown directory without growing again; a directory without `--window` is refused.
+#[test]
+fn a_window_is_a_city_spec_and_trade_flows() {
+    let tmp = tempfile::tempdir().unwrap();
+    let bin = env!("CARGO_BIN_EXE_netspec");
+    let (a, b) = (tmp.path().join("a"), tmp.path().join("b"));
+    let run = |args: &[&std::ffi::OsStr]| std::process::Command::new(bin).args(args).output().unwrap();
+    let ctx = model("small-river.toml");
+    let o = run(&[
+        "grow".as_ref(),
+        ctx.as_os_str(),
+        "--steps".as_ref(),
+        "10".as_ref(),
+        "--window".as_ref(),
+        "200,200,1060,1060".as_ref(),
+        "--out".as_ref(),
+        a.as_os_str(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let spec = netspec::urban::CitySpec::load(&a.join("city.toml")).unwrap_or_else(|e| panic!("{e}"));
+    assert!(!spec.roads.is_empty(), "the grown major roads are the city's roads");
+    assert!(!spec.level(None, 2).unwrap().user.obstacle_polygons.is_empty(), "the river is an obstacle");
+    let regions = netspec::urban::city::regions(&spec).unwrap();
+    let running = regions.iter().filter(|(_, e)| !spec.region_levels(*e).is_empty()).count();
+    assert!(running >= 1 && running < regions.len(), "built and unbuilt sub-regions: {running} of {}", regions.len());
+    let trade = netspec::traffic::demand::TradeFile::load(&a.join("trade.json")).unwrap();
+    assert!(!trade.flows.is_empty());
+    let o = run(&[
+        "grow".as_ref(),
+        a.as_os_str(),
+        "--window".as_ref(),
+        "200,200,1060,1060".as_ref(),
+        "--out".as_ref(),
+        b.as_os_str(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = |d: &Path, f: &str| std::fs::read_to_string(d.join(f)).unwrap();
+    // The same window of the same network: the same files but for the city's name.
+    assert_eq!(text(&a, "city.toml").replace("\"a\"", "\"b\""), text(&b, "city.toml"));
+    assert_eq!(text(&a, "trade.json"), text(&b, "trade.json"));
+    let o = run(&["grow".as_ref(), a.as_os_str(), "--out".as_ref(), b.as_os_str()]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success() && err.contains("--window"), "{err}");
+    let o = run(&[
+        "grow".as_ref(),
+        a.as_os_str(),
+        "--window".as_ref(),
+        "5000,5000,6000,6000".as_ref(),
+        "--out".as_ref(),
+        b.as_os_str(),
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success() && err.contains("network.json") && err.contains("outside the map"), "{err}");
+}

@@ -1,7 +1,7 @@
 //! A window of a grown network as the input of netspec's other designs: a **city spec** whose
 //! major roads are the grown major chains (bridges included) clipped to the window and smoothed,
-//! whose water is an obstacle of every level, and whose sub-regions without grown minor streets
-//! run no level; and the **trade flows** that cross the window (where the grown trade routes
+//! whose water is an obstacle of every level, and whose sub-regions that the growth left unbuilt
+//! (or too small for a street) run no level; and the **trade flows** that cross the window (where the grown trade routes
 //! enter and leave it, weighted by their traffic), the demand `netspec traffic --trade` adds
 //! for every design of the window.
 //!
@@ -19,6 +19,19 @@ use std::path::{Path, PathBuf};
 
 /// Metres per city unit of the spec written (the city mesh has one unit between vertices).
 pub const METRES_PER_UNIT: f64 = 20.0;
+
+/// Metres of dry strip kept along the window's edge and the roads in obstacle polygons (a cell
+/// and a half).
+const CLEARANCE: f64 = 1.5 * METRES_PER_UNIT;
+
+/// Sub-regions smaller than this many mesh cells (3 × 3: 60 × 60 m) hold no street of their own
+/// and run no level (slivers between grown roads that run side by side).
+const MIN_CELLS: f64 = 9.0;
+
+/// Sub-regions with less grown minor street than this (km per km²) are unbuilt and run no level
+/// (a grown settlement has 40–50 km/km²; a few streets reaching into open land do not make it
+/// built up).
+const MIN_KM_PER_KM2: f64 = 10.0;
 
 /// The levels the city spec runs in every sub-region with grown streets: Fig. 7a's levels 2–4
 /// (collectors on the grid, local roads on the subdivided mesh, cul-de-sacs), water obstacles
@@ -96,7 +109,7 @@ pub struct WindowSummary {
     pub road_m: f64,
     /// Sub-regions of the city.
     pub regions: usize,
-    /// Sub-regions that run no level (no grown minor street in them).
+    /// Sub-regions that run no level (under 10 km of grown minor street per km², or smaller than 3 × 3 cells).
     pub empty_regions: usize,
     /// Water bodies that reach into the window (obstacles).
     pub obstacles: usize,
@@ -146,7 +159,8 @@ pub fn write(dir: &Path, window: [f64; 4], name: &str, out: &Path) -> Result<Win
         .map(|c| smooth(&c, net.spacing))
         .filter(|c| polyline_length(c) > net.spacing)
         .collect();
-    let obstacles: Vec<Vec<P>> = net.water.iter().filter_map(water_polygon).filter(|p| overlaps(p, window)).collect();
+    let water: Vec<Vec<P>> = net.water.iter().filter_map(water_polygon).filter(|p| overlaps(p, window)).collect();
+    let obstacles = clear_of_roads(&water, &chains, window);
     let mut routes = Vec::new();
     for (i, r) in net.routes.iter().enumerate() {
         let line: Option<Vec<P>> = r.nodes.iter().map(|n| n.and_then(|n| pos.get(&n).copied())).collect();
@@ -161,7 +175,12 @@ pub fn write(dir: &Path, window: [f64; 4], name: &str, out: &Path) -> Result<Win
         crate::urban::city::regions(&parsed).map_err(|e| field("window", format!("the window's major roads: {e}")))?;
     let empty: Vec<P> = regions
         .iter()
-        .filter(|(r, _)| !minor.iter().any(|&(a, b)| inside_region(lerp(a, b, 0.5), r)))
+        .filter(|(r, _)| {
+            let street: f64 =
+                minor.iter().filter(|&&(a, b)| inside_region(lerp(a, b, 0.5), r)).map(|&(a, b)| dist(a, b)).sum();
+            let km2 = r.area * METRES_PER_UNIT * METRES_PER_UNIT / 1e6;
+            r.area < MIN_CELLS || street / 1000.0 < MIN_KM_PER_KM2 * km2
+        })
         .map(|(r, _)| r.label_point)
         .collect();
     let spec = city_toml(name, window, &chains, &obstacles, &empty);
@@ -181,7 +200,7 @@ pub fn write(dir: &Path, window: [f64; 4], name: &str, out: &Path) -> Result<Win
         road_m: chains.iter().map(|c| polyline_length(c)).sum(),
         regions: regions.len(),
         empty_regions: empty.len(),
-        obstacles: obstacles.len(),
+        obstacles: water.len(),
         flows: trade.flows.len(),
         routes_ending_inside: inside,
         files,
@@ -288,6 +307,32 @@ fn water_polygon(w: &Water) -> Option<Vec<P>> {
         a.unsigned_area().total_cmp(&b.unsigned_area())
     })?;
     Some(biggest.exterior().coords().map(|c| [c.x, c.y]).collect())
+}
+
+/// Water less a strip of [`CLEARANCE`] along the window's edge and every road: the water within
+/// the window as obstacle polygons that no sub-region boundary runs through. (A boundary is a road
+/// every level keeps; a vertex of it whose faces were all water would be an obstacle too, and
+/// the level infeasible. Where a grown road crosses water it is a bridge, and the window's edge
+/// is no road at all.)
+fn clear_of_roads(water: &[Vec<P>], roads: &[Vec<P>], w: [f64; 4]) -> Vec<Vec<P>> {
+    use geo::{Area, BooleanOps, Buffer};
+    let line = |ps: &[P]| -> geo::LineString<f64> { ps.iter().map(|p| geo::coord! { x: p[0], y: p[1] }).collect() };
+    let poly = |ps: &[P]| geo::Polygon::new(line(ps), vec![]);
+    let [x0, y0, x1, y1] = w;
+    let inner = [x0 + CLEARANCE, y0 + CLEARANCE, x1 - CLEARANCE, y1 - CLEARANCE];
+    if inner[0] >= inner[2] || inner[1] >= inner[3] || water.is_empty() {
+        return Vec::new();
+    }
+    let inside = geo::MultiPolygon::new(vec![poly(&[[inner[0], inner[1]], [inner[2], inner[1]], [inner[2], inner[3]], [inner[0], inner[3]]])]);
+    let strips = geo::MultiLineString::new(roads.iter().map(|r| line(r)).collect()).buffer(CLEARANCE);
+    let mut out = Vec::new();
+    for wp in water {
+        let wet = geo::MultiPolygon::new(vec![poly(wp)]).intersection(&inside).difference(&strips);
+        for p in wet.0.into_iter().filter(|p| p.unsigned_area() > CLEARANCE * CLEARANCE) {
+            out.push(p.exterior().coords().map(|c| [c.x, c.y]).collect());
+        }
+    }
+    out
 }
 
 /// Whether a polygon's bounding box meets the window.
@@ -456,7 +501,8 @@ mod tests {
         let runs: Vec<Vec<u8>> = regions.iter().map(|(_, e)| spec.region_levels(*e)).collect();
         assert!(runs.contains(&vec![]) && runs.contains(&vec![2, 3, 4]), "{runs:?}");
         let level = spec.level(None, 2).expect("level 2");
-        assert_eq!(level.user.obstacle_polygons.len(), 1);
+        // The river less a dry strip along the road that bridges it: two pieces.
+        assert_eq!(level.user.obstacle_polygons.len(), 2);
         let trade: TradeFile = serde_json::from_str(&std::fs::read_to_string(out.join("trade.json")).unwrap()).unwrap();
         assert_eq!(trade.flows[0].from, [400.0, 1000.0]);
         assert_eq!(trade.flows[0].to, [1400.0, 1000.0]);

@@ -87,6 +87,15 @@ pub struct NetworkSummary {
     pub sumo_edges: usize,
     /// Junctions in the `.net.xml`.
     pub sumo_junctions: usize,
+    /// Area of the region served, km².
+    #[serde(default)]
+    pub area_km2: f64,
+    /// Nodes where three or more streets meet.
+    #[serde(default)]
+    pub intersections: usize,
+    /// Nodes with one street that are not entrances (dead ends).
+    #[serde(default)]
+    pub dead_ends: usize,
 }
 
 /// The demand as drawn and as routed.
@@ -157,6 +166,13 @@ pub struct PredictedLoads {
     pub spearman_all: Option<f64>,
     /// Against the trade vehicles that drove on the street (the traffic the generator models).
     pub spearman_trade: Option<f64>,
+    /// Streets with a positive prediction (the generator's loaded roads).
+    #[serde(default)]
+    pub loaded_streets: usize,
+    /// Over those alone, against the trade vehicles: whether the generator ranks its own roads
+    /// as SUMO loads them.
+    #[serde(default)]
+    pub spearman_loaded: Option<f64>,
 }
 
 /// Through and trade traffic on local streets (levels ≥ 3).
@@ -309,8 +325,16 @@ pub fn build(
         streets: net.edges.len(),
         sumo_edges: sumo_net.edges.len(),
         sumo_junctions: sumo_net.junctions,
+        area_km2: net.region.areas.iter().map(|a| crate::geometry::ring_area2(a).abs() / 2.0).sum::<f64>() / 1e6,
         ..Default::default()
     };
+    let mut degree = vec![0usize; net.nodes.len()];
+    for e in &net.edges {
+        degree[e.a] += 1;
+        degree[e.b] += 1;
+    }
+    summary.intersections = degree.iter().filter(|&&d| d >= 3).count();
+    summary.dead_ends = degree.iter().zip(&net.nodes).filter(|(&d, n)| d == 1 && !n.entrance).count();
     let vol = |id: String| edata.get(&id).map_or(0.0, |d| d.volume());
     let mut edge_volumes = Vec::new();
     for e in &net.edges {
@@ -332,10 +356,16 @@ pub fn build(
         .collect();
     let predicted_loads = (!predicted.is_empty()).then(|| {
         let p: Vec<f64> = predicted.iter().map(|t| t.0).collect();
+        let loaded: Vec<&(f64, f64, f64)> = predicted.iter().filter(|t| t.0 > 0.0).collect();
         PredictedLoads {
             streets: predicted.len(),
             spearman_all: spearman(&p, &predicted.iter().map(|t| t.1).collect::<Vec<_>>()),
             spearman_trade: spearman(&p, &predicted.iter().map(|t| t.2).collect::<Vec<_>>()),
+            loaded_streets: loaded.len(),
+            spearman_loaded: spearman(
+                &loaded.iter().map(|t| t.0).collect::<Vec<_>>(),
+                &loaded.iter().map(|t| t.2).collect::<Vec<_>>(),
+            ),
         }
     });
     let mut travel_times = BTreeMap::new();
@@ -506,10 +536,12 @@ impl TrafficReport {
         if let Some(p) = &self.predicted_loads {
             let _ = writeln!(
                 s,
-                "predicted  loads against SUMO's over {} streets: Spearman {} (all vehicles), {} (trade)",
+                "predicted  loads against SUMO's over {} streets: Spearman {} (all vehicles), {} (trade); over the {} loaded ones {} (trade)",
                 p.streets,
                 num(p.spearman_all, 2),
-                num(p.spearman_trade, 2)
+                num(p.spearman_trade, 2),
+                p.loaded_streets,
+                num(p.spearman_loaded, 2)
             );
         }
         let t = &self.timings;
