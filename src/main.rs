@@ -344,6 +344,7 @@ enum Command {
     /// around growth nuclei and major roads built where trade between neighbouring cities
     /// saturates the routes. CONTEXT is a TOML historical context (docs/grow.md). Writes
     /// network.json, series.csv, network.svg/.png (and network.geojson with an origin) into DIR.
+    /// The network is checked independently; exits with 1 if network.json lists violations.
     Grow {
         /// The context file.
         context: PathBuf,

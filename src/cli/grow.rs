@@ -1,12 +1,16 @@
 //! `netspec grow CONTEXT --out DIR`: road networks grown by traffic, with a progress bar of the
-//! steps.
+//! steps; exits with 1 when the independent check of the network finds violations.
 
 use anyhow::Result;
 use indicatif::{ProgressBar, ProgressStyle};
 use netspec::grow::{self, GrowRequest};
 use std::process::ExitCode;
 
-/// Runs the library entry point with a bar of the steps and prints a summary line.
+/// Violations printed one per line; the rest are counted (all are in `network.json`).
+const SHOWN: usize = 10;
+
+/// Runs the library entry point with a bar of the steps and prints a summary line; warns about
+/// violations of the network's invariants and then exits with 1.
 pub fn run(req: &GrowRequest) -> Result<ExitCode> {
     let bar = ProgressBar::new(1);
     bar.set_style(ProgressStyle::with_template("grow {bar:30} step {pos}/{len} {elapsed}").expect("static template"));
@@ -33,6 +37,25 @@ pub fn run(req: &GrowRequest) -> Result<ExitCode> {
         s.init_seconds,
         s.step_seconds
     );
-    println!("wrote {}", req.out.join("network.json").display());
-    Ok(ExitCode::SUCCESS)
+    let json = req.out.join("network.json");
+    println!("wrote {}", json.display());
+    for (step, n) in &s.snapshot_violations {
+        eprintln!("warning: the network at step {step} had {n} violation(s) of its invariants");
+    }
+    if s.violations.is_empty() {
+        return Ok(ExitCode::SUCCESS);
+    }
+    eprintln!("warning: the grown network has {} violation(s) of its invariants:", s.violations.len());
+    for v in s.violations.iter().take(SHOWN) {
+        eprintln!("  {v}");
+    }
+    if s.violations.len() > SHOWN {
+        eprintln!("  … and {} more", s.violations.len() - SHOWN);
+    }
+    eprintln!(
+        "error: the independent check of the grown network failed: {} violation(s), listed under `violations` in {}",
+        s.violations.len(),
+        json.display()
+    );
+    Ok(ExitCode::FAILURE)
 }
