@@ -352,7 +352,8 @@ enum Command {
     /// saturates the routes. CONTEXT is a TOML historical context (docs/grow.md). Writes
     /// network.json, series.csv, network.svg/.png (and network.geojson with an origin) into DIR;
     /// with --window also city.toml and trade.json of that window (CONTEXT may then be a grown
-    /// output directory, which is windowed without growing again).
+    /// output directory, which is windowed without growing again). The network is checked
+    /// independently; exits with 3 if network.json lists violations.
     Grow {
         /// The context file, or with --window a `netspec grow` output directory.
         context: PathBuf,

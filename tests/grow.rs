@@ -1,11 +1,13 @@
 //! `netspec grow` on small maps (a 64 × 64 lattice with a straight river, a lake): the lattice
 //! mask, water, connectivity, the traffic bookkeeping after every step, planarity by an
-//! independent segment-intersection check, a second harbour, determinism, and context errors.
+//! independent segment-intersection check, the library's own independent check
+//! (`grow::validate`) finding nothing, a second harbour, determinism, and context errors.
 
 use netspec::grow::context::Context;
 use netspec::grow::graph::Class;
 use netspec::grow::lattice::directions;
 use netspec::grow::step::Sim;
+use netspec::grow::validate::{validate, Network};
 use netspec::grow::{self, GrowRequest};
 use std::collections::{BTreeMap, BTreeSet, VecDeque};
 use std::path::{Path, PathBuf};
@@ -171,6 +173,8 @@ fn river_map_invariants_hold_every_step() {
         check_traffic(&sim);
     }
     assert!(planarity_violations(&sim).is_empty(), "{:?}", &planarity_violations(&sim)[..]);
+    let found = validate(&Network::of(&sim), &sim.ctx);
+    assert!(found.is_empty(), "{found:?}");
     // No road crosses the river's centre line except bridges (and harbours, which end at it).
     for (i, s) in sim.graph.segs.iter().enumerate() {
         if matches!(s.class, Class::Major | Class::Minor) {
@@ -192,20 +196,20 @@ fn a_second_harbour_appears_when_the_first_saturates() {
     for _ in 0..ctx.steps {
         sim.step();
         check_traffic(&sim);
-        if sim.series.last().unwrap().ports >= 2 {
-            break;
-        }
     }
     let s = &sim.series;
     let second = s.iter().position(|r| r.ports >= 2).expect("a second harbour appears");
     assert!(s[..second].iter().any(|r| r.overflow > 0.0), "the first harbour saturated before: {s:?}");
     assert!(planarity_violations(&sim).is_empty());
+    let found = validate(&Network::of(&sim), &sim.ctx);
+    assert!(found.is_empty(), "{found:?}");
 }
 
 fn run_to(dir: &Path, context: &Path, seed: Option<u64>) -> Vec<u8> {
     let req =
         GrowRequest { context: context.to_path_buf(), out: dir.to_path_buf(), seed, steps: Some(10), every: Some(5) };
-    grow::run(&req, &mut |_, _| {}).unwrap();
+    let summary = grow::run(&req, &mut |_, _| {}).unwrap();
+    assert!(summary.violations.is_empty() && summary.snapshot_violations.is_empty(), "{:?}", summary.violations);
     for f in ["network.json", "series.csv", "network.svg", "network.png", "step-000.svg", "step-010.svg"] {
         assert!(dir.join(f).exists(), "{f}");
     }
@@ -225,6 +229,7 @@ fn same_seed_same_bytes_another_seed_differs() {
     for k in ["nodes", "segments", "water", "settlements"] {
         assert!(v[k].is_array(), "{k}");
     }
+    assert_eq!(v["violations"], serde_json::json!([]), "the independent check found violations");
     let classes: BTreeSet<&str> =
         v["segments"].as_array().unwrap().iter().map(|s| s["class"].as_str().unwrap()).collect();
     assert!(classes.is_subset(&BTreeSet::from(["major", "minor", "bridge", "harbour"])), "{classes:?}");

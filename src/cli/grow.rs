@@ -1,10 +1,17 @@
 //! `netspec grow CONTEXT --out DIR [--window X0,Y0,X1,Y1]`: road networks grown by traffic, with
-//! a progress bar of the steps, and a window of one as a city spec and trade flows.
+//! a progress bar of the steps, and a window of one as a city spec and trade flows; exits with 3
+//! when the independent check of the network finds violations.
 
 use anyhow::Result;
 use indicatif::{ProgressBar, ProgressStyle};
 use netspec::grow::{self, GrowRequest};
 use std::process::ExitCode;
+
+/// Violations printed one per line; the rest are counted (all are in `network.json`).
+const SHOWN: usize = 10;
+
+/// Exit code of a grown network that fails the independent check (as `city` and `layout`).
+const EXIT_INVALID: u8 = 3;
 
 /// Grows (unless the context is a grown output directory) and writes the window's files.
 pub fn run(req: &GrowRequest, window: Option<[f64; 4]>) -> Result<ExitCode> {
@@ -16,7 +23,9 @@ pub fn run(req: &GrowRequest, window: Option<[f64; 4]>) -> Result<ExitCode> {
         );
         req.context.clone()
     } else {
-        grow_map(req)?;
+        if !grow_map(req)? {
+            return Ok(ExitCode::from(EXIT_INVALID));
+        }
         req.out.clone()
     };
     if let Some(w) = window {
@@ -33,8 +42,9 @@ pub fn run(req: &GrowRequest, window: Option<[f64; 4]>) -> Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
-/// Runs the library entry point with a bar of the steps and prints a summary line.
-fn grow_map(req: &GrowRequest) -> Result<()> {
+/// Runs the library entry point with a bar of the steps and prints a summary line; warns about
+/// violations of the network's invariants. Whether the network passed the check.
+fn grow_map(req: &GrowRequest) -> Result<bool> {
     let bar = ProgressBar::new(1);
     bar.set_style(ProgressStyle::with_template("grow {bar:30} step {pos}/{len} {elapsed}").expect("static template"));
     let summary = grow::run(req, &mut |k, n| {
@@ -60,6 +70,25 @@ fn grow_map(req: &GrowRequest) -> Result<()> {
         s.init_seconds,
         s.step_seconds
     );
-    println!("wrote {}", req.out.join("network.json").display());
-    Ok(())
+    let json = req.out.join("network.json");
+    println!("wrote {}", json.display());
+    for (step, n) in &s.snapshot_violations {
+        eprintln!("warning: the network at step {step} had {n} violation(s) of its invariants");
+    }
+    if s.violations.is_empty() {
+        return Ok(true);
+    }
+    eprintln!("warning: the grown network has {} violation(s) of its invariants:", s.violations.len());
+    for v in s.violations.iter().take(SHOWN) {
+        eprintln!("  {v}");
+    }
+    if s.violations.len() > SHOWN {
+        eprintln!("  … and {} more", s.violations.len() - SHOWN);
+    }
+    eprintln!(
+        "error: the independent check of the grown network failed: {} violation(s), listed under `violations` in {}",
+        s.violations.len(),
+        json.display()
+    );
+    Ok(false)
 }

@@ -9,8 +9,9 @@
 //! [`lattice`] (the implicit pathfinding graph), [`paths`] (shortest paths), [`spaces`] (the
 //! graphs searched), [`graph`] (the planar road graph), [`blocks`] (faces and the built-up area),
 //! [`minor`] (minor-road growth), [`traffic`] (trade routes and capacities), [`step`] (the
-//! simulation), [`output`] (files), [`window`] (a window as a city spec and trade flows); [`run`]
-//! is the entry point of `netspec grow`.
+//! simulation), [`output`] (files), [`validate`] (an independent check of the output),
+//! [`window`] (a window as a city spec and trade flows); [`run`] is the entry point of
+//! `netspec grow`.
 
 pub mod blocks;
 pub mod context;
@@ -23,6 +24,7 @@ pub mod spaces;
 pub mod step;
 pub mod terrain;
 pub mod traffic;
+pub mod validate;
 pub mod window;
 
 use crate::geometry::P;
@@ -121,10 +123,23 @@ pub struct GrowSummary {
     pub step_seconds: f64,
     /// Files written.
     pub files: Vec<PathBuf>,
+    /// What the independent check ([`validate`]) found in the final network, as written to
+    /// `network.json`'s `violations` (empty when it is valid).
+    pub violations: Vec<validate::Violation>,
+    /// The snapshot steps (`--every`) whose network the check found violations in, with their
+    /// counts.
+    pub snapshot_violations: Vec<(u32, usize)>,
+}
+
+/// The independent check of the network `network.json` would hold now.
+fn check(sim: &step::Sim) -> Vec<validate::Violation> {
+    validate::validate(&validate::Network::of(sim), &sim.ctx)
 }
 
 /// Runs `netspec grow`: reads the context, builds the initial network, runs the steps (calling
-/// `progress(step, steps)` after each), and writes the outputs into the request's directory.
+/// `progress(step, steps)` after each), checks the network at every snapshot and at the end
+/// ([`validate`]), and writes the outputs into the request's directory. Violations are not an
+/// error: they are written to `network.json` and returned in the summary.
 pub fn run(req: &GrowRequest, progress: &mut dyn FnMut(u32, u32)) -> Result<GrowSummary, GrowError> {
     let ctx = context::Context::load(&req.context)?;
     let seed = req.seed.unwrap_or(ctx.seed);
@@ -135,25 +150,37 @@ pub fn run(req: &GrowRequest, progress: &mut dyn FnMut(u32, u32)) -> Result<Grow
     let init_seconds = t0.elapsed().as_secs_f64();
     let mut files = Vec::new();
     let every = req.every.filter(|&k| k > 0);
+    let mut snapshot_violations = Vec::new();
+    let mut snapshot = |sim: &step::Sim, files: &mut Vec<PathBuf>| -> Result<(), GrowError> {
+        files.push(output::write_snapshot(&req.out, sim)?);
+        let found = check(sim).len();
+        if found > 0 {
+            snapshot_violations.push((sim.step, found));
+        }
+        Ok(())
+    };
     if every.is_some() {
-        files.push(output::write_snapshot(&req.out, &sim)?);
+        snapshot(&sim, &mut files)?;
     }
     progress(0, steps);
     let t1 = Instant::now();
     for k in 1..=steps {
         sim.step();
         if every.is_some_and(|e| k % e == 0) {
-            files.push(output::write_snapshot(&req.out, &sim)?);
+            snapshot(&sim, &mut files)?;
         }
         progress(k, steps);
     }
     let step_seconds = t1.elapsed().as_secs_f64();
-    files.extend(output::write_all(&req.out, &sim)?);
+    let violations = check(&sim);
+    files.extend(output::write_all(&req.out, &sim, &violations)?);
     Ok(GrowSummary {
         seed,
         last: sim.series.last().expect("step 0 is always there").clone(),
         init_seconds,
         step_seconds,
         files,
+        violations,
+        snapshot_violations,
     })
 }

@@ -4,6 +4,7 @@
 
 use super::graph::Class;
 use super::step::Sim;
+use super::validate::Violation;
 use super::GrowError;
 use crate::geometry::site::Projection;
 use crate::geometry::P;
@@ -11,7 +12,8 @@ use crate::render::grow::{grow_svg, Bands, GrowScene, RoadLine};
 use serde_json::{json, Value};
 use std::path::{Path, PathBuf};
 
-fn mm(x: f64) -> f64 {
+/// `x` rounded to the millimetre, as every length and coordinate in the files.
+pub(crate) fn mm(x: f64) -> f64 {
     (x * 1000.0).round() / 1000.0
 }
 
@@ -20,7 +22,7 @@ fn pt(p: P) -> [f64; 2] {
 }
 
 /// The node ids written: nodes with at least one segment, numbered in order.
-fn node_ids(sim: &Sim) -> Vec<Option<usize>> {
+pub(crate) fn node_ids(sim: &Sim) -> Vec<Option<usize>> {
     let mut ids = vec![None; sim.graph.nodes.len()];
     let mut next = 0;
     for (n, adj) in sim.graph.adj.iter().enumerate() {
@@ -32,9 +34,10 @@ fn node_ids(sim: &Sim) -> Vec<Option<usize>> {
     ids
 }
 
-/// `network.json`: nodes, road segments, waterways, water, settlements, cities, nuclei and the
-/// trade routes (as node lists).
-pub fn network_json(sim: &Sim) -> Value {
+/// `network.json`: nodes, road segments, waterways, water, settlements, cities, nuclei, the
+/// trade routes (as node lists) and the `violations` an independent check found
+/// ([`super::validate`]; empty when the network is valid).
+pub fn network_json(sim: &Sim, violations: &[Violation]) -> Value {
     let ids = node_ids(sim);
     let g = &sim.graph;
     let nodes: Vec<Value> = g
@@ -99,6 +102,7 @@ pub fn network_json(sim: &Sim) -> Value {
         "cities": cities,
         "nuclei": nuclei,
         "routes": routes,
+        "violations": violations,
     })
 }
 
@@ -194,11 +198,11 @@ pub fn write_snapshot(dir: &Path, sim: &Sim) -> Result<PathBuf, GrowError> {
     write(dir, &format!("step-{:03}.svg", sim.step), grow_svg(&scene(sim)).as_bytes())
 }
 
-/// Writes `network.json`, `series.csv`, `network.svg`, `network.png` and (with an origin)
-/// `network.geojson`.
-pub fn write_all(dir: &Path, sim: &Sim) -> Result<Vec<PathBuf>, GrowError> {
+/// Writes `network.json` (with `violations`), `series.csv`, `network.svg`, `network.png` and
+/// (with an origin) `network.geojson`.
+pub fn write_all(dir: &Path, sim: &Sim, violations: &[Violation]) -> Result<Vec<PathBuf>, GrowError> {
     let mut files = Vec::new();
-    let json = serde_json::to_string(&network_json(sim)).expect("JSON serialises") + "\n";
+    let json = serde_json::to_string(&network_json(sim, violations)).expect("JSON serialises") + "\n";
     files.push(write(dir, "network.json", json.as_bytes())?);
     files.push(write(dir, "series.csv", series_csv(sim).as_bytes())?);
     let svg = grow_svg(&scene(sim));

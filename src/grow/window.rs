@@ -212,8 +212,11 @@ fn inside_region(p: P, r: &crate::urban::planar::Region) -> bool {
     crate::geometry::ring_contains(&r.outer, u) && !r.holes.iter().any(|h| crate::geometry::ring_contains(h, u))
 }
 
+/// A point rounded to the millimetre.
+type Key = (i64, i64);
+
 /// Points within a millimetre are one.
-fn key(p: P) -> (i64, i64) {
+fn key(p: P) -> Key {
     ((p[0] * 1000.0).round() as i64, (p[1] * 1000.0).round() as i64)
 }
 
@@ -323,7 +326,12 @@ fn clear_of_roads(water: &[Vec<P>], roads: &[Vec<P>], w: [f64; 4]) -> Vec<Vec<P>
     if inner[0] >= inner[2] || inner[1] >= inner[3] || water.is_empty() {
         return Vec::new();
     }
-    let inside = geo::MultiPolygon::new(vec![poly(&[[inner[0], inner[1]], [inner[2], inner[1]], [inner[2], inner[3]], [inner[0], inner[3]]])]);
+    let inside = geo::MultiPolygon::new(vec![poly(&[
+        [inner[0], inner[1]],
+        [inner[2], inner[1]],
+        [inner[2], inner[3]],
+        [inner[0], inner[3]],
+    ])]);
     let strips = geo::MultiLineString::new(roads.iter().map(|r| line(r)).collect()).buffer(CLEARANCE);
     let mut out = Vec::new();
     for wp in water {
@@ -354,7 +362,7 @@ fn on_edge(p: P, w: [f64; 4]) -> bool {
 /// the route's traffic; flows between the same two points are summed. Pieces that start or end
 /// inside (a city or a harbour in the window) are counted, not flows.
 fn trade_flows(routes: &[(Vec<P>, f64)], w: [f64; 4]) -> (Vec<TradeFlow>, usize) {
-    let mut sum: BTreeMap<((i64, i64), (i64, i64)), (P, P, f64)> = BTreeMap::new();
+    let mut sum: BTreeMap<(Key, Key), (P, P, f64)> = BTreeMap::new();
     let mut ending_inside = 0;
     for (line, traffic) in routes {
         if *traffic <= 0.0 {

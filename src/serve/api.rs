@@ -180,14 +180,12 @@ struct OutputQuery {
     path: String,
 }
 
-/// A city or traffic picture under the root (only those file names).
+/// A city, traffic, layout, field or grow picture under the root (only those, [`specs::picture_kind`]).
 async fn output(State(app): State<Arc<App>>, Query(q): Query<OutputQuery>) -> ApiResult<Response> {
     blocking(move || {
         let path = under_root(&app.root, &q.path, "path")?;
-        let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
-        if !specs::OUTPUT_PICTURES.iter().any(|(n, _)| *n == name) {
-            let known: Vec<&str> = specs::OUTPUT_PICTURES.iter().map(|(n, _)| *n).collect();
-            return Err(ApiError::bad("path", format!("`{}`: only {} are shown", q.path, known.join(", "))));
+        if specs::picture_kind(&path).is_none() {
+            return Err(ApiError::bad("path", format!("`{}`: only {} are shown", q.path, specs::shown())));
         }
         let svg = std::fs::read_to_string(&path)
             .map_err(|_| ApiError::not_found("path", format!("no picture `{}` under --root", q.path)))?;

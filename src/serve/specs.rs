@@ -73,7 +73,8 @@ pub fn list(root: &Path) -> Vec<Listed> {
     out
 }
 
-/// The pictures of `netspec city` and `netspec traffic` outputs that the page shows.
+/// The pictures of `netspec city`, `traffic`, `layout` and `field` outputs that the page shows,
+/// by file name, with their kind.
 pub const OUTPUT_PICTURES: &[(&str, &str)] = &[
     ("city.svg", "city"),
     ("volume.svg", "traffic"),
@@ -83,29 +84,56 @@ pub const OUTPUT_PICTURES: &[(&str, &str)] = &[
     ("field.svg", "field"),
 ];
 
-/// One city, traffic, layout or field picture under the root.
+/// The kind of a `netspec grow` output's pictures.
+pub const GROW: &str = "grow";
+
+/// The pictures the page shows, in words (for errors).
+pub fn shown() -> String {
+    let names: Vec<&str> = OUTPUT_PICTURES.iter().map(|(n, _)| *n).collect();
+    format!("{}, and a netspec grow output's network.svg and step-NNN.svg", names.join(", "))
+}
+
+/// One city, traffic, layout, field or grow picture under the root.
 #[derive(Serialize)]
 pub struct Output {
-    /// `city`, `traffic`, `layout` or `field`.
+    /// `city`, `traffic`, `layout`, `field` or `grow`.
     pub kind: &'static str,
     /// The picture's path under the root.
     pub path: String,
 }
 
-/// Every city, traffic, layout and field picture under the root (four folders deep, runs left out), in path
-/// order.
+/// Whether `name` is a grow snapshot's: `step-` digits `.svg`.
+fn is_step_svg(name: &str) -> bool {
+    name.strip_prefix("step-")
+        .and_then(|r| r.strip_suffix(".svg"))
+        .is_some_and(|d| !d.is_empty() && d.bytes().all(|b| b.is_ascii_digit()))
+}
+
+/// A file name that may be a picture the page shows (grow's only beside a grow output's files).
+fn may_show(name: &str) -> bool {
+    OUTPUT_PICTURES.iter().any(|(n, _)| *n == name) || name == "network.svg" || is_step_svg(name)
+}
+
+/// The kind of the picture at `path` if the page shows it: a city, traffic, layout or field
+/// picture by its name, or `grow` for `network.svg` and `step-NNN.svg` beside a grow output's
+/// `series.csv` and `network.json` (`netspec solve` writes a `network.svg` too, without them).
+pub fn picture_kind(path: &Path) -> Option<&'static str> {
+    let name = path.file_name()?.to_string_lossy();
+    if let Some((_, kind)) = OUTPUT_PICTURES.iter().find(|(n, _)| *n == name) {
+        return Some(kind);
+    }
+    let dir = path.parent()?;
+    let grown = dir.join("series.csv").is_file() && dir.join("network.json").is_file();
+    (grown && (name == "network.svg" || is_step_svg(&name))).then_some(GROW)
+}
+
+/// Every city, traffic, layout, field and grow picture under the root (four folders deep, runs
+/// left out), in path order.
 pub fn outputs(root: &Path) -> Vec<Output> {
     let mut found = Vec::new();
-    walk_files(root, root, 0, &|name| OUTPUT_PICTURES.iter().any(|(n, _)| *n == name), &mut found);
+    walk_files(root, root, 0, &may_show, &mut found);
     found.sort();
-    found
-        .into_iter()
-        .filter_map(|path| {
-            let name = Path::new(&path).file_name()?.to_string_lossy().into_owned();
-            let kind = OUTPUT_PICTURES.iter().find(|(n, _)| *n == name)?.1;
-            Some(Output { kind, path })
-        })
-        .collect()
+    found.into_iter().filter_map(|path| Some(Output { kind: picture_kind(&root.join(&path))?, path })).collect()
 }
 
 fn walk(root: &Path, dir: &Path, depth: usize, found: &mut Vec<String>) {

@@ -196,7 +196,7 @@ pub fn generate(region: &Region, s: &DemandSettings) -> Vec<Trip> {
 fn trade(s: &DemandSettings) -> Vec<Trip> {
     let total: f64 = s.trade.iter().map(|f| f.weight.max(0.0)).sum();
     let mut trips = Vec::new();
-    if !(total > 0.0) {
+    if total.is_nan() || total <= 0.0 {
         return trips;
     }
     // "trade" in ASCII, mixed into the seed.

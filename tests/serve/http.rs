@@ -330,3 +330,55 @@ fn city_layout_and_traffic_pictures_are_listed_and_served_only_under_the_root() 
         }
     });
 }
+
+#[test]
+fn grow_pictures_are_listed_only_beside_a_grow_outputs_files() {
+    let root = tempfile::tempdir().unwrap();
+    for (dir, names) in [
+        // A `netspec grow` output with `--every 10`.
+        (
+            "out/grow/river",
+            &["network.json", "series.csv", "network.svg", "network.png", "step-000.svg", "step-010.svg", "step-x.svg"]
+                [..],
+        ),
+        // A `netspec solve` output: its network.svg is not a grow picture.
+        ("out/solve/fig2b", &["result.json", "network.svg", "network.png"][..]),
+        // A series without the network: not a grow output.
+        ("out/half", &["series.csv", "network.svg", "step-000.svg"][..]),
+    ] {
+        std::fs::create_dir_all(root.path().join(dir)).unwrap();
+        for name in names {
+            std::fs::write(root.path().join(dir).join(name), "<svg></svg>").unwrap();
+        }
+    }
+    let srv = server(root.path(), 1);
+    let base = format!("http://{}", srv.addr());
+    runtime().block_on(async {
+        let c = Client::new();
+        let (s, list) = get(&c, format!("{base}/api/outputs")).await;
+        assert_eq!(s, 200);
+        let list: Value = serde_json::from_str(&list).unwrap();
+        let got: Vec<(&str, &str)> = list["outputs"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|o| (o["kind"].as_str().unwrap(), o["path"].as_str().unwrap()))
+            .collect();
+        let want = [
+            ("grow", "out/grow/river/network.svg"),
+            ("grow", "out/grow/river/step-000.svg"),
+            ("grow", "out/grow/river/step-010.svg"),
+        ];
+        assert_eq!(got, want);
+        for (path, status) in [
+            ("out/grow/river/step-010.svg", 200),
+            ("out/grow/river/network.svg", 200),
+            ("out/grow/river/step-020.svg", 404),
+            ("out/solve/fig2b/network.svg", 400),
+            ("out/half/step-000.svg", 400),
+        ] {
+            let (s, body) = get(&c, format!("{base}/api/output?path={path}")).await;
+            assert_eq!(s.as_u16(), status, "{path}: {body}");
+        }
+    });
+}

@@ -380,7 +380,7 @@ async function compare() {
   }
 }
 
-// --- city and traffic outputs ----------------------------------------------------------------
+// --- city, traffic, layout, field and grow outputs (kind: path) ------------------------------
 
 async function loadOutputs() {
   const data = await api("GET", "/api/outputs");
@@ -396,8 +396,9 @@ async function loadOutputs() {
   }
 }
 
-// A city picture (streets by level, each level toggled) or a traffic picture (streets coloured
-// by volume, travel times, a comparison), as `netspec city` / `netspec traffic` drew it.
+// A city picture (streets by level, each level toggled), a traffic picture (streets coloured
+// by volume, travel times, a comparison) or any other output's picture (layout, field, grow),
+// as its command drew it.
 async function showOutput(o) {
   const r = await fetch("/api/output?path=" + encodeURIComponent(o.path));
   if (!r.ok) return showError(await r.json());
