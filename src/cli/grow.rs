@@ -32,7 +32,7 @@ pub fn run(req: &GrowRequest, window: Option<[f64; 4]>) -> Result<ExitCode> {
         let name = req.out.file_name().map_or_else(|| "window".to_string(), |n| n.to_string_lossy().into_owned());
         let s = grow::window::write(&grown, w, &name, &req.out)?;
         println!(
-            "window {},{},{},{}: {} major roads ({:.2} km), {} sub-regions ({} unbuilt, no level), {} water obstacles, {} trade flows ({} routes end inside)",
+            "window {},{},{},{}: {} major roads ({:.2} km), {} sub-regions ({} unbuilt, no level), water bodies as obstacles: {}, {} trade flows ({} routes end inside)",
             w[0], w[1], w[2], w[3], s.roads, s.road_m / 1000.0, s.regions, s.empty_regions, s.obstacles, s.flows, s.routes_ending_inside
         );
         for f in &s.files {
