@@ -490,14 +490,27 @@ mod tests {
     #[test]
     fn a_window_becomes_a_city_spec() {
         let dir = tempfile::tempdir().expect("a temporary directory");
-        let json = r#"{"size": [2000, 2000], "spacing": 20,
-            "nodes": [{"id": 0, "x": 0, "y": 1000}, {"id": 1, "x": 950, "y": 1000}, {"id": 2, "x": 1050, "y": 1000},
-                      {"id": 3, "x": 2000, "y": 1000}, {"id": 4, "x": 600, "y": 1000}, {"id": 5, "x": 600, "y": 1300}],
-            "segments": [{"a": 0, "b": 4, "class": "major"}, {"a": 4, "b": 1, "class": "major"},
-                         {"a": 1, "b": 2, "class": "bridge"}, {"a": 2, "b": 3, "class": "major"},
-                         {"a": 4, "b": 5, "class": "minor"}],
-            "water": [{"river": [[1000, 0], [1000, 2000]], "width": 60}],
-            "routes": [{"traffic": 4, "nodes": [0, 4, 1, 2, 3]}]}"#;
+        // North of the road: eight streets of 540 m (11 km/km² of the 0.4 km² sub-region).
+        let (mut nodes, mut segments) = (String::new(), String::new());
+        for k in 0..8 {
+            let y = 1040 + 50 * k;
+            nodes += &format!(
+                r#", {{"id": {}, "x": 410, "y": {y}}}, {{"id": {}, "x": 950, "y": {y}}}"#,
+                6 + 2 * k,
+                7 + 2 * k
+            );
+            segments += &format!(r#", {{"a": {}, "b": {}, "class": "minor"}}"#, 6 + 2 * k, 7 + 2 * k);
+        }
+        let json = format!(
+            r#"{{"size": [2000, 2000], "spacing": 20,
+            "nodes": [{{"id": 0, "x": 0, "y": 1000}}, {{"id": 1, "x": 950, "y": 1000}}, {{"id": 2, "x": 1050, "y": 1000}},
+                      {{"id": 3, "x": 2000, "y": 1000}}, {{"id": 4, "x": 600, "y": 1000}}, {{"id": 5, "x": 600, "y": 1030}}{nodes}],
+            "segments": [{{"a": 0, "b": 4, "class": "major"}}, {{"a": 4, "b": 1, "class": "major"}},
+                         {{"a": 1, "b": 2, "class": "bridge"}}, {{"a": 2, "b": 3, "class": "major"}},
+                         {{"a": 4, "b": 5, "class": "minor"}}{segments}],
+            "water": [{{"river": [[1000, 0], [1000, 2000]], "width": 60}}],
+            "routes": [{{"traffic": 4, "nodes": [0, 4, 1, 2, 3]}}]}}"#
+        );
         std::fs::write(dir.path().join("network.json"), json).expect("written");
         let out = dir.path().join("w");
         let s = write(dir.path(), [400.0, 600.0, 1400.0, 1400.0], "w", &out).expect("a window");
