@@ -36,6 +36,11 @@ fn tiny_design(extra: &str) -> DesignResult {
     r
 }
 
+/// Demand of `duration` seconds, `through` and `local` trips per hour, no trade.
+fn demand_of(duration: f64, through: f64, local: f64, seed: u64) -> DemandSettings {
+    DemandSettings { duration, through_per_hour: through, local_per_hour: local, seed, ..Default::default() }
+}
+
 fn sumo() -> Sumo {
     crate::setup_part("sumo");
     Sumo::locate(None).unwrap_or_else(|e| panic!("{e}"))
@@ -71,13 +76,7 @@ fn tiny_design_through_netconvert_and_sumo() {
     )
     .unwrap();
     let dir = tempfile::tempdir().unwrap();
-    let settings = DemandSettings {
-        duration: 600.0,
-        through_per_hour: 120.0,
-        local_per_hour: 240.0,
-        seed: 3,
-        ..Default::default()
-    };
+    let settings = demand_of(600.0, 120.0, 240.0, 3);
     let r = evaluate(&net, &settings, &sumo(), dir.path()).unwrap_or_else(|e| panic!("{e}"));
     let v = &r.vehicles;
     assert!(r.demand.placed > 10, "{:?}", r.demand);
@@ -266,13 +265,7 @@ fn city_export_is_exactly_the_street_graph() {
         assert_eq!(e.lanes, if graph.edges[k as usize].level == 1 { 2 } else { 1 });
     }
     // And it carries traffic: every vehicle inserted arrives; through traffic is measured.
-    let settings = DemandSettings {
-        duration: 300.0,
-        through_per_hour: 240.0,
-        local_per_hour: 240.0,
-        seed: 5,
-        ..Default::default()
-    };
+    let settings = demand_of(300.0, 240.0, 240.0, 5);
     let r = evaluate(&net, &settings, &sumo(), dir.path()).unwrap_or_else(|e| panic!("{e}"));
     assert!(r.vehicles.inserted > 10, "{:?}", r.vehicles);
     assert_eq!(r.vehicles.arrived, r.vehicles.inserted);
@@ -285,13 +278,7 @@ fn city_export_is_exactly_the_street_graph() {
 fn demand_is_seeded_and_placed() {
     let square = vec![[0.0, 0.0], [400.0, 0.0], [400.0, 400.0], [0.0, 400.0]];
     let region = Region { boundary: square.clone(), areas: vec![square.clone()] };
-    let s = DemandSettings {
-        duration: 3600.0,
-        through_per_hour: 200.0,
-        local_per_hour: 400.0,
-        seed: 7,
-        ..Default::default()
-    };
+    let s = demand_of(3600.0, 200.0, 400.0, 7);
     let a = demand::generate(&region, &s);
     assert_eq!(a, demand::generate(&region, &s));
     assert_ne!(a, demand::generate(&region, &DemandSettings { seed: 8, ..s.clone() }));
@@ -506,13 +493,7 @@ fn a_layout_is_simulated_on_its_own_region() {
     let graph: f64 = net.edges.iter().map(|e| e.length()).sum();
     assert!((designed - graph).abs() < 1e-6 * designed, "{designed} m of street, {graph} m in the graph");
     assert!(net.nodes.iter().any(|n| n.entrance), "the major road's ends are entrances");
-    let settings = DemandSettings {
-        duration: 600.0,
-        through_per_hour: 120.0,
-        local_per_hour: 240.0,
-        seed: 3,
-        ..Default::default()
-    };
+    let settings = demand_of(600.0, 120.0, 240.0, 3);
     let out = tempfile::tempdir().unwrap();
     let r = evaluate(&net, &settings, &sumo(), out.path()).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(r.network.streets_in_net, r.network.streets);
