@@ -9,7 +9,9 @@ use super::GrowError;
 use crate::geometry::site::Projection;
 use crate::geometry::P;
 use crate::render::grow::{grow_svg, Bands, GrowScene, RoadLine};
+use serde::Deserialize;
 use serde_json::{json, Value};
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 /// `x` rounded to the millimetre, as every length and coordinate in the files.
@@ -104,6 +106,98 @@ pub fn network_json(sim: &Sim, violations: &[Violation]) -> Value {
         "routes": routes,
         "violations": violations,
     })
+}
+
+/// `network.json` read back (by `netspec grow --window` and `netspec traffic`): the fields they
+/// use, in metres.
+#[derive(Clone, Debug, Deserialize)]
+pub struct NetworkFile {
+    /// The map's size.
+    pub size: [f64; 2],
+    /// The lattice spacing (the context's default if absent).
+    #[serde(default = "default_spacing")]
+    pub spacing: f64,
+    /// Nodes with their ids.
+    pub nodes: Vec<NodeRecord>,
+    /// Road segments.
+    pub segments: Vec<SegmentRecord>,
+    /// The context's water.
+    #[serde(default)]
+    pub water: Vec<WaterRecord>,
+    /// Trade routes as node lists.
+    #[serde(default)]
+    pub routes: Vec<RouteRecord>,
+}
+
+fn default_spacing() -> f64 {
+    20.0
+}
+
+/// A node of `network.json`.
+#[derive(Clone, Debug, Deserialize)]
+pub struct NodeRecord {
+    /// Its id.
+    pub id: usize,
+    /// x, metres.
+    pub x: f64,
+    /// y, metres.
+    pub y: f64,
+}
+
+/// A road segment of `network.json`.
+#[derive(Clone, Debug, Deserialize)]
+pub struct SegmentRecord {
+    /// One end's node id.
+    pub a: usize,
+    /// The other end's.
+    pub b: usize,
+    /// `major`, `minor`, `bridge` or `harbour`.
+    pub class: String,
+    /// The traffic the model put on it.
+    #[serde(default)]
+    pub traffic: Option<f64>,
+}
+
+/// A water body of `network.json`: a polygon, or a river line with its width.
+#[derive(Clone, Debug, Deserialize)]
+pub struct WaterRecord {
+    /// A lake or sea outline.
+    #[serde(default)]
+    pub polygon: Option<Vec<P>>,
+    /// A river's centre line.
+    #[serde(default)]
+    pub river: Option<Vec<P>>,
+    /// The river's width.
+    #[serde(default)]
+    pub width: Option<f64>,
+}
+
+/// A trade route of `network.json`.
+#[derive(Clone, Debug, Deserialize)]
+pub struct RouteRecord {
+    /// Its traffic.
+    pub traffic: f64,
+    /// Its nodes, in order.
+    pub nodes: Vec<Option<usize>>,
+}
+
+impl NetworkFile {
+    /// Parses `network.json`'s text.
+    pub fn from_json(text: &str) -> Result<NetworkFile, serde_json::Error> {
+        serde_json::from_str(text)
+    }
+
+    /// Node positions by id.
+    pub fn positions(&self) -> BTreeMap<usize, P> {
+        self.nodes.iter().map(|n| (n.id, [n.x, n.y])).collect()
+    }
+
+    /// The ends of segment `i`, or the message naming the field whose node is missing.
+    pub fn segment_ends(&self, pos: &BTreeMap<usize, P>, i: usize) -> Result<(P, P), String> {
+        let s = &self.segments[i];
+        let at = |id: usize| pos.get(&id).copied().ok_or_else(|| format!("segments[{i}]: node {id} is not in `nodes`"));
+        Ok((at(s.a)?, at(s.b)?))
+    }
 }
 
 /// `series.csv`: a header and one row per step.

@@ -7,12 +7,14 @@
 //!
 //! Reads `network.json` only, so a grown map can be windowed many times without growing again.
 
+use super::output::{NetworkFile, WaterRecord};
 use super::GrowError;
+use crate::design::streets::{decompose, StreetEdge, StreetGraph};
+use crate::geometry::polygon::bounds;
 use crate::geometry::{clip_segment as clip, dist, lerp, polyline_length, P};
-use crate::traffic::demand::{TradeFile, TradeFlow};
 use crate::urban::spec::CitySpec;
 use geo::{ChaikinSmoothing, Simplify};
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -57,47 +59,46 @@ weights = { length = 1, distance = 1e-4, zigzag = "forbid", too_close = "forbid"
 features = { dead_ends = "allow" }
 "#;
 
-/// The part of `network.json` a window reads.
-#[derive(Deserialize)]
-struct Network {
-    size: [f64; 2],
-    spacing: f64,
-    nodes: Vec<Node>,
-    segments: Vec<Segment>,
-    #[serde(default)]
-    water: Vec<Water>,
-    #[serde(default)]
-    routes: Vec<Route>,
+/// Trade across a region: trips from one point to another (each end at the nearest entrance),
+/// as many as the flow's share of the weights.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TradeFlow {
+    /// Where the trade enters, metres.
+    pub from: [f64; 2],
+    /// Where it leaves, metres.
+    pub to: [f64; 2],
+    /// Its weight (a grown network's route traffic).
+    pub weight: f64,
 }
 
-#[derive(Deserialize)]
-struct Node {
-    id: usize,
-    x: f64,
-    y: f64,
+/// A `trade.json` file: the trade flows across a window of a grown map.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TradeFile {
+    /// The window `[x0, y0, x1, y1]`, metres.
+    pub window: [f64; 4],
+    /// The flows, in order of their end points.
+    pub flows: Vec<TradeFlow>,
 }
 
-#[derive(Deserialize)]
-struct Segment {
-    a: usize,
-    b: usize,
-    class: String,
-}
-
-#[derive(Deserialize)]
-struct Water {
-    #[serde(default)]
-    polygon: Option<Vec<P>>,
-    #[serde(default)]
-    river: Option<Vec<P>>,
-    #[serde(default)]
-    width: Option<f64>,
-}
-
-#[derive(Deserialize)]
-struct Route {
-    traffic: f64,
-    nodes: Vec<Option<usize>>,
+impl TradeFile {
+    /// Reads and checks a trade file: finite points, weights ≥ 0.
+    pub fn load(path: &Path) -> Result<TradeFile, GrowError> {
+        let text = std::fs::read_to_string(path).map_err(|source| GrowError::Io { path: path.into(), source })?;
+        let f: TradeFile = serde_json::from_str(&text)
+            .map_err(|e| GrowError::Toml { path: path.into(), message: format!("not a trade file: {e}") })?;
+        for (i, t) in f.flows.iter().enumerate() {
+            if !(t.from.iter().chain(&t.to).all(|v| v.is_finite()) && t.weight.is_finite() && t.weight >= 0.0) {
+                return Err(GrowError::Field {
+                    path: path.into(),
+                    field: format!("flows[{i}]"),
+                    message: "points must be finite and the weight a number ≥ 0".into(),
+                });
+            }
+        }
+        Ok(f)
+    }
 }
 
 /// What [`write`] made.
@@ -127,8 +128,8 @@ pub fn write(dir: &Path, window: [f64; 4], name: &str, out: &Path) -> Result<Win
     let file = dir.join("network.json");
     let text = std::fs::read_to_string(&file).map_err(|source| GrowError::Io { path: file.clone(), source })?;
     let field = |field: &str, message: String| GrowError::Field { path: file.clone(), field: field.into(), message };
-    let net: Network =
-        serde_json::from_str(&text).map_err(|e| GrowError::Toml { path: file.clone(), message: e.to_string() })?;
+    let net =
+        NetworkFile::from_json(&text).map_err(|e| GrowError::Toml { path: file.clone(), message: e.to_string() })?;
     let [x0, y0, x1, y1] = window;
     if !(window.iter().all(|v| v.is_finite()) && x0 < x1 && y0 < y1) {
         return Err(field("window", format!("{x0},{y0},{x1},{y1} is empty")));
@@ -139,14 +140,11 @@ pub fn write(dir: &Path, window: [f64; 4], name: &str, out: &Path) -> Result<Win
             format!("{x0},{y0},{x1},{y1} is outside the map [0, {}] × [0, {}]", net.size[0], net.size[1]),
         ));
     }
-    let pos: BTreeMap<usize, P> = net.nodes.iter().map(|n| (n.id, [n.x, n.y])).collect();
-    let at = |i: usize, id: usize| {
-        pos.get(&id).copied().ok_or_else(|| field(&format!("segments[{i}]"), format!("node {id} is not in `nodes`")))
-    };
+    let pos = net.positions();
     let mut major = Vec::new();
     let mut minor = Vec::new();
     for (i, s) in net.segments.iter().enumerate() {
-        let (a, b) = (at(i, s.a)?, at(i, s.b)?);
+        let (a, b) = net.segment_ends(&pos, i).map_err(|m| GrowError::Toml { path: file.clone(), message: m })?;
         let Some(piece) = clip(a, b, window) else { continue };
         match s.class.as_str() {
             "major" | "bridge" => major.push(piece),
@@ -173,16 +171,7 @@ pub fn write(dir: &Path, window: [f64; 4], name: &str, out: &Path) -> Result<Win
         CitySpec::from_toml(&spec).map_err(|e| field("window", format!("the window's city spec is unusable: {e}")))?;
     let regions =
         crate::urban::city::regions(&parsed).map_err(|e| field("window", format!("the window's major roads: {e}")))?;
-    let empty: Vec<P> = regions
-        .iter()
-        .filter(|(r, _)| {
-            let street: f64 =
-                minor.iter().filter(|&&(a, b)| inside_region(lerp(a, b, 0.5), r)).map(|&(a, b)| dist(a, b)).sum();
-            let km2 = r.area * METRES_PER_UNIT * METRES_PER_UNIT / 1e6;
-            r.area < MIN_CELLS || street / 1000.0 < MIN_KM_PER_KM2 * km2
-        })
-        .map(|(r, _)| r.label_point)
-        .collect();
+    let empty: Vec<P> = regions.iter().filter(|(r, _)| unbuilt(r, &minor)).map(|(r, _)| r.label_point).collect();
     let spec = city_toml(name, window, &chains, &obstacles, &empty);
     std::fs::create_dir_all(out).map_err(|source| GrowError::Io { path: out.to_path_buf(), source })?;
     let put = |f: &str, text: &str| {
@@ -207,9 +196,17 @@ pub fn write(dir: &Path, window: [f64; 4], name: &str, out: &Path) -> Result<Win
     })
 }
 
-fn inside_region(p: P, r: &crate::urban::planar::Region) -> bool {
-    let u = [p[0] / METRES_PER_UNIT, p[1] / METRES_PER_UNIT];
-    crate::geometry::ring_contains(&r.outer, u) && !r.holes.iter().any(|h| crate::geometry::ring_contains(h, u))
+/// Whether a sub-region (city units) is too small for a street or the growth left it unbuilt:
+/// under [`MIN_KM_PER_KM2`] of the grown `minor` segments (metres) by their midpoints.
+fn unbuilt(r: &crate::urban::planar::Region, minor: &[(P, P)]) -> bool {
+    let unit = |p: P| [p[0] / METRES_PER_UNIT, p[1] / METRES_PER_UNIT];
+    let street: f64 = minor
+        .iter()
+        .filter(|&&(a, b)| crate::urban::city::point_in_region(unit(lerp(a, b, 0.5)), r))
+        .map(|&(a, b)| dist(a, b))
+        .sum();
+    let km2 = r.area * METRES_PER_UNIT * METRES_PER_UNIT / 1e6;
+    r.area < MIN_CELLS || street / 1000.0 < MIN_KM_PER_KM2 * km2
 }
 
 /// A point rounded to the millimetre.
@@ -220,62 +217,21 @@ fn key(p: P) -> Key {
     ((p[0] * 1000.0).round() as i64, (p[1] * 1000.0).round() as i64)
 }
 
-/// The segments joined into maximal chains: a chain runs between nodes whose degree is not 2
-/// (ends, junctions); a closed loop of degree-2 nodes is one closed chain. Deterministic: chains
-/// start at the smallest node key.
+/// The segments joined into maximal chains between nodes whose degree is not 2 (ends,
+/// junctions), a closed loop of degree-2 nodes one closed chain: the street graph's snakes
+/// ([`decompose`]) over the segments' ends, one node per millimetre.
 fn chains(segments: &[(P, P)]) -> Vec<Vec<P>> {
-    let mut adj: BTreeMap<(i64, i64), Vec<usize>> = BTreeMap::new();
-    let mut point: BTreeMap<(i64, i64), P> = BTreeMap::new();
-    for (k, &(a, b)) in segments.iter().enumerate() {
-        if key(a) == key(b) {
-            continue;
-        }
-        for p in [a, b] {
-            adj.entry(key(p)).or_default().push(k);
-            point.entry(key(p)).or_insert(p);
-        }
-    }
-    let mut used = vec![false; segments.len()];
-    let mut out = Vec::new();
-    let other = |k: usize, from: (i64, i64)| {
-        let (a, b) = segments[k];
-        if key(a) == from {
-            key(b)
-        } else {
-            key(a)
-        }
+    let mut index: BTreeMap<Key, u32> = BTreeMap::new();
+    let mut positions = Vec::new();
+    let mut node = |p: P| {
+        *index.entry(key(p)).or_insert_with(|| {
+            positions.push(p);
+            positions.len() as u32 - 1
+        })
     };
-    let walk = |start: (i64, i64), first: usize, used: &mut Vec<bool>| {
-        let mut line = vec![point[&start]];
-        let (mut at, mut k) = (start, first);
-        loop {
-            used[k] = true;
-            at = other(k, at);
-            line.push(point[&at]);
-            let next = adj[&at].iter().copied().find(|&j| !used[j]);
-            match next {
-                Some(j) if adj[&at].len() == 2 => k = j,
-                _ => return line,
-            }
-        }
-    };
-    for (&n, ks) in &adj {
-        if ks.len() != 2 {
-            for &k in ks {
-                if !used[k] {
-                    out.push(walk(n, k, &mut used));
-                }
-            }
-        }
-    }
-    for (&n, ks) in &adj {
-        for &k in ks {
-            if !used[k] {
-                out.push(walk(n, k, &mut used));
-            }
-        }
-    }
-    out
+    let edges: Vec<StreetEdge> =
+        segments.iter().map(|&(a, b)| StreetEdge { a: node(a), b: node(b), level: 1 }).collect();
+    decompose(&StreetGraph { positions, edges }).into_iter().map(|s| s.points).collect()
 }
 
 /// A grown chain as a city road: lattice zig-zags removed (Ramer–Douglas–Peucker within half the
@@ -297,7 +253,7 @@ fn smooth(chain: &[P], spacing: f64) -> Vec<P> {
 
 /// A water body as a polygon: a lake or sea as it is, a river as its centre line buffered by half
 /// its width (round joins).
-fn water_polygon(w: &Water) -> Option<Vec<P>> {
+fn water_polygon(w: &WaterRecord) -> Option<Vec<P>> {
     if let Some(p) = &w.polygon {
         return Some(p.clone());
     }
@@ -345,9 +301,7 @@ fn clear_of_roads(water: &[Vec<P>], roads: &[Vec<P>], w: [f64; 4]) -> Vec<Vec<P>
 
 /// Whether a polygon's bounding box meets the window.
 fn overlaps(p: &[P], w: [f64; 4]) -> bool {
-    let (lo, hi) = p.iter().fold(([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]), |(lo, hi), q| {
-        ([lo[0].min(q[0]), lo[1].min(q[1])], [hi[0].max(q[0]), hi[1].max(q[1])])
-    });
+    let [lo, hi] = bounds(p);
     lo[0] < w[2] && hi[0] > w[0] && lo[1] < w[3] && hi[1] > w[1]
 }
 

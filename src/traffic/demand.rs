@@ -67,44 +67,7 @@ impl Default for DemandSettings {
     }
 }
 
-/// Trade across a region: trips from one point to another (each end at the nearest entrance),
-/// as many as the flow's share of the weights.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct TradeFlow {
-    /// Where the trade enters, metres.
-    pub from: [f64; 2],
-    /// Where it leaves, metres.
-    pub to: [f64; 2],
-    /// Its weight (a grown network's route traffic).
-    pub weight: f64,
-}
-
-/// A `trade.json` file: the trade flows across a window of a grown map.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct TradeFile {
-    /// The window `[x0, y0, x1, y1]`, metres.
-    pub window: [f64; 4],
-    /// The flows, in order of their end points.
-    pub flows: Vec<TradeFlow>,
-}
-
-impl TradeFile {
-    /// Reads and checks a trade file: finite points, weights ≥ 0.
-    pub fn load(path: &std::path::Path) -> Result<TradeFile, super::TrafficError> {
-        use super::{TrafficError, TrafficErrorKind};
-        let text = super::read(path)?;
-        let bad = |message: String| TrafficError::new(path, TrafficErrorKind::Parse { what: "a trade file", message });
-        let f: TradeFile = serde_json::from_str(&text).map_err(|e| bad(e.to_string()))?;
-        for (i, t) in f.flows.iter().enumerate() {
-            if !(t.from.iter().chain(&t.to).all(|v| v.is_finite()) && t.weight.is_finite() && t.weight >= 0.0) {
-                return Err(bad(format!("flows[{i}]: points must be finite and the weight a number ≥ 0")));
-            }
-        }
-        Ok(f)
-    }
-}
+pub use crate::grow::window::{TradeFile, TradeFlow};
 
 /// Through or local traffic (also the SUMO vehicle type of the trip).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize, Deserialize)]

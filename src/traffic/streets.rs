@@ -6,6 +6,7 @@ use super::network::{Provenance, Region, RoadEdge, RoadNetwork, RoadNode};
 use super::{read, TrafficError, TrafficErrorKind};
 use crate::geometry::index::SegmentIndex;
 use crate::geometry::{clip_segment as clip, closest_on_segment, dist, polyline_length, segment_intersection, P};
+use crate::grow::output::NetworkFile;
 use crate::layout::Street;
 use serde::Deserialize;
 use std::path::Path;
@@ -52,41 +53,18 @@ pub fn from_layout(dir: &Path) -> Result<RoadNetwork, TrafficError> {
     })
 }
 
-/// The part of a `netspec grow` `network.json` a traffic evaluation reads.
-#[derive(Deserialize)]
-struct GrowFile {
-    size: [f64; 2],
-    nodes: Vec<GrowNode>,
-    segments: Vec<GrowSegment>,
-}
-
-#[derive(Deserialize)]
-struct GrowNode {
-    id: u64,
-    x: f64,
-    y: f64,
-}
-
-#[derive(Deserialize)]
-struct GrowSegment {
-    a: u64,
-    b: u64,
-    class: String,
-    #[serde(default)]
-    traffic: Option<f64>,
-}
-
 /// The network of a `netspec grow` output directory (`network.json`), inside `window`
 /// (`[x0, y0, x1, y1]`, metres; default the whole map): major roads and bridges as major roads,
 /// minor roads as local streets (harbour links are ferries, not roads), each segment clipped
-/// to the window and carrying the traffic the growth model put on it (its predicted load); entrances where major roads cross the window's edge; demand drawn in the
-/// window — so a `netspec city` on the same window meets the same trips.
+/// to the window and carrying the traffic the growth model put on it (its predicted load);
+/// entrances where major roads cross the window's edge; demand drawn in the window — so a
+/// `netspec city` on the same window meets the same trips.
 pub fn from_grow(dir: &Path, window: Option<[f64; 4]>) -> Result<RoadNetwork, TrafficError> {
     let file = dir.join("network.json");
     let text = read(&file)?;
     let bad =
         |message: String| TrafficError::new(&file, TrafficErrorKind::Parse { what: "a netspec grow network", message });
-    let net: GrowFile = serde_json::from_str(&text).map_err(|e| bad(e.to_string()))?;
+    let net = NetworkFile::from_json(&text).map_err(|e| bad(e.to_string()))?;
     let [x0, y0, x1, y1] = window.unwrap_or([0.0, 0.0, net.size[0], net.size[1]]);
     if !(x0 < x1 && y0 < y1 && [x0, y0, x1, y1].iter().all(|v| v.is_finite())) {
         return Err(TrafficError::new(
@@ -94,7 +72,7 @@ pub fn from_grow(dir: &Path, window: Option<[f64; 4]>) -> Result<RoadNetwork, Tr
             TrafficErrorKind::Invalid(format!("window {x0},{y0},{x1},{y1} is empty")),
         ));
     }
-    let pos: std::collections::BTreeMap<u64, P> = net.nodes.iter().map(|n| (n.id, [n.x, n.y])).collect();
+    let pos = net.positions();
     let mut lines = Vec::new();
     for (i, s) in net.segments.iter().enumerate() {
         let level = match s.class.as_str() {
@@ -103,9 +81,7 @@ pub fn from_grow(dir: &Path, window: Option<[f64; 4]>) -> Result<RoadNetwork, Tr
             "harbour" => continue,
             other => return Err(bad(format!("segments[{i}].class: unknown class `{other}`"))),
         };
-        let (Some(&a), Some(&b)) = (pos.get(&s.a), pos.get(&s.b)) else {
-            return Err(bad(format!("segments[{i}]: node {} or {} is not in `nodes`", s.a, s.b)));
-        };
+        let (a, b) = net.segment_ends(&pos, i).map_err(bad)?;
         if let Some((a, b)) = clip(a, b, [x0, y0, x1, y1]) {
             lines.push((vec![a, b], level, s.traffic));
         }

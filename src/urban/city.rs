@@ -395,7 +395,8 @@ pub fn regions(spec: &CitySpec) -> Result<Vec<(Region, Option<usize>)>, CityErro
     Ok(arr.regions.into_iter().zip(entries).collect())
 }
 
-fn point_in_region(p: [f64; 2], r: &Region) -> bool {
+/// Whether `p` is inside a sub-region: in its outer ring and in none of its holes.
+pub fn point_in_region(p: [f64; 2], r: &Region) -> bool {
     mesh::point_in_polygon(p, &r.outer) && !r.holes.iter().any(|h| mesh::point_in_polygon(p, h))
 }
 
