@@ -281,7 +281,8 @@ fn caption(sim: &Sim) -> String {
     )
 }
 
-fn write(dir: &Path, name: &str, bytes: &[u8]) -> Result<PathBuf, GrowError> {
+/// Writes `bytes` to `dir/name`, naming the file on failure.
+pub(crate) fn write(dir: &Path, name: &str, bytes: &[u8]) -> Result<PathBuf, GrowError> {
     let path = dir.join(name);
     std::fs::write(&path, bytes).map_err(|source| GrowError::Io { path: path.clone(), source })?;
     Ok(path)

@@ -7,7 +7,7 @@
 //!
 //! Reads `network.json` only, so a grown map can be windowed many times without growing again.
 
-use super::output::{NetworkFile, WaterRecord};
+use super::output::{write as write_file, NetworkFile, WaterRecord};
 use super::GrowError;
 use crate::design::streets::{decompose, StreetEdge, StreetGraph};
 use crate::geometry::polygon::bounds;
@@ -128,30 +128,10 @@ pub fn write(dir: &Path, window: [f64; 4], name: &str, out: &Path) -> Result<Win
     let file = dir.join("network.json");
     let text = std::fs::read_to_string(&file).map_err(|source| GrowError::Io { path: file.clone(), source })?;
     let field = |field: &str, message: String| GrowError::Field { path: file.clone(), field: field.into(), message };
-    let net =
-        NetworkFile::from_json(&text).map_err(|e| GrowError::Toml { path: file.clone(), message: e.to_string() })?;
-    let [x0, y0, x1, y1] = window;
-    if !(window.iter().all(|v| v.is_finite()) && x0 < x1 && y0 < y1) {
-        return Err(field("window", format!("{x0},{y0},{x1},{y1} is empty")));
-    }
-    if x1 <= 0.0 || y1 <= 0.0 || x0 >= net.size[0] || y0 >= net.size[1] {
-        return Err(field(
-            "window",
-            format!("{x0},{y0},{x1},{y1} is outside the map [0, {}] × [0, {}]", net.size[0], net.size[1]),
-        ));
-    }
-    let pos = net.positions();
-    let mut major = Vec::new();
-    let mut minor = Vec::new();
-    for (i, s) in net.segments.iter().enumerate() {
-        let (a, b) = net.segment_ends(&pos, i).map_err(|m| GrowError::Toml { path: file.clone(), message: m })?;
-        let Some(piece) = clip(a, b, window) else { continue };
-        match s.class.as_str() {
-            "major" | "bridge" => major.push(piece),
-            "minor" => minor.push(piece),
-            _ => {}
-        }
-    }
+    let bad = |message: String| GrowError::Toml { path: file.clone(), message };
+    let net = NetworkFile::from_json(&text).map_err(|e| bad(e.to_string()))?;
+    check_window(window, net.size).map_err(|m| field("window", m))?;
+    let (major, minor) = clipped_roads(&net, window).map_err(bad)?;
     let chains: Vec<Vec<P>> = chains(&major)
         .into_iter()
         .map(|c| smooth(&c, net.spacing))
@@ -159,13 +139,7 @@ pub fn write(dir: &Path, window: [f64; 4], name: &str, out: &Path) -> Result<Win
         .collect();
     let water: Vec<Vec<P>> = net.water.iter().filter_map(water_polygon).filter(|p| overlaps(p, window)).collect();
     let obstacles = clear_of_roads(&water, &chains, window);
-    let mut routes = Vec::new();
-    for (i, r) in net.routes.iter().enumerate() {
-        let line: Option<Vec<P>> = r.nodes.iter().map(|n| n.and_then(|n| pos.get(&n).copied())).collect();
-        let line = line.ok_or_else(|| field(&format!("routes[{i}].nodes"), "a node is not in `nodes`".into()))?;
-        routes.push((line, r.traffic));
-    }
-    let (flows, inside) = trade_flows(&routes, window);
+    let (flows, inside) = trade_flows(&route_lines(&net).map_err(bad)?, window);
     let spec = city_toml(name, window, &chains, &obstacles, &[]);
     let parsed =
         CitySpec::from_toml(&spec).map_err(|e| field("window", format!("the window's city spec is unusable: {e}")))?;
@@ -174,16 +148,9 @@ pub fn write(dir: &Path, window: [f64; 4], name: &str, out: &Path) -> Result<Win
     let empty: Vec<P> = regions.iter().filter(|(r, _)| unbuilt(r, &minor)).map(|(r, _)| r.label_point).collect();
     let spec = city_toml(name, window, &chains, &obstacles, &empty);
     std::fs::create_dir_all(out).map_err(|source| GrowError::Io { path: out.to_path_buf(), source })?;
-    let put = |f: &str, text: &str| {
-        let path = out.join(f);
-        std::fs::write(&path, text).map_err(|source| GrowError::Io { path: path.clone(), source })?;
-        Ok::<PathBuf, GrowError>(path)
-    };
     let trade = TradeFile { window, flows };
-    let files = vec![
-        put("city.toml", &spec)?,
-        put("trade.json", &(serde_json::to_string_pretty(&trade).expect("trade flows serialise") + "\n"))?,
-    ];
+    let json = serde_json::to_string_pretty(&trade).expect("trade flows serialise") + "\n";
+    let files = vec![write_file(out, "city.toml", spec.as_bytes())?, write_file(out, "trade.json", json.as_bytes())?];
     Ok(WindowSummary {
         roads: chains.len(),
         road_m: chains.iter().map(|c| polyline_length(c)).sum(),
@@ -194,6 +161,49 @@ pub fn write(dir: &Path, window: [f64; 4], name: &str, out: &Path) -> Result<Win
         routes_ending_inside: inside,
         files,
     })
+}
+
+/// Why a window cannot be used on a map of `size`, if it cannot.
+fn check_window(w: [f64; 4], size: [f64; 2]) -> Result<(), String> {
+    let [x0, y0, x1, y1] = w;
+    if !(w.iter().all(|v| v.is_finite()) && x0 < x1 && y0 < y1) {
+        return Err(format!("{x0},{y0},{x1},{y1} is empty"));
+    }
+    if x1 <= 0.0 || y1 <= 0.0 || x0 >= size[0] || y0 >= size[1] {
+        return Err(format!("{x0},{y0},{x1},{y1} is outside the map [0, {}] × [0, {}]", size[0], size[1]));
+    }
+    Ok(())
+}
+
+/// Segments as pairs of end points.
+type Segments = Vec<(P, P)>;
+
+/// The major roads (with bridges) and the minor roads, clipped to the window.
+fn clipped_roads(net: &NetworkFile, w: [f64; 4]) -> Result<(Segments, Segments), String> {
+    let pos = net.positions();
+    let (mut major, mut minor) = (Vec::new(), Vec::new());
+    for (i, s) in net.segments.iter().enumerate() {
+        let (a, b) = net.segment_ends(&pos, i)?;
+        match (s.class.as_str(), clip(a, b, w)) {
+            ("major" | "bridge", Some(piece)) => major.push(piece),
+            ("minor", Some(piece)) => minor.push(piece),
+            _ => {}
+        }
+    }
+    Ok((major, minor))
+}
+
+/// The trade routes as polylines with their traffic.
+fn route_lines(net: &NetworkFile) -> Result<Vec<(Vec<P>, f64)>, String> {
+    let pos = net.positions();
+    let line = |i: usize, nodes: &[Option<usize>]| {
+        nodes
+            .iter()
+            .map(|n| n.and_then(|n| pos.get(&n).copied()))
+            .collect::<Option<Vec<P>>>()
+            .ok_or_else(|| format!("routes[{i}].nodes: a node is not in `nodes`"))
+    };
+    net.routes.iter().enumerate().map(|(i, r)| Ok((line(i, &r.nodes)?, r.traffic))).collect()
 }
 
 /// Whether a sub-region (city units) is too small for a street or the growth left it unbuilt:
