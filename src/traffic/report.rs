@@ -288,22 +288,19 @@ pub fn build(
     let street_of: BTreeMap<u32, usize> = net.edges.iter().enumerate().map(|(k, e)| (e.id, k)).collect();
     let (mut local_m, mut total_m, mut used_local, mut measured) = (0.0, 0.0, 0usize, 0usize);
     let mut km_by_level = [0.0; 4];
+    // Trade vehicles per street, for the predicted loads.
     let mut trade_count: BTreeMap<usize, f64> = BTreeMap::new();
-    for t in infos.iter().filter(|t| class_of[t.id.as_str()] == TripClass::Trade) {
-        let Some(edges) = routes.get(&t.id) else { continue };
-        for e in edges {
-            if let Some(&k) = parse_edge_id(e).and_then(|(id, _)| street_of.get(&id)) {
-                *trade_count.entry(k).or_default() += 1.0;
-            }
-        }
-    }
     for t in infos.iter().filter(|t| class_of[t.id.as_str()] != TripClass::Local) {
         let Some(edges) = routes.get(&t.id) else { continue };
+        let trade = class_of[t.id.as_str()] == TripClass::Trade;
         measured += 1;
         let mut any = false;
         for e in edges {
             let (Some((id, _)), Some(ne)) = (parse_edge_id(e), sumo_net.edges.get(e)) else { continue };
             let Some(&k) = street_of.get(&id) else { continue };
+            if trade {
+                *trade_count.entry(k).or_default() += 1.0;
+            }
             total_m += ne.length;
             km_by_level[(net.edges[k].level.clamp(1, 4) - 1) as usize] += ne.length / 1000.0;
             if net.edges[k].level >= 3 {
