@@ -127,6 +127,9 @@ pub struct NetworkFile {
     /// Trade routes as node lists.
     #[serde(default)]
     pub routes: Vec<RouteRecord>,
+    /// What the independent check found (a network with any is not read as a design).
+    #[serde(default)]
+    pub violations: Vec<serde_json::Value>,
 }
 
 fn default_spacing() -> f64 {
@@ -182,9 +185,14 @@ pub struct RouteRecord {
 }
 
 impl NetworkFile {
-    /// Parses `network.json`'s text.
-    pub fn from_json(text: &str) -> Result<NetworkFile, serde_json::Error> {
-        serde_json::from_str(text)
+    /// Parses `network.json`'s text; a network the independent check found violations in is
+    /// refused (`Err` with the count).
+    pub fn from_json(text: &str) -> Result<NetworkFile, String> {
+        let net: NetworkFile = serde_json::from_str(text).map_err(|e| e.to_string())?;
+        match net.violations.len() {
+            0 => Ok(net),
+            n => Err(format!("{n} violations of the network's invariants (`violations`)")),
+        }
     }
 
     /// Node positions by id.

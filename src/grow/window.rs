@@ -129,7 +129,7 @@ pub fn write(dir: &Path, window: [f64; 4], name: &str, out: &Path) -> Result<Win
     let text = std::fs::read_to_string(&file).map_err(|source| GrowError::Io { path: file.clone(), source })?;
     let field = |field: &str, message: String| GrowError::Field { path: file.clone(), field: field.into(), message };
     let bad = |message: String| GrowError::Toml { path: file.clone(), message };
-    let net = NetworkFile::from_json(&text).map_err(|e| bad(e.to_string()))?;
+    let net = NetworkFile::from_json(&text).map_err(bad)?;
     check_window(window, net.size).map_err(|m| field("window", m))?;
     let (major, minor) = clipped_roads(&net, window).map_err(bad)?;
     let chains: Vec<Vec<P>> = chains(&major)

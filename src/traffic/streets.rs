@@ -64,7 +64,7 @@ pub fn from_grow(dir: &Path, window: Option<[f64; 4]>) -> Result<RoadNetwork, Tr
     let text = read(&file)?;
     let bad =
         |message: String| TrafficError::new(&file, TrafficErrorKind::Parse { what: "a netspec grow network", message });
-    let net = NetworkFile::from_json(&text).map_err(|e| bad(e.to_string()))?;
+    let net = NetworkFile::from_json(&text).map_err(bad)?;
     let [x0, y0, x1, y1] = window.unwrap_or([0.0, 0.0, net.size[0], net.size[1]]);
     if !(x0 < x1 && y0 < y1 && [x0, y0, x1, y1].iter().all(|v| v.is_finite())) {
         return Err(TrafficError::new(
@@ -311,5 +311,21 @@ mod tests {
         assert_eq!(net.region.boundary[2], [800.0, 800.0]);
         let e = from_grow(dir.path(), Some([5.0, 5.0, 5.0, 9.0])).unwrap_err().to_string();
         assert!(e.contains("network.json") && e.contains("empty"), "{e}");
+    }
+
+    /// A grown network that failed its independent check is no design.
+    #[test]
+    fn a_grown_network_with_violations_is_refused() {
+        let dir = tempfile::tempdir().expect("a temporary directory");
+        let json = r#"{"size": [100, 100], "nodes": [{"id": 0, "x": 0, "y": 0}, {"id": 1, "x": 50, "y": 0}],
+            "segments": [{"a": 0, "b": 1, "class": "major"}],
+            "violations": [{"kind": "missing_node", "segment": 3, "node": 9}]}"#;
+        std::fs::write(dir.path().join("network.json"), json).expect("written");
+        let e = from_grow(dir.path(), None).unwrap_err().to_string();
+        assert!(e.contains("network.json") && e.contains("1 violations"), "{e}");
+        let e = crate::grow::window::write(dir.path(), [0.0, 0.0, 50.0, 50.0], "w", &dir.path().join("w"))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("network.json") && e.contains("1 violations"), "{e}");
     }
 }
