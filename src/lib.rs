@@ -22,8 +22,10 @@ pub mod heuristics;
 pub mod io;
 pub mod layout;
 pub mod levels;
+pub mod measure;
 pub mod mesh;
 pub mod milp;
+pub mod osm;
 pub mod pipeline;
 pub mod render;
 pub mod report;
@@ -33,6 +35,7 @@ pub mod serve;
 pub mod slurm;
 pub mod solvers;
 pub mod spec;
+pub mod stats;
 pub mod traffic;
 pub mod urban;
 

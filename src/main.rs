@@ -16,8 +16,10 @@ mod cli {
     pub mod interrupt;
     pub mod layout;
     pub mod level;
+    pub mod site;
     pub mod solve;
     pub mod solve_file;
+    pub mod stats;
     pub mod traffic;
 }
 
@@ -199,6 +201,15 @@ enum Command {
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
     },
+    /// A real site from an OpenStreetMap extract you bring (OSM PBF or XML): site.geojson (the
+    /// region less its water, with its major roads: what `netspec layout` reads), map/ (the real
+    /// drivable streets as a design, for `netspec stats` and `netspec traffic`), and with --grow
+    /// and --city a grow context and an IP city spec of the same site. Data © OpenStreetMap
+    /// contributors, ODbL.
+    Site(cli::site::SiteArgs),
+    /// Street statistics of designs (OSMnx's basic_stats, orientation entropy and order,
+    /// blocks) on one region, each with its distance to the real streets of a site's map/.
+    Stats(cli::stats::StatsArgs),
     /// Evaluate designed street networks in SUMO (installed by scripts/setup.sh): export to
     /// SUMO's plain XML with a road type per level, netconvert, seeded through and local
     /// trips routed by duarouter, a headless simulation; writes traffic.json, volume.svg/png
@@ -233,6 +244,11 @@ enum Command {
         /// The window of a `netspec grow` network, metres: x0,y0,x1,y1 (default: its whole map).
         #[arg(long, value_name = "X0,Y0,X1,Y1", value_parser = parse_window)]
         window: Option<[f64; 4]>,
+        /// The region every design is simulated on (a site.geojson of `netspec site`, or any
+        /// GeoJSON site): designs are moved into its metres through WGS 84 and clipped to it,
+        /// and demand is drawn in its outline.
+        #[arg(long, value_name = "REGION.geojson")]
+        region: Option<PathBuf>,
         /// Trade flows (a trade.json of `netspec grow --window`): trade trips between the
         /// entrances nearest to each flow's ends, for every design.
         #[arg(long, value_name = "FILE")]
@@ -419,7 +435,7 @@ enum Command {
 }
 
 /// `x0,y0,x1,y1` as four finite numbers with `x0 < x1`, `y0 < y1`.
-fn parse_window(s: &str) -> Result<[f64; 4], String> {
+pub(crate) fn parse_window(s: &str) -> Result<[f64; 4], String> {
     let v: Vec<f64> =
         s.split(',').map(|x| x.trim().parse::<f64>()).collect::<Result<_, _>>().map_err(|e| e.to_string())?;
     match v[..] {
@@ -633,6 +649,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
             metres_per_unit,
             level,
             window,
+            region,
             trade,
             trade_rate,
             sumo_home,
@@ -652,11 +669,18 @@ fn run(cli: Cli) -> Result<ExitCode> {
                     None => Vec::new(),
                 },
             },
-            load: netspec::traffic::network::LoadOptions { metres_per_unit, level, window },
+            load: netspec::traffic::network::LoadOptions {
+                metres_per_unit,
+                level,
+                window,
+                region: region.as_deref().map(netspec::traffic::network::SiteRegion::load).transpose()?,
+            },
             sumo_home,
             out,
             time_limit,
         }),
+        Command::Site(args) => cli::site::run(args),
+        Command::Stats(args) => cli::stats::run(args),
         Command::Serve { root, port, bind, max_solves, threads } => {
             let mut opts = netspec::serve::ServeOptions { root, port, bind, max_solves, ..Default::default() };
             opts.threads = threads.unwrap_or(opts.threads);

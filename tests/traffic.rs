@@ -72,7 +72,7 @@ fn tiny_design_through_netconvert_and_sumo() {
     let net = network::from_design(
         &res,
         Path::new("tiny/result.json"),
-        &LoadOptions { metres_per_unit: Some(50.0), level: None, window: None },
+        &LoadOptions { metres_per_unit: Some(50.0), level: None, window: None, region: None },
     )
     .unwrap();
     let dir = tempfile::tempdir().unwrap();
@@ -153,7 +153,7 @@ fn solve_export_is_exactly_the_design() {
     let net = network::from_design(
         &res,
         Path::new("result.json"),
-        &LoadOptions { metres_per_unit: Some(10.0), level: Some(2), window: None },
+        &LoadOptions { metres_per_unit: Some(10.0), level: Some(2), window: None, region: None },
     )
     .unwrap();
     let dir = tempfile::tempdir().unwrap();

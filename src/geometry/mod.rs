@@ -5,6 +5,7 @@
 
 pub mod cdt;
 pub mod index;
+pub mod planar;
 pub mod polygon;
 pub mod site;
 pub mod sparse;

@@ -186,6 +186,59 @@ impl Polygon {
         Some((Polygon::new(l, hl).ok()?, Polygon::new(r, hr).ok()?))
     }
 
+    /// Whether `p` is inside or within `tol` of the boundary (the closed polygon, with a margin).
+    pub fn covers(&self, p: P, tol: f64) -> bool {
+        self.contains(p) || self.boundary_distance(p) <= tol
+    }
+
+    /// A polyline clipped to the closed polygon: the pieces inside it or on its boundary (within
+    /// `tol`), in order along the line. Unlike a boolean clip, a piece running along the boundary
+    /// is kept, so a street on the region's edge counts as inside. Pieces shorter than `tol` are
+    /// dropped.
+    pub fn clip_polyline(&self, line: &[P], tol: f64) -> Vec<Vec<P>> {
+        let [lo, hi] = self.bounds();
+        let mut pieces: Vec<Vec<P>> = Vec::new();
+        let mut current: Vec<P> = Vec::new();
+        let flush = |current: &mut Vec<P>, pieces: &mut Vec<Vec<P>>| {
+            if current.len() >= 2 && super::polyline_length(current) > tol {
+                pieces.push(std::mem::take(current));
+            }
+            current.clear();
+        };
+        for w in line.windows(2) {
+            let (a, b) = (w[0], w[1]);
+            let outside_box = (a[0].max(b[0]) < lo[0] - tol)
+                || (a[0].min(b[0]) > hi[0] + tol)
+                || (a[1].max(b[1]) < lo[1] - tol)
+                || (a[1].min(b[1]) > hi[1] + tol);
+            if outside_box {
+                flush(&mut current, &mut pieces);
+                continue;
+            }
+            let mut ts: Vec<f64> = vec![0.0, 1.0];
+            ts.extend(self.edges().filter_map(|(c, d)| segment_intersection(a, b, c, d).map(|(s, _)| s)));
+            ts.sort_by(f64::total_cmp);
+            ts.dedup();
+            for k in ts.windows(2) {
+                let (p, q) = (super::lerp(a, b, k[0]), super::lerp(a, b, k[1]));
+                if dist(p, q) == 0.0 {
+                    continue;
+                }
+                if self.covers(super::lerp(a, b, 0.5 * (k[0] + k[1])), tol) {
+                    if current.last() != Some(&p) {
+                        flush(&mut current, &mut pieces);
+                        current.push(p);
+                    }
+                    current.push(q);
+                } else {
+                    flush(&mut current, &mut pieces);
+                }
+            }
+        }
+        flush(&mut current, &mut pieces);
+        pieces
+    }
+
     /// The outer edge nearest `p`: (edge, parameter, distance).
     fn locate_on_outer(&self, p: P) -> (usize, f64, f64) {
         let n = self.outer.len();
@@ -251,6 +304,37 @@ impl Polygon {
         }
         Ok(())
     }
+}
+
+/// Obstacles that keep clear of a domain's roads and edge: the parts of `areas` inside the
+/// domain `outer` shrunk by `clearance`, less a strip of `clearance` along every road, each
+/// piece larger than `clearance²` as its outer ring. (A domain's edge and its roads are streets
+/// every level of a city keeps; an obstacle reaching them would make a level infeasible.)
+pub fn dry(areas: &[Vec<P>], roads: &[Vec<P>], outer: &[P], clearance: f64) -> Vec<Vec<P>> {
+    use geo::{Area, BooleanOps, Buffer};
+    let line = |ps: &[P]| -> geo::LineString<f64> { ps.iter().map(|p| geo::coord! { x: p[0], y: p[1] }).collect() };
+    let closed = |ps: &[P]| -> geo::LineString<f64> {
+        ps.iter().chain(ps.first()).map(|p| geo::coord! { x: p[0], y: p[1] }).collect()
+    };
+    if areas.is_empty() {
+        return Vec::new();
+    }
+    let inside = geo::Polygon::new(closed(outer), vec![]).buffer(-clearance);
+    let strips = geo::MultiLineString::new(roads.iter().map(|r| line(r)).collect()).buffer(clearance);
+    let mut out = Vec::new();
+    for a in areas {
+        let wet = geo::MultiPolygon::new(vec![geo::Polygon::new(closed(a), vec![])])
+            .intersection(&inside)
+            .difference(&strips);
+        for p in wet.0.into_iter().filter(|p| p.unsigned_area() > clearance * clearance) {
+            let mut r: Vec<P> = p.exterior().coords().map(|c| [c.x, c.y]).collect();
+            if r.len() > 1 && r.first() == r.last() {
+                r.pop();
+            }
+            out.push(r);
+        }
+    }
+    out
 }
 
 /// The bounding box `[min, max]` of points.

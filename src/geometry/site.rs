@@ -3,11 +3,15 @@
 //!
 //! A site file is a GeoJSON `FeatureCollection` (or a single `Feature`/`Polygon`): its one
 //! `Polygon` feature is the region (its inner rings are holes), and `LineString` features whose
-//! `kind` property is `"road"` are major roads. The polygon feature's other properties are
+//! `kind` property is `"road"` are major roads. The polygon feature's `origin` property
+//! (`[longitude, latitude]`), when present, is the projection's centre (so that several files
+//! of one site share their metres, as `netspec site` writes them); otherwise the centre of the
+//! region's bounding box is. A road is clipped to the region and split where it crosses a hole
+//! (a bridge over water is no street of the site). The polygon feature's other properties are
 //! returned to the caller (settings such as the parcel size).
 
 use super::polygon::{Polygon, PolygonError};
-use super::{segment_intersection, P};
+use super::P;
 use geo::BooleanOps;
 use proj4rs::proj::Proj;
 use serde_json::{Map, Value};
@@ -83,9 +87,6 @@ pub enum RoadProblem {
     /// No part of it is inside the region.
     #[error("the road lies outside the region")]
     Outside,
-    /// It crosses a hole.
-    #[error("the road crosses hole {0}")]
-    AcrossHole(usize),
 }
 
 /// A transverse Mercator projection centred on a WGS 84 origin (metres east and north of it).
@@ -185,7 +186,13 @@ pub fn read_geojson(text: &str) -> Result<Site, SiteError> {
         }
     }
     let (feature, rings, properties) = region.ok_or(SiteError::NoPolygon)?;
-    let projection = Projection::new(centre(&rings[0]))?;
+    let origin = match properties.get("origin") {
+        None => centre(&rings[0]),
+        Some(v) => serde_json::from_value::<[f64; 2]>(v.clone()).map_err(|_| {
+            SiteError::Projection(format!("features[{feature}].properties.origin: {v} is not [longitude, latitude]"))
+        })?,
+    };
+    let projection = Projection::new(origin)?;
     let local = |ring: &[[f64; 2]]| ring.iter().map(|&q| projection.to_local(q)).collect::<Result<Vec<P>, _>>();
     let mut rings_m = rings.iter().map(|r| local(r)).collect::<Result<Vec<_>, _>>()?.into_iter();
     let outer = rings_m.next().unwrap_or_default();
@@ -198,8 +205,8 @@ pub fn read_geojson(text: &str) -> Result<Site, SiteError> {
     Ok(Site { polygon, roads: clipped, projection, properties })
 }
 
-/// A road clipped to a region: the pieces inside it, or an error naming `what` when the road has
-/// too few points, a non-finite one, lies outside or crosses a hole.
+/// A road clipped to a region: the pieces inside it (split where it crosses a hole), or an error
+/// naming `what` when the road has too few points, a non-finite one, or lies outside.
 pub fn clip_road(polygon: &Polygon, road: &[P], what: &str) -> Result<Vec<Vec<P>>, SiteError> {
     let err = |problem| SiteError::Road { what: what.to_string(), problem };
     if let Some(i) = road.iter().position(|p| !(p[0].is_finite() && p[1].is_finite())) {
@@ -213,15 +220,6 @@ pub fn clip_road(polygon: &Polygon, road: &[P], what: &str) -> Result<Vec<Vec<P>
     }
     if pts.len() < 2 {
         return Err(err(RoadProblem::TooShort));
-    }
-    for (h, hole) in polygon.holes().iter().enumerate() {
-        let n = hole.len();
-        let crosses = pts
-            .windows(2)
-            .any(|w| (0..n).any(|k| segment_intersection(w[0], w[1], hole[k], hole[(k + 1) % n]).is_some()));
-        if crosses || super::ring_contains(hole, pts[0]) {
-            return Err(err(RoadProblem::AcrossHole(h)));
-        }
     }
     let line =
         geo::MultiLineString::new(vec![geo::LineString::from(pts.iter().map(|p| (p[0], p[1])).collect::<Vec<_>>())]);
@@ -291,10 +289,28 @@ mod tests {
     }
 
     #[test]
-    fn bad_sites_name_the_feature() {
+    fn a_road_across_a_hole_is_split_there_and_an_origin_fixes_the_frame() {
         let across = SITE.replace("[10.99, 48.002], [11.02, 48.002]", "[10.99, 48.005], [11.02, 48.005]");
-        let e = read_geojson(&across).unwrap_err();
-        assert!(matches!(e, SiteError::Road { problem: RoadProblem::AcrossHole(0), .. }), "{e}");
+        let site = read_geojson(&across).unwrap();
+        assert_eq!(site.roads.len(), 2, "the bridge over the hole is left out");
+        let hole = &site.polygon.holes()[0];
+        for piece in &site.roads {
+            let mids = piece.windows(2).map(|w| crate::geometry::lerp(w[0], w[1], 0.5));
+            assert!(mids.clone().all(|p| !crate::geometry::ring_contains(hole, p)), "{piece:?}");
+        }
+        let fixed = SITE.replace("\"name\": \"block\"", "\"name\": \"block\", \"origin\": [11.0, 48.0]");
+        let site = read_geojson(&fixed).unwrap();
+        assert_eq!(site.projection.origin(), [11.0, 48.0]);
+        let p = site.polygon.outer().iter().find(|p| p[0].abs() < 1e-6 && p[1].abs() < 1e-6);
+        assert!(p.is_some(), "the corner at the origin is at (0, 0): {:?}", site.polygon.outer());
+        let bad = SITE.replace("\"name\": \"block\"", "\"name\": \"block\", \"origin\": \"here\"");
+        assert!(read_geojson(&bad).unwrap_err().to_string().contains("properties.origin"));
+    }
+
+    #[test]
+    fn bad_sites_name_the_feature() {
+        let e = read_geojson(&SITE.replace("[10.99, 48.002], [11.02, 48.002]", "[10.99, 48.002]")).unwrap_err();
+        assert!(matches!(e, SiteError::Road { problem: RoadProblem::TooShort, .. }), "{e}");
         assert!(e.to_string().starts_with("features[1]"));
         let outside = SITE.replace("[10.99, 48.002], [11.02, 48.002]", "[12.0, 48.0], [12.1, 48.0]");
         assert!(matches!(read_geojson(&outside), Err(SiteError::Road { problem: RoadProblem::Outside, .. })));

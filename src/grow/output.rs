@@ -89,7 +89,7 @@ pub fn network_json(sim: &Sim, violations: &[Violation]) -> Value {
                    "nodes": r.nodes.iter().map(|&n| ids[n as usize]).collect::<Vec<_>>()})
         })
         .collect();
-    json!({
+    let mut file = json!({
         "size": ctx.size,
         "spacing": ctx.spacing,
         "seed": sim.seed,
@@ -105,7 +105,11 @@ pub fn network_json(sim: &Sim, violations: &[Violation]) -> Value {
         "nuclei": nuclei,
         "routes": routes,
         "violations": violations,
-    })
+    });
+    if let Some(o) = ctx.origin {
+        file["origin"] = json!(o);
+    }
+    file
 }
 
 /// `network.json` read back (by `netspec grow --window` and `netspec traffic`): the fields they
@@ -117,6 +121,9 @@ pub struct NetworkFile {
     /// The lattice spacing (the context's default if absent).
     #[serde(default = "default_spacing")]
     pub spacing: f64,
+    /// The WGS 84 `[longitude, latitude]` of the map's `(0, 0)`, when the context has one.
+    #[serde(default)]
+    pub origin: Option<[f64; 2]>,
     /// Nodes with their ids.
     pub nodes: Vec<NodeRecord>,
     /// Road segments.

@@ -208,7 +208,7 @@ fn route_lines(net: &NetworkFile) -> Result<Vec<(Vec<P>, f64)>, String> {
 
 /// Whether a sub-region (city units) is too small for a street or the growth left it unbuilt:
 /// under [`MIN_KM_PER_KM2`] of the grown `minor` segments (metres) by their midpoints.
-fn unbuilt(r: &crate::urban::planar::Region, minor: &[(P, P)]) -> bool {
+fn unbuilt(r: &crate::geometry::planar::Region, minor: &[(P, P)]) -> bool {
     let unit = |p: P| [p[0] / METRES_PER_UNIT, p[1] / METRES_PER_UNIT];
     let street: f64 = minor
         .iter()

@@ -6,10 +6,10 @@
 //! * land use: streets = the area of the union of the street buffers inside the region;
 //!   residential, parks and other (commercial included) = the parcels' areas by use; `unassigned`
 //!   = what is left (zero when blocks are fully parcelled; the validator bounds it);
-//! * densities are per km² of the whole region; a street along the region's boundary counts with
-//!   half its length (it serves the region from one side);
-//! * intersections are points where three or more street arms meet, dead ends street ends that
-//!   meet nothing and are not on the region's boundary;
+//! * densities are per km² of the whole region; streets, intersections and dead ends as
+//!   [`crate::stats::yang`] counts them (a street along the region's boundary with half its
+//!   length; intersections where three or more street arms meet; dead ends street ends that meet
+//!   nothing off the region's boundary);
 //! * parcel corners are the vertices of the parcel simplified by Douglas–Peucker at 0.5 m whose
 //!   turn is at least 20°; the corner deviation is |interior angle − 90°|; the area ratio is the
 //!   minimum rotated rectangle's area over the parcel's; a parcel is undesirable when its own
@@ -17,7 +17,8 @@
 
 use super::parcels::{ring_of, street_area};
 use super::{Parcel, Street, Use};
-use crate::geometry::{dist, polyline_length, ring_area2, Polygon, P};
+use crate::geometry::{ring_area2, Polygon, P};
+use crate::stats::yang::{block_perimeter, street_length, street_nodes};
 use geo::{Area, MinimumRotatedRect, Simplify};
 use serde::{Deserialize, Serialize};
 
@@ -25,8 +26,6 @@ use serde::{Deserialize, Serialize};
 pub const UNDESIRABLE_DEVIATION: f64 = 15.0;
 /// … or above this area ratio to its minimum rotated rectangle.
 pub const UNDESIRABLE_RATIO: f64 = 1.2;
-/// Street ends closer than this meet (metres).
-const NODE_TOLERANCE: f64 = 0.5;
 
 /// Land use, in % of the region's area.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -129,12 +128,22 @@ pub fn metrics(region: &Polygon, streets: &[Street], blocks: &[geo::Polygon<f64>
     };
     let (residential, parks, other) =
         (by_use(&[Use::Residential]), by_use(&[Use::Park]), by_use(&[Use::Other, Use::Commercial]));
-    let perimeters: Vec<f64> = blocks.iter().map(block_perimeter).collect();
+    let perimeters: Vec<f64> = blocks
+        .iter()
+        .map(|b| {
+            let rings: Vec<Vec<P>> = std::iter::once(b.exterior())
+                .chain(b.interiors())
+                .map(|l| l.0.iter().map(|c| [c.x, c.y]).collect())
+                .collect();
+            block_perimeter(&rings.iter().map(Vec::as_slice).collect::<Vec<_>>())
+        })
+        .collect();
     let shapes: Vec<ParcelShape> = parcels.iter().map(|p| parcel_shape(&p.polygon)).collect();
     let corners: usize = shapes.iter().map(|s| s.corners).sum();
-    let (intersections, dead_ends) = nodes(region, streets);
-    let length: f64 =
-        streets.iter().map(|s| polyline_length(&s.polyline) * if on_boundary(region, s) { 0.5 } else { 1.0 }).sum();
+    let lines: Vec<&[P]> = streets.iter().map(|s| s.polyline.as_slice()).collect();
+    let nodes = street_nodes(region, &lines);
+    let (intersections, dead_ends) = (nodes.intersections, nodes.dead_ends);
+    let length = street_length(region, &lines);
     Metrics {
         area_km2: km2,
         land_use: LandUse {
@@ -166,62 +175,6 @@ fn mean(v: &[f64]) -> f64 {
     } else {
         v.iter().sum::<f64>() / v.len() as f64
     }
-}
-
-fn block_perimeter(b: &geo::Polygon<f64>) -> f64 {
-    let ring = |l: &geo::LineString<f64>| l.0.windows(2).map(|w| dist([w[0].x, w[0].y], [w[1].x, w[1].y])).sum::<f64>();
-    ring(b.exterior()) + b.interiors().iter().map(ring).sum::<f64>()
-}
-
-/// Whether a street runs along the region's boundary (every vertex and edge midpoint on it).
-fn on_boundary(region: &Polygon, s: &Street) -> bool {
-    let mids = s.polyline.windows(2).map(|w| [(w[0][0] + w[1][0]) / 2.0, (w[0][1] + w[1][1]) / 2.0]);
-    s.polyline.iter().copied().chain(mids).all(|p| region.boundary_distance(p) <= NODE_TOLERANCE)
-}
-
-/// Intersections (three or more arms) and dead ends (one arm, off the boundary), counted at
-/// street ends: an end meets every other end within the tolerance (one arm each) and every
-/// street passing through it (two arms).
-fn nodes(region: &Polygon, streets: &[Street]) -> (usize, usize) {
-    let ends: Vec<(usize, P)> = streets
-        .iter()
-        .enumerate()
-        .filter(|(_, s)| s.polyline.len() >= 2 && s.polyline.first() != s.polyline.last())
-        .flat_map(|(i, s)| [(i, s.polyline[0]), (i, *s.polyline.last().unwrap_or(&s.polyline[0]))])
-        .collect();
-    let segments: Vec<(usize, P, P)> =
-        streets.iter().enumerate().flat_map(|(i, s)| s.polyline.windows(2).map(move |w| (i, w[0], w[1]))).collect();
-    let index = crate::geometry::index::SegmentIndex::new(segments.iter().map(|s| (s.1, s.2)).collect(), 50.0);
-    let mut seen: Vec<P> = Vec::new();
-    let (mut intersections, mut dead_ends) = (0, 0);
-    for &(_, p) in &ends {
-        if seen.iter().any(|&q| dist(p, q) <= NODE_TOLERANCE) {
-            continue;
-        }
-        seen.push(p);
-        let end_arms = ends.iter().filter(|(_, q)| dist(p, *q) <= NODE_TOLERANCE).count();
-        let mut through: Vec<usize> = index
-            .near(p, NODE_TOLERANCE)
-            .into_iter()
-            .filter(|&k| {
-                let (i, a, b) = segments[k];
-                let s = &streets[i].polyline;
-                let is_end = dist(p, s[0]) <= NODE_TOLERANCE || dist(p, s[s.len() - 1]) <= NODE_TOLERANCE;
-                let closed = s.first() == s.last();
-                (closed || !is_end) && dist(p, crate::geometry::closest_on_segment(p, a, b).0) <= NODE_TOLERANCE
-            })
-            .map(|k| segments[k].0)
-            .collect();
-        through.sort_unstable();
-        through.dedup();
-        let arms = end_arms + 2 * through.len();
-        if arms >= 3 {
-            intersections += 1;
-        } else if arms == 1 && region.boundary_distance(p) > NODE_TOLERANCE {
-            dead_ends += 1;
-        }
-    }
-    (intersections, dead_ends)
 }
 
 #[cfg(test)]

@@ -46,6 +46,10 @@ pub struct Layout {
     pub outer: Vec<P>,
     /// The region's holes (clockwise).
     pub holes: Vec<Vec<P>>,
+    /// The WGS 84 `[longitude, latitude]` the metres are measured from (a transverse Mercator
+    /// centred there), when the region is on the map.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub origin: Option<[f64; 2]>,
     /// Streets.
     pub streets: Vec<Street>,
     /// Parcels.
@@ -242,6 +246,7 @@ pub fn layout_with_progress(
         field: opts.field,
         selection: opts.selection,
         outer: region.polygon.outer().to_vec(),
+        origin: region.projection.as_ref().map(|p| p.origin()),
         holes: region.polygon.holes().to_vec(),
         streets: done.streets,
         parcels: done.parcels,

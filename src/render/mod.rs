@@ -11,7 +11,8 @@
 //!   conflicting elements highlighted ([`network::conflict_svg`]);
 //! - [`city`]: a city's streets by level, its sub-regions, obstacles and sinks;
 //! - [`chart`]: the comparison charts (performance profile, bar chart of times);
-//! - [`traffic`]: a network coloured by traffic volume, travel-time histograms, comparisons.
+//! - [`traffic`]: a network coloured by traffic volume, travel-time histograms, comparisons;
+//! - [`streets`]: street networks side by side at one scale with their orientation roses.
 //!
 //! Legends list only what the picture shows.
 
@@ -22,6 +23,7 @@ pub mod grow;
 pub mod layout;
 pub mod level;
 pub mod network;
+pub mod streets;
 pub mod traffic;
 pub mod writer;
 

@@ -126,7 +126,8 @@ pub fn edges_xml(net: &RoadNetwork) -> String {
         let ty = type_id(e.level);
         let mut back = e.shape.clone();
         back.reverse();
-        for (id, from, to, shape) in [(edge_id(e.id, true), &a, &b, &e.shape), (edge_id(e.id, false), &b, &a, &back)] {
+        let directions = [(edge_id(e.id, true), &a, &b, &e.shape), (edge_id(e.id, false), &b, &a, &back)];
+        for (id, from, to, shape) in directions.into_iter().take(if e.oneway { 1 } else { 2 }) {
             let shape = if shape.len() > 2 { format!(r#" shape="{}""#, shape_attr(shape)) } else { String::new() };
             let _ = writeln!(s, r#"    <edge id="{id}" from="{from}" to="{to}" type="{ty}"{shape}/>"#);
         }

@@ -38,6 +38,10 @@ pub struct RoadNetwork {
     pub edges: Vec<RoadEdge>,
     /// The area the design serves (where demand is placed).
     pub region: Region,
+    /// The WGS 84 `[longitude, latitude]` its metres are measured from (a transverse Mercator
+    /// centred there), when the design is on the map.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub origin: Option<[f64; 2]>,
 }
 
 /// A node: a design vertex with at least one street.
@@ -72,6 +76,9 @@ pub struct RoadEdge {
     /// The load its generator predicted (a grown network's segment traffic), if any.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub predicted_load: Option<f64>,
+    /// Traffic runs only from `a` to `b` (a one-way street of a real map).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub oneway: bool,
 }
 
 impl RoadEdge {
@@ -144,13 +151,150 @@ pub struct LoadOptions {
     pub level: Option<u8>,
     /// The window `[x0, y0, x1, y1]` (metres) of a `netspec grow` network (default: its map).
     pub window: Option<[f64; 4]>,
+    /// A site to judge the design on (`netspec site`'s `site.geojson`, or any GeoJSON region):
+    /// the design is moved into the site's metres (through WGS 84, so it needs an origin of its
+    /// own), its region becomes the site's outline, and it is clipped there.
+    pub region: Option<SiteRegion>,
 }
 
-/// Reads a design: a `result.json` file, a directory with one (a `netspec solve` output or a
-/// city level's directory), a `netspec city` output directory (with `city.json`), a
-/// `netspec layout` output directory (with `layout.json`) or a `netspec grow` output directory
-/// (with `network.json` and `series.csv`).
+/// A region read from a GeoJSON site: the polygon (local metres) and its projection.
+#[derive(Clone, Debug)]
+pub struct SiteRegion {
+    /// The file, for messages.
+    pub path: std::path::PathBuf,
+    /// The polygon, with its holes.
+    pub polygon: crate::geometry::Polygon,
+    /// WGS 84 ↔ the polygon's metres.
+    pub projection: crate::geometry::site::Projection,
+}
+
+impl SiteRegion {
+    /// Reads the region of a GeoJSON site file (its one Polygon feature).
+    pub fn load(path: &Path) -> Result<SiteRegion, TrafficError> {
+        let text = read(path)?;
+        let site = crate::geometry::site::read_geojson(&text).map_err(|e| {
+            TrafficError::new(path, TrafficErrorKind::Parse { what: "a GeoJSON site", message: e.to_string() })
+        })?;
+        Ok(SiteRegion { path: path.to_path_buf(), polygon: site.polygon, projection: site.projection })
+    }
+}
+
+/// Reads a design as it is simulated: [`load_whole`], then moved onto `opts.region` when one is
+/// given, and clipped to its region when it reaches beyond it (the real streets of a `map/`).
 pub fn load(path: &Path, opts: &LoadOptions) -> Result<RoadNetwork, TrafficError> {
+    let (net, region) = load_whole(path, opts)?;
+    let polygon = match region {
+        Some(r) => r,
+        None if net.source.kind == "streets" => {
+            match crate::geometry::Polygon::new(net.region.boundary.clone(), vec![]) {
+                Ok(p) => p,
+                Err(e) => return Err(TrafficError::new(path, TrafficErrorKind::Invalid(format!("its region: {e}")))),
+            }
+        }
+        None => return Ok(net),
+    };
+    let clipped = clip(&net, &polygon);
+    if clipped.edges.is_empty() {
+        return Err(TrafficError::new(path, TrafficErrorKind::NoNetwork("no street inside the region".into())));
+    }
+    Ok(clipped)
+}
+
+/// Reads a design whole, and the polygon it is to be judged on when `opts.region` gives one (the
+/// design then moved into the region's metres, its region the region's outline): a
+/// `result.json` file, a directory with one (a `netspec solve` output or a city level's
+/// directory), a `netspec city` output directory (with `city.json`), a `netspec layout` output
+/// directory (with `layout.json`), a `netspec grow` output directory (with `network.json` and
+/// `series.csv`), a `netspec site` map (a directory with `streets.geojson`) or a GeoJSON file of
+/// streets.
+pub fn load_whole(
+    path: &Path,
+    opts: &LoadOptions,
+) -> Result<(RoadNetwork, Option<crate::geometry::Polygon>), TrafficError> {
+    let net = load_design(path, opts)?;
+    let Some(site) = &opts.region else { return Ok((net, None)) };
+    let Some(origin) = net.origin else {
+        return Err(TrafficError::new(
+            path,
+            TrafficErrorKind::Invalid(format!(
+                "the design has no place on the map (no WGS 84 origin), so it cannot be judged on {}",
+                site.path.display()
+            )),
+        ));
+    };
+    let mut net = reframe(&net, origin, &site.projection)
+        .map_err(|e| TrafficError::new(path, TrafficErrorKind::Invalid(e.to_string())))?;
+    let outer = site.polygon.outer().to_vec();
+    net.region = Region { boundary: outer.clone(), areas: vec![outer] };
+    Ok((net, Some(site.polygon.clone())))
+}
+
+/// The network moved from the metres around `from` (WGS 84) into those of `to`: through WGS 84,
+/// point by point (the same network when the origins agree).
+pub fn reframe(
+    net: &RoadNetwork,
+    from: [f64; 2],
+    to: &crate::geometry::site::Projection,
+) -> Result<RoadNetwork, crate::geometry::site::SiteError> {
+    if from == to.origin() {
+        return Ok(net.clone());
+    }
+    let src = crate::geometry::site::Projection::new(from)?;
+    let mv = |p: [f64; 2]| -> Result<[f64; 2], crate::geometry::site::SiteError> { to.to_local(src.to_wgs84(p)?) };
+    let mut out = net.clone();
+    for n in &mut out.nodes {
+        n.pos = mv(n.pos)?;
+    }
+    for e in &mut out.edges {
+        e.shape = e.shape.iter().map(|&p| mv(p)).collect::<Result<_, _>>()?;
+    }
+    for ring in std::iter::once(&mut out.region.boundary).chain(out.region.areas.iter_mut()) {
+        *ring = ring.iter().map(|&p| mv(p)).collect::<Result<_, _>>()?;
+    }
+    out.origin = Some(to.origin());
+    Ok(out)
+}
+
+/// The network clipped to a polygon (its boundary included): a street leaving it ends at a new
+/// node where it crosses the boundary, an entrance when the street is a major road (level 1).
+/// Streets wholly inside keep their ends.
+pub fn clip(net: &RoadNetwork, polygon: &crate::geometry::Polygon) -> RoadNetwork {
+    let tol = crate::stats::BOUNDARY_TOL;
+    let mut nodes: Vec<RoadNode> = Vec::new();
+    let mut kept: BTreeMap<usize, usize> = BTreeMap::new();
+    let mut next_id = net.nodes.iter().map(|n| n.id).max().map_or(0, |m| m + 1);
+    let mut edges = Vec::new();
+    let mut keep = |i: usize, nodes: &mut Vec<RoadNode>| {
+        *kept.entry(i).or_insert_with(|| {
+            nodes.push(net.nodes[i].clone());
+            nodes.len() - 1
+        })
+    };
+    for e in &net.edges {
+        let pieces = polygon.clip_polyline(&e.shape, tol);
+        for piece in pieces {
+            let (p, q) = (piece[0], piece[piece.len() - 1]);
+            let mut end = |at: P, original: usize, nodes: &mut Vec<RoadNode>| {
+                if geom::dist(at, net.nodes[original].pos) <= tol {
+                    keep(original, nodes)
+                } else {
+                    nodes.push(RoadNode { id: next_id, pos: at, entrance: e.level == 1 });
+                    next_id += 1;
+                    nodes.len() - 1
+                }
+            };
+            let a = end(p, e.a, &mut nodes);
+            let b = end(q, e.b, &mut nodes);
+            edges.push(RoadEdge { id: edges.len() as u32, a, b, shape: piece, ..e.clone() });
+        }
+    }
+    let outer = polygon.outer().to_vec();
+    RoadNetwork { nodes, edges, region: Region { boundary: outer.clone(), areas: vec![outer] }, ..net.clone() }
+}
+
+type P = [f64; 2];
+
+fn load_design(path: &Path, opts: &LoadOptions) -> Result<RoadNetwork, TrafficError> {
     let md = std::fs::metadata(path).map_err(|e| TrafficError::new(path, e.into()))?;
     let file = if md.is_dir() {
         if path.join("city.json").is_file() {
@@ -162,11 +306,16 @@ pub fn load(path: &Path, opts: &LoadOptions) -> Result<RoadNetwork, TrafficError
         if path.join("network.json").is_file() && path.join("series.csv").is_file() {
             return super::streets::from_grow(path, opts.window);
         }
+        if path.join("streets.geojson").is_file() {
+            return super::streets::from_geojson(path);
+        }
         let f = path.join("result.json");
         if !f.is_file() {
             return Err(TrafficError::new(path, TrafficErrorKind::NoResult));
         }
         f
+    } else if path.extension().is_some_and(|e| e == "geojson" || e == "json" && is_geojson(path)) {
+        return super::streets::from_geojson(path);
     } else {
         path.to_path_buf()
     };
@@ -175,6 +324,11 @@ pub fn load(path: &Path, opts: &LoadOptions) -> Result<RoadNetwork, TrafficError
         TrafficError::new(&file, TrafficErrorKind::Parse { what: "a netspec design result", message: e.to_string() })
     })?;
     from_design(&res, &file, opts)
+}
+
+/// Whether a `.json` file is GeoJSON (a FeatureCollection).
+fn is_geojson(path: &Path) -> bool {
+    std::fs::read_to_string(path).is_ok_and(|t| t.contains("\"FeatureCollection\""))
 }
 
 fn fmt_opt(v: Option<f64>, f: impl Fn(f64) -> String) -> String {
@@ -223,6 +377,7 @@ pub fn from_design(res: &DesignResult, path: &Path, opts: &LoadOptions) -> Resul
             shape: vec![nodes[ends[0]].pos, nodes[ends[1]].pos],
             local: true,
             predicted_load: None,
+            oneway: false,
         });
     }
     if edges.is_empty() {
@@ -262,6 +417,7 @@ pub fn from_design(res: &DesignResult, path: &Path, opts: &LoadOptions) -> Resul
         nodes,
         edges,
         region: Region { boundary, areas },
+        origin: None,
     })
 }
 
@@ -355,6 +511,7 @@ pub fn from_city(dir: &Path, opts: &LoadOptions) -> Result<RoadNetwork, TrafficE
             shape,
             local: e.level >= 2,
             predicted_load: None,
+            oneway: false,
         });
     }
     if edges.is_empty() {
@@ -373,6 +530,7 @@ pub fn from_city(dir: &Path, opts: &LoadOptions) -> Result<RoadNetwork, TrafficE
         nodes,
         edges,
         region: Region { boundary: outer.clone(), areas: vec![outer] },
+        origin: spec.geo_origin,
     })
 }
 

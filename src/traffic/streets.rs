@@ -19,6 +19,8 @@ const SNAP: f64 = 0.5;
 struct LayoutFile {
     name: String,
     outer: Vec<P>,
+    #[serde(default)]
+    origin: Option<[f64; 2]>,
     streets: Vec<Street>,
     violations: Vec<serde_json::Value>,
 }
@@ -50,6 +52,7 @@ pub fn from_layout(dir: &Path) -> Result<RoadNetwork, TrafficError> {
         nodes,
         edges,
         region: Region { boundary: layout.outer.clone(), areas: vec![layout.outer] },
+        origin: layout.origin,
     })
 }
 
@@ -98,7 +101,175 @@ pub fn from_grow(dir: &Path, window: Option<[f64; 4]>) -> Result<RoadNetwork, Tr
         nodes,
         edges,
         region: Region { boundary: ring.clone(), areas: vec![ring] },
+        origin: net.origin,
     })
+}
+
+/// The network of a GeoJSON file of street centrelines in WGS 84: the real streets of
+/// `netspec site` (a `map/` directory, `map/streets.geojson`) or any FeatureCollection of
+/// LineStrings. A street's `level` property (1–4, default 3) is its level, `oneway: true` makes it
+/// one-way. When every street names its end nodes (`u`, `v`, as `netspec site` writes OSM node
+/// ids), streets meet only where they share a node (a bridge over a street is no junction);
+/// otherwise they are noded where they end on or cross each other. A Polygon feature is the
+/// region (demand is drawn in its outer ring); without one the streets' bounding box is. The
+/// metres are a transverse Mercator centred on the region feature's `origin` property, else on the
+/// centre of the region's (or the streets') bounding box. The network is not clipped to its
+/// region (street counts at nodes near the edge need the streets beyond it); see
+/// [`super::network::clip`].
+pub fn from_geojson(path: &Path) -> Result<RoadNetwork, TrafficError> {
+    let file = if path.is_dir() { path.join("streets.geojson") } else { path.to_path_buf() };
+    let text = read(&file)?;
+    let bad =
+        |message: String| TrafficError::new(&file, TrafficErrorKind::Parse { what: "a GeoJSON of streets", message });
+    let (region, lines) = geojson_streets(&text).map_err(bad)?;
+    if lines.is_empty() {
+        return Err(TrafficError::new(&file, TrafficErrorKind::NoNetwork("no LineString streets".into())));
+    }
+    let all: Vec<[f64; 2]> = lines.iter().flat_map(|l| l.lonlat.iter().copied()).collect();
+    let ring = region.as_ref().map_or_else(|| bbox_ring(&all), |r| r.outer.clone());
+    let [lo, hi] = crate::geometry::polygon::bounds(&ring);
+    let origin = region.and_then(|r| r.origin).unwrap_or([0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])]);
+    let proj = crate::geometry::site::Projection::new(origin).map_err(|e| bad(e.to_string()))?;
+    let local = |ps: &[[f64; 2]]| {
+        ps.iter().map(|&q| proj.to_local(q)).collect::<Result<Vec<P>, _>>().map_err(|e| bad(e.to_string()))
+    };
+    let mut outer = local(&ring)?;
+    if outer.len() > 1 && outer.first() == outer.last() {
+        outer.pop();
+    }
+    let (nodes, edges) = if lines.iter().all(|l| l.ends.is_some()) {
+        let shapes = lines.iter().map(|l| local(&l.lonlat)).collect::<Result<Vec<_>, _>>()?;
+        by_node_ids(&lines, shapes)
+    } else {
+        let ls: Vec<Line> =
+            lines.iter().map(|l| Ok((local(&l.lonlat)?, l.level, None))).collect::<Result<_, TrafficError>>()?;
+        graph(&ls, &outer)
+    };
+    Ok(RoadNetwork {
+        name: path.file_stem().map_or("streets".into(), |n| n.to_string_lossy().into_owned()),
+        source: provenance("streets", &file, String::new()),
+        metres_per_unit: 1.0,
+        nodes,
+        edges,
+        region: Region { boundary: outer.clone(), areas: vec![outer] },
+        origin: Some(origin),
+    })
+}
+
+/// A street of a GeoJSON file.
+struct GeoStreet {
+    lonlat: Vec<[f64; 2]>,
+    level: u8,
+    oneway: bool,
+    ends: Option<(i64, i64)>,
+}
+
+/// The region feature of a GeoJSON file of streets.
+struct GeoRegion {
+    outer: Vec<[f64; 2]>,
+    origin: Option<[f64; 2]>,
+}
+
+/// The region (the first Polygon) and the streets (LineStrings) of a GeoJSON text.
+fn geojson_streets(text: &str) -> Result<(Option<GeoRegion>, Vec<GeoStreet>), String> {
+    let gj: geojson::GeoJson = text.parse().map_err(|e: geojson::Error| e.to_string())?;
+    let features = match gj {
+        geojson::GeoJson::FeatureCollection(fc) => fc.features,
+        geojson::GeoJson::Feature(f) => vec![f],
+        geojson::GeoJson::Geometry(g) => vec![geojson::Feature { geometry: Some(g), ..Default::default() }],
+    };
+    let mut region = None;
+    let mut lines = Vec::new();
+    for (i, f) in features.iter().enumerate() {
+        let Some(g) = &f.geometry else { continue };
+        let props = f.properties.clone().unwrap_or_default();
+        match &g.value {
+            geojson::GeometryValue::Polygon { coordinates } if region.is_none() => {
+                let origin =
+                    match props.get("origin") {
+                        None => None,
+                        Some(v) => Some(serde_json::from_value::<[f64; 2]>(v.clone()).map_err(|_| {
+                            format!("features[{i}].properties.origin: {v} is not [longitude, latitude]")
+                        })?),
+                    };
+                let outer = coordinates.first().ok_or_else(|| format!("features[{i}]: a Polygon without rings"))?;
+                region = Some(GeoRegion { outer: lonlat(i, outer)?, origin });
+            }
+            geojson::GeometryValue::LineString { coordinates } => {
+                let level = match props.get("level") {
+                    None => 3,
+                    Some(v) => v
+                        .as_u64()
+                        .filter(|l| (1..=4).contains(l))
+                        .ok_or_else(|| format!("features[{i}].properties.level: {v} is not a level 1–4"))?
+                        as u8,
+                };
+                let id = |k: &str| props.get(k).and_then(serde_json::Value::as_i64);
+                let lonlat = lonlat(i, coordinates)?;
+                if lonlat.len() < 2 {
+                    return Err(format!("features[{i}]: a street needs two positions"));
+                }
+                lines.push(GeoStreet {
+                    lonlat,
+                    level,
+                    oneway: props.get("oneway").and_then(serde_json::Value::as_bool).unwrap_or(false),
+                    ends: id("u").zip(id("v")),
+                });
+            }
+            _ => {}
+        }
+    }
+    Ok((region, lines))
+}
+
+/// Positions of feature `i` as WGS 84 longitude/latitude.
+fn lonlat(i: usize, ps: &[geojson::Position]) -> Result<Vec<[f64; 2]>, String> {
+    ps.iter()
+        .enumerate()
+        .map(|(k, p)| {
+            let s = p.as_slice();
+            match (s.first(), s.get(1)) {
+                (Some(&x), Some(&y)) if x.is_finite() && y.is_finite() && x.abs() <= 180.0 && y.abs() < 90.0 => {
+                    Ok([x, y])
+                }
+                _ => Err(format!("features[{i}] position {k}: not a WGS 84 longitude/latitude")),
+            }
+        })
+        .collect()
+}
+
+/// The street graph of streets that name their end nodes: one node per id.
+fn by_node_ids(lines: &[GeoStreet], shapes: Vec<Vec<P>>) -> (Vec<RoadNode>, Vec<RoadEdge>) {
+    let mut index: std::collections::BTreeMap<i64, usize> = std::collections::BTreeMap::new();
+    let mut nodes: Vec<RoadNode> = Vec::new();
+    let mut edges = Vec::new();
+    for (l, shape) in lines.iter().zip(shapes) {
+        let (u, v) = l.ends.expect("every street names its ends");
+        let mut at = |id: i64, p: P| {
+            *index.entry(id).or_insert_with(|| {
+                nodes.push(RoadNode { id: nodes.len() as u32, pos: p, entrance: false });
+                nodes.len() - 1
+            })
+        };
+        let (a, b) = (at(u, shape[0]), at(v, shape[shape.len() - 1]));
+        edges.push(RoadEdge {
+            id: edges.len() as u32,
+            a,
+            b,
+            level: l.level,
+            shape,
+            local: l.level >= 2,
+            predicted_load: None,
+            oneway: l.oneway,
+        });
+    }
+    (nodes, edges)
+}
+
+/// The bounding box of positions as a ring.
+fn bbox_ring(ps: &[[f64; 2]]) -> Vec<[f64; 2]> {
+    let [lo, hi] = crate::geometry::polygon::bounds(ps);
+    vec![[lo[0], lo[1]], [hi[0], lo[1]], [hi[0], hi[1]], [lo[0], hi[1]]]
 }
 
 /// Where a network of centrelines was read from (the files carry no solver runs).
@@ -160,6 +331,7 @@ pub fn graph(lines: &[Line], outer: &[P]) -> (Vec<RoadNode>, Vec<RoadEdge>) {
                 shape: piece,
                 local: *level >= 2,
                 predicted_load: *load,
+                oneway: false,
             });
         }
     }

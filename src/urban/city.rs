@@ -2,8 +2,8 @@
 //! (each level one network IP), in parallel under a thread budget, with every finished level
 //! written to disk at once so that an interrupted run resumes without solving it again.
 
-use super::planar::{self, Region};
 use super::spec::{CitySpec, CitySpecErrorKind, LevelSpec};
+use crate::geometry::planar::{self, Region};
 use crate::mesh::{self, Mesh};
 use crate::pipeline::settings::{resolve, Origin, Settings, SettingsError};
 use crate::pipeline::{self, DesignResult, Method};

@@ -7,8 +7,8 @@
 
 use super::city::{CityError, CityRunOptions};
 use super::output::{run_city_on, CityResult};
-use super::planar::Region;
 use super::spec::CitySpec;
+use crate::geometry::planar::Region;
 use crate::slurm::{self, Job, SlurmError, SlurmOptions};
 use std::path::Path;
 use std::time::Duration;

@@ -6,9 +6,7 @@
 pub mod city;
 pub mod cluster;
 pub mod major;
-pub mod metrics;
 pub mod output;
-pub mod planar;
 pub mod smooth;
 pub mod spec;
 

@@ -2,13 +2,13 @@
 //! (`city.json`, `streets.geojson`, `city.svg`, `city.png`).
 
 use super::city::{self, CityError, CityRunOptions, RegionReport};
-use super::metrics::{street_metrics, StreetMetrics};
-use super::planar::{PlanarGraph, Region};
 use super::smooth::{self, Snake, StreetEdge, StreetGraph};
 use super::spec::{CitySpec, SmoothingMethod};
 use crate::design::streets::{streets_geojson, GeoAnchor, GeoRegion};
+use crate::geometry::planar::{PlanarGraph, Region};
 use crate::mesh::geom;
 use crate::render::city::{CityPicture, RegionShape};
+use crate::stats::yang::{street_metrics, StreetMetrics};
 use indexmap::IndexMap;
 use serde::{Deserialize, Serialize};
 use std::path::Path;

@@ -81,6 +81,42 @@ impl CitySpec {
     }
 }
 
+/// Fig. 7a's levels 2–4 (collectors on the grid, local roads on the subdivided mesh,
+/// cul-de-sacs), the levels of a city on a site that has no spec of its own; `obstacles` (city
+/// units) become every level's `user.obstacle_polygons`.
+pub fn fig7a_levels(obstacles: &[Vec<[f64; 2]>]) -> IndexMap<String, toml::Table> {
+    const LEVELS: &str = r#"
+[2]
+time_limit = 1000
+coverage = { range = 3 }
+weights = { length = 1, distance = 1e-4, zigzag = "forbid", too_close = "forbid" }
+features = { dead_ends = "forbid" }
+
+[3]
+subdivide = true
+time_limit = 1200
+coverage = { range = 3 }
+weights = { length = 1, distance = 1e-4, zigzag = "forbid", too_close = "forbid" }
+features = { dead_ends = "forbid" }
+
+[4]
+time_limit = 100
+coverage = { range = 2 }
+weights = { length = 1, distance = 1e-4, zigzag = "forbid", too_close = "forbid" }
+features = { dead_ends = "allow" }
+"#;
+    let mut levels: IndexMap<String, toml::Table> = toml::from_str(LEVELS).expect("the built-in levels are TOML");
+    if !obstacles.is_empty() {
+        let polys = toml::Value::try_from(obstacles).expect("points are TOML");
+        for t in levels.values_mut() {
+            let mut user = toml::Table::new();
+            user.insert("obstacle_polygons".into(), polys.clone());
+            t.insert("user".into(), toml::Value::Table(user));
+        }
+    }
+    levels
+}
+
 /// The domain.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]

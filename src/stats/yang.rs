@@ -1,7 +1,9 @@
-//! Street and block metrics of a street graph, after Yang et al. ("Urban pattern: layout design
-//! by hierarchical domain splitting", §7), which Peng et al. report for their urban layouts.
+//! The street and block measures of Yang et al. ("Urban pattern: layout design by hierarchical
+//! domain splitting", 2013, §7), under their own names and definitions, as `netspec city`
+//! ([`street_metrics`], which Peng et al. report for their urban layouts) and `netspec layout`
+//! ([`StreetNodes`], [`street_length`]) report them.
 //!
-//! Definitions (model lengths are converted with `metres_per_unit`):
+//! [`street_metrics`], on a street graph (model lengths are converted with `metres_per_unit`):
 //! - **street length** `sl`: total edge length in km, per km² of the city domain;
 //! - **intersections** `si`: vertices of valence ≥ 3, per km² (`si3`, `si4`: valence exactly
 //!   3 and 4; valence ≥ 5 is only counted). Vertices of valence 2 are bends, not intersections.
@@ -9,13 +11,14 @@
 //!   ending at the boundary forms a 3-way intersection with the boundary road;
 //! - **dead ends** `sd`: vertices of valence 1, per km²;
 //! - **blocks** `bn`: bounded faces of the street graph, per km²; a block's boundary length is
-//!   [`Face::perimeter`](super::planar::Face::perimeter): the edges with the block on exactly one
+//!   [`Face::perimeter`](crate::geometry::planar::Face::perimeter): the edges with the block on exactly one
 //!   side, holes included, cul-de-sacs poking into the block excluded. `bmin`, `bavg`, `bmax`
 //!   are the minimum, mean and maximum in metres.
 //!
 //! Vertices of valence 0 are ignored. Densities are 0 when the domain area is not positive.
 
-use super::planar::PlanarGraph;
+use crate::geometry::planar::PlanarGraph;
+use crate::geometry::{closest_on_segment, dist, polyline_length, Polygon, P};
 use serde::{Deserialize, Serialize};
 
 /// Street and block metrics of a street graph (see the module docs for the definitions).
@@ -134,6 +137,82 @@ impl StreetMetrics {
     pub fn summary(&self) -> String {
         format!("{}; {}", self.totals_line(), self.density_line())
     }
+}
+
+/// Street ends closer than this meet, and points this close to the region's boundary are on it
+/// (metres), for the layout measures.
+pub const NODE_TOLERANCE: f64 = 0.5;
+
+/// A layout's street nodes, counted at street ends: an end meets every other end within
+/// [`NODE_TOLERANCE`] (one arm each) and every street passing through it (two arms); an
+/// intersection has three or more arms, a dead end one arm and lies off the region's boundary.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct StreetNodes {
+    /// Points where three or more street arms meet.
+    pub intersections: usize,
+    /// Street ends that meet nothing, off the region's boundary.
+    pub dead_ends: usize,
+}
+
+/// The [`StreetNodes`] of a layout's street centrelines (metres) in `region`.
+pub fn street_nodes(region: &Polygon, streets: &[&[P]]) -> StreetNodes {
+    let ends: Vec<(usize, P)> = streets
+        .iter()
+        .enumerate()
+        .filter(|(_, s)| s.len() >= 2 && s.first() != s.last())
+        .flat_map(|(i, s)| [(i, s[0]), (i, s[s.len() - 1])])
+        .collect();
+    let segments: Vec<(usize, P, P)> =
+        streets.iter().enumerate().flat_map(|(i, s)| s.windows(2).map(move |w| (i, w[0], w[1]))).collect();
+    let index = crate::geometry::index::SegmentIndex::new(segments.iter().map(|s| (s.1, s.2)).collect(), 50.0);
+    let mut seen: Vec<P> = Vec::new();
+    let mut out = StreetNodes { intersections: 0, dead_ends: 0 };
+    for &(_, p) in &ends {
+        if seen.iter().any(|&q| dist(p, q) <= NODE_TOLERANCE) {
+            continue;
+        }
+        seen.push(p);
+        let end_arms = ends.iter().filter(|(_, q)| dist(p, *q) <= NODE_TOLERANCE).count();
+        let mut through: Vec<usize> = index
+            .near(p, NODE_TOLERANCE)
+            .into_iter()
+            .filter(|&k| {
+                let (i, a, b) = segments[k];
+                let s = streets[i];
+                let is_end = dist(p, s[0]) <= NODE_TOLERANCE || dist(p, s[s.len() - 1]) <= NODE_TOLERANCE;
+                let closed = s.first() == s.last();
+                (closed || !is_end) && dist(p, closest_on_segment(p, a, b).0) <= NODE_TOLERANCE
+            })
+            .map(|k| segments[k].0)
+            .collect();
+        through.sort_unstable();
+        through.dedup();
+        let arms = end_arms + 2 * through.len();
+        if arms >= 3 {
+            out.intersections += 1;
+        } else if arms == 1 && region.boundary_distance(p) > NODE_TOLERANCE {
+            out.dead_ends += 1;
+        }
+    }
+    out
+}
+
+/// The street length Yang et al. count: a street along the region's boundary (every vertex and
+/// edge midpoint on it) counts with half its length, since it serves the region from one side.
+pub fn street_length(region: &Polygon, streets: &[&[P]]) -> f64 {
+    let on_boundary = |s: &[P]| {
+        let mids = s.windows(2).map(|w| [(w[0][0] + w[1][0]) / 2.0, (w[0][1] + w[1][1]) / 2.0]);
+        s.iter().copied().chain(mids).all(|p| region.boundary_distance(p) <= NODE_TOLERANCE)
+    };
+    streets.iter().map(|s| polyline_length(s) * if on_boundary(s) { 0.5 } else { 1.0 }).sum()
+}
+
+/// The perimeter of a block given by its rings (outer and holes, each closed or not).
+pub fn block_perimeter(rings: &[&[P]]) -> f64 {
+    rings
+        .iter()
+        .map(|r| polyline_length(r) + if r.first() == r.last() { 0.0 } else { dist(r[r.len() - 1], r[0]) })
+        .sum()
 }
 
 #[cfg(test)]
