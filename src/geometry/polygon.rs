@@ -220,7 +220,8 @@ impl Polygon {
             ts.sort_by(f64::total_cmp);
             ts.dedup();
             for k in ts.windows(2) {
-                let (p, q) = (super::lerp(a, b, k[0]), super::lerp(a, b, k[1]));
+                let at = |t: f64| if t <= 0.0 { a } else if t >= 1.0 { b } else { super::lerp(a, b, t) };
+                let (p, q) = (at(k[0]), at(k[1]));
                 if dist(p, q) == 0.0 {
                     continue;
                 }
@@ -444,6 +445,20 @@ fn crossing(a: &[(P, P)], b: &[(P, P)], skip: impl Fn(usize, usize) -> bool) -> 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn polylines_clip_to_the_closed_polygon() {
+        let sq = Polygon::new(vec![[0.0, 0.0], [10.0, 0.0], [10.0, 10.0], [0.0, 10.0]], vec![]).unwrap();
+        // A bent line inside stays one piece, whatever its vertices' rounding.
+        let bent = vec![[0.1, 0.3], [3.3, 7.7], [9.1, 0.7]];
+        assert_eq!(sq.clip_polyline(&bent, 1e-6), vec![bent.clone()]);
+        // A line through the square, and one along its edge (kept: the edge is inside).
+        assert_eq!(sq.clip_polyline(&[[-5.0, 5.0], [15.0, 5.0]], 1e-6), vec![vec![[0.0, 5.0], [10.0, 5.0]]]);
+        assert_eq!(sq.clip_polyline(&[[0.0, -5.0], [0.0, 15.0]], 1e-6), vec![vec![[0.0, 0.0], [0.0, 10.0]]]);
+        // In, out and in again: two pieces.
+        let zig = sq.clip_polyline(&[[5.0, 5.0], [15.0, 5.0], [15.0, 8.0], [5.0, 8.0]], 1e-6);
+        assert_eq!(zig, vec![vec![[5.0, 5.0], [10.0, 5.0]], vec![[10.0, 8.0], [5.0, 8.0]]]);
+    }
 
     fn square(x: f64, y: f64, s: f64) -> Vec<P> {
         vec![[x, y], [x + s, y], [x + s, y + s], [x, y + s]]
