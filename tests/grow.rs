@@ -556,3 +556,56 @@ fn bad_roads_and_nuclei_name_the_field_and_nothing_is_grown() {
         assert!(!out.exists(), "case {i}: nothing is grown");
     }
 }
+
+/// A sea drawn along the map's east, north and south edges covers them: the cities on its
+/// border are reached by ship, and no road runs along the edge (the edge's vertices once stayed
+/// land, a strip one vertex wide on the east and north edges).
+#[test]
+fn water_on_the_map_edge_leaves_no_land_strip() {
+    let ctx = Context::from_toml(
+        r#"
+size = [1260, 1260]
+spacing = 20
+radius = 4
+steps = 10
+[center]
+position = [400, 500]
+[[neighbour]]
+position = [0, 300]
+[[neighbour]]
+position = [500, 0]
+[[neighbour]]
+position = [1260, 600]
+[[neighbour]]
+position = [800, 1260]
+[[water]]
+polygon = [[900, 0], [1260, 0], [1260, 1260], [600, 1260], [650, 1000], [900, 700]]
+"#,
+    )
+    .unwrap();
+    let mut sim = Sim::new(&ctx, ctx.seed).unwrap();
+    let t = &sim.lattice.terrain;
+    for k in 0..t.ny {
+        let s = k as f64 * ctx.spacing;
+        assert_eq!(t.class_at([1260.0, s]), 1, "east edge at y = {s}");
+        if s >= 920.0 {
+            assert_eq!(t.class_at([s, 0.0]), 1, "south edge at x = {s}");
+        }
+        if s >= 620.0 {
+            assert_eq!(t.class_at([s, 1260.0]), 1, "north edge at x = {s}");
+        }
+    }
+    let water: Vec<bool> = sim.cities.iter().map(|c| c.water).collect();
+    assert_eq!(water, [false, false, true, true], "the cities on the sea's edge are reached by ship");
+    for _ in 0..ctx.steps {
+        sim.step();
+    }
+    let g = &sim.graph;
+    for s in g.segs.iter().filter(|s| matches!(s.class, Class::Major | Class::Minor)) {
+        let (a, b) = (g.nodes[s.a as usize].pos, g.nodes[s.b as usize].pos);
+        assert!(a[0].min(b[0]) < 1250.0, "a road along the east edge: {a:?}–{b:?}");
+        assert!(a[1].min(b[1]) < 1250.0 || a[0].max(b[0]) < 600.0, "a road along the north edge: {a:?}–{b:?}");
+    }
+    let found = validate(&Network::of(&sim), &sim.ctx);
+    assert!(found.is_empty(), "{found:?}");
+}
