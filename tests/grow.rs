@@ -1,7 +1,8 @@
 //! `netspec grow` on small maps (a 64 × 64 lattice with a straight river, a lake): the lattice
 //! mask, water, connectivity, the traffic bookkeeping after every step, planarity by an
 //! independent segment-intersection check, the library's own independent check
-//! (`grow::validate`) finding nothing, a second harbour, determinism, and context errors.
+//! (`grow::validate`) finding nothing, a second harbour, determinism, context errors, and a
+//! context's existing roads, nuclei and named centre (the town grows where the user puts it).
 
 use netspec::grow::context::Context;
 use netspec::grow::graph::Class;
@@ -276,7 +277,7 @@ fn a_window_is_a_city_spec_and_trade_flows() {
         "--steps".as_ref(),
         "10".as_ref(),
         "--window".as_ref(),
-        "200,200,1060,1060".as_ref(),
+        "300,500,960,1000".as_ref(),
         "--out".as_ref(),
         a.as_os_str(),
     ]);
@@ -293,7 +294,7 @@ fn a_window_is_a_city_spec_and_trade_flows() {
         "grow".as_ref(),
         a.as_os_str(),
         "--window".as_ref(),
-        "200,200,1060,1060".as_ref(),
+        "300,500,960,1000".as_ref(),
         "--out".as_ref(),
         b.as_os_str(),
     ]);
@@ -315,4 +316,296 @@ fn a_window_is_a_city_spec_and_trade_flows() {
     ]);
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(!o.status.success() && err.contains("network.json") && err.contains("outside the map"), "{err}");
+}
+
+/// The length-weighted centroid of the minor roads and their length (metres).
+fn minor_centroid(sim: &Sim) -> (P, f64) {
+    let g = &sim.graph;
+    let (mut sx, mut sy, mut total) = (0.0, 0.0, 0.0);
+    for s in g.segs.iter().filter(|s| s.class == Class::Minor) {
+        let (a, b) = (g.nodes[s.a as usize].pos, g.nodes[s.b as usize].pos);
+        let l = (b[0] - a[0]).hypot(b[1] - a[1]);
+        sx += l * (a[0] + b[0]) / 2.0;
+        sy += l * (a[1] + b[1]) / 2.0;
+        total += l;
+    }
+    ([sx / total, sy / total], total)
+}
+
+/// Minor-road length (metres) with its midpoint within `r` of `p`.
+fn minor_near(sim: &Sim, p: P, r: f64) -> f64 {
+    let g = &sim.graph;
+    g.segs
+        .iter()
+        .filter(|s| s.class == Class::Minor)
+        .map(|s| (g.nodes[s.a as usize].pos, g.nodes[s.b as usize].pos))
+        .filter(|(a, b)| ((a[0] + b[0]) / 2.0 - p[0]).hypot((a[1] + b[1]) / 2.0 - p[1]) <= r)
+        .map(|(a, b)| (b[0] - a[0]).hypot(b[1] - a[1]))
+        .sum()
+}
+
+fn dist(a: P, b: P) -> f64 {
+    (a[0] - b[0]).hypot(a[1] - b[1])
+}
+
+/// Nodes reachable from `from` over trade segments (everything but minor roads).
+fn trade_reach(sim: &Sim, from: u32) -> BTreeSet<u32> {
+    let g = &sim.graph;
+    let mut seen = BTreeSet::from([from]);
+    let mut queue = VecDeque::from([from]);
+    while let Some(n) = queue.pop_front() {
+        for &s in &g.adj[n as usize] {
+            let seg = &g.segs[s as usize];
+            if seg.class != Class::Minor {
+                let m = if seg.a == n { seg.b } else { seg.a };
+                if seen.insert(m) {
+                    queue.push_back(m);
+                }
+            }
+        }
+    }
+    seen
+}
+
+/// The issue's case: a centre named on a lake's west shore and three neighbours around (one
+/// across the lake). The initial network joins every neighbour to the centre, the centre
+/// nucleus is there, and after the context's steps the minor roads' length-weighted centroid
+/// is within 400 m of it.
+#[test]
+fn the_town_grows_at_the_named_centre() {
+    let ctx = small("lake-shore.toml");
+    let centre = ctx.center.as_ref().unwrap().position;
+    let mut sim = Sim::new(&ctx, ctx.seed).unwrap();
+    let node = sim.centre.expect("a named centre has a node");
+    assert!(dist(sim.graph.nodes[node as usize].pos, centre) <= ctx.spacing, "the centre node is at the centre");
+    assert!(dist(sim.nuclei[0].pos, centre) <= ctx.spacing && sim.nuclei[0].strength > 0.9, "{:?}", sim.nuclei[0]);
+    let reach = trade_reach(&sim, node);
+    for c in &sim.cities {
+        assert!(reach.contains(&c.node), "city at {:?} is not joined to the centre", c.pos);
+    }
+    for _ in 0..ctx.steps {
+        sim.step();
+    }
+    let (c, total) = minor_centroid(&sim);
+    assert!(total > 5000.0, "{total} m of minor roads");
+    assert!(dist(c, centre) <= 400.0, "the minor roads' centroid {c:?} is {:.0} m from the centre", dist(c, centre));
+    assert!(validate(&Network::of(&sim), &sim.ctx).is_empty());
+}
+
+/// A small map with a bent existing major road from the south edge to the centre (fixed, one
+/// lane), an old town of minor streets in the south-east with a nucleus, and a second nucleus
+/// from step 8.
+const ROADS: &str = r#"
+size = [1260, 1260]
+spacing = 20
+radius = 4
+seed = 7
+steps = 20
+[center]
+position = [630, 700]
+[[neighbour]]
+position = [0, 900]
+[[neighbour]]
+position = [1260, 1000]
+[[neighbour]]
+position = [300, 0]
+[[neighbour]]
+position = [700, 1260]
+[terrain]
+relief = 10
+scale = 800
+[params]
+growth = [[0, 6], [20, 12]]
+demand = 1.5
+widths = [[0, 1], [5, 2]]
+"#;
+
+const OLD_TOWN: &str = r#"
+[[road]]
+points = [[300, 0], [250, 350], [500, 650], [630, 700]]
+fixed = true
+lanes = 1
+[[road]]
+points = [[850, 250], [1050, 250], [1050, 400], [850, 400], [850, 250]]
+class = "minor"
+[[road]]
+points = [[950, 250], [950, 400]]
+class = "minor"
+[[nucleus]]
+position = [950, 330]
+strength = 0.9
+[[nucleus]]
+position = [200, 1000]
+strength = 1
+from = 8
+"#;
+
+#[test]
+fn existing_roads_and_nuclei_shape_the_growth() {
+    let with = Context::from_toml(&format!("{ROADS}{OLD_TOWN}")).unwrap();
+    let without = Context::from_toml(ROADS).unwrap();
+    let mut a = Sim::new(&with, with.seed).unwrap();
+    let mut b = Sim::new(&without, without.seed).unwrap();
+    // The city at the road's end is the road's end; its trade follows the road's bends.
+    let south = a.cities.iter().position(|c| c.pos == [300.0, 0.0]).expect("a city at the road's end");
+    let bends: Vec<u32> = [[250.0, 350.0], [500.0, 650.0]]
+        .iter()
+        .map(|&p| a.graph.nodes.iter().position(|n| n.pos == p).expect("the road's points are nodes") as u32)
+        .collect();
+    let routes: Vec<&Vec<u32>> =
+        a.traffic.routes.iter().filter(|r| a.traffic.pairs[r.pair].cities.contains(&south)).map(|r| &r.nodes).collect();
+    assert!(routes.iter().all(|r| bends.iter().all(|n| r.contains(n))), "the south city's trade runs along the road");
+    // The old town's streets are blocks from the start.
+    assert!(a.series[0].blocks >= 2 && b.series[0].blocks == 0, "{:?} {:?}", a.series[0], b.series[0]);
+    let given: Vec<usize> = (0..a.graph.segs.len()).filter(|&s| a.graph.segs[s].fixed).collect();
+    assert!(!given.is_empty());
+    let before = a.nuclei.len();
+    for k in 1..=with.steps {
+        a.step();
+        b.step();
+        let late = a.nuclei.iter().any(|q| q.pos == [200.0, 1000.0]);
+        assert_eq!(late, k >= 8, "step {k}: the nucleus from step 8");
+        check_traffic(&a);
+    }
+    assert!(a.nuclei.len() > before);
+    // Saturation made the growth build or widen roads, but the fixed road kept its one lane.
+    assert!(a.series.iter().any(|r| r.overflow > 0.0 || r.new_routes > 0 && r.step > 0), "{:?}", a.series);
+    for &s in &given {
+        let seg = &a.graph.segs[s];
+        assert!(seg.width == 1.0 && seg.class == Class::Major, "fixed segment {s}: {seg:?}");
+    }
+    assert!(a.graph.segs.iter().any(|s| !s.fixed && s.width >= 2.0), "other roads were widened");
+    // Streets grew in the old town and around the late nucleus, where without them there are
+    // none or fewer.
+    let old_town = [950.0, 330.0];
+    let (ga, gb) = (minor_near(&a, old_town, 250.0), minor_near(&b, old_town, 250.0));
+    assert!(ga > 1000.0 + gb, "old town: {ga:.0} m of minor roads with it, {gb:.0} m without");
+    let (la, lb) = (minor_near(&a, [200.0, 1000.0], 200.0), minor_near(&b, [200.0, 1000.0], 200.0));
+    assert!(la > lb + 300.0, "late nucleus: {la:.0} m with it, {lb:.0} m without");
+    assert!(validate(&Network::of(&a), &a.ctx).is_empty());
+    assert!(planarity_violations(&a).is_empty());
+}
+
+/// What a real site's context holds: major roads running to the map's edge with neighbours at
+/// their ends, a road over a river on a bridge shorter than `bridge`, water touching the edge.
+#[test]
+fn a_site_like_context_is_accepted() {
+    let ctx = Context::from_toml(
+        r#"
+size = [1260, 1260]
+spacing = 20
+radius = 4
+steps = 5
+[center]
+position = [500, 800]
+[[neighbour]]
+position = [500, 1260]
+[[neighbour]]
+position = [420, 0]
+[[neighbour]]
+position = [0, 800]
+[[road]]
+points = [[500, 1260], [500, 800], [450, 300], [420, 0]]
+[[road]]
+points = [[0, 800.3], [500, 800]]
+[[water]]
+river = [[0, 500], [1260, 540]]
+width = 60
+[[water]]
+polygon = [[1000, 0], [1260, 0], [1260, 1260], [1100, 1260]]
+"#,
+    )
+    .unwrap();
+    let mut sim = Sim::new(&ctx, ctx.seed).unwrap();
+    assert!(sim.series[0].bridges >= 1, "the road crosses the river on a bridge");
+    for (c, p) in sim.cities.iter().zip([[500.0, 1260.0], [420.0, 0.0], [0.0, 800.3]]) {
+        assert_eq!(c.pos, p, "the city is the road's end");
+    }
+    for _ in 0..ctx.steps {
+        sim.step();
+    }
+    let found = validate(&Network::of(&sim), &sim.ctx);
+    assert!(found.is_empty(), "{found:?}");
+}
+
+#[test]
+fn bad_roads_and_nuclei_name_the_field_and_nothing_is_grown() {
+    let tmp = tempfile::tempdir().unwrap();
+    let lake = "size = [1000, 1000]\n[[water]]\npolygon = [[300, 300], [700, 300], [700, 700], [300, 700]]\n";
+    let cases = [
+        ("[[road]]\npoints = [[10, 10]]", "road[0].points"),
+        ("[[road]]\npoints = [[10, 10], [100, 10]]\n[[road]]\npoints = [[10, 10], [1200, 10]]", "road[1].points[1]"),
+        ("[[road]]\npoints = [[100, 500], [500, 500]]", "road[0].points"),
+        ("[[road]]\npoints = [[100, 500], [900, 500]]", "params.bridge"),
+        ("[[road]]\npoints = [[100, 100], [200, 100]]\nclass = \"trunk\"", "road[0].class"),
+        ("[[road]]\npoints = [[100, 100], [200, 100]]\nlanes = 0", "road[0].lanes"),
+        ("[[nucleus]]\nposition = [-10, 100]\nstrength = 0.5", "nucleus[0].position"),
+        ("[[nucleus]]\nposition = [500, 500]\nstrength = 0.5", "nucleus[0].position"),
+        ("[[nucleus]]\nposition = [100, 100]\nstrength = 1.5", "nucleus[0].strength"),
+        ("[center]\nposition = [500, 500]", "center.position"),
+    ];
+    for (i, (text, field)) in cases.iter().enumerate() {
+        let path = tmp.path().join(format!("c{i}.toml"));
+        std::fs::write(&path, format!("{lake}{text}")).unwrap();
+        let out = tmp.path().join(format!("out{i}"));
+        let req = GrowRequest { context: path.clone(), out: out.clone(), seed: None, steps: Some(1), every: None };
+        let e = grow::run(&req, &mut |_, _| {}).unwrap_err();
+        let msg = e.to_string();
+        assert!(msg.contains(field), "case {i}: {msg}");
+        assert!(msg.contains(&path.display().to_string()), "case {i} names the file: {msg}");
+        assert!(!out.exists(), "case {i}: nothing is grown");
+    }
+}
+
+/// A sea drawn along the map's east, north and south edges covers them: the cities on its
+/// border are reached by ship, and no road runs along the edge (the edge's vertices once stayed
+/// land, a strip one vertex wide on the east and north edges).
+#[test]
+fn water_on_the_map_edge_leaves_no_land_strip() {
+    let ctx = Context::from_toml(
+        r#"
+size = [1260, 1260]
+spacing = 20
+radius = 4
+steps = 10
+[center]
+position = [400, 500]
+[[neighbour]]
+position = [0, 300]
+[[neighbour]]
+position = [500, 0]
+[[neighbour]]
+position = [1260, 600]
+[[neighbour]]
+position = [800, 1260]
+[[water]]
+polygon = [[900, 0], [1260, 0], [1260, 1260], [600, 1260], [650, 1000], [900, 700]]
+"#,
+    )
+    .unwrap();
+    let mut sim = Sim::new(&ctx, ctx.seed).unwrap();
+    let t = &sim.lattice.terrain;
+    for k in 0..t.ny {
+        let s = k as f64 * ctx.spacing;
+        assert_eq!(t.class_at([1260.0, s]), 1, "east edge at y = {s}");
+        if s >= 920.0 {
+            assert_eq!(t.class_at([s, 0.0]), 1, "south edge at x = {s}");
+        }
+        if s >= 620.0 {
+            assert_eq!(t.class_at([s, 1260.0]), 1, "north edge at x = {s}");
+        }
+    }
+    let water: Vec<bool> = sim.cities.iter().map(|c| c.water).collect();
+    assert_eq!(water, [false, false, true, true], "the cities on the sea's edge are reached by ship");
+    for _ in 0..ctx.steps {
+        sim.step();
+    }
+    let g = &sim.graph;
+    for s in g.segs.iter().filter(|s| matches!(s.class, Class::Major | Class::Minor)) {
+        let (a, b) = (g.nodes[s.a as usize].pos, g.nodes[s.b as usize].pos);
+        assert!(a[0].min(b[0]) < 1250.0, "a road along the east edge: {a:?}–{b:?}");
+        assert!(a[1].min(b[1]) < 1250.0 || a[0].max(b[0]) < 600.0, "a road along the north edge: {a:?}–{b:?}");
+    }
+    let found = validate(&Network::of(&sim), &sim.ctx);
+    assert!(found.is_empty(), "{found:?}");
 }

@@ -95,6 +95,18 @@ pub fn ring_contains(ring: &[P], p: P) -> bool {
     inside
 }
 
+/// Whether `p` is inside the ring or on it (even–odd rule, closed): [`ring_contains`] with the
+/// points within `1e-9` (relative to the coordinates' size) of an edge counted in, so a polygon
+/// drawn along a line of points (a map's edge) covers them whichever side of it they are on.
+pub fn ring_covers(ring: &[P], p: P) -> bool {
+    if ring_contains(ring, p) {
+        return true;
+    }
+    let tol = 1e-9 * (1.0 + p[0].abs().max(p[1].abs()));
+    let n = ring.len();
+    (0..n).any(|i| dist(p, closest_on_segment(p, ring[i], ring[(i + 1) % n]).0) <= tol)
+}
+
 /// The length of an open polyline.
 pub fn polyline_length(line: &[P]) -> f64 {
     line.windows(2).map(|w| dist(w[0], w[1])).sum()

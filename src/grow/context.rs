@@ -14,6 +14,10 @@ pub const BYTES_PER_VERTEX: u64 = 48;
 /// The largest working memory a map may need (8 GiB).
 pub const MAX_BYTES: u64 = 8 << 30;
 
+/// How far outside the map a `[[road]]` point may lie and still be taken as on its edge
+/// (metres): the road graph's snap, for coordinates clipped to the map in floating point.
+pub const ROAD_EDGE_SLACK: f64 = 0.5;
+
 /// A historical context with its per-city input.
 #[derive(Clone, Debug, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
@@ -51,6 +55,12 @@ pub struct Context {
     /// Forbidden areas (no roads).
     #[serde(default)]
     pub forbidden: Vec<Forbidden>,
+    /// Existing roads the growth starts from (part of the initial network).
+    #[serde(default)]
+    pub road: Vec<Road>,
+    /// Growth nuclei placed by the user, each from its step on.
+    #[serde(default)]
+    pub nucleus: Vec<NucleusSpec>,
     /// The terrain.
     #[serde(default)]
     pub terrain: Terrain,
@@ -66,12 +76,54 @@ pub struct Context {
     pub base: PathBuf,
 }
 
-/// The centre settlement.
+/// The city's centre: with it, the initial network joins every neighbouring city to this
+/// point, and the centre nucleus sits there.
 #[derive(Clone, Debug, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct Center {
     /// Its position (metres).
     pub position: P,
+}
+
+/// An existing road: a polyline in map metres, inserted into the road graph before the initial
+/// network is built (docs/grow.md, "Existing roads").
+#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct Road {
+    /// Its points (metres, within the map; at least two).
+    pub points: Vec<P>,
+    /// `major` (a trade road) or `minor` (a street).
+    #[serde(default = "d_road_class")]
+    pub class: RoadClass,
+    /// Kept as given: never widened, never made major.
+    #[serde(default)]
+    pub fixed: bool,
+    /// Lanes (default: A(0) for a major road, 1 for a minor one).
+    #[serde(default)]
+    pub lanes: Option<f64>,
+}
+
+/// The class of an existing road.
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum RoadClass {
+    /// A major road (carries trade).
+    Major,
+    /// A minor road (a street).
+    Minor,
+}
+
+/// A growth nucleus placed by the user.
+#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct NucleusSpec {
+    /// Its position (metres, on land).
+    pub position: P,
+    /// STRENGTH(q) ∈ (0, 1].
+    pub strength: f64,
+    /// The step it appears in (0: with the initial network).
+    #[serde(default)]
+    pub from: u32,
 }
 
 /// A neighbouring city.
@@ -228,6 +280,9 @@ pub enum PatternKind {
     Radial,
 }
 
+fn d_road_class() -> RoadClass {
+    RoadClass::Major
+}
 fn d_spacing() -> f64 {
     20.0
 }
@@ -472,6 +527,15 @@ impl Context {
                 }
             }
         }
+        self.check_roads()?;
+        for (i, n) in self.nucleus.iter().enumerate() {
+            if !inside(n.position) {
+                return bad(&format!("nucleus[{i}].position"), format!("{:?} is outside the map", n.position));
+            }
+            if !(n.strength > 0.0 && n.strength <= 1.0) {
+                return bad(&format!("nucleus[{i}].strength"), format!("must be in (0, 1], got {}", n.strength));
+            }
+        }
         for (i, f) in self.forbidden.iter().enumerate() {
             if f.polygon.len() < 3 || ring_area2(&f.polygon).abs() <= 0.0 {
                 return bad(
@@ -514,6 +578,46 @@ impl Context {
             }
             if i > 0 && p.from <= self.pattern[i - 1].from {
                 return bad(&f("from"), "patterns must be in increasing `from` order".into());
+            }
+        }
+        Ok(())
+    }
+
+    /// The `[[road]]` checks that need no terrain: at least two finite, distinct points, each
+    /// within the map (or at most [`ROAD_EDGE_SLACK`] outside it, moved onto the edge when the
+    /// road is inserted), positive lanes. Water and forbidden ground are checked against the
+    /// lattice when the roads are inserted ([`super::roads`]).
+    fn check_roads(&self) -> Result<(), GrowError> {
+        let bad = |field: String, message: String| Err(GrowError::Field { path: PathBuf::new(), field, message });
+        let [w, h] = self.size;
+        let near = |p: P| {
+            p.iter().all(|v| v.is_finite())
+                && (-ROAD_EDGE_SLACK..=w + ROAD_EDGE_SLACK).contains(&p[0])
+                && (-ROAD_EDGE_SLACK..=h + ROAD_EDGE_SLACK).contains(&p[1])
+        };
+        for (i, r) in self.road.iter().enumerate() {
+            if r.points.len() < 2 {
+                return bad(
+                    format!("road[{i}].points"),
+                    format!("a road needs at least 2 points, got {}", r.points.len()),
+                );
+            }
+            if let Some(k) = r.points.iter().position(|&p| !near(p)) {
+                return bad(
+                    format!("road[{i}].points[{k}]"),
+                    format!(
+                        "{:?} is outside the map [0, {w}] × [0, {h}]: clip the road to the map (a road may end on its edge)",
+                        r.points[k]
+                    ),
+                );
+            }
+            if polyline_length(&r.points) <= 0.0 {
+                return bad(format!("road[{i}].points"), "the points must not all coincide".into());
+            }
+            if let Some(l) = r.lanes {
+                if !(l.is_finite() && l > 0.0) {
+                    return bad(format!("road[{i}].lanes"), format!("must be positive, got {l}"));
+                }
             }
         }
         Ok(())

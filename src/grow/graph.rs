@@ -71,6 +71,8 @@ pub struct Segment {
     pub born: u32,
     /// Traffic on it, T(s).
     pub load: f64,
+    /// An existing road kept as given (`fixed = true`): never widened or upgraded.
+    pub fixed: bool,
 }
 
 /// The segment graph.
@@ -177,7 +179,7 @@ impl Graph {
     fn add_seg(&mut self, a: u32, b: u32, class: Class, width: f64, born: u32, load: f64) -> u32 {
         let id = self.segs.len() as u32;
         let (pa, pb) = (self.nodes[a as usize].pos, self.nodes[b as usize].pos);
-        self.segs.push(Segment { a, b, class, width, born, load });
+        self.segs.push(Segment { a, b, class, width, born, load, fixed: false });
         self.adj[a as usize].push(id);
         self.adj[b as usize].push(id);
         self.by_ends.insert(key(a, b), id);
@@ -190,7 +192,7 @@ impl Graph {
     /// class, width, age and traffic is returned. Refused (`None`) when `x` is an end or already
     /// joined to one (the pieces would duplicate segments).
     pub fn split(&mut self, s: u32, x: u32) -> Option<u32> {
-        let Segment { a, b, class, width, born, load } = self.segs[s as usize].clone();
+        let Segment { a, b, class, width, born, load, fixed } = self.segs[s as usize].clone();
         if x == a || x == b || self.find(a, x).is_some() || self.find(x, b).is_some() {
             return None;
         }
@@ -202,7 +204,9 @@ impl Graph {
         let (pa, px) = (self.nodes[a as usize].pos, self.nodes[x as usize].pos);
         self.index.shrink(s as usize, pa, px);
         self.splits.push((a, b, x));
-        Some(self.add_seg(x, b, class, width, born, load))
+        let piece = self.add_seg(x, b, class, width, born, load);
+        self.segs[piece as usize].fixed = fixed;
+        Some(piece)
     }
 
     /// The node at `p`: an existing one within [`SNAP`], else a new one (splitting a segment of
@@ -306,7 +310,8 @@ impl Graph {
         chain
     }
 
-    /// Joins two nodes by one straight segment (no crossing checks), or upgrades the one there.
+    /// Joins two nodes by one straight segment (no crossing checks), or upgrades the one there
+    /// (unless it is fixed).
     fn link(&mut self, u: u32, v: u32, class: Class, width: f64, born: u32) {
         if u == v {
             return;
@@ -314,6 +319,9 @@ impl Graph {
         match self.find(u, v) {
             Some(s) => {
                 let g = &mut self.segs[s as usize];
+                if g.fixed {
+                    return;
+                }
                 if class > g.class && g.class != Class::Water {
                     g.class = class;
                 }

@@ -6,8 +6,8 @@
 //! describes the model, the context file and the outputs.
 //!
 //! One concern per file: [`context`] (the context file), [`terrain`] (heights and classes),
-//! [`lattice`] (the implicit pathfinding graph), [`paths`] (shortest paths), [`spaces`] (the
-//! graphs searched), [`graph`] (the planar road graph), [`blocks`] (faces and the built-up area),
+//! [`lattice`] (the implicit pathfinding graph), [`paths`] (shortest paths), [`roads`] (existing
+//! roads, placed nuclei and the centre), [`spaces`] (the graphs searched), [`graph`] (the planar road graph), [`blocks`] (faces and the built-up area),
 //! [`minor`] (minor-road growth), [`traffic`] (trade routes and capacities), [`step`] (the
 //! simulation), [`output`] (files), [`validate`] (an independent check of the output),
 //! [`window`] (a window as a city spec and trade flows); [`run`] is the entry point of
@@ -20,6 +20,7 @@ pub mod lattice;
 pub mod minor;
 pub mod output;
 pub mod paths;
+pub mod roads;
 pub mod spaces;
 pub mod step;
 pub mod terrain;
@@ -144,10 +145,10 @@ pub fn run(req: &GrowRequest, progress: &mut dyn FnMut(u32, u32)) -> Result<Grow
     let ctx = context::Context::load(&req.context)?;
     let seed = req.seed.unwrap_or(ctx.seed);
     let steps = req.steps.unwrap_or(ctx.steps);
-    std::fs::create_dir_all(&req.out).map_err(|source| GrowError::Io { path: req.out.clone(), source })?;
     let t0 = Instant::now();
-    let mut sim = step::Sim::new(&ctx, seed)?;
+    let mut sim = step::Sim::new(&ctx, seed).map_err(|e| e.in_file(&req.context))?;
     let init_seconds = t0.elapsed().as_secs_f64();
+    std::fs::create_dir_all(&req.out).map_err(|source| GrowError::Io { path: req.out.clone(), source })?;
     let mut files = Vec::new();
     let every = req.every.filter(|&k| k > 0);
     let mut snapshot_violations = Vec::new();

@@ -49,8 +49,12 @@ pub fn network_json(sim: &Sim, violations: &[Violation]) -> Value {
         .filter_map(|(n, node)| ids[n].map(|id| json!({"id": id, "x": mm(node.pos[0]), "y": mm(node.pos[1])})))
         .collect();
     let seg = |s: &super::graph::Segment| {
-        json!({"a": ids[s.a as usize], "b": ids[s.b as usize], "class": s.class.name(), "width": s.width, "step": s.born,
-               "traffic": mm(s.load)})
+        let mut v = json!({"a": ids[s.a as usize], "b": ids[s.b as usize], "class": s.class.name(), "width": s.width,
+                           "step": s.born, "traffic": mm(s.load)});
+        if s.fixed {
+            v["fixed"] = json!(true);
+        }
+        v
     };
     let segments: Vec<Value> = g.segs.iter().filter(|s| s.class.is_road()).map(seg).collect();
     let waterways: Vec<Value> = g.segs.iter().filter(|s| s.class == Class::Water).map(seg).collect();

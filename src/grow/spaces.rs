@@ -13,33 +13,84 @@ use super::traffic::capacity;
 use crate::geometry::{dist, segment_intersection, P};
 use std::collections::{HashMap, HashSet};
 
-/// The lattice with reuse: an edge of an earlier initial path weighs μ times as much.
+/// The initial network's graph: the lattice with reuse (an edge of an earlier initial path
+/// weighs μ times as much), plus the road graph's segments (trade segments at μ times their
+/// lattice weight: existing roads count as used; minor roads at their length; fixed minor roads
+/// closed), joined to the lattice by stitches. States below the lattice size are lattice
+/// vertices, the others road-graph nodes. Without existing roads there are no stitches and it is
+/// the lattice alone.
 pub struct InitialSpace<'a> {
     /// The lattice.
     pub lattice: &'a Lattice,
+    /// The road graph.
+    pub graph: &'a Graph,
+    /// Stitches of the existing roads' nodes.
+    pub stitches: &'a Stitches,
     /// Used edges (ends ordered).
     pub used: &'a HashSet<(u32, u32)>,
     /// μ.
     pub mu: f64,
+    /// C₁…C₆ (C₃, C₅ weigh harbours and bridges as on the lattice).
+    pub c: [f64; 6],
     /// Scratch.
     pub edges: Vec<Edge>,
     /// Scratch.
     pub buf: Vec<u32>,
 }
 
+impl InitialSpace<'_> {
+    /// A road-graph segment's weight, `None` for a fixed minor road.
+    fn segment(&self, s: u32) -> Option<f64> {
+        let g = &self.graph.segs[s as usize];
+        let len = self.graph.length(s);
+        match g.class {
+            Class::Minor if g.fixed => None,
+            Class::Minor => Some(len),
+            Class::Major | Class::Water => Some(len * self.mu),
+            Class::Bridge => Some(len * self.mu * self.c[4]),
+            Class::Harbour => Some(len * self.mu * self.c[2]),
+        }
+    }
+}
+
 impl Space for InitialSpace<'_> {
     fn len(&self) -> usize {
-        self.lattice.len()
+        self.lattice.len() + self.graph.nodes.len()
     }
     fn pos(&self, v: u32) -> P {
-        self.lattice.pos(v)
+        let n = self.lattice.len() as u32;
+        if v < n {
+            self.lattice.pos(v)
+        } else {
+            self.graph.nodes[(v - n) as usize].pos
+        }
     }
     fn edges(&mut self, v: u32, out: &mut Vec<(u32, f64)>) {
-        self.lattice.edges(v, &|_| false, &mut self.edges, &mut self.buf);
         out.clear();
-        for e in &self.edges {
-            let f = if self.used.contains(&(v.min(e.to), v.max(e.to))) { self.mu } else { 1.0 };
-            out.push((e.to, e.weight * f));
+        let nl = self.lattice.len() as u32;
+        if v < nl {
+            self.lattice.edges(v, &|_| false, &mut self.edges, &mut self.buf);
+            for e in &self.edges {
+                let f = if self.used.contains(&(v.min(e.to), v.max(e.to))) { self.mu } else { 1.0 };
+                out.push((e.to, e.weight * f));
+            }
+            for &n in self.stitches.to_nodes.get(&v).into_iter().flatten() {
+                if let Some(w) = stitch(self.lattice, self.graph, v, n) {
+                    out.push((nl + n, w));
+                }
+            }
+        } else {
+            let n = v - nl;
+            for &s in &self.graph.adj[n as usize] {
+                if let Some(w) = self.segment(s) {
+                    out.push((nl + self.graph.other(s, n), w));
+                }
+            }
+            for &u in self.stitches.to_lattice.get(n as usize).into_iter().flatten() {
+                if let Some(w) = stitch(self.lattice, self.graph, u, n) {
+                    out.push((u, w));
+                }
+            }
         }
     }
 }
@@ -56,14 +107,18 @@ pub struct Costs {
 }
 
 impl Costs {
-    /// The weight of a built segment, or `None` when it is saturated and cannot be widened.
+    /// The weight of a built segment, or `None` when it is saturated and cannot be widened (a
+    /// fixed segment cannot), or a fixed minor road (which never becomes major).
     pub fn segment(&self, graph: &Graph, blocks: &Blocks, s: u32, trade_only: bool) -> Option<f64> {
         let g = &graph.segs[s as usize];
         if trade_only && !g.class.is_trade() {
             return None;
         }
+        if g.fixed && g.class == Class::Minor {
+            return None;
+        }
         let ext = blocks.extendible.get(s as usize).copied().unwrap_or(true);
-        let widenable = ext && matches!(g.class, Class::Major | Class::Minor);
+        let widenable = ext && !g.fixed && matches!(g.class, Class::Major | Class::Minor);
         if g.class != Class::Water && g.class != Class::Minor {
             let room = capacity(graph, s, self.per_lane) - g.load;
             if room < self.delta && (trade_only || !widenable) {
@@ -184,40 +239,38 @@ pub struct NewSpace<'a> {
     pub buf: Vec<u32>,
 }
 
-impl NewSpace<'_> {
-    /// The weight of the stitch between lattice vertex `v` and node `n`, if it is usable: over
-    /// land (or none at all), within the slope cut-off, crossing no road.
-    fn stitch(&self, v: u32, n: u32) -> Option<f64> {
-        let (a, b) = (self.lattice.pos(v), self.graph.nodes[n as usize].pos);
-        let len = dist(a, b);
-        if len < 1e-6 {
-            return Some(0.0);
-        }
-        let t = &self.lattice.terrain;
-        let k = (len / (t.spacing / 2.0)).ceil() as usize;
-        for i in 0..=k {
-            let f = i as f64 / k as f64;
-            if t.class_at([a[0] + (b[0] - a[0]) * f, a[1] + (b[1] - a[1]) * f]) != LAND {
-                return None;
-            }
-        }
-        let grade = (t.elevation(a) - t.elevation(b)).abs() / len;
-        if grade > self.lattice.slope_cut {
+/// The weight of the stitch between lattice vertex `v` and node `n`, if it is usable: over
+/// land (or none at all), within the slope cut-off, crossing no road.
+fn stitch(lattice: &Lattice, graph: &Graph, v: u32, n: u32) -> Option<f64> {
+    let (a, b) = (lattice.pos(v), graph.nodes[n as usize].pos);
+    let len = dist(a, b);
+    if len < 1e-6 {
+        return Some(0.0);
+    }
+    let t = &lattice.terrain;
+    let k = (len / (t.spacing / 2.0)).ceil() as usize;
+    for i in 0..=k {
+        let f = i as f64 / k as f64;
+        if t.class_at([a[0] + (b[0] - a[0]) * f, a[1] + (b[1] - a[1]) * f]) != LAND {
             return None;
         }
-        let mid = [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0];
-        for s in self.graph.segs_near(mid, len / 2.0 + 1.0) {
-            let g = &self.graph.segs[s];
-            if !g.class.is_road() || g.a == n || g.b == n {
-                continue;
-            }
-            let (c, d) = self.graph.ends(s as u32);
-            if segment_intersection(a, b, c, d).is_some() {
-                return None;
-            }
-        }
-        Some(len * (self.lattice.o1 * grade).max(1.0))
     }
+    let grade = (t.elevation(a) - t.elevation(b)).abs() / len;
+    if grade > lattice.slope_cut {
+        return None;
+    }
+    let mid = [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0];
+    for s in graph.segs_near(mid, len / 2.0 + 1.0) {
+        let g = &graph.segs[s];
+        if !g.class.is_road() || g.a == n || g.b == n {
+            continue;
+        }
+        let (c, d) = graph.ends(s as u32);
+        if segment_intersection(a, b, c, d).is_some() {
+            return None;
+        }
+    }
+    Some(len * (lattice.o1 * grade).max(1.0))
 }
 
 impl Space for NewSpace<'_> {
@@ -241,7 +294,7 @@ impl Space for NewSpace<'_> {
             out.extend(self.edges.iter().map(|e| (e.to, e.weight)));
             if let Some(nodes) = self.stitches.to_nodes.get(&v) {
                 for &n in nodes {
-                    if let Some(w) = self.stitch(v, n) {
+                    if let Some(w) = stitch(self.lattice, self.graph, v, n) {
                         out.push((nl + n, w));
                     }
                 }
@@ -255,7 +308,7 @@ impl Space for NewSpace<'_> {
             }
             if let Some(list) = self.stitches.to_lattice.get(n as usize) {
                 for &u in list {
-                    if let Some(w) = self.stitch(u, n) {
+                    if let Some(w) = stitch(self.lattice, self.graph, u, n) {
                         out.push((u, w));
                     }
                 }

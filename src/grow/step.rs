@@ -8,6 +8,7 @@ use super::graph::{Class, Graph};
 use super::lattice::Lattice;
 use super::minor::{Grower, Growth, Nucleus};
 use super::paths::{shortest, Found, TurnPenalty};
+use super::roads;
 use super::spaces::{Costs, InitialSpace, MajorSpace, NewSpace, Stitches};
 use super::terrain::{Terrain, FORBIDDEN, LAND, WATER};
 use super::traffic::{self, Pair, Route, Traffic};
@@ -91,17 +92,25 @@ pub struct Sim {
     pub b: f64,
     /// One row per step so far.
     pub series: Vec<StepStats>,
-    /// Bridges built.
+    /// Bridges built (an existing road's bridges included).
     pub bridges: usize,
+    /// The node of the centre the context names (`[center]`), which the initial network joins
+    /// every neighbouring city to.
+    pub centre: Option<u32>,
     rng: Xoshiro256PlusPlus,
     growth: Growth,
 }
 
 impl Sim {
-    /// The initial network of a context (§3.2) with `seed` for every random choice.
+    /// The initial network of a context (§3.2) with `seed` for every random choice: its existing
+    /// roads, the neighbouring cities (at the ends of existing roads on the map's edge where
+    /// they are near), the paths between them (through the centre when the context names one),
+    /// the nuclei, and the pairs' first routes loaded.
     pub fn new(ctx: &Context, seed: u64) -> Result<Sim, GrowError> {
         let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
         let terrain = Terrain::build(ctx, seed)?;
+        roads::check_nuclei(ctx, &terrain)?;
+        let centre_vertex = roads::centre_vertex(ctx, &terrain)?;
         let p = &ctx.params;
         let lattice = Lattice::new(terrain, ctx.radius, p.slope_cut, p.o[0], p.bridge, p.c[2], p.c[4]);
         let mu = p.mu.unwrap_or_else(|| 0.5 + 0.4 * rng.random::<f64>());
@@ -120,19 +129,22 @@ impl Sim {
             b,
             series: Vec::new(),
             bridges: 0,
+            centre: None,
             rng,
             growth: Growth::default(),
             lattice,
         };
-        for v in vertices {
-            let pos = sim.lattice.pos(v);
-            let water = sim.lattice.class(v) == WATER;
-            let node = sim.graph.node_at(pos, !water);
-            sim.graph.nodes[node as usize].spawned = true;
-            sim.cities.push(City { vertex: v, pos, node, water });
-        }
+        let given = roads::insert(&mut sim.graph, ctx, &sim.lattice.terrain, ctx.width(0))?;
+        sim.bridges += given.bridges;
+        let nl = sim.lattice.len() as u32;
+        let centre = centre_vertex.map(|v| match roads::on_road(&sim.graph, ctx.center_position(), ctx.spacing) {
+            Some((_, q)) => nl + sim.graph.node_at(q, true),
+            None => v as u32,
+        });
+        let stitches = Stitches::new(&sim.graph, &sim.lattice, &Blocks::default(), p.stitch);
+        let starts = sim.place_city_nodes(&vertices, &given.edge_ends);
         let (built, found) = pairs(ctx, &sim.cities, &mut sim.rng);
-        sim.initial_network(&built, &found)?;
+        sim.initial_network(&built, &found, &starts, centre, &stitches)?;
         sim.place_initial_nuclei();
         sim.blocks = sim.compute_blocks();
         let demand = sim.demand(0);
@@ -142,6 +154,40 @@ impl Sim {
         let row = sim.stats(built.len() + found.len());
         sim.series.push(row);
         Ok(sim)
+    }
+
+    /// The cities' nodes: an existing road's end on the map's edge within 2ℓ of the city's
+    /// border vertex (each end taken once), else a node at the vertex. Returns each city's
+    /// state in the initial network's search (its vertex, or lattice size + its node).
+    fn place_city_nodes(&mut self, vertices: &[u32], edge_ends: &[u32]) -> Vec<u32> {
+        let nl = self.lattice.len() as u32;
+        let reach = 2.0 * self.ctx.spacing;
+        let mut taken: Vec<u32> = Vec::new();
+        let mut starts = Vec::with_capacity(vertices.len());
+        for &v in vertices {
+            let pos = self.lattice.pos(v);
+            let water = self.lattice.class(v) == WATER;
+            let end = edge_ends
+                .iter()
+                .copied()
+                .filter(|n| !taken.contains(n) && dist(self.graph.nodes[*n as usize].pos, pos) <= reach)
+                .min_by(|&a, &b| {
+                    let d = |n: u32| dist(self.graph.nodes[n as usize].pos, pos);
+                    d(a).total_cmp(&d(b)).then(a.cmp(&b))
+                });
+            let (node, start) = match end.filter(|_| !water) {
+                Some(n) => {
+                    taken.push(n);
+                    (n, nl + n)
+                }
+                None => (self.graph.node_at(pos, !water), v),
+            };
+            self.graph.nodes[node as usize].spawned = true;
+            let pos = self.graph.nodes[node as usize].pos;
+            self.cities.push(City { vertex: v, pos, node, water });
+            starts.push(start);
+        }
+        starts
     }
 
     /// t(t) = b · demand · G(t).
@@ -154,17 +200,43 @@ impl Sim {
         blocks::compute(&self.graph, &self.lattice.terrain, p.block_area, p.nb, p.settlement)
     }
 
-    /// Builds the roads of the pairs in `built` in order (each path's edges then weigh μ times
-    /// as much), then finds routes in G for the pairs in `found` (building them when G has none).
-    fn initial_network(&mut self, built: &[[usize; 2]], found: &[[usize; 2]]) -> Result<(), GrowError> {
+    /// The initial network. With a centre (a search state), a path from every city (in random
+    /// order) to it; then every pair's route is found in G. Without one, the roads of the pairs
+    /// in `built` in order, then routes in G for the pairs in `found` (building them when G has
+    /// none). Each path's lattice edges then weigh μ times as much; existing roads weigh μ
+    /// times their length from the start (see [`InitialSpace`]).
+    fn initial_network(
+        &mut self,
+        built: &[[usize; 2]],
+        found: &[[usize; 2]],
+        starts: &[u32],
+        centre: Option<u32>,
+        stitches: &Stitches,
+    ) -> Result<(), GrowError> {
         let mut used: HashSet<(u32, u32)> = HashSet::new();
         let c = self.ctx.params.c;
         let h = [self.mu, 1.0, c[2], c[4]].into_iter().fold(f64::INFINITY, f64::min);
+        if let Some(target) = centre {
+            let mut order: Vec<usize> = (0..self.cities.len()).collect();
+            for i in (1..order.len()).rev() {
+                let j = self.rng.random_range(0..=i);
+                order.swap(i, j);
+            }
+            for i in order {
+                let Some(states) = self.initial_path(starts[i], target, h, &mut used, stitches) else {
+                    return Err(GrowError::Unreachable { from: self.cities[i].pos, to: self.ctx.center_position() });
+                };
+                self.build_lattice_path(&states, 0);
+            }
+            let nl = self.lattice.len() as u32;
+            self.centre =
+                Some(if target >= nl { target - nl } else { self.graph.node_at(self.lattice.pos(target), true) });
+        }
         for &pair in built.iter().chain(found) {
             let idx = self.traffic.pairs.len();
             self.traffic.pairs.push(Pair { cities: pair, routes: Vec::new(), overflow: 0.0 });
             let (u, v) = (self.cities[pair[0]].node, self.cities[pair[1]].node);
-            if found.contains(&pair) {
+            if centre.is_some() || found.contains(&pair) {
                 let costs = Costs { c, per_lane: self.traffic.per_lane, delta: 0.0 };
                 let mut space = MajorSpace { graph: &self.graph, blocks: &self.blocks, costs };
                 if let Some(f) = shortest(&mut space, u, v, 0.0, None) {
@@ -172,19 +244,43 @@ impl Sim {
                     continue;
                 }
             }
-            let (a, b) = (self.cities[pair[0]].vertex, self.cities[pair[1]].vertex);
-            let mut space =
-                InitialSpace { lattice: &self.lattice, used: &used, mu: self.mu, edges: Vec::new(), buf: Vec::new() };
-            let Some(f) = shortest(&mut space, a, b, h, None) else {
+            let Some(states) = self.initial_path(starts[pair[0]], starts[pair[1]], h, &mut used, stitches) else {
                 return Err(GrowError::Unreachable { from: self.cities[pair[0]].pos, to: self.cities[pair[1]].pos });
             };
-            for w in f.states.windows(2) {
-                used.insert((w[0].min(w[1]), w[0].max(w[1])));
-            }
-            let chain = self.build_lattice_path(&f.states, 0);
+            let chain = self.build_lattice_path(&states, 0);
             self.add_route(idx, chain);
         }
         Ok(())
+    }
+
+    /// The least-cost path of the initial network's graph between two states; its lattice edges
+    /// are marked used.
+    fn initial_path(
+        &self,
+        from: u32,
+        to: u32,
+        h: f64,
+        used: &mut HashSet<(u32, u32)>,
+        stitches: &Stitches,
+    ) -> Option<Vec<u32>> {
+        let mut space = InitialSpace {
+            lattice: &self.lattice,
+            graph: &self.graph,
+            stitches,
+            used,
+            mu: self.mu,
+            c: self.ctx.params.c,
+            edges: Vec::new(),
+            buf: Vec::new(),
+        };
+        let f = shortest(&mut space, from, to, h, None)?;
+        let nl = self.lattice.len() as u32;
+        for w in f.states.windows(2) {
+            if w[0] < nl && w[1] < nl {
+                used.insert((w[0].min(w[1]), w[0].max(w[1])));
+            }
+        }
+        Some(f.states)
     }
 
     fn add_route(&mut self, pair: usize, nodes: Vec<u32>) {
@@ -288,12 +384,13 @@ impl Sim {
         }
     }
 
-    /// Nuclei at junctions (more than two roads) and at the land ends of bridges and harbours;
-    /// the one nearest the centre is the centre nucleus.
+    /// Nuclei at junctions of more than two trade roads and at the land ends of bridges and
+    /// harbours; the centre nucleus is at the named centre, else the one nearest the map's
+    /// centre. Then the context's nuclei from step 0.
     fn place_initial_nuclei(&mut self) {
         let mut found: Vec<(u32, usize)> = Vec::new();
         for n in 0..self.graph.nodes.len() as u32 {
-            let deg = self.graph.road_degree(n);
+            let deg = self.trade_degree(n);
             let special = self.graph.adj[n as usize]
                 .iter()
                 .any(|&s| matches!(self.graph.segs[s as usize].class, Class::Bridge | Class::Harbour));
@@ -307,6 +404,32 @@ impl Sim {
             let strength = 0.9 * deg as f64 / max_deg * self.attenuation(pos);
             self.add_nucleus(pos, strength);
         }
+        let strength = self.ctx.params.center_strength;
+        if let Some(n) = self.centre {
+            let pos = self.graph.nodes[n as usize].pos;
+            let near = 2.0 * self.ctx.spacing;
+            self.nuclei.retain(|q| dist(q.pos, pos) >= near);
+            self.nuclei.insert(0, Nucleus { pos, strength, born: 0 });
+        } else {
+            self.place_centre_nucleus(strength);
+        }
+        self.add_context_nuclei(0);
+    }
+
+    /// Road segments other than minor roads at a node.
+    fn trade_degree(&self, n: u32) -> usize {
+        self.graph.adj[n as usize]
+            .iter()
+            .filter(|&&s| {
+                let c = self.graph.segs[s as usize].class;
+                c.is_road() && c.is_trade()
+            })
+            .count()
+    }
+
+    /// Without a named centre: the nucleus nearest the map's centre is q_c (a road node there
+    /// when there is no nucleus).
+    fn place_centre_nucleus(&mut self, strength: f64) {
         let c = self.ctx.center_position();
         let centre = match self.nuclei.iter().enumerate().min_by(|a, b| dist(a.1.pos, c).total_cmp(&dist(b.1.pos, c))) {
             Some((i, _)) => i,
@@ -323,8 +446,15 @@ impl Sim {
             }
         };
         let mut q = self.nuclei.remove(centre);
-        q.strength = self.ctx.params.center_strength;
+        q.strength = strength;
         self.nuclei.insert(0, q);
+    }
+
+    /// The context's `[[nucleus]]` entries whose `from` is step `t`, as given.
+    fn add_context_nuclei(&mut self, t: u32) {
+        for n in self.ctx.nucleus.iter().filter(|n| n.from == t) {
+            self.nuclei.push(Nucleus { pos: n.position, strength: n.strength, born: t });
+        }
     }
 
     fn add_nucleus(&mut self, pos: P, strength: f64) -> bool {
@@ -348,6 +478,7 @@ impl Sim {
     pub fn step(&mut self) {
         self.step += 1;
         let t = self.step;
+        self.add_context_nuclei(t);
         let count = self.ctx.growth(t).round() as usize;
         let mark = self.graph.splits.len();
         {
@@ -460,12 +591,16 @@ impl Sim {
         true
     }
 
-    /// Widens a new route's extendible pieces to A(t) and makes reused minor roads major (F16).
+    /// Widens a new route's extendible pieces to A(t) and makes reused minor roads major (F16);
+    /// fixed roads are kept as they are.
     fn widen(&mut self, chain: &[u32]) {
         let a = self.ctx.width(self.step);
         for s in traffic::segments(&self.graph, chain) {
             let ext = self.blocks.extendible.get(s as usize).copied().unwrap_or(true);
             let g = &mut self.graph.segs[s as usize];
+            if g.fixed {
+                continue;
+            }
             match g.class {
                 Class::Minor => {
                     g.class = Class::Major;

@@ -3,7 +3,7 @@
 
 use super::context::Context;
 use super::GrowError;
-use crate::geometry::{closest_on_segment, dist, ring_contains, P};
+use crate::geometry::{closest_on_segment, dist, ring_covers, P};
 use rand::rngs::Xoshiro256PlusPlus;
 use rand::{RngExt, SeedableRng};
 
@@ -31,8 +31,8 @@ pub struct Terrain {
 
 impl Terrain {
     /// The terrain of a context: elevation from its file or generated from `seed`, then water and
-    /// forbidden areas rasterised (a vertex is water inside a polygon or within half a river's
-    /// width of its centre line).
+    /// forbidden areas rasterised (a vertex is water inside or on a polygon, or within half a
+    /// river's width of its centre line).
     pub fn build(ctx: &Context, seed: u64) -> Result<Terrain, GrowError> {
         let [nx, ny] = ctx.dims();
         let s = ctx.spacing;
@@ -118,7 +118,7 @@ fn mark_polygon(class: &mut [u8], nx: usize, ny: usize, s: f64, ring: &[P], valu
     }
     for y in range(y0, y1, s, ny) {
         for x in range(x0, x1, s, nx) {
-            if ring_contains(ring, [x as f64 * s, y as f64 * s]) {
+            if ring_covers(ring, [x as f64 * s, y as f64 * s]) {
                 class[y * nx + x] = value;
             }
         }
@@ -232,6 +232,29 @@ mod tests {
         assert_eq!(t.class_at([200.0, 240.0]), LAND);
         assert_eq!(t.class_at([40.0, 40.0]), WATER);
         assert_eq!(t.class_at([-5.0, 40.0]), FORBIDDEN);
+    }
+
+    /// A polygon drawn along the map's edge covers the edge's vertices on every side of the map
+    /// (the closed rule), and stops where it stops.
+    #[test]
+    fn water_along_every_edge_covers_the_edge() {
+        let strips = [
+            ("west", "[[0, 0], [60, 0], [60, 400], [0, 400]]", [0usize, 3], 0usize),
+            ("east", "[[340, 0], [400, 0], [400, 400], [340, 400]]", [17, 20], 0),
+            ("south", "[[0, 0], [400, 0], [400, 60], [0, 60]]", [0, 3], 1),
+            ("north", "[[0, 340], [400, 340], [400, 400], [0, 400]]", [17, 20], 1),
+        ];
+        for (name, ring, [lo, hi], axis) in strips {
+            let ctx = Context::from_toml(&format!("size = [400, 400]\n[[water]]\npolygon = {ring}")).unwrap();
+            let t = Terrain::build(&ctx, 1).unwrap();
+            for y in 0..t.ny {
+                for x in 0..t.nx {
+                    let k = if axis == 0 { x } else { y };
+                    let want = if (lo..=hi).contains(&k) { WATER } else { LAND };
+                    assert_eq!(t.class[y * t.nx + x], want, "{name} strip: vertex ({x}, {y})");
+                }
+            }
+        }
     }
 
     #[test]

@@ -17,9 +17,9 @@
 //! - **Forbidden ground**: no road of any class runs over a forbidden area.
 //!
 //! Water and forbidden ground are decided as the lattice decides them: a point has the class of
-//! its nearest lattice vertex, and a vertex is water inside a water polygon (even–odd) or within
-//! half a river's width of its centre line (`≤`), forbidden inside a forbidden polygon (which
-//! wins over water). Roads are only checked at lattice resolution by the generator — a minor
+//! its nearest lattice vertex, and a vertex is water inside or on a water polygon (even–odd,
+//! closed: [`ring_covers`]) or within half a river's width of its centre line (`≤`), forbidden
+//! inside or on a forbidden polygon (which wins over water). Roads are only checked at lattice resolution by the generator — a minor
 //! road's samples every ≤ ℓ/2 must be land, a major road's lattice edges pass land vertices
 //! only — so a legal road may clip the corner of a water vertex's cell between two of its
 //! samples, for less than ℓ/2. The check therefore samples each segment every ≤ ℓ/8 and reports
@@ -32,7 +32,7 @@ use super::graph::{Class, SNAP};
 use super::output::{mm, node_ids};
 use super::step::Sim;
 use crate::geometry::index::SegmentIndex;
-use crate::geometry::{closest_on_segment, dist, ring_contains, P};
+use crate::geometry::{closest_on_segment, dist, ring_covers, P};
 use serde::Serialize;
 use std::collections::{BTreeMap, HashMap};
 
@@ -342,11 +342,11 @@ impl<'a> Ground<'a> {
 
     /// A vertex's cover by the context's definitions (docs/grow.md).
     fn classify(&self, v: P) -> Cover {
-        if self.ctx.forbidden.iter().any(|f| ring_contains(&f.polygon, v)) {
+        if self.ctx.forbidden.iter().any(|f| ring_covers(&f.polygon, v)) {
             return Cover::Forbidden;
         }
         let wet = self.ctx.water.iter().any(|w| match (&w.polygon, &w.river, w.width) {
-            (Some(ring), _, _) => ring_contains(ring, v),
+            (Some(ring), _, _) => ring_covers(ring, v),
             (None, Some(line), Some(width)) => {
                 line.windows(2).any(|s| dist(v, closest_on_segment(v, s[0], s[1]).0) <= width / 2.0)
             }
