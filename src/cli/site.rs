@@ -13,7 +13,7 @@ pub struct SiteArgs {
     /// The OpenStreetMap extract (`.osm.pbf` or `.osm` XML; netspec never downloads one).
     pub extract: PathBuf,
     /// The region as a box: west,south,east,north (WGS 84 degrees).
-    #[arg(long, value_name = "W,S,E,N", value_parser = parse_bbox, conflicts_with = "polygon", required_unless_present = "polygon")]
+    #[arg(long, value_name = "W,S,E,N", value_parser = parse_bbox, allow_hyphen_values = true, conflicts_with = "polygon", required_unless_present = "polygon")]
     pub bbox: Option<[f64; 4]>,
     /// The region as a GeoJSON file whose one Polygon is its outline.
     #[arg(long, value_name = "REGION.geojson")]

@@ -220,7 +220,15 @@ impl Polygon {
             ts.sort_by(f64::total_cmp);
             ts.dedup();
             for k in ts.windows(2) {
-                let at = |t: f64| if t <= 0.0 { a } else if t >= 1.0 { b } else { super::lerp(a, b, t) };
+                let at = |t: f64| {
+                    if t <= 0.0 {
+                        a
+                    } else if t >= 1.0 {
+                        b
+                    } else {
+                        super::lerp(a, b, t)
+                    }
+                };
                 let (p, q) = (at(k[0]), at(k[1]));
                 if dist(p, q) == 0.0 {
                     continue;

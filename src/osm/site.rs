@@ -112,8 +112,8 @@ struct Site {
     roads: Vec<(Vec<P>, ways::MajorRoad)>,
     whole_roads: Vec<Vec<P>>,
     streets: Vec<(Vec<P>, StreetPiece)>,
-    water: Vec<Vec<P>>,
-    forbidden: Vec<Vec<P>>,
+    water: geo::MultiPolygon<f64>,
+    forbidden: geo::MultiPolygon<f64>,
     dropped: Vec<f64>,
     incomplete: usize,
 }
@@ -287,22 +287,7 @@ fn build(ex: &Extract, req: &SiteRequest, ring: &[[f64; 2]]) -> Result<Site, Osm
     let (water, _) = areas::areas(ex, &water_class, &projection, &region_geo);
     let others: BTreeSet<AreaClass> = req.holes.iter().copied().filter(|c| *c != AreaClass::Water).collect();
     let (forbidden, _) = areas::areas(ex, &others, &projection, &region_geo);
-    let rings = |m: geo::MultiPolygon<f64>| -> Vec<Vec<P>> {
-        let m = m.intersection(&geo::MultiPolygon::new(vec![region_geo.clone()]));
-        m.0.iter().filter(|p| p.unsigned_area() >= MIN_HOLE).map(|p| ring_of(p.exterior())).collect()
-    };
-    Ok(Site {
-        projection,
-        region,
-        land,
-        roads,
-        whole_roads,
-        streets,
-        water: rings(water),
-        forbidden: rings(forbidden),
-        dropped,
-        incomplete,
-    })
+    Ok(Site { projection, region, land, roads, whole_roads, streets, water, forbidden, dropped, incomplete })
 }
 
 /// A ring's points, not closed, without spikes (a vertex where the ring runs back along itself,
@@ -471,21 +456,31 @@ fn mm(p: P) -> P {
     [(p[0] * 1000.0).round() / 1000.0 + 0.0, (p[1] * 1000.0).round() / 1000.0 + 0.0]
 }
 
-/// The grow context: the map is the land's bounding box, its origin `(0, 0)` the box's
-/// south-west corner (the context's `origin` is that corner in WGS 84); the real water and the
-/// other holes (as forbidden land), the real major roads whole (bridges included) clipped to the
-/// map as existing roads, a neighbouring city where each leaves the map, the centre at the
-/// land's label point.
+/// The grow context: the map is the region's bounding box (rounded up to the metre), its origin
+/// `(0, 0)` the box's south-west corner (the context's `origin` is that corner in WGS 84); the
+/// real water and the other holes (as forbidden land) on the map, the real major roads whole
+/// (bridges included) clipped to the map and without ends on water, as existing roads; a
+/// neighbouring city where each leaves the map; the centre at the land's label point.
 fn grow_toml(site: &Site, name: &str, source: &str) -> Result<String, OsmError> {
-    let [lo, hi] = site.land.bounds();
+    let [lo, hi] = site.region.bounds();
     let size = [(hi[0] - lo[0]).ceil(), (hi[1] - lo[1]).ceil()];
     let rect = [0.0, 0.0, size[0], size[1]];
     let to_map = |p: P| [p[0] - lo[0], p[1] - lo[1]];
+    let map = geo::MultiPolygon::new(vec![areas::geo_polygon(
+        &[lo, [lo[0] + size[0], lo[1]], [lo[0] + size[0], lo[1] + size[1]], [lo[0], lo[1] + size[1]]],
+        &[],
+    )]);
+    let on_map = |m: &geo::MultiPolygon<f64>| -> Vec<Vec<P>> {
+        let m = m.intersection(&map);
+        let big = m.0.iter().filter(|p| p.unsigned_area() >= MIN_HOLE);
+        big.map(|p| ring_of(p.exterior()).into_iter().map(|q| mm(to_map(q))).collect()).collect()
+    };
+    let (water, forbidden) = (on_map(&site.water), on_map(&site.forbidden));
     let mut roads = Vec::new();
     let mut exits: Vec<P> = Vec::new();
     for run in &site.whole_roads {
         let pts: Vec<P> = run.iter().map(|&p| to_map(p)).collect();
-        for piece in clip_to_rect(&pts, rect) {
+        for piece in clip_to_rect(&pts, rect).iter().filter_map(|p| trim_to_land(p, &water)) {
             for end in [piece[0], piece[piece.len() - 1]] {
                 let on_edge = end[0] <= 1e-6 || end[1] <= 1e-6 || end[0] >= size[0] - 1e-6 || end[1] >= size[1] - 1e-6;
                 if on_edge && !exits.iter().any(|&q| dist(q, end) < 200.0) {
@@ -497,9 +492,7 @@ fn grow_toml(site: &Site, name: &str, source: &str) -> Result<String, OsmError> 
             }
         }
     }
-    let polys = |rings: &[Vec<P>]| {
-        rings.iter().map(|r| GrowPolygon { polygon: r.iter().map(|&p| mm(to_map(p))).collect() }).collect()
-    };
+    let polys = |rings: &[Vec<P>]| rings.iter().map(|r| GrowPolygon { polygon: r.clone() }).collect();
     let holes: Vec<Vec<P>> = site.land.holes().to_vec();
     let center = polygon_label_point(site.land.outer(), &holes).unwrap_or(site.land.outer()[0]);
     let file = GrowFile {
@@ -509,13 +502,43 @@ fn grow_toml(site: &Site, name: &str, source: &str) -> Result<String, OsmError> 
         steps: GROW_STEPS,
         center: GrowPoint { position: mm(to_map(center)) },
         neighbour: exits.iter().map(|&p| GrowPoint { position: mm(p) }).collect(),
-        water: polys(&site.water),
-        forbidden: polys(&site.forbidden),
+        water: polys(&water),
+        forbidden: polys(&forbidden),
         road: roads,
     };
     let text =
         toml::to_string(&file).map_err(|e| OsmError::Write { what: "grow.toml".into(), message: e.to_string() })?;
     Ok(header("The grow context", name, source) + &text)
+}
+
+/// A road without its ends on water (a bridge cut by the map's edge): from its first point on
+/// land to its last (a point within half a metre of water's edge is wet), sampled every metre;
+/// `None` when no point of it is on land.
+fn trim_to_land(line: &[P], water: &[Vec<P>]) -> Option<Vec<P>> {
+    let near = |p: P, r: &[P]| {
+        (0..r.len()).any(|i| dist(p, crate::geometry::closest_on_segment(p, r[i], r[(i + 1) % r.len()]).0) <= 0.5)
+    };
+    let wet = |p: P| water.iter().any(|r| crate::geometry::ring_contains(r, p) || near(p, r));
+    let total = polyline_length(line);
+    let steps = total.ceil().max(1.0) as usize;
+    let at = |k: usize| total * k as f64 / steps as f64;
+    let first = (0..=steps).find(|&k| !wet(crate::geometry::point_at_length(line, at(k))))?;
+    let last = (0..=steps).rev().find(|&k| !wet(crate::geometry::point_at_length(line, at(k))))?;
+    if first == 0 && last == steps {
+        return Some(line.to_vec());
+    }
+    let (s0, s1) = (at(first), at(last));
+    let mut out = vec![crate::geometry::point_at_length(line, s0)];
+    let mut run = 0.0;
+    for w in line.windows(2) {
+        run += dist(w[0], w[1]);
+        if run > s0 && run < s1 {
+            out.push(w[1]);
+        }
+    }
+    out.push(crate::geometry::point_at_length(line, s1));
+    out.dedup();
+    (out.len() >= 2).then_some(out)
 }
 
 /// A polyline clipped to a rectangle `[x0, y0, x1, y1]`.
@@ -602,6 +625,15 @@ mod tests {
         let (l, dropped) = land(&square, &cut, false).unwrap();
         assert!((l.unsigned_area() - 990_000.0).abs() < 1.0);
         assert_eq!(dropped.len(), 1);
+        let lake = vec![[40.0, -10.0], [60.0, -10.0], [60.0, 10.0], [40.0, 10.0]];
+        let bridge = vec![[0.0, 0.0], [100.0, 0.0]];
+        assert_eq!(
+            trim_to_land(&bridge, std::slice::from_ref(&lake)),
+            Some(bridge.clone()),
+            "a bridge in the middle stays"
+        );
+        let t = trim_to_land(&[[50.0, 0.0], [100.0, 0.0]], &[lake]).unwrap();
+        assert_eq!(t, vec![[60.0, 0.0], [100.0, 0.0]], "a road starting on water starts on the shore");
         let spike = drop_spikes(vec![[0.0, 0.0], [10.0, 0.0], [10.0, 10.0], [10.0, 5.0], [5.0, 5.0], [0.0, 5.0]]);
         assert_eq!(spike, vec![[0.0, 0.0], [10.0, 0.0], [10.0, 5.0], [5.0, 5.0], [0.0, 5.0]]);
         assert!(outside_share(&[[0.0, 0.0], [2.0, 0.0], [2.0, 1.0], [0.0, 1.0]], [1.0, 0.0, 3.0, 3.0]) - 0.5 < 1e-12);
