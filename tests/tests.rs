@@ -39,6 +39,8 @@ mod level_families;
 mod level_bridge;
 // Road networks grown by traffic (Beneš et al. 2014) on small maps.
 mod grow;
+// Real sites from OpenStreetMap extracts, and their streets measured as OSMnx measures them.
+mod site;
 // One time limit per command; nothing found is lost (processes killed with SIGKILL).
 mod promises;
 

@@ -228,12 +228,38 @@ pub fn clip_road(polygon: &Polygon, road: &[P], what: &str) -> Result<Vec<Vec<P>
         .0
         .iter()
         .map(|l| l.0.iter().map(|c| [c.x, c.y]).collect::<Vec<P>>())
-        .filter(|l| l.len() >= 2 && super::polyline_length(l) > 0.0)
+        .filter(|l| l.len() >= 2 && super::polyline_length(l) > 4.0 * SHORE)
+        .map(|l| off_the_holes(polygon, l))
         .collect();
     if pieces.is_empty() {
         return Err(err(RoadProblem::Outside));
     }
     Ok(pieces)
+}
+
+/// How far (metres) a road piece that ends on a hole's edge stops short of it.
+const SHORE: f64 = 0.01;
+
+/// A road piece whose end lies on a hole's edge (where the clip split it) pulled back by
+/// [`SHORE`] along itself, so that no rounding puts the end inside the hole.
+fn off_the_holes(polygon: &Polygon, mut piece: Vec<P>) -> Vec<P> {
+    let on_hole = |p: P| {
+        polygon.holes().iter().any(|h| {
+            (0..h.len()).any(|k| super::dist(p, super::closest_on_segment(p, h[k], h[(k + 1) % h.len()]).0) <= SHORE)
+        })
+    };
+    for reversed in [false, true] {
+        if reversed {
+            piece.reverse();
+        }
+        let (a, b) = (piece[0], piece[1]);
+        let l = super::dist(a, b);
+        if on_hole(a) && l > 2.0 * SHORE {
+            piece[0] = super::lerp(a, b, SHORE / l);
+        }
+    }
+    piece.reverse();
+    piece
 }
 
 fn positions(feature: usize, ring: &[geojson::Position]) -> Result<Vec<[f64; 2]>, SiteError> {
