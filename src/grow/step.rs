@@ -747,24 +747,17 @@ fn remove_loops(nodes: &mut Vec<u32>) {
 
 /// The 4-way share and orientation entropy of the minor roads built since step `from`.
 fn era_measures(graph: &Graph, from: u32) -> (f64, f64) {
-    let mut bins = [0.0f64; 18];
+    let mut segments = Vec::new();
     let mut nodes = HashSet::new();
     for (s, g) in graph.segs.iter().enumerate() {
         if g.class != Class::Minor || g.born < from.max(1) {
             continue;
         }
-        let (a, b) = graph.ends(s as u32);
-        let ang = (b[1] - a[1]).atan2(b[0] - a[0]).rem_euclid(std::f64::consts::PI);
-        bins[((ang / std::f64::consts::PI * 18.0) as usize).min(17)] += dist(a, b);
+        segments.push(graph.ends(s as u32));
         nodes.insert(g.a);
         nodes.insert(g.b);
     }
-    let total: f64 = bins.iter().sum();
-    let entropy = if total > 0.0 {
-        -bins.iter().filter(|&&v| v > 0.0).map(|&v| (v / total) * (v / total).log2()).sum::<f64>()
-    } else {
-        0.0
-    };
+    let entropy = crate::stats::orientation::axial_entropy_bits(segments, 18);
     let (mut junctions, mut four) = (0, 0);
     for n in nodes {
         let d = graph.road_degree(n);

@@ -197,6 +197,15 @@ pub fn street_nodes(region: &Polygon, streets: &[&[P]]) -> StreetNodes {
     out
 }
 
+/// Intersections (valence ≥ 3) and dead ends (valence 1, not `exempt` — a street leaving the
+/// region there) of a graph given by its vertices' valences.
+pub fn valence_nodes(valences: &[usize], exempt: &[bool]) -> StreetNodes {
+    StreetNodes {
+        intersections: valences.iter().filter(|&&d| d >= 3).count(),
+        dead_ends: valences.iter().zip(exempt).filter(|(&d, &x)| d == 1 && !x).count(),
+    }
+}
+
 /// The street length Yang et al. count: a street along the region's boundary (every vertex and
 /// edge midpoint on it) counts with half its length, since it serves the region from one side.
 pub fn street_length(region: &Polygon, streets: &[&[P]]) -> f64 {

@@ -330,8 +330,9 @@ pub fn build(
         degree[e.a] += 1;
         degree[e.b] += 1;
     }
-    summary.intersections = degree.iter().filter(|&&d| d >= 3).count();
-    summary.dead_ends = degree.iter().zip(&net.nodes).filter(|(&d, n)| d == 1 && !n.entrance).count();
+    let entrances: Vec<bool> = net.nodes.iter().map(|n| n.entrance).collect();
+    let nodes = crate::stats::yang::valence_nodes(&degree, &entrances);
+    (summary.intersections, summary.dead_ends) = (nodes.intersections, nodes.dead_ends);
     let vol = |id: String| edata.get(&id).map_or(0.0, |d| d.volume());
     let mut edge_volumes = Vec::new();
     for e in &net.edges {
@@ -339,7 +340,7 @@ pub fn build(
         summary.streets_per_level[l] += 1;
         summary.km_per_level[l] += e.length() / 1000.0;
         let (f, b) = (super::export::edge_id(e.id, true), super::export::edge_id(e.id, false));
-        summary.streets_in_net += usize::from(sumo_net.edges.contains_key(&f) && sumo_net.edges.contains_key(&b));
+        summary.streets_in_net += usize::from(sumo_net.edges.contains_key(&f) && (e.oneway || sumo_net.edges.contains_key(&b)));
         edge_volumes.push(EdgeVolume { street: e.id, level: e.level, forward: vol(f), backward: vol(b) });
     }
     let predicted: Vec<(f64, f64, f64)> = net
