@@ -22,11 +22,14 @@ fn ll(x: f64, y: f64) -> (f64, f64) {
     (LON0 + x / (111_320.0 * LAT0.to_radians().cos()), LAT0 + y / 111_132.0)
 }
 
+/// Tags of a way.
+type Tags = Vec<(&'static str, &'static str)>;
+
 /// An OSM XML extract: nodes from points (metres), ways with tags.
 #[derive(Default)]
 struct Osm {
     nodes: Vec<(i64, f64, f64)>,
-    ways: Vec<(i64, Vec<i64>, Vec<(&'static str, &'static str)>)>,
+    ways: Vec<(i64, Vec<i64>, Tags)>,
 }
 
 impl Osm {
