@@ -38,6 +38,7 @@ fn request(extract: PathBuf, bbox: [f64; 4], out: PathBuf, grow: bool) -> SiteRe
         city: false,
         largest: false,
         name: None,
+        exclude: Default::default(),
     }
 }
 

@@ -42,6 +42,9 @@ pub struct SiteArgs {
     /// The site's name (default: the output directory's).
     #[arg(long)]
     pub name: Option<String>,
+    /// OSM ids of ways of the major classes to leave out of the major roads (comma-separated).
+    #[arg(long, value_delimiter = ',', value_name = "WAY_IDS")]
+    pub exclude: Vec<i64>,
 }
 
 fn parse_bbox(s: &str) -> Result<[f64; 4], String> {
@@ -74,6 +77,7 @@ pub fn run(a: SiteArgs) -> Result<ExitCode> {
         city: a.city,
         largest: a.largest,
         name: a.name,
+        exclude: a.exclude.into_iter().collect(),
     };
     let s = site::run(&req)?;
     println!(

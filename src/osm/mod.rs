@@ -67,6 +67,9 @@ pub enum OsmError {
         /// What is wrong.
         message: String,
     },
+    /// A region drawn on a map (not a file) is wrong.
+    #[error("the drawn region: {0}")]
+    Drawn(String),
     /// Water or the chosen holes split the region into several pieces.
     #[error("the holes split the region into {} pieces of at least 1 ha ({}); draw a region that one piece fills, or pass --largest to keep the largest", areas.len(), areas.iter().map(|a| format!("{:.2} ha", a / 1e4)).collect::<Vec<_>>().join(", "))]
     Islands {

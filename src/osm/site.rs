@@ -50,6 +50,8 @@ pub enum Area {
     Bbox([f64; 4]),
     /// A GeoJSON file whose polygon is the region.
     Polygon(PathBuf),
+    /// A ring of `[longitude, latitude]` points (a region drawn on a map).
+    Ring(Vec<[f64; 2]>),
 }
 
 /// What `netspec site` is asked for.
@@ -75,6 +77,8 @@ pub struct SiteRequest {
     pub largest: bool,
     /// The site's name (default: the output directory's).
     pub name: Option<String>,
+    /// OSM ids of ways of the major classes to leave out of the major roads.
+    pub exclude: BTreeSet<i64>,
 }
 
 /// What was made.
@@ -120,14 +124,18 @@ struct Site {
 
 /// Makes the site and writes its files (see the module documentation).
 pub fn run(req: &SiteRequest) -> Result<SiteSummary, OsmError> {
-    let ex = read::read(&req.extract)?;
+    run_on(&read::read(&req.extract)?, req)
+}
+
+/// [`run`] on an extract already read (`req.extract` names it in messages).
+pub fn run_on(ex: &Extract, req: &SiteRequest) -> Result<SiteSummary, OsmError> {
     let extent = ex.extent().ok_or(OsmError::Empty { path: req.extract.clone() })?;
     let (ring, what) = region_ring(req)?;
     let outside_share = outside_share(&ring, extent);
     if outside_share >= 1.0 {
         return Err(OsmError::Outside { what, path: req.extract.clone(), extent });
     }
-    let site = build(&ex, req, &ring)?;
+    let site = build(ex, req, &ring)?;
     let name = req.name.clone().unwrap_or_else(|| {
         req.out.file_name().map_or_else(|| "site".to_string(), |n| n.to_string_lossy().into_owned())
     });
@@ -206,6 +214,14 @@ fn region_ring(req: &SiteRequest) -> Result<(Vec<[f64; 2]>, String), OsmError> {
                 site.polygon.outer().iter().map(|&p| site.projection.to_wgs84(p)).collect::<Result<Vec<_>, _>>()?;
             Ok((ring, format!("the polygon of {}", path.display())))
         }
+        Area::Ring(ring) => {
+            let ok =
+                ring.iter().all(|p| p[0].is_finite() && p[1].is_finite() && p[0].abs() <= 180.0 && p[1].abs() < 90.0);
+            if !ok || ring.len() < 3 {
+                return Err(OsmError::Drawn("a region needs three or more WGS 84 positions".into()));
+            }
+            Ok((ring.clone(), "the drawn region".into()))
+        }
     }
 }
 
@@ -235,12 +251,10 @@ fn round_ll(ll: [f64; 2]) -> [f64; 2] {
 fn build(ex: &Extract, req: &SiteRequest, ring: &[[f64; 2]]) -> Result<Site, OsmError> {
     let [lo, hi] = crate::geometry::polygon::bounds(ring);
     let projection = Projection::new([0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])])?;
-    let bad = |message: String| OsmError::Region {
-        path: match &req.area {
-            Area::Polygon(p) => p.clone(),
-            Area::Bbox(_) => req.extract.clone(),
-        },
-        message,
+    let bad = |message: String| match &req.area {
+        Area::Polygon(p) => OsmError::Region { path: p.clone(), message },
+        Area::Bbox(_) => OsmError::Region { path: req.extract.clone(), message },
+        Area::Ring(_) => OsmError::Drawn(message),
     };
     let local = ring.iter().map(|&q| projection.to_local(q)).collect::<Result<Vec<P>, _>>()?;
     let region = Polygon::new(local, vec![]).map_err(|e| bad(format!("the region: {e}")))?;
@@ -259,7 +273,9 @@ fn build(ex: &Extract, req: &SiteRequest, ring: &[[f64; 2]]) -> Result<Site, Osm
     };
     let mut roads = Vec::new();
     let mut whole_roads = Vec::new();
-    for road in ways::major_roads(ex, &req.major) {
+    for road in
+        ways::major_roads(ex, &req.major).into_iter().filter(|r| !r.ways.iter().any(|w| req.exclude.contains(w)))
+    {
         for run in project_run(&road.refs) {
             let line = geo::MultiLineString::new(vec![run.iter().map(|p| (p[0], p[1])).collect()]);
             for piece in land_geo.clip(&line, false).0 {
