@@ -682,7 +682,14 @@ fn run(cli: Cli) -> Result<ExitCode> {
         Command::Site(args) => cli::site::run(args),
         Command::Stats(args) => cli::stats::run(args),
         Command::Serve { root, port, bind, max_solves, threads } => {
-            let mut opts = netspec::serve::ServeOptions { root, port, bind, max_solves, ..Default::default() };
+            let mut opts = netspec::serve::ServeOptions {
+                root,
+                port,
+                bind,
+                max_solves,
+                netspec_bin: std::env::current_exe().ok(),
+                ..Default::default()
+            };
             opts.threads = threads.unwrap_or(opts.threads);
             netspec::serve::run(opts, |addr| println!("netspec serve: http://{addr}/ (Ctrl-C stops)"))?;
             Ok(ExitCode::SUCCESS)

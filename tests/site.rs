@@ -16,7 +16,7 @@ use std::process::{Command, Output};
 const LON0: f64 = 11.0;
 const LAT0: f64 = 48.0;
 /// The region of every test: about 1.19 × 1.11 km inside the extract.
-const BBOX: &str = "11.002,48.001,11.018,48.011";
+pub const BBOX: &str = "11.002,48.001,11.018,48.011";
 
 fn ll(x: f64, y: f64) -> (f64, f64) {
     (LON0 + x / (111_320.0 * LAT0.to_radians().cos()), LAT0 + y / 111_132.0)
@@ -74,6 +74,11 @@ impl Osm {
         }
         s + "</osm>\n"
     }
+}
+
+/// The made-up town as OSM XML (for the browser's tests too).
+pub fn town_xml() -> String {
+    town().xml()
 }
 
 /// The made-up town (metres east and north of 11° E, 48° N; the region spans about 150–1340 ×

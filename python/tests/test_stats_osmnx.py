@@ -24,6 +24,7 @@ import json
 import math
 import subprocess
 from pathlib import Path
+from typing import Any
 
 import networkx as nx
 import numpy as np
@@ -182,7 +183,7 @@ def ll(p: tuple[float, float]) -> list[float]:
     return [round(lon, 9), round(lat, 9)]
 
 
-def geojson(g: Graph) -> dict:
+def geojson(g: Graph) -> dict[str, Any]:
     ring = region(g)
     feats = [
         {
@@ -202,7 +203,7 @@ def geojson(g: Graph) -> dict:
     return {"type": "FeatureCollection", "features": feats}
 
 
-def osmnx_stats(g: Graph) -> tuple[dict, float, list[float]]:
+def osmnx_stats(g: Graph) -> tuple[dict[str, Any], float, list[float]]:
     G = nx.MultiDiGraph(crs=TM)
     for n, (x, y) in g.nodes.items():
         G.add_node(n, x=x, y=y)

@@ -66,6 +66,8 @@ pub struct App {
     max_queue: usize,
     max_solves: usize,
     next: Mutex<u64>,
+    extracts: super::sites::ExtractCache,
+    bin: Option<PathBuf>,
 }
 
 impl App {
@@ -92,6 +94,8 @@ impl App {
             max_queue: o.max_queue,
             max_solves: o.max_solves,
             next: Mutex::new(next),
+            extracts: Default::default(),
+            bin: o.netspec_bin.clone(),
         })
     }
 
@@ -132,6 +136,17 @@ pub fn router(app: Arc<App>, max_body: usize) -> Router {
         .route("/api/runs/{id}/stop", post(stop))
         .route("/api/runs/{id}/files/{name}", get(file))
         .route("/api/compare", get(compare))
+        .route("/api/extracts", get(list_extracts))
+        .route("/api/extract", get(extract_info))
+        .route("/api/extract/features", get(extract_features))
+        .route("/api/upload", post(upload).layer(DefaultBodyLimit::max(super::sites::MAX_UPLOAD)))
+        .route("/api/sites", post(make_site))
+        .route("/api/sites/{name}", get(open_site))
+        .route("/api/sites/{name}/runs", post(site_run))
+        .route("/api/sites/{name}/compare.csv", get(site_csv))
+        .route("/api/sites/{name}/designs/{label}", get(site_design))
+        .route("/api/runs/{id}/resume", post(resume))
+        .route("/api/runs/{id}/out/{name}", get(run_output))
         .fallback(|| async { ApiError::not_found("path", "no such page or endpoint".into()) })
         .layer(DefaultBodyLimit::max(max_body))
         .with_state(app)
@@ -143,6 +158,10 @@ fn asset(name: &str) -> Response {
         "index.html" => (include_str!("assets/index.html"), "text/html; charset=utf-8"),
         "app.js" => (include_str!("assets/app.js"), "text/javascript; charset=utf-8"),
         "app.css" => (include_str!("assets/app.css"), "text/css; charset=utf-8"),
+        "sites.js" => (include_str!("assets/sites.js"), "text/javascript; charset=utf-8"),
+        "leaflet.js" => (include_str!("assets/vendor/leaflet/leaflet.js"), "text/javascript; charset=utf-8"),
+        "leaflet.css" => (include_str!("assets/vendor/leaflet/leaflet.css"), "text/css; charset=utf-8"),
+        "LICENSE-leaflet.txt" => (include_str!("assets/vendor/leaflet/LICENSE"), "text/plain; charset=utf-8"),
         _ => return ApiError::not_found("name", format!("no asset `{name}`")).into_response(),
     };
     ([(header::CONTENT_TYPE, kind)], body).into_response()
@@ -482,4 +501,292 @@ async fn compare(State(app): State<Arc<App>>, Query(q): Query<CompareQuery>) -> 
     }
     let records: Vec<RunRecord> = ids.iter().map(|id| app.run(id).map(|h| h.record())).collect::<ApiResult<_>>()?;
     Ok(Json(json!({ "runs": records, "rows": super::runs::compare_rows(&records) })))
+}
+
+// --- Real sites (`sites`) ---
+
+async fn list_extracts(State(app): State<Arc<App>>) -> ApiResult<Json<Value>> {
+    let root = app.root.clone();
+    Ok(Json(blocking(move || Ok(super::sites::list(&root))).await?))
+}
+
+#[derive(Deserialize)]
+struct ExtractQuery {
+    path: String,
+    #[serde(default)]
+    bbox: Option<String>,
+}
+
+/// An extract under the root, read (or from the cache).
+fn layers(app: &App, rel: &str) -> ApiResult<Arc<super::sites::Layers>> {
+    let path = under_root(&app.root, rel, "path")?;
+    if !path.is_file() {
+        return Err(ApiError::not_found("path", format!("no extract `{rel}` under --root")));
+    }
+    app.extracts.get(&path, rel)
+}
+
+async fn extract_info(State(app): State<Arc<App>>, Query(q): Query<ExtractQuery>) -> ApiResult<Json<Value>> {
+    blocking(move || {
+        let l = layers(&app, &q.path)?;
+        Ok(Json(json!({ "path": q.path, "extent": l.extent, "nodes": l.extract.nodes.len(),
+                        "ways": l.extract.ways.len(), "attribution": crate::osm::ATTRIBUTION })))
+    })
+    .await
+}
+
+async fn extract_features(State(app): State<Arc<App>>, Query(q): Query<ExtractQuery>) -> ApiResult<Json<Value>> {
+    blocking(move || {
+        let l = layers(&app, &q.path)?;
+        let view = match &q.bbox {
+            None => l.extent,
+            Some(b) => {
+                let v: Vec<f64> = b
+                    .split(',')
+                    .map(|x| x.trim().parse::<f64>())
+                    .collect::<Result<_, _>>()
+                    .map_err(|_| ApiError::bad("bbox", format!("`{b}`: W,S,E,N in degrees")))?;
+                match v[..] {
+                    [w, s, e, n] if v.iter().all(|x| x.is_finite()) && w <= e && s <= n => [w, s, e, n],
+                    _ => return Err(ApiError::bad("bbox", format!("`{b}`: W,S,E,N with W ≤ E and S ≤ N"))),
+                }
+            }
+        };
+        Ok(Json(l.features(view)))
+    })
+    .await
+}
+
+#[derive(Deserialize)]
+struct UploadQuery {
+    name: String,
+}
+
+/// An extract or a GeoJSON site sent by the page, kept as `ROOT/uploads/<name>` once its first
+/// bytes say it is OSM XML, OSM PBF or GeoJSON.
+async fn upload(State(app): State<Arc<App>>, Query(q): Query<UploadQuery>, bytes: Bytes) -> ApiResult<Json<Value>> {
+    blocking(move || {
+        let name = q.name.rsplit(['/', '\\']).next().unwrap_or_default().to_string();
+        let ok_name = !name.is_empty()
+            && !name.starts_with('.')
+            && (super::sites::is_extract(&name) || name.ends_with(".geojson"));
+        if !ok_name {
+            return Err(ApiError::bad("name", format!("`{}`: an upload is a .osm, .osm.pbf or .geojson file", q.name)));
+        }
+        let head = String::from_utf8_lossy(&bytes[..bytes.len().min(256)]).to_string();
+        let pbf = bytes.windows(9).take(64).any(|w| w == b"OSMHeader");
+        let xml = head.trim_start().starts_with('<') && head.contains("<osm");
+        let json = head.trim_start().starts_with('{');
+        if !(pbf || xml || json) {
+            return Err(ApiError::invalid(
+                Some("body".into()),
+                format!("`{name}` is neither an OpenStreetMap extract (OSM PBF or XML) nor GeoJSON"),
+            ));
+        }
+        let dir = app.root.join(super::sites::UPLOADS);
+        std::fs::create_dir_all(&dir)
+            .map_err(|e| ApiError::internal(format!("making {}: {e}", super::sites::UPLOADS)))?;
+        let rel = format!("{}/{name}", super::sites::UPLOADS);
+        crate::run::write_atomic(&dir.join(&name), &bytes)
+            .map_err(|e| ApiError::internal(format!("writing {rel}: {e}")))?;
+        if !json {
+            // Read it now, so that a broken extract is refused here and not on the map.
+            if let Err(e) = layers(&app, &rel) {
+                let _ = std::fs::remove_file(dir.join(&name));
+                return Err(e);
+            }
+        }
+        Ok(Json(json!({ "path": rel, "bytes": bytes.len() })))
+    })
+    .await
+}
+
+async fn make_site(State(app): State<Arc<App>>, bytes: Bytes) -> ApiResult<Json<Value>> {
+    let req: super::sites::SiteBody = body(&bytes)?;
+    blocking(move || super::sites::make(&app.root, &app.extracts, req).map(Json)).await
+}
+
+async fn open_site(State(app): State<Arc<App>>, UrlPath(name): UrlPath<String>) -> ApiResult<Json<Value>> {
+    blocking(move || {
+        let mut v = super::sites::open(&app.root, &name)?;
+        let runs: Vec<RunRecord> = app
+            .runs
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .values()
+            .map(|h| h.record())
+            .filter(|r| runs::is_urban(r) && r.settings["site"] == name.as_str())
+            .collect();
+        v["runs"] = json!(runs);
+        Ok(Json(v))
+    })
+    .await
+}
+
+async fn site_run(State(app): State<Arc<App>>, UrlPath(name): UrlPath<String>, bytes: Bytes) -> ApiResult<Json<Value>> {
+    let m: super::sites::MethodBody = body(&bytes)?;
+    super::sites::check_name(&name)?;
+    let site_dir = app.root.join(super::sites::SITES).join(&name);
+    if !site_dir.join("site.geojson").is_file() {
+        return Err(ApiError::not_found("name", format!("no site `{name}`")));
+    }
+    let Some(bin) = app.bin.clone() else {
+        return Err(ApiError {
+            status: StatusCode::SERVICE_UNAVAILABLE,
+            field: None,
+            message: "this server has no netspec binary to run methods with".into(),
+        });
+    };
+    let designs = super::sites::designs(&app.root, &name);
+    if m.method == "traffic" && designs.is_empty() {
+        return Err(ApiError::invalid(
+            Some("method".into()),
+            "run a design first: traffic compares the designs with the real streets".into(),
+        ));
+    }
+    let id = {
+        let mut n = app.next.lock().unwrap_or_else(|e| e.into_inner());
+        let id = format!("r{:04}", *n);
+        *n += 1;
+        id
+    };
+    let dir = app.runs_dir.join(&id);
+    let args = super::sites::command(&site_dir, &dir.join("out"), &m, &designs)?;
+    std::fs::create_dir_all(&dir).map_err(|e| ApiError::internal(format!("making the run's folder: {e}")))?;
+    let record = RunRecord {
+        id: id.clone(),
+        name: format!("{name} · {}", m.method),
+        digest: crate::io::digest(&[args.join(" ").as_bytes()]),
+        created: std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0, |d| d.as_secs()),
+        settings: json!({ "kind": "urban", "site": name, "method": m.method, "request": m, "args": args }),
+        state: RunState::Queued,
+        summary: None,
+        error: None,
+    };
+    let h = Arc::new(RunHandle::new(dir, record));
+    h.update(|_| {});
+    app.runs.lock().unwrap_or_else(|e| e.into_inner()).insert(id.clone(), h.clone());
+    start_urban(&app, h, bin, args, site_dir);
+    Ok(Json(json!({ "id": id })))
+}
+
+/// Queues an urban run on the solve slots.
+fn start_urban(app: &Arc<App>, h: Arc<RunHandle>, bin: PathBuf, args: Vec<String>, site_dir: PathBuf) {
+    h.push(json!({ "kind": "queued" }));
+    let slots = app.slots.clone();
+    let root = app.root.clone();
+    tokio::spawn(async move {
+        let Ok(_permit) = slots.acquire_owned().await else { return };
+        let _ = tokio::task::spawn_blocking(move || super::sites::execute(&h, &bin, &args, &site_dir, &root)).await;
+    });
+}
+
+/// Runs an interrupted, failed or finished urban run again in its folder: `city` resumes the
+/// levels it had solved, the others start over.
+async fn resume(State(app): State<Arc<App>>, UrlPath(id): UrlPath<String>) -> ApiResult<Json<Value>> {
+    let h = app.run(&id)?;
+    let rec = h.record();
+    if !runs::is_urban(&rec) {
+        return Err(ApiError::invalid(Some("id".into()), format!("run `{id}` is a solve: solve its spec again")));
+    }
+    if !h.is_over() {
+        return Err(ApiError::invalid(
+            Some("id".into()),
+            format!("run `{id}` is still {:?}", rec.state).to_lowercase(),
+        ));
+    }
+    let Some(bin) = app.bin.clone() else {
+        return Err(ApiError {
+            status: StatusCode::SERVICE_UNAVAILABLE,
+            field: None,
+            message: "this server has no netspec binary to run methods with".into(),
+        });
+    };
+    let args: Vec<String> = serde_json::from_value(rec.settings["args"].clone())
+        .map_err(|e| ApiError::internal(format!("run `{id}`: {e}")))?;
+    let site = rec.settings["site"].as_str().unwrap_or_default().to_string();
+    if rec.settings["method"] != "city" {
+        let _ = std::fs::remove_dir_all(h.dir.join("out"));
+    }
+    // A fresh handle: the stop flag and the events start over.
+    let fresh = Arc::new(RunHandle::new(h.dir.clone(), RunRecord { state: RunState::Queued, error: None, ..rec }));
+    fresh.update(|_| {});
+    app.runs.lock().unwrap_or_else(|e| e.into_inner()).insert(id.clone(), fresh.clone());
+    start_urban(&app, fresh, bin, args, app.root.join(super::sites::SITES).join(site));
+    Ok(Json(json!({ "id": id })))
+}
+
+async fn site_csv(State(app): State<Arc<App>>, UrlPath(name): UrlPath<String>) -> ApiResult<Response> {
+    blocking(move || {
+        let v = super::sites::open(&app.root, &name)?;
+        let csv = super::sites::compare_csv(&v["compare"]);
+        let disposition = format!("attachment; filename=\"{name}-comparison.csv\"");
+        Ok(([(header::CONTENT_TYPE, "text/csv".to_string()), (header::CONTENT_DISPOSITION, disposition)], csv)
+            .into_response())
+    })
+    .await
+}
+
+/// A design's streets on the site as WGS 84 GeoJSON (`LABEL.geojson`), from the comparison.
+async fn site_design(
+    State(app): State<Arc<App>>,
+    UrlPath((name, file)): UrlPath<(String, String)>,
+) -> ApiResult<Response> {
+    blocking(move || {
+        let label = file
+            .strip_suffix(".geojson")
+            .ok_or_else(|| ApiError::not_found("label", format!("`{file}`: ask for LABEL.geojson")))?;
+        let v = super::sites::open(&app.root, &name)?;
+        let d = v["compare"]["designs"]
+            .as_array()
+            .into_iter()
+            .flatten()
+            .find(|d| d["label"] == label)
+            .ok_or_else(|| ApiError::not_found("label", format!("site `{name}` has no design `{label}`")))?;
+        let mut gj = d["streets"].clone();
+        gj["attribution"] = json!(crate::osm::ATTRIBUTION);
+        let disposition = format!("attachment; filename=\"{name}-{label}.geojson\"");
+        Ok((
+            [(header::CONTENT_TYPE, "application/geo+json".to_string()), (header::CONTENT_DISPOSITION, disposition)],
+            gj.to_string(),
+        )
+            .into_response())
+    })
+    .await
+}
+
+/// The files of an urban run's output that can be fetched.
+const OUTPUTS: &[(&str, &str)] = &[
+    ("layout.json", "application/json"),
+    ("layout.geojson", "application/geo+json"),
+    ("layout.svg", "image/svg+xml"),
+    ("network.json", "application/json"),
+    ("network.geojson", "application/geo+json"),
+    ("network.svg", "image/svg+xml"),
+    ("series.csv", "text/csv"),
+    ("city.json", "application/json"),
+    ("streets.geojson", "application/geo+json"),
+    ("city.svg", "image/svg+xml"),
+    ("comparison.json", "application/json"),
+    ("comparison.md", "text/markdown"),
+    ("comparison.svg", "image/svg+xml"),
+];
+
+async fn run_output(
+    State(app): State<Arc<App>>,
+    UrlPath((id, name)): UrlPath<(String, String)>,
+) -> ApiResult<Response> {
+    let h = app.run(&id)?;
+    let Some(&(_, kind)) = OUTPUTS.iter().find(|(n, _)| *n == name) else {
+        let known: Vec<&str> = OUTPUTS.iter().map(|(n, _)| *n).collect();
+        return Err(ApiError::not_found("name", format!("no output `{name}`: one of {}", known.join(", "))));
+    };
+    blocking(move || {
+        let bytes = std::fs::read(h.dir.join("out").join(&name))
+            .map_err(|_| ApiError::not_found("name", format!("run `{id}` has no `{name}`")))?;
+        let disposition = format!("attachment; filename=\"{id}-{name}\"");
+        Ok(([(header::CONTENT_TYPE, kind.to_string()), (header::CONTENT_DISPOSITION, disposition)], bytes)
+            .into_response())
+    })
+    .await
 }

@@ -2,7 +2,10 @@
 //! the specs under a root folder, draws a spec with netspec's own renderer and lets the page edit
 //! it (every edit checked by the spec code the command line uses), solves it in the background
 //! with progress and every improving design streamed to the page (server-sent events), keeps
-//! every solve as a run under `ROOT/runs/`, compares runs and exports their files.
+//! every solve as a run under `ROOT/runs/`, compares runs and exports their files. For real
+//! sites it draws OpenStreetMap extracts under the root on a map, makes a site from a box or a
+//! polygon drawn there, runs `layout`, `grow`, `city` and `traffic` on it and compares every
+//! design with the real streets (`sites`).
 //!
 //! The server is axum on a tokio runtime of its own; solves run on blocking threads under a
 //! semaphore (at most [`ServeOptions::max_solves`] at once, the rest queue) with a thread budget.
@@ -10,6 +13,7 @@
 
 mod api;
 mod runs;
+mod sites;
 mod specs;
 
 use std::net::{IpAddr, Ipv4Addr, SocketAddr};
@@ -36,6 +40,9 @@ pub struct ServeOptions {
     pub max_cells: usize,
     /// The most solves waiting in the queue.
     pub max_queue: usize,
+    /// The `netspec` binary the urban methods of a site run as (`netspec serve` gives its own;
+    /// without one a site's methods cannot run).
+    pub netspec_bin: Option<PathBuf>,
 }
 
 impl Default for ServeOptions {
@@ -50,6 +57,7 @@ impl Default for ServeOptions {
             max_body: 1 << 20,
             max_cells: 40_000,
             max_queue: 32,
+            netspec_bin: None,
         }
     }
 }

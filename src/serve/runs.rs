@@ -157,21 +157,35 @@ impl RunHandle {
     }
 }
 
-/// Reads every run kept under `runs`; one left queued or running by a stopped server is
-/// `interrupted` with the last design it wrote (validated), or `lost` when it wrote none.
-pub fn load_all(runs: &Path) -> Vec<RunHandle> {
-    let mut out = Vec::new();
-    let Ok(entries) = std::fs::read_dir(runs) else { return out };
+/// Every run record kept under `runs`, with its folder, in folder order.
+pub fn load_records(runs: &Path) -> Vec<(RunRecord, PathBuf)> {
+    let Ok(entries) = std::fs::read_dir(runs) else { return Vec::new() };
     let mut dirs: Vec<PathBuf> = entries.flatten().map(|e| e.path()).filter(|p| p.is_dir()).collect();
     dirs.sort();
-    for dir in dirs {
-        let Some(mut rec) =
-            std::fs::read_to_string(dir.join("run.json")).ok().and_then(|t| serde_json::from_str::<RunRecord>(&t).ok())
-        else {
-            continue;
-        };
+    dirs.into_iter()
+        .filter_map(|dir| {
+            let text = std::fs::read_to_string(dir.join("run.json")).ok()?;
+            Some((serde_json::from_str::<RunRecord>(&text).ok()?, dir))
+        })
+        .collect()
+}
+
+/// Whether a record is a run of an urban method on a site (`serve::sites`), not a solve.
+pub fn is_urban(rec: &RunRecord) -> bool {
+    rec.settings["kind"] == "urban"
+}
+
+/// Reads every run kept under `runs`; one left queued or running by a stopped server is
+/// `interrupted` with the last design it wrote (validated), or `lost` when it wrote none. A run of
+/// an urban method left so is `interrupted`: it is resumed (city) or run again.
+pub fn load_all(runs: &Path) -> Vec<RunHandle> {
+    let mut out = Vec::new();
+    for (mut rec, dir) in load_records(runs) {
         let lost = matches!(rec.state, RunState::Queued | RunState::Running);
-        if lost {
+        if lost && is_urban(&rec) {
+            rec.state = RunState::Interrupted;
+            rec.error = Some("the server stopped while it ran".into());
+        } else if lost {
             match interrupted_summary(&dir) {
                 Some(summary) => {
                     rec.state = RunState::Interrupted;

@@ -3,6 +3,7 @@
 
 mod browser;
 mod http;
+mod sites;
 
 use netspec::serve::{ServeOptions, Server};
 use serde_json::Value;

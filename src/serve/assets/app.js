@@ -342,7 +342,8 @@ async function loadRuns() {
   const data = await api("GET", "/api/runs");
   const ul = $("#runs");
   ul.innerHTML = "";
-  for (const r of data.runs.slice().reverse()) {
+  // Runs of a site's urban methods are listed with their site (sites.js).
+  for (const r of data.runs.slice().reverse().filter((r) => !(r.settings && r.settings.kind === "urban"))) {
     const li = document.createElement("li");
     li.dataset.id = r.id;
     const obj = r.summary && r.summary.objective != null ? r.summary.objective.toFixed(4) : "-";
