@@ -3,6 +3,7 @@
 
 use super::{cli_objective, runtime, server};
 use fantoccini::{Client, ClientBuilder, Locator};
+use netspec::serve::ServeOptions;
 use serde_json::{json, Value};
 use std::net::TcpListener;
 use std::process::{Child, Command, Stdio};
@@ -194,6 +195,100 @@ fn a_browser_edits_solves_stops_explains_and_reloads() {
         c.find(Locator::Css("#levels input[data-level-toggle='3']")).await.unwrap().click().await.unwrap();
         wait_for(&c, "document.querySelector(\"#picture [data-level='3']\").style.display === 'none'", 5).await;
         wait_for(&c, "document.querySelector(\"#picture [data-level='1']\").style.display === ''", 5).await;
+        c.close().await.unwrap();
+    });
+}
+
+/// Sets an input's value by CSS selector (as typing would) and fires its change event.
+async fn set_input(c: &Client, css: &str, value: &str) {
+    let script =
+        "const e = document.querySelector(arguments[0]); e.value = arguments[1]; e.dispatchEvent(new Event('change'));";
+    c.execute(script, vec![json!(css), json!(value)]).await.unwrap();
+}
+
+/// The state shown for the site's run of `method`.
+fn run_state(method: &str, state: &str) -> String {
+    format!(
+        "Array.from(document.querySelectorAll('#site-runs li')).some(li => li.querySelector('b').textContent.endsWith(' {method}') && li.dataset.state === '{state}')"
+    )
+}
+
+#[test]
+fn a_browser_draws_a_site_runs_the_methods_and_compares_them_with_the_real_streets() {
+    use fantoccini::actions::{InputSource, MouseActions, PointerAction, MOUSE_BUTTON_LEFT};
+    let root = tempfile::tempdir().unwrap();
+    std::fs::write(root.path().join("town.osm"), crate::site::town_xml()).unwrap();
+    let opts = ServeOptions {
+        root: root.path().to_path_buf(),
+        port: 0,
+        max_solves: 2,
+        threads: 2,
+        netspec_bin: Some(env!("CARGO_BIN_EXE_netspec").into()),
+        ..Default::default()
+    };
+    let srv = netspec::serve::Server::start(opts).unwrap();
+    let base = format!("http://{}", srv.addr());
+    let driver = start_driver();
+    super::runtime().block_on(async {
+        let c = connect(&driver).await;
+        c.goto(&base).await.unwrap();
+        c.find(Locator::Css("#tab-sites")).await.unwrap().click().await.unwrap();
+        wait_for(&c, "document.querySelectorAll('#extracts li').length === 1", 30).await;
+        c.find(Locator::Css("#extracts li[data-path='town.osm']")).await.unwrap().click().await.unwrap();
+        wait_for(&c, "sites.featuresDrawn >= 1", 30).await;
+        // Draw a box by dragging across the middle of the map.
+        c.find(Locator::Css("#draw-box")).await.unwrap().click().await.unwrap();
+        let map = c.find(Locator::Css("#map")).await.unwrap();
+        let drag = MouseActions::new("mouse".into())
+            .then(PointerAction::MoveToElement { element: map, duration: None, x: -160, y: -150 })
+            .then(PointerAction::Down { button: MOUSE_BUTTON_LEFT })
+            .then(PointerAction::MoveBy { duration: Some(Duration::from_millis(200)), x: 150, y: 150 })
+            .then(PointerAction::MoveBy { duration: Some(Duration::from_millis(200)), x: 170, y: 150 })
+            .then(PointerAction::Up { button: MOUSE_BUTTON_LEFT });
+        c.perform_actions(drag).await.unwrap();
+        wait_for(&c, "document.querySelector('#site-bbox').value.split(',').length === 4", 10).await;
+        set_input(&c, "#site-name", "town").await;
+        c.find(Locator::Css("#make-site")).await.unwrap().click().await.unwrap();
+        wait_for(&c, "document.querySelector('#site-title').textContent === 'Site town'", 60).await;
+        assert_eq!(text(&c, "#site-error").await, "");
+        // Grow (few steps) and layout: both designs beside the real streets.
+        set_input(&c, "[data-m='grow.steps']", "4").await;
+        c.find(Locator::Css("[data-method='grow']")).await.unwrap().click().await.unwrap();
+        c.find(Locator::Css("[data-method='layout']")).await.unwrap().click().await.unwrap();
+        wait_for(&c, &format!("{} && {}", run_state("grow", "finished"), run_state("layout", "finished")), 180).await;
+        wait_for(&c, "document.querySelectorAll('#compare-grid .panel').length === 3", 60).await;
+        let table = text(&c, "#compare-table").await;
+        assert!(table.contains("reference") && table.contains("grown") && table.contains("layout"), "{table}");
+        assert_eq!(c.execute("return document.querySelectorAll('#compare-grid svg.rose').length", vec![]).await.unwrap(), json!(3));
+        // A city with long levels, cancelled.
+        set_input(&c, "[data-m='city.time_limit']", "120").await;
+        c.find(Locator::Css("[data-method='city']")).await.unwrap().click().await.unwrap();
+        wait_for(&c, &run_state("city", "running"), 60).await;
+        let png = c.screenshot().await.unwrap();
+        assert_eq!(&png[..4], b"\x89PNG");
+        if let Ok(path) = std::env::var("NETSPEC_SERVE_SITES_SCREENSHOT") {
+            std::fs::write(path, &png).unwrap();
+        }
+        c.execute(
+            "Array.from(document.querySelectorAll('#site-runs li')).find(li => li.querySelector('b').textContent.endsWith(' city')).querySelector('.cancel').click()",
+            vec![],
+        )
+        .await
+        .unwrap();
+        wait_for(&c, &run_state("city", "interrupted"), 60).await;
+        // A reload finds the site, its runs and its comparison.
+        c.refresh().await.unwrap();
+        c.find(Locator::Css("#tab-sites")).await.unwrap().click().await.unwrap();
+        wait_for(&c, "document.querySelectorAll('#sites li').length === 1", 30).await;
+        c.find(Locator::Css("#sites li[data-site='town']")).await.unwrap().click().await.unwrap();
+        wait_for(&c, &format!("{} && {}", run_state("layout", "finished"), run_state("city", "interrupted")), 30).await;
+        wait_for(&c, "document.querySelectorAll('#compare-grid .panel').length === 3", 30).await;
+        // A bad box is named on the page, and the server still answers.
+        c.find(Locator::Css("#extracts li[data-path='town.osm']")).await.unwrap().click().await.unwrap();
+        set_input(&c, "#site-bbox", "12.0,49.0,12.01,49.01").await;
+        set_input(&c, "#site-name", "far").await;
+        c.find(Locator::Css("#make-site")).await.unwrap().click().await.unwrap();
+        wait_for(&c, "document.querySelector('#site-error').textContent.includes('outside the extract')", 30).await;
         c.close().await.unwrap();
     });
 }
