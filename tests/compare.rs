@@ -275,7 +275,7 @@ paper = { edges = 657, time = "379/366/49" }
     );
     let l4 = m.select(&["*-L4".to_string(), "5L4".to_string()]).unwrap();
     assert!(l4.row.iter().all(|r| r.name.ends_with("L4")) && l4.row.len() >= 5, "{:?}", l4.row);
-    let e = m.select(&["2z".to_string()]).unwrap_err();
+    let e = m.select(&["2z".to_string()]).unwrap_err().to_string();
     assert!(e.contains("`2z` matches no row"), "{e}");
 }
 

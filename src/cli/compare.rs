@@ -40,9 +40,8 @@ pub fn merge(
     out: &Path,
     shapes: &[Shape],
 ) -> Result<ExitCode> {
-    let manifest =
-        manifest.map(|m| Manifest::load(m).and_then(|m| m.select(rows))).transpose().map_err(anyhow::Error::msg)?;
-    let merged = netspec::compare::merge(dirs, manifest).map_err(anyhow::Error::msg)?;
+    let manifest = manifest.map(|m| Manifest::load(m).and_then(|m| m.select(rows))).transpose()?;
+    let merged = netspec::compare::merge(dirs, manifest)?;
     let from: Vec<String> = dirs.iter().map(|d| format!("`{}`", d.display())).collect();
     let settings = serde_json::json!({ "manifest": merged.manifest, "time_limit": merged.time_limit, "merged_from": merged.sources });
     let md = netspec::compare::write_report(
@@ -57,8 +56,7 @@ pub fn merge(
             settings,
             makespan: &makespan::estimate(&merged.records, shapes),
         },
-    )
-    .map_err(anyhow::Error::msg)?;
+    )?;
     print!("{md}");
     Ok(ExitCode::SUCCESS)
 }
@@ -66,10 +64,10 @@ pub fn merge(
 /// Runs a comparison.
 pub fn run(a: CompareArgs) -> Result<ExitCode> {
     let manifest = match &a.manifest {
-        Some(m) => Manifest::load(m).map_err(anyhow::Error::msg)?,
+        Some(m) => Manifest::load(m)?,
         None => Manifest::from_specs(&a.specs),
     };
-    let manifest = manifest.select(&a.rows).map_err(anyhow::Error::msg)?;
+    let manifest = manifest.select(&a.rows)?;
     for (flag, names) in [
         ("--solvers", a.solvers.iter().map(|m| m.to_string()).collect::<Vec<_>>()),
         ("--formulations", a.formulations.iter().map(|f| f.to_string()).collect()),
@@ -155,8 +153,7 @@ pub fn run(a: CompareArgs) -> Result<ExitCode> {
             settings: serde_json::to_value(&settings)?,
             makespan: &makespan::estimate(&records, &a.makespan),
         },
-    )
-    .map_err(anyhow::Error::msg)?;
+    )?;
     print!("\n{md}");
     if settings.interrupt.as_ref().is_some_and(|i| i.is_triggered()) {
         println!("interrupted: the runs recorded above are kept; rerun to resume");

@@ -8,10 +8,11 @@
 //! CANCELLED, PREEMPTED, …) is recorded with that state and solved again on the next resume. An
 //! interrupt (Ctrl-C) cancels the array; every record already written is kept.
 
-use super::{
-    plan, save_record, solve_and_record, CompareError, CompareSettings, Event, Executor, Manifest, PlannedRun,
-    RunRecord, RunSource,
-};
+use super::child::{save_record, solve_and_record};
+use super::error::CompareError;
+use super::manifest::Manifest;
+use super::plan::{plan, CompareSettings, Event, Executor, PlannedRun, RunSource};
+use super::record::{record_from_dir, RunRecord};
 use crate::slurm::{self, Job, JobState, SlurmError, SlurmOptions};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -67,7 +68,7 @@ pub fn run_task(exe: &Path, plan_path: &Path, index: usize) -> Result<RunRecord,
     Ok(solve_and_record(exe, &settings, run, Some(plan.binary_digest.clone()))?)
 }
 
-/// The Slurm executor ([`super::run_all`] with [`Executor::Slurm`]).
+/// The Slurm executor ([`super::executor::run_all`] with [`Executor::Slurm`]).
 pub(super) fn run_slurm(
     exe: &Path,
     settings: &CompareSettings,
@@ -246,7 +247,7 @@ fn ended_without_record(
     job: &str,
     task: usize,
 ) -> Result<RunRecord, SlurmError> {
-    let mut r = super::record_from_dir(&run.dir, &run.solver, run.seed, run.limit, 0.0, None, false);
+    let mut r = record_from_dir(&run.dir, &run.solver, run.seed, run.limit, 0.0, None, false);
     r.status = st.state.to_lowercase();
     r.slurm_state = Some(st.state.clone());
     r.error = Some(format!(

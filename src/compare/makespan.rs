@@ -2,7 +2,7 @@
 //! recorded wall times, longest first, each run on one node holding as many cores as it had
 //! threads, started as soon as that many cores of some node are free.
 
-use super::RunRecord;
+use super::record::RunRecord;
 use serde::{Deserialize, Serialize};
 use std::fmt::Write as _;
 

@@ -1,47 +1,18 @@
 //! A formulation: the MILP a recipe emits for a problem, its shared variables, its families,
 //! and what it needs beyond the rows (a separator for lazily separated families).
 
-use super::expr::{Emitter, FamilyStats};
+use super::expr::Emitter;
 use super::families::cutset;
 use super::families::REGISTRY;
 use super::family::{Ctx, Family, VarMap};
 use super::recipe::Recipe;
+use super::Formulation;
 use crate::design::Network;
 use crate::milp::{Model, Sense};
-use crate::rules::paths::{enumerate_path_sets, PathSets};
-use crate::rules::placements::{enumerate_for, PlacementReport};
+use crate::rules::paths::enumerate_path_sets;
+use crate::rules::placements::enumerate_for;
 use crate::solvers::lattice::ObjectiveLattice;
 use crate::spec::{EdgeRole, Problem};
-use indexmap::IndexMap;
-
-/// The emitted MILP of one problem under one recipe, with the map from design elements to its
-/// variables.
-pub struct Formulation {
-    /// The recipe, resolved.
-    pub recipe: Recipe,
-    /// The MILP (without lazily separated rows).
-    pub model: Model,
-    /// The variables several families share (edges, directions, labels, vertices, parent arcs).
-    pub vars: VarMap,
-    /// Variables and rows per family, in emission order.
-    pub families: IndexMap<String, FamilyStats>,
-    /// The families of the model, in emission order.
-    pub parts: Vec<Box<dyn Family>>,
-    /// The big-M of the label rows (2), when the recipe has labels.
-    pub big_m: Option<f64>,
-    /// Point-to-point path sets, if on.
-    pub path_sets: Option<PathSets>,
-    /// Room placements, if room tiling is on.
-    pub placements: Option<PlacementReport>,
-    /// The graph of the lazily separated cutsets, when the recipe has them.
-    pub cutsets: Option<cutset::CutsetGraph>,
-    /// The lattice every design's objective lies on, when there is one
-    /// ([`crate::solvers::lattice`]); the solve strategy decides whether to use it.
-    pub objective_lattice: Option<ObjectiveLattice>,
-    /// The order of the problem's symmetry group when the recipe left connectivity to the
-    /// distance flow for it (the `symmetric_flow` switch); `None` otherwise.
-    pub symmetry_order: Option<usize>,
-}
 
 /// Builds the formulation the problem's spec asks for.
 pub fn build(p: &Problem) -> Formulation {
@@ -80,7 +51,10 @@ pub fn build_with(p: &Problem, recipe: &Recipe) -> Formulation {
     }
     let Ctx { em, vars, plan, .. } = c;
     let objective_lattice = objective_lattice(&em.model, &parts);
-    let cutsets = parts.iter().find_map(|f| f.cutsets()).cloned();
+    let cutsets = parts
+        .iter()
+        .find_map(|f| (f.as_ref() as &dyn std::any::Any).downcast_ref::<cutset::Cutsets>()?.graph())
+        .cloned();
     Formulation {
         recipe: recipe.clone(),
         model: em.model,

@@ -8,8 +8,8 @@
 //! point is meant to be checked by the MILP checker before it is handed to a solver: a design
 //! that breaks the spec gives a point that breaks rows, and the checker says which.
 
-use super::build::Formulation;
-use super::family::VarMap;
+use super::vars::VarMap;
+use super::Formulation;
 use crate::design::{label_distances, travel_distances, Network};
 use crate::mesh::{EdgeId, HalfEdgeId, VertexId};
 use crate::milp::VarId;

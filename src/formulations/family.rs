@@ -9,8 +9,8 @@
 
 use super::encode::{EncodeError, Encoding};
 use super::expr::{Emitter, Expr, Value};
-use super::families::cutset;
 use super::recipe::{Plan, Recipe};
+pub use super::vars::VarMap;
 use crate::design::Network;
 use crate::mesh::{EdgeId, HalfEdgeId, Mesh, VertexId};
 use crate::milp::VarId;
@@ -19,7 +19,7 @@ use crate::rules::placements::PlacementReport;
 use crate::spec::{EdgeRole, Problem};
 
 /// One constraint family of the network IP.
-pub trait Family: Send + Sync {
+pub trait Family: std::any::Any + Send + Sync {
     /// The family's line in the model statistics, citing its equations (`dead-ends (10)-(11)`).
     fn label(&self) -> String;
     /// Emits the family's variables and rows.
@@ -39,42 +39,10 @@ pub trait Family: Send + Sync {
     fn lattice_vars(&self) -> Vec<VarId> {
         Vec::new()
     }
-    /// The graph of the rows the family separates lazily, for the family that has them.
-    fn cutsets(&self) -> Option<&cutset::CutsetGraph> {
-        None
-    }
 }
 
 /// A family's entry in the registry: the family, ready to emit, when the problem's model has it.
 pub type Entry = fn(&Ctx) -> Option<Box<dyn Family>>;
-
-/// The variables several families share: the network's skeleton.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct VarMap {
-    /// `E_x` per edge (`None` for an existing or excluded edge).
-    pub edge: Vec<Option<VarId>>,
-    /// `E(i→j)` per half-edge: the direction toward a sink (labels and the distance flow).
-    pub half_edge: Vec<Option<VarId>>,
-    /// `D(i→j)` per half-edge (labels).
-    pub label: Vec<Option<VarId>>,
-    /// `V_y` per vertex, or its constant activity.
-    pub vertex: Vec<Value>,
-    /// Parent arc `P(i→j) ∈ [0, 1]` per half-edge (the out-arc rows without direction binaries).
-    pub parent: Vec<Option<VarId>>,
-}
-
-impl VarMap {
-    /// An empty map for a mesh of this size.
-    pub fn new(vertices: usize, edges: usize) -> VarMap {
-        VarMap {
-            edge: vec![None; edges],
-            half_edge: vec![None; 2 * edges],
-            label: vec![None; 2 * edges],
-            vertex: vec![Value::Const(0.0); vertices],
-            parent: vec![None; 2 * edges],
-        }
-    }
-}
 
 /// What the families share while a formulation is being built.
 pub struct Ctx<'a> {

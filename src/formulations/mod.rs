@@ -21,10 +21,48 @@ pub mod expr;
 pub mod families;
 mod family;
 mod recipe;
+mod vars;
 
-pub use build::{build, build_compact, build_with, Formulation};
+pub use build::{build, build_compact, build_with};
 pub use encode::{EncodeError, Encoding};
 pub use families::cutset::{CoverGroup, CutsetGraph, CutsetSeparator};
 pub use families::REGISTRY;
-pub use family::{he_name, vname, Ctx, Entry, Family, VarMap};
+pub use family::{he_name, vname, Ctx, Entry, Family};
 pub use recipe::{Plan, Recipe, SYMMETRIC_FLOW_MIN_ORDER};
+pub use vars::VarMap;
+
+use crate::milp::Model;
+use crate::rules::paths::PathSets;
+use crate::rules::placements::PlacementReport;
+use crate::solvers::lattice::ObjectiveLattice;
+use expr::FamilyStats;
+use indexmap::IndexMap;
+
+/// The emitted MILP of one problem under one recipe, with the map from design elements to its
+/// variables.
+pub struct Formulation {
+    /// The recipe, resolved.
+    pub recipe: Recipe,
+    /// The MILP (without lazily separated rows).
+    pub model: Model,
+    /// The variables several families share (edges, directions, labels, vertices, parent arcs).
+    pub vars: VarMap,
+    /// Variables and rows per family, in emission order.
+    pub families: IndexMap<String, FamilyStats>,
+    /// The families of the model, in emission order.
+    pub parts: Vec<Box<dyn Family>>,
+    /// The big-M of the label rows (2), when the recipe has labels.
+    pub big_m: Option<f64>,
+    /// Point-to-point path sets, if on.
+    pub path_sets: Option<PathSets>,
+    /// Room placements, if room tiling is on.
+    pub placements: Option<PlacementReport>,
+    /// The graph of the lazily separated cutsets, when the recipe has them.
+    pub cutsets: Option<CutsetGraph>,
+    /// The lattice every design's objective lies on, when there is one
+    /// ([`crate::solvers::lattice`]); the solve strategy decides whether to use it.
+    pub objective_lattice: Option<ObjectiveLattice>,
+    /// The order of the problem's symmetry group when the recipe left connectivity to the
+    /// distance flow for it (the `symmetric_flow` switch); `None` otherwise.
+    pub symmetry_order: Option<usize>,
+}

@@ -40,6 +40,18 @@ pub enum Selection {
     Random,
 }
 
+impl std::str::FromStr for Selection {
+    type Err = String;
+    /// `best` or `random` (any case).
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s.to_ascii_lowercase().as_str() {
+            "best" => Ok(Selection::Best),
+            "random" => Ok(Selection::Random),
+            _ => Err(format!("unknown streamline choice `{s}` (known: best, random)")),
+        }
+    }
+}
+
 /// What the control loop is run with.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SplitOptions {

@@ -148,6 +148,19 @@ pub enum Method {
     Both,
 }
 
+impl std::str::FromStr for Method {
+    type Err = String;
+    /// `anneal`, `milp` or `both` (any case).
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s.to_ascii_lowercase().as_str() {
+            "anneal" => Ok(Method::Anneal),
+            "milp" => Ok(Method::Milp),
+            "both" => Ok(Method::Both),
+            _ => Err(format!("unknown method `{s}` (known: anneal, milp, both)")),
+        }
+    }
+}
+
 /// What `netspec level` asks for.
 #[derive(Clone, Debug)]
 pub struct LevelRequest {

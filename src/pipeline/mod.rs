@@ -17,11 +17,11 @@ pub mod solve;
 pub mod start;
 pub mod strategy;
 
-pub use result::{DesignResult, RoomsResult, Validity, DESIGN_SCHEMA_VERSION};
+pub use result::{DesignResult, RoomsResult, StartReport, Validity, DESIGN_SCHEMA_VERSION};
 pub use search::{Method, SearchMethod};
 pub use solve::{solve_built, solve_built_with, solve_from, solve_from_with};
 pub use start::{
-    default_first_design_budget, default_start, default_start_budget, prepare_start, start_for, StartFrom, StartReport,
+    default_first_design_budget, default_start, default_start_budget, prepare_start, start_for, StartFrom,
 };
 pub use strategy::Strategy;
 

@@ -15,8 +15,6 @@ use crate::spec::{Problem, Spec};
 use indexmap::IndexMap;
 use serde::{Deserialize, Serialize};
 
-use super::StartReport;
-
 /// Version of the design result schema (`result.json`).
 pub const DESIGN_SCHEMA_VERSION: u32 = 2;
 
@@ -173,4 +171,25 @@ pub(crate) fn rooms_result(p: &Problem, f: &Formulation, net: Option<&Network>) 
         },
         chosen: net.map_or(Vec::new(), |n| n.rooms.iter().map(|&k| pl.placements[k].clone()).collect()),
     })
+}
+
+/// A MIP start: where it came from, what it is worth, and whether the checker let it through.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct StartReport {
+    /// Where the design came from (`heuristic`, a file name).
+    pub source: String,
+    /// The design's own objective.
+    pub objective: Option<f64>,
+    /// Whether the point passed the MILP checker (every emitted row and bound, and every lazy
+    /// row) and was handed to the solver.
+    pub accepted: bool,
+    /// Why it was refused.
+    pub reason: Option<String>,
+    /// Seconds spent finding and checking it (counted against the solve's time limit).
+    #[serde(default)]
+    pub seconds: Option<f64>,
+    /// Whether the returned design is the start itself: the solver found nothing better (or
+    /// nothing at all) before it stopped.
+    #[serde(default)]
+    pub returned: bool,
 }

@@ -1,10 +1,11 @@
 //! Solving a built formulation: the backend (with the lazily separated rows through its
 //! callback or the solve–cut–resolve loop), the solve strategy, and every answer checked.
 
+use super::result::StartReport;
 use super::result::{
     active_edge_pairs, design_violations, rooms_result, DesignResult, Validity, DESIGN_SCHEMA_VERSION,
 };
-use super::start::{start_for, StartFrom, StartReport};
+use super::start::{start_for, StartFrom};
 use super::strategy::{tuned_options, Strategy};
 use crate::design::{self, Metrics, Objective, Violation};
 use crate::formulations::Formulation;

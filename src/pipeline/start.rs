@@ -1,33 +1,11 @@
 //! MIP starts: a design (the construction heuristic's, or one given) encoded as a point of the
 //! formulation and checked by the MILP checker before any backend sees it.
 
-use super::result::design_point;
+use super::result::{design_point, StartReport};
 use crate::design::{Network, Objective};
 use crate::formulations::Formulation;
 use crate::heuristics::{self, Inputs};
 use crate::spec::Problem;
-use serde::{Deserialize, Serialize};
-
-/// A MIP start: where it came from, what it is worth, and whether the checker let it through.
-#[derive(Clone, Debug, Serialize, Deserialize)]
-pub struct StartReport {
-    /// Where the design came from (`heuristic`, a file name).
-    pub source: String,
-    /// The design's own objective.
-    pub objective: Option<f64>,
-    /// Whether the point passed the MILP checker (every emitted row and bound, and every lazy
-    /// row) and was handed to the solver.
-    pub accepted: bool,
-    /// Why it was refused.
-    pub reason: Option<String>,
-    /// Seconds spent finding and checking it (counted against the solve's time limit).
-    #[serde(default)]
-    pub seconds: Option<f64>,
-    /// Whether the returned design is the start itself: the solver found nothing better (or
-    /// nothing at all) before it stopped.
-    #[serde(default)]
-    pub returned: bool,
-}
 
 /// Where a solve's MIP start comes from.
 #[derive(Clone, Debug)]

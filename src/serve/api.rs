@@ -1,11 +1,12 @@
 //! The HTTP API and the page's assets.
 
+use super::error::ApiError;
 use super::runs::{self, RunHandle, RunRecord, RunState};
 use super::specs::{self, under_root};
 use super::ServeOptions;
 use axum::body::Bytes;
 use axum::extract::{DefaultBodyLimit, Path as UrlPath, Query, State};
-use axum::http::{header, StatusCode};
+use axum::http::header;
 use axum::response::sse::{Event as SseEvent, KeepAlive, Sse};
 use axum::response::{IntoResponse, Response};
 use axum::routing::{get, post};
@@ -16,42 +17,6 @@ use std::collections::{BTreeMap, VecDeque};
 use std::path::PathBuf;
 use std::sync::atomic::Ordering;
 use std::sync::{Arc, Mutex};
-
-/// An error answer: a status, a message, and the request field it is about.
-#[derive(Debug)]
-pub struct ApiError {
-    status: StatusCode,
-    field: Option<String>,
-    message: String,
-}
-
-impl ApiError {
-    /// 400: the request is malformed.
-    pub fn bad(field: &str, message: String) -> ApiError {
-        ApiError { status: StatusCode::BAD_REQUEST, field: Some(field.into()), message }
-    }
-    /// 403: a path outside the root.
-    pub fn forbidden(field: &str, message: String) -> ApiError {
-        ApiError { status: StatusCode::FORBIDDEN, field: Some(field.into()), message }
-    }
-    /// 404: no such thing.
-    pub fn not_found(field: &str, message: String) -> ApiError {
-        ApiError { status: StatusCode::NOT_FOUND, field: Some(field.into()), message }
-    }
-    /// 422: a spec (or setting) the checks refuse.
-    pub fn invalid(field: Option<String>, message: String) -> ApiError {
-        ApiError { status: StatusCode::UNPROCESSABLE_ENTITY, field, message }
-    }
-    fn internal(message: String) -> ApiError {
-        ApiError { status: StatusCode::INTERNAL_SERVER_ERROR, field: None, message }
-    }
-}
-
-impl IntoResponse for ApiError {
-    fn into_response(self) -> Response {
-        (self.status, Json(json!({ "error": self.message, "field": self.field }))).into_response()
-    }
-}
 
 type ApiResult<T> = Result<T, ApiError>;
 
@@ -323,11 +288,9 @@ async fn solve(State(app): State<Arc<App>>, bytes: Bytes) -> ApiResult<Json<Valu
     let req: SpecBody = body(&bytes)?;
     let queued = app.runs.lock().unwrap_or_else(|e| e.into_inner()).values().filter(|h| !h.is_over()).count();
     if queued >= app.max_queue + app.max_solves {
-        return Err(ApiError {
-            status: StatusCode::SERVICE_UNAVAILABLE,
-            field: None,
-            message: format!("{queued} solves are running or queued: try again when one has finished"),
-        });
+        return Err(ApiError::unavailable(format!(
+            "{queued} solves are running or queued: try again when one has finished"
+        )));
     }
     let app2 = app.clone();
     let (h, problem) = blocking(move || prepare(&app2, req.spec)).await?;
@@ -631,11 +594,7 @@ async fn site_run(State(app): State<Arc<App>>, UrlPath(name): UrlPath<String>, b
         return Err(ApiError::not_found("name", format!("no site `{name}`")));
     }
     let Some(bin) = app.bin.clone() else {
-        return Err(ApiError {
-            status: StatusCode::SERVICE_UNAVAILABLE,
-            field: None,
-            message: "this server has no netspec binary to run methods with".into(),
-        });
+        return Err(ApiError::unavailable("this server has no netspec binary to run methods with".into()));
     };
     let designs = super::sites::designs(&app.root, &name);
     if m.method == "traffic" && designs.is_empty() {
@@ -696,11 +655,7 @@ async fn resume(State(app): State<Arc<App>>, UrlPath(id): UrlPath<String>) -> Ap
         ));
     }
     let Some(bin) = app.bin.clone() else {
-        return Err(ApiError {
-            status: StatusCode::SERVICE_UNAVAILABLE,
-            field: None,
-            message: "this server has no netspec binary to run methods with".into(),
-        });
+        return Err(ApiError::unavailable("this server has no netspec binary to run methods with".into()));
     };
     let args: Vec<String> = serde_json::from_value(rec.settings["args"].clone())
         .map_err(|e| ApiError::internal(format!("run `{id}`: {e}")))?;

@@ -12,6 +12,7 @@
 //! It serves and writes files only under the root.
 
 mod api;
+mod error;
 mod runs;
 mod sites;
 mod specs;

@@ -9,7 +9,7 @@
 //! server down, and a killed server takes its children with it (the child dies with its parent).
 //! Its output lines stream to the page.
 
-use super::api::ApiError;
+use super::error::ApiError;
 use super::runs::{RunHandle, RunState};
 use crate::geometry::{site::Projection, Polygon, P};
 use crate::osm::read::{self, Extract};
@@ -448,7 +448,7 @@ pub fn execute(h: &Arc<RunHandle>, bin: &Path, args: &[String], site_dir: &Path,
     h.push(json!({ "kind": "started", "command": format!("netspec {}", args.join(" ")) }));
     let mut cmd = Command::new(bin);
     cmd.args(args).stdout(Stdio::piped()).stderr(Stdio::piped()).env("NO_COLOR", "1");
-    die_with_parent(&mut cmd);
+    crate::compare::child::die_with_parent(&mut cmd);
     let mut child = match cmd.spawn() {
         Ok(c) => c,
         Err(e) => return failed(h, format!("could not start {}: {e}", bin.display())),
@@ -523,21 +523,6 @@ fn failed(h: &Arc<RunHandle>, message: String) {
         r.error = Some(message.clone());
     });
     h.push(json!({ "kind": "failed", "error": message }));
-}
-
-/// The child dies with the server (Linux: a parent-death signal).
-fn die_with_parent(cmd: &mut std::process::Command) {
-    #[cfg(target_os = "linux")]
-    {
-        use std::os::unix::process::CommandExt;
-        // SAFETY: prctl with PR_SET_PDEATHSIG is async-signal-safe and touches no Rust state.
-        unsafe {
-            cmd.pre_exec(|| {
-                libc::prctl(libc::PR_SET_PDEATHSIG, libc::SIGKILL);
-                Ok(())
-            });
-        }
-    }
 }
 
 /// The site's finished designs: (label, output folder), one per finished method run, newest

@@ -1,7 +1,7 @@
 //! Specs for the page: the embedded examples, specs under the root, paths kept under the root,
 //! checking an edited spec (the command line's spec code), and the spec's picture.
 
-use super::api::ApiError;
+use super::error::ApiError;
 use crate::design::picture::mesh_scene;
 use crate::render::network::{picture_points, svg};
 use crate::render::Caption;

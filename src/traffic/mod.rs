@@ -21,12 +21,13 @@ pub mod network;
 pub mod parse;
 pub mod picture;
 pub mod report;
+pub mod road;
 pub mod streets;
 pub mod sumo;
 
 pub use demand::DemandSettings;
-pub use network::{RoadEdge, RoadNetwork};
 pub use report::TrafficReport;
+pub use road::{RoadEdge, RoadNetwork};
 pub use sumo::Sumo;
 
 use std::path::{Path, PathBuf};

@@ -2,7 +2,7 @@
 //! the polylines are split where one street ends on another or two cross, so that junctions are
 //! nodes, and their levels mapped to the hierarchy SUMO is given.
 
-use super::network::{Provenance, Region, RoadEdge, RoadNetwork, RoadNode};
+use super::road::{Provenance, Region, RoadEdge, RoadNetwork, RoadNode};
 use super::{read, TrafficError, TrafficErrorKind};
 use crate::geometry::index::SegmentIndex;
 use crate::geometry::{clip_segment as clip, closest_on_segment, dist, polyline_length, segment_intersection, P};

@@ -3,48 +3,12 @@
 //! roads, so the IP designs the streets of the parts between them.
 
 use super::spec::{CitySpec, CitySpecErrorKind, RoadSpec};
+pub use super::spec::{MajorMethod, MajorSpec};
 use crate::geometry::{site, Polygon};
-use crate::layout::field::FieldMethod;
 use crate::layout::region::Region;
 use crate::layout::split::{split, Selection, SplitOptions};
 use rand::rngs::Xoshiro256PlusPlus;
 use rand::SeedableRng;
-use serde::{Deserialize, Serialize};
-
-/// Where a city's major roads come from (`[major]`).
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct MajorSpec {
-    /// `given` (the `[[road]]` entries only) or `streamlines` (those, plus cuts of the split).
-    pub method: MajorMethod,
-    /// How many split depths become major roads: 1 keeps the first cut of the domain (and of
-    /// each part the given roads make), 2 also the cuts of the halves, ….
-    #[serde(default = "one")]
-    pub depth: usize,
-    /// The cross field the streamlines follow.
-    #[serde(default = "distance")]
-    pub field: FieldMethod,
-    /// The seed of the split.
-    #[serde(default)]
-    pub seed: u64,
-}
-
-fn one() -> usize {
-    1
-}
-fn distance() -> FieldMethod {
-    FieldMethod::Distance
-}
-
-/// How major roads are made.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum MajorMethod {
-    /// Drawn by hand: the `[[road]]` entries.
-    Given,
-    /// Streamlines of the domain's cross field, chosen as `netspec layout` chooses its cuts.
-    Streamlines,
-}
 
 /// The spec with its streamline major roads added as `[[road]]` entries (named `streamline
 /// k`, in model units) and `[major]` removed, so the rest of the city — and `city.json` —

@@ -5,6 +5,7 @@
 
 pub mod city;
 pub mod cluster;
+pub mod load;
 pub mod major;
 pub mod output;
 pub mod smooth;

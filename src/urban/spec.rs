@@ -13,7 +13,7 @@ use crate::spec::{
 };
 use indexmap::IndexMap;
 use serde::{Deserialize, Serialize};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 /// A city spec (the content of a city TOML file).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -39,7 +39,7 @@ pub struct CitySpec {
     /// Where further major roads come from (`[major] method = "streamlines"`); expanded into
     /// `roads` when the spec is read, so it is `None` in a read spec.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub major: Option<super::major::MajorSpec>,
+    pub major: Option<MajorSpec>,
     /// Mesh resolution for every sub-region.
     pub mesh: CityMeshSpec,
     /// Default spec per level (`"2"`, `"3"`, `"4"`); a level that is absent is not run.
@@ -329,22 +329,51 @@ pub fn merge_tables(base: &mut toml::Table, over: &toml::Table) {
     }
 }
 
+/// Where a city's major roads come from (`[major]`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MajorSpec {
+    /// `given` (the `[[road]]` entries only) or `streamlines` (those, plus cuts of the split).
+    pub method: MajorMethod,
+    /// How many split depths become major roads: 1 keeps the first cut of the domain (and of
+    /// each part the given roads make), 2 also the cuts of the halves, ….
+    #[serde(default = "one")]
+    pub depth: usize,
+    /// The cross field the streamlines follow.
+    #[serde(default = "distance")]
+    pub field: crate::layout::field::FieldMethod,
+    /// The seed of the split.
+    #[serde(default)]
+    pub seed: u64,
+}
+
+fn one() -> usize {
+    1
+}
+fn distance() -> crate::layout::field::FieldMethod {
+    crate::layout::field::FieldMethod::Distance
+}
+
+/// How major roads are made.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum MajorMethod {
+    /// Drawn by hand: the `[[road]]` entries.
+    Given,
+    /// Streamlines of the domain's cross field, chosen as `netspec layout` chooses its cuts.
+    Streamlines,
+}
+
 /// The level numbers a city can run.
 pub const LEVELS: [u8; 3] = [2, 3, 4];
 
 impl CitySpec {
-    /// Reads a city TOML file and checks it.
-    pub fn load(path: &Path) -> Result<CitySpec, CitySpecError> {
-        let err = |kind| CitySpecError { path: path.to_path_buf(), kind };
-        let text = crate::io::read_utf8(path).map_err(|e| err(e.into()))?;
-        CitySpec::from_toml(&text).map_err(err)
-    }
-
-    /// Parses TOML text and checks it.
-    pub fn from_toml(text: &str) -> Result<CitySpec, CitySpecErrorKind> {
+    /// Parses TOML text and checks it, leaving `[major]` as written: [`CitySpec::from_toml`]
+    /// (in `urban::load`) also expands it into roads.
+    pub fn parse_toml(text: &str) -> Result<CitySpec, CitySpecErrorKind> {
         let spec: CitySpec = toml::from_str(text).map_err(|e| CitySpecErrorKind::Toml(e.to_string()))?;
         spec.check()?;
-        super::major::expand(spec)
+        Ok(spec)
     }
 
     fn check(&self) -> Result<(), CitySpecErrorKind> {

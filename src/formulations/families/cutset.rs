@@ -212,6 +212,11 @@ impl Cutsets {
     pub fn entry(c: &Ctx) -> Option<Box<dyn Family>> {
         c.plan.lazy_cutsets().then(|| Box::new(Cutsets { graph: None }) as Box<dyn Family>)
     }
+
+    /// The graph the separator works on, once emitted.
+    pub fn graph(&self) -> Option<&CutsetGraph> {
+        self.graph.as_ref()
+    }
 }
 
 impl Family for Cutsets {
@@ -230,10 +235,6 @@ impl Family for Cutsets {
         let girth = (p.dead_ends == Allow::Forbid).then(|| girth(p));
         // Coverage (6) is in the model only without rooms; its balls give the cover cutsets.
         self.graph = Some(g.with_cover_groups(p, &c.vars.vertex, girth));
-    }
-
-    fn cutsets(&self) -> Option<&CutsetGraph> {
-        self.graph.as_ref()
     }
 }
 

@@ -61,6 +61,17 @@ impl FieldMethod {
     }
 }
 
+impl std::str::FromStr for FieldMethod {
+    type Err = String;
+    /// `smooth` or `distance` (any case).
+    fn from_str(s: &str) -> Result<Self, String> {
+        [FieldMethod::Smooth, FieldMethod::Distance]
+            .into_iter()
+            .find(|m| m.name().eq_ignore_ascii_case(s))
+            .ok_or_else(|| format!("unknown field `{s}` (known: smooth, distance)"))
+    }
+}
+
 /// What a field is built with.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct FieldOptions {
