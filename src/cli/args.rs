@@ -130,3 +130,13 @@ impl ExecutorArgs {
         }))
     }
 }
+
+/// `x0,y0,x1,y1` as four finite numbers with `x0 < x1`, `y0 < y1`.
+pub fn parse_window(s: &str) -> Result<[f64; 4], String> {
+    let v: Vec<f64> =
+        s.split(',').map(|x| x.trim().parse::<f64>()).collect::<Result<_, _>>().map_err(|e| e.to_string())?;
+    match v[..] {
+        [x0, y0, x1, y1] if v.iter().all(|x| x.is_finite()) && x0 < x1 && y0 < y1 => Ok([x0, y0, x1, y1]),
+        _ => Err(format!("expected x0,y0,x1,y1 with x0 < x1 and y0 < y1 (metres), got `{s}`")),
+    }
+}

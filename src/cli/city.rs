@@ -1,5 +1,6 @@
 //! `netspec city SPEC`: street layouts for a whole city, with a progress bar per sub-region.
 
+use super::args::ExecutorArgs;
 use anyhow::{Context, Result};
 use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
 use netspec::pipeline::settings::Settings;
@@ -23,19 +24,53 @@ fn assembly_reserve(total: f64) -> f64 {
     (0.1 * total).min(5.0)
 }
 
-/// The command line's settings.
+/// `netspec city`'s arguments.
+#[derive(clap::Args)]
 pub struct CityArgs {
-    pub solver: Option<SolverKind>,
-    pub time_limit: Option<f64>,
-    pub total_time_limit: Option<f64>,
-    pub threads: Option<u32>,
-    pub threads_per_solve: Option<u32>,
-    pub gap: Option<f64>,
-    pub fresh: bool,
-    pub out: Option<PathBuf>,
-    pub max_cells: Option<usize>,
-    pub slurm: Option<netspec::slurm::SlurmOptions>,
-    pub level_job: Option<String>,
+    /// The city spec (TOML).
+    spec: PathBuf,
+    /// Backend (default: the spec's, else the embedded HiGHS).
+    #[arg(long, value_name = "NAME")]
+    solver: Option<SolverKind>,
+    /// Time limit of every level, seconds, for all of its work (model, start, solve,
+    /// outputs; default: each level's `time_limit`).
+    #[arg(long, value_name = "SECONDS")]
+    time_limit: Option<f64>,
+    /// Time limit of the whole city, seconds: no level starts after it, a running level
+    /// stops at it with its best network, and the city is assembled and written within it.
+    #[arg(long, value_name = "SECONDS")]
+    total_time_limit: Option<f64>,
+    /// Total thread budget (default: the spec's).
+    #[arg(long)]
+    threads: Option<u32>,
+    /// Threads per solve (default: the spec's).
+    #[arg(long)]
+    threads_per_solve: Option<u32>,
+    /// Relative gap.
+    #[arg(long, value_name = "REL")]
+    gap: Option<f64>,
+    /// Solve every level again even if an earlier run finished it.
+    #[arg(long)]
+    fresh: bool,
+    /// Refuse a city whose level meshes could exceed this many cells (default 250,000).
+    #[arg(long, value_name = "CELLS")]
+    max_cells: Option<usize>,
+    #[command(flatten)]
+    executor: ExecutorArgs,
+    /// Solve one sub-region's level as a cluster job does (`REGION:LEVEL`; run by Slurm).
+    #[arg(long, hide = true, value_name = "REGION:LEVEL")]
+    level_job: Option<String>,
+    /// Output directory (default: out/<the city file's name>).
+    #[arg(long, value_name = "DIR")]
+    out: Option<PathBuf>,
+}
+
+impl CityArgs {
+    /// Runs the city.
+    pub fn run(self) -> Result<ExitCode> {
+        let slurm = self.executor.slurm()?;
+        run_city(&self.spec.clone(), &self, slurm)
+    }
 }
 
 /// The flags every cluster job of a city gets, so that it resolves the same options.
@@ -73,7 +108,7 @@ fn level_job(spec: &CitySpec, out: &Path, opts: &CityRunOptions, job: &str) -> R
     Ok(if report.has_network() { ExitCode::SUCCESS } else { ExitCode::FAILURE })
 }
 
-pub fn run_city(path: &Path, args: CityArgs) -> Result<ExitCode> {
+fn run_city(path: &Path, args: &CityArgs, slurm: Option<netspec::slurm::SlurmOptions>) -> Result<ExitCode> {
     let started = Instant::now();
     let spec = CitySpec::load(path)?;
     let flags = Settings {
@@ -89,10 +124,7 @@ pub fn run_city(path: &Path, args: CityArgs) -> Result<ExitCode> {
         if !(total > 0.0 && total.is_finite()) {
             anyhow::bail!("--total-time-limit must be a positive number of seconds, got {total}");
         }
-        anyhow::ensure!(
-            args.slurm.is_none(),
-            "--total-time-limit: the cluster's jobs have their own limits (--time-limit)"
-        );
+        anyhow::ensure!(slurm.is_none(), "--total-time-limit: the cluster's jobs have their own limits (--time-limit)");
         opts.deadline = Some(started + Duration::from_secs_f64(total - assembly_reserve(total)));
     }
     let interrupt = crate::cli::interrupt::install()?;
@@ -156,11 +188,11 @@ pub fn run_city(path: &Path, args: CityArgs) -> Result<ExitCode> {
             }
         }
     }));
-    let result = match &args.slurm {
+    let result = match &slurm {
         None => urban::run_city_on(&spec, regions, &out, &opts).map_err(anyhow::Error::from),
         Some(slurm) => {
             let exe = std::env::current_exe().context("locating the netspec binary")?;
-            let flags = job_flags(&args, &opts);
+            let flags = job_flags(args, &opts);
             urban::cluster::run_city_slurm(&exe, &spec, path, regions, &out, &opts, &flags, slurm)
                 .map_err(anyhow::Error::from)
         }

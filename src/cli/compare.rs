@@ -1,6 +1,7 @@
 //! `netspec compare`: runs [`netspec::compare::run_all`] and writes its report, printing each
 //! run as it ends.
 
+use super::args::ExecutorArgs;
 use anyhow::{bail, Context, Result};
 use netspec::compare::makespan::{self, Shape};
 use netspec::compare::{CompareSettings, Event, Executor, Manifest, Report, RunSource};
@@ -10,22 +11,86 @@ use netspec::spec::Variant;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-/// The command line of a comparison.
+/// `netspec compare`'s arguments.
+#[derive(clap::Args)]
 pub struct CompareArgs {
-    pub specs: Vec<PathBuf>,
-    pub manifest: Option<PathBuf>,
-    pub solvers: Vec<Method>,
-    pub time_limit: f64,
-    pub grace: f64,
-    pub seeds: Vec<u64>,
-    pub threads: Option<u32>,
-    pub paper_limits: bool,
-    pub formulations: Vec<Variant>,
-    pub rows: Vec<String>,
-    pub no_start: bool,
-    pub executor: Executor,
-    pub makespan: Vec<Shape>,
-    pub out: PathBuf,
+    /// Spec files.
+    #[arg(required_unless_present_any = ["manifest", "merge"])]
+    specs: Vec<PathBuf>,
+    /// A manifest of instances with the paper's figures (e.g. models/table1.toml).
+    #[arg(long, conflicts_with = "specs")]
+    manifest: Option<PathBuf>,
+    /// Backends, comma-separated (default: every compiled one but good_lp); the searches
+    /// `heuristic` and `anneal` may be listed too.
+    #[arg(long, value_delimiter = ',')]
+    solvers: Vec<Method>,
+    /// Time limit per run, seconds.
+    #[arg(long, default_value_t = 60.0)]
+    time_limit: f64,
+    /// Seconds past the limit before a run is killed.
+    #[arg(long, default_value_t = 10.0)]
+    grace: f64,
+    /// Seeds to run (default: one run with each solver's default).
+    #[arg(long, value_delimiter = ',')]
+    seeds: Vec<u64>,
+    /// Threads per run.
+    #[arg(long)]
+    threads: Option<u32>,
+    /// Give each row the paper's own time for it as its limit (capped at --time-limit).
+    #[arg(long)]
+    paper_limits: bool,
+    /// Formulations, comma-separated (`paper`, `strong`, `strong:out_arcs=off`): every
+    /// backend runs with each, as its own column (`highs/strong`). Default: the spec's own.
+    #[arg(long, value_delimiter = ',')]
+    formulations: Vec<Variant>,
+    /// Only the manifest rows with these names (comma-separated; `*` and `?` match any run
+    /// of characters and one: `2*`, `*-L4`).
+    #[arg(long, value_delimiter = ',', value_name = "ROW")]
+    rows: Vec<String>,
+    /// Solve without the heuristic's MIP start (each child gets `solve --no-start`).
+    #[arg(long)]
+    no_start: bool,
+    #[command(flatten)]
+    executor: ExecutorArgs,
+    /// Estimate how long these runs take on clusters of K nodes with C cores each
+    /// (comma-separated `KxC`: `1x2,20x2`), by list scheduling their recorded wall times;
+    /// printed and added to results.md.
+    #[arg(long, value_delimiter = ',', value_name = "KxC")]
+    makespan: Vec<Shape>,
+    /// Combine finished comparisons (each DIR's results.json) into one report in --out
+    /// without solving: every column of every DIR, in the order given (column labels must
+    /// differ). With --manifest, its rows are the table's; else the first DIR's.
+    #[arg(long, value_delimiter = ',', value_name = "DIR", conflicts_with_all = ["specs", "solvers", "seeds", "formulations", "no_start", "paper_limits", "threads"])]
+    merge: Vec<PathBuf>,
+    /// Output directory.
+    #[arg(long, default_value = "out/compare")]
+    out: PathBuf,
+}
+
+impl CompareArgs {
+    /// Runs the comparison, or merges finished ones with `--merge`.
+    pub fn run(self) -> Result<ExitCode> {
+        if !self.merge.is_empty() {
+            return merge(&self.merge, self.manifest.as_deref(), &self.rows, &self.out, &self.makespan);
+        }
+        run(self)
+    }
+}
+
+/// `netspec compare-task`'s arguments.
+#[derive(clap::Args)]
+pub struct TaskArgs {
+    /// The array's plan (`slurm/plan-*.json` in the comparison's folder).
+    plan: PathBuf,
+    /// The task's index in it.
+    index: usize,
+}
+
+impl TaskArgs {
+    /// Runs the task.
+    pub fn run(self) -> Result<ExitCode> {
+        task(&self.plan, self.index)
+    }
 }
 
 fn command() -> Vec<String> {
@@ -33,13 +98,7 @@ fn command() -> Vec<String> {
 }
 
 /// Combines finished comparisons into one report.
-pub fn merge(
-    dirs: &[PathBuf],
-    manifest: Option<&Path>,
-    rows: &[String],
-    out: &Path,
-    shapes: &[Shape],
-) -> Result<ExitCode> {
+fn merge(dirs: &[PathBuf], manifest: Option<&Path>, rows: &[String], out: &Path, shapes: &[Shape]) -> Result<ExitCode> {
     let manifest = manifest.map(|m| Manifest::load(m).and_then(|m| m.select(rows))).transpose()?;
     let merged = netspec::compare::merge(dirs, manifest)?;
     let from: Vec<String> = dirs.iter().map(|d| format!("`{}`", d.display())).collect();
@@ -62,7 +121,8 @@ pub fn merge(
 }
 
 /// Runs a comparison.
-pub fn run(a: CompareArgs) -> Result<ExitCode> {
+fn run(a: CompareArgs) -> Result<ExitCode> {
+    let executor = a.executor.slurm()?.map_or(Executor::Local, Executor::Slurm);
     let manifest = match &a.manifest {
         Some(m) => Manifest::load(m)?,
         None => Manifest::from_specs(&a.specs),
@@ -102,7 +162,7 @@ pub fn run(a: CompareArgs) -> Result<ExitCode> {
         paper_limits: a.paper_limits,
         no_start: a.no_start,
         interrupt,
-        executor: a.executor,
+        executor,
     };
     // The columns of every table and chart: a backend, or a (backend, formulation) pair.
     let columns: Vec<String> = settings.methods().into_iter().map(|(label, _, _)| label).collect();
@@ -171,7 +231,7 @@ pub fn run(a: CompareArgs) -> Result<ExitCode> {
 }
 
 /// One task of a Slurm job array: solves the plan's run `index` and writes its record.
-pub fn task(plan: &Path, index: usize) -> Result<ExitCode> {
+fn task(plan: &Path, index: usize) -> Result<ExitCode> {
     let exe = std::env::current_exe().context("locating the netspec binary")?;
     let r = netspec::compare::cluster::run_task(&exe, plan, index)
         .with_context(|| format!("task {index} of {}", plan.display()))?;

@@ -5,6 +5,7 @@
 use anyhow::Result;
 use indicatif::{ProgressBar, ProgressStyle};
 use netspec::grow::{self, GrowRequest};
+use std::path::PathBuf;
 use std::process::ExitCode;
 
 /// Violations printed one per line; the rest are counted (all are in `network.json`).
@@ -13,8 +14,41 @@ const SHOWN: usize = 10;
 /// Exit code of a grown network that fails the independent check (as `city` and `layout`).
 const EXIT_INVALID: u8 = 3;
 
+/// `netspec grow`'s arguments.
+#[derive(clap::Args)]
+pub struct GrowArgs {
+    /// The context file, or with --window a `netspec grow` output directory.
+    context: PathBuf,
+    /// Output directory.
+    #[arg(long, value_name = "DIR")]
+    out: PathBuf,
+    /// Seed of every random choice (default: the context's `seed`).
+    #[arg(long)]
+    seed: Option<u64>,
+    /// Time steps (default: the context's `steps`).
+    #[arg(long, value_name = "N")]
+    steps: Option<u32>,
+    /// Also write step-NNN.svg every K steps (and at step 0).
+    #[arg(long, value_name = "K", value_parser = clap::value_parser!(u32).range(1..))]
+    every: Option<u32>,
+    /// A window of the map, metres (x0,y0,x1,y1): writes city.toml (its grown major roads,
+    /// water as obstacles, unbuilt sub-regions running no level) and trade.json (the trade
+    /// flows across it).
+    #[arg(long, value_name = "X0,Y0,X1,Y1", value_parser = super::args::parse_window)]
+    window: Option<[f64; 4]>,
+}
+
+impl GrowArgs {
+    /// Grows the context (or windows a grown network).
+    pub fn run(self) -> Result<ExitCode> {
+        let req =
+            GrowRequest { context: self.context, out: self.out, seed: self.seed, steps: self.steps, every: self.every };
+        run(&req, self.window)
+    }
+}
+
 /// Grows (unless the context is a grown output directory) and writes the window's files.
-pub fn run(req: &GrowRequest, window: Option<[f64; 4]>) -> Result<ExitCode> {
+fn run(req: &GrowRequest, window: Option<[f64; 4]>) -> Result<ExitCode> {
     let grown = if req.context.is_dir() {
         anyhow::ensure!(
             window.is_some(),

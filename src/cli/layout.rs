@@ -4,14 +4,91 @@ use anyhow::Result;
 use indicatif::{ProgressBar, ProgressStyle};
 use netspec::layout::field::FieldMethod;
 use netspec::layout::run::{self, LayoutRequest};
-use std::path::Path;
+use netspec::layout::split::Selection;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 /// Exit code when a layout breaks a rule of the independent check.
 const EXIT_INVALID: u8 = 3;
 
+/// `netspec layout`'s arguments.
+#[derive(clap::Args)]
+pub struct LayoutArgs {
+    /// The region file.
+    region: PathBuf,
+    /// Seed of every random choice (default: the region's `seed`).
+    #[arg(long)]
+    seed: Option<u64>,
+    /// Layouts to make: the first by --mode, the others drawn by quality with seeds seed+1, ….
+    #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..=1000))]
+    variations: u64,
+    /// The cross field: `smooth` (boundary-aligned and smooth) or `distance` (aligned with the
+    /// gradient of the distance to the boundary, the paper's most used).
+    #[arg(long, default_value = "distance", value_name = "FIELD")]
+    field: FieldMethod,
+    /// Streamline choice: `best` (the highest quality, comparison mode) or `random` (drawn with
+    /// probability proportional to quality, variation mode).
+    #[arg(long, default_value = "best", value_name = "MODE")]
+    mode: Selection,
+    /// Iterations of the global optimisation of the streets (fairness and strip fitting,
+    /// the paper's §6, which runs 10); 0 for none. Off by default: with the row parceller
+    /// it costs parcel quality (docs/layout.md).
+    #[arg(long, value_name = "N", default_value_t = 0, value_parser = clap::value_parser!(u64).range(0..=100))]
+    optimise: u64,
+    /// Output directory.
+    #[arg(long, value_name = "DIR")]
+    out: Option<PathBuf>,
+}
+
+impl From<LayoutArgs> for LayoutRequest {
+    fn from(a: LayoutArgs) -> LayoutRequest {
+        LayoutRequest {
+            region: a.region,
+            field: a.field,
+            selection: a.mode,
+            seed: a.seed,
+            variations: a.variations as usize,
+            optimise: a.optimise as usize,
+            out: a.out,
+        }
+    }
+}
+
+impl LayoutArgs {
+    /// Lays the region out.
+    pub fn run(self) -> Result<ExitCode> {
+        run(&self.into())
+    }
+}
+
+/// `netspec field`'s arguments.
+#[derive(clap::Args)]
+pub struct FieldArgs {
+    /// The region file (TOML or GeoJSON).
+    region: PathBuf,
+    /// The construction: `smooth` or `distance`.
+    #[arg(long, default_value = "distance", value_name = "FIELD")]
+    method: FieldMethod,
+    /// Triangle size in metres (default: a third of the parcel depth).
+    #[arg(long)]
+    h: Option<f64>,
+    /// Output directory.
+    #[arg(long, value_name = "DIR")]
+    out: PathBuf,
+}
+
+impl FieldArgs {
+    /// Writes the field.
+    pub fn run(self) -> Result<ExitCode> {
+        if let Some(h) = self.h.filter(|h| !(h.is_finite() && *h > 0.0)) {
+            anyhow::bail!("--h must be a positive number of metres, got {h}");
+        }
+        field(&self.region, self.method, self.h, &self.out)
+    }
+}
+
 /// Runs the library entry point, with a bar of the area settled, and prints one line per layout.
-pub fn run(req: &LayoutRequest) -> Result<ExitCode> {
+fn run(req: &LayoutRequest) -> Result<ExitCode> {
     let bar = ProgressBar::new(1000);
     bar.set_style(
         ProgressStyle::with_template("{prefix} {bar:30} {percent:>3}% of the area {elapsed}").expect("static template"),
@@ -52,7 +129,7 @@ pub fn run(req: &LayoutRequest) -> Result<ExitCode> {
 }
 
 /// `netspec field`: writes the field and prints its singularities.
-pub fn field(region: &Path, method: FieldMethod, h: Option<f64>, out: &Path) -> Result<ExitCode> {
+fn field(region: &Path, method: FieldMethod, h: Option<f64>, out: &Path) -> Result<ExitCode> {
     let f = run::field_command(region, method, h, out)?;
     let sum: f64 = f.singularities().iter().map(|s| s.index).sum();
     println!(

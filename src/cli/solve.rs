@@ -1,17 +1,100 @@
 //! `netspec solve SPEC`: prints what [`netspec::run::solve_spec`] does as it goes.
 
+use super::args::SolveArgs;
 use anyhow::Result;
 use indicatif::{ProgressBar, ProgressStyle};
 use netspec::pipeline::search::SearchResult;
 use netspec::pipeline::DesignResult;
-use netspec::run::{Design, Event, SolveRequest};
+use netspec::run::{Design, Event, ExplainBudget, SolveRequest, StartChoice};
 use netspec::solvers::{Progress, ProgressSink};
+use netspec::spec::Variant;
+use std::path::PathBuf;
 use std::process::ExitCode;
 use std::sync::Arc;
 use std::time::Duration;
 
 /// Exit code when the design fails an independent check.
 const EXIT_INVALID: u8 = 3;
+
+/// `netspec solve`'s arguments.
+#[derive(clap::Args)]
+pub struct SolveCmd {
+    /// The spec file.
+    spec: PathBuf,
+    #[command(flatten)]
+    solve: SolveArgs,
+    /// Output directory (default: out/<the spec file's name>).
+    #[arg(long, value_name = "DIR")]
+    out: Option<PathBuf>,
+    /// Also write the MILP (`.lp` or `.mps`, by extension).
+    #[arg(long, value_name = "FILE")]
+    export: Option<PathBuf>,
+    /// Build and export the model without solving it.
+    #[arg(long)]
+    no_solve: bool,
+    /// Formulation, replacing the spec's: paper, tight or strong, optionally with parts and
+    /// switches (`strong:out_arcs=off`, `tight:connectivity=flow`) and the solve strategy's
+    /// switches (`strong:split_objective=off`).
+    #[arg(long, value_name = "RECIPE[:KEY=VALUE]…")]
+    formulation: Option<Variant>,
+    /// Solve only the LP relaxation (with the recipe's cutting-plane rounds) and print its
+    /// bound.
+    #[arg(long, conflicts_with = "no_solve")]
+    relax: bool,
+    /// When the spec is infeasible, do not look for the requirements that conflict.
+    #[arg(long)]
+    no_explain: bool,
+    /// Time budget for explaining an infeasible spec, seconds, from when the explanation
+    /// starts: it may run past --time-limit, which the solve says up front (default: what is
+    /// left of --time-limit; 60 s without one).
+    #[arg(long, value_name = "SECONDS")]
+    explain_time: Option<f64>,
+    /// Start from this design: an earlier `result.json` of the same spec, or a `.sol` file
+    /// of this model (`--sol`). It is checked first; a start that fails is reported, not used.
+    /// Default: the construction heuristic's design (a twentieth of the time limit, ≤ 1 s; while
+    /// it has no design, up to a fifth, ≤ 60 s; one search per solver thread).
+    #[arg(long, value_name = "FILE", conflicts_with = "no_start")]
+    start: Option<PathBuf>,
+    /// Solve without a MIP start.
+    #[arg(long)]
+    no_start: bool,
+    /// Refuse a mesh of more cells than this (default 250,000), before building it.
+    #[arg(long, value_name = "CELLS")]
+    max_cells: Option<usize>,
+}
+
+impl From<SolveCmd> for SolveRequest {
+    fn from(a: SolveCmd) -> SolveRequest {
+        let start = match (a.start, a.no_start) {
+            (_, true) => StartChoice::Nothing,
+            (Some(file), false) => StartChoice::File(file),
+            (None, false) => StartChoice::Heuristic,
+        };
+        SolveRequest {
+            spec: a.spec,
+            variant: a.formulation,
+            flags: a.solve.settings(),
+            out: a.out,
+            export: a.export,
+            no_solve: a.no_solve,
+            relax: a.relax,
+            sol: a.solve.sol.clone(),
+            explain: (!a.no_explain).then_some(a.explain_time.map_or(ExplainBudget::Remaining, ExplainBudget::Seconds)),
+            start,
+            interrupt: None,
+            progress: None,
+            max_cells: a.max_cells,
+            incumbents: None,
+        }
+    }
+}
+
+impl SolveCmd {
+    /// Solves the spec.
+    pub fn run(self) -> Result<ExitCode> {
+        solve(self.into())
+    }
+}
 
 /// Runs `solve` and prints its events; the exit code says whether the design is valid.
 pub fn solve(mut req: SolveRequest) -> Result<ExitCode> {

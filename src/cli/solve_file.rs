@@ -10,16 +10,39 @@ use std::process::ExitCode;
 /// Exit code when the solver's answer fails netspec's independent check.
 const EXIT_CHECK_FAILED: u8 = 3;
 
-/// Solves a model file and prints the summary (and writes the JSON result if asked).
-pub fn run(file: PathBuf, args: &SolveArgs, start: Option<PathBuf>, json: Option<&Path>) -> Result<ExitCode> {
-    let req = SolveFileRequest {
-        file,
-        settings: args.settings(),
-        start,
-        sol: args.sol.clone(),
-        interrupt: Some(super::interrupt::install()?),
-    };
-    let report = netspec::report::solve_file(&req, &mut |w| eprintln!("warning: {}: {}", w.path.display(), w.message))?;
+/// `netspec solve-file`'s arguments.
+#[derive(clap::Args)]
+pub struct SolveFileArgs {
+    /// The model file (`.mps`, `.lp`, `.mps.gz` or `.lp.gz`).
+    file: PathBuf,
+    #[command(flatten)]
+    solve: SolveArgs,
+    /// Start from the solution in this file (`name value` lines, e.g. an earlier `--sol`).
+    /// netspec checks it first; a start that fails the check is reported and not used.
+    #[arg(long, value_name = "FILE.sol")]
+    start: Option<PathBuf>,
+    /// Also write the JSON result (schema in docs/result-schema.md) here; `-` for stdout.
+    #[arg(long, value_name = "PATH")]
+    json: Option<PathBuf>,
+}
+
+impl SolveFileArgs {
+    /// Solves the model file and prints the summary (and writes the JSON result if asked).
+    pub fn run(self) -> Result<ExitCode> {
+        let req = SolveFileRequest {
+            file: self.file,
+            settings: self.solve.settings(),
+            start: self.start,
+            sol: self.solve.sol.clone(),
+            interrupt: Some(super::interrupt::install()?),
+        };
+        report(&req, &self.solve, self.json.as_deref())
+    }
+}
+
+/// Solves and prints the summary (and writes the JSON result if asked).
+fn report(req: &SolveFileRequest, args: &SolveArgs, json: Option<&Path>) -> Result<ExitCode> {
+    let report = netspec::report::solve_file(req, &mut |w| eprintln!("warning: {}: {}", w.path.display(), w.message))?;
     print!("{}", report.summary());
     if let (Some(path), true) = (&args.sol, report.result.primal.is_some()) {
         println!("solution   {}", path.display());

@@ -30,7 +30,7 @@ pub struct StatsArgs {
     #[arg(long, value_name = "M")]
     pub metres_per_unit: Option<f64>,
     /// The window of a grow design, metres: x0,y0,x1,y1 (default: its whole map).
-    #[arg(long, value_name = "X0,Y0,X1,Y1", value_parser = crate::parse_window)]
+    #[arg(long, value_name = "X0,Y0,X1,Y1", value_parser = super::args::parse_window)]
     pub window: Option<[f64; 4]>,
     /// Print one JSON object per design instead of the table.
     #[arg(long)]

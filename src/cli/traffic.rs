@@ -9,15 +9,92 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
 
-/// The command line's settings.
+/// `netspec traffic`'s arguments.
+#[derive(clap::Args)]
 pub struct TrafficArgs {
-    pub designs: Vec<PathBuf>,
-    pub labels: Vec<String>,
-    pub demand: DemandSettings,
-    pub load: LoadOptions,
-    pub sumo_home: Option<PathBuf>,
-    pub out: PathBuf,
-    pub time_limit: Option<f64>,
+    /// Designs: `netspec city` output directories, `netspec solve` output directories or
+    /// result.json files (a city's regions/NN-name/L<n>/ too).
+    #[arg(required = true)]
+    designs: Vec<PathBuf>,
+    /// Names of the designs, comma-separated (default: their directory names).
+    #[arg(long, value_delimiter = ',')]
+    labels: Vec<String>,
+    /// Seconds during which trips depart.
+    #[arg(long, default_value_t = 3600.0, value_name = "SECONDS")]
+    duration: f64,
+    /// Through trips per hour (boundary to the far side of the boundary).
+    #[arg(long, default_value_t = 300.0, value_name = "PER_HOUR")]
+    through_rate: f64,
+    /// Local trips per hour (interior point to interior point).
+    #[arg(long, default_value_t = 600.0, value_name = "PER_HOUR")]
+    local_rate: f64,
+    /// Seed of the demand, duarouter and sumo.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// Metres per model unit (default: the city spec's; 20 for solve results).
+    #[arg(long, value_name = "M")]
+    metres_per_unit: Option<f64>,
+    /// Level of a solve result's streets: 1 major, 2 collector, 3 local (default), 4 cul-de-sac.
+    #[arg(long, value_parser = clap::value_parser!(u8).range(1..=4))]
+    level: Option<u8>,
+    /// The window of a `netspec grow` network, metres: x0,y0,x1,y1 (default: its whole map).
+    #[arg(long, value_name = "X0,Y0,X1,Y1", value_parser = super::args::parse_window)]
+    window: Option<[f64; 4]>,
+    /// The region every design is simulated on (a site.geojson of `netspec site`, or any
+    /// GeoJSON site): designs are moved into its metres through WGS 84 and clipped to it,
+    /// and demand is drawn in its outline.
+    #[arg(long, value_name = "REGION.geojson")]
+    region: Option<PathBuf>,
+    /// Trade flows (a trade.json of `netspec grow --window`): trade trips between the
+    /// entrances nearest to each flow's ends, for every design.
+    #[arg(long, value_name = "FILE")]
+    trade: Option<PathBuf>,
+    /// Trade trips per hour, shared among the flows by weight.
+    #[arg(long, default_value_t = 300.0, value_name = "PER_HOUR")]
+    trade_rate: f64,
+    /// SUMO_HOME to use (default: $SUMO_HOME, then the copy scripts/setup.sh installs, then PATH).
+    #[arg(long, value_name = "DIR")]
+    sumo_home: Option<PathBuf>,
+    /// Output directory.
+    #[arg(long, value_name = "DIR", default_value = "out/traffic")]
+    out: PathBuf,
+    /// Time limit of the whole evaluation, seconds: a SUMO tool still running when it runs
+    /// out is stopped and the command fails, saying so (default: none).
+    #[arg(long, value_name = "SECONDS")]
+    time_limit: Option<f64>,
+}
+
+impl TrafficArgs {
+    /// The demand every design gets (the trade file read).
+    fn demand(&self) -> Result<DemandSettings> {
+        Ok(DemandSettings {
+            duration: self.duration,
+            through_per_hour: self.through_rate,
+            local_per_hour: self.local_rate,
+            seed: self.seed,
+            trade_per_hour: self.trade_rate,
+            trade: match &self.trade {
+                Some(f) => traffic::demand::TradeFile::load(f)?.flows,
+                None => Vec::new(),
+            },
+        })
+    }
+
+    /// How the designs are read (the region file read).
+    fn load_options(&self) -> Result<LoadOptions> {
+        Ok(LoadOptions {
+            metres_per_unit: self.metres_per_unit,
+            level: self.level,
+            window: self.window,
+            region: self.region.as_deref().map(traffic::network::SiteRegion::load).transpose()?,
+        })
+    }
+
+    /// Evaluates the designs.
+    pub fn run(self) -> Result<ExitCode> {
+        let (demand, load) = (self.demand()?, self.load_options()?);
+        run_traffic(&self, &demand, &load)
+    }
 }
 
 /// A label from a design's path: its directory name (`result.json`'s parent's for a file).
@@ -34,7 +111,7 @@ fn write_picture(dir: &Path, stem: &str, svg: &str) -> Result<()> {
     Ok(())
 }
 
-pub fn run_traffic(args: TrafficArgs) -> Result<ExitCode> {
+fn run_traffic(args: &TrafficArgs, demand: &DemandSettings, load_options: &LoadOptions) -> Result<ExitCode> {
     let started = Instant::now();
     let mut sumo = Sumo::locate(args.sumo_home.as_deref())?;
     if let Some(limit) = args.time_limit {
@@ -68,14 +145,14 @@ pub fn run_traffic(args: TrafficArgs) -> Result<ExitCode> {
     let mut reports: Vec<(String, TrafficReport)> = Vec::new();
     for (path, label) in args.designs.iter().zip(&labels) {
         let t0 = Instant::now();
-        let net = traffic::network::load(path, &args.load)?;
+        let net = traffic::network::load(path, load_options)?;
         let load = t0.elapsed().as_secs_f64();
         // A label names a folder: made one safe path component.
         let dir =
             if args.designs.len() == 1 { args.out.clone() } else { args.out.join(netspec::run::safe_component(label)) };
         std::fs::create_dir_all(&dir).with_context(|| format!("creating {}", dir.display()))?;
-        let mut rep = traffic::evaluate(&net, &args.demand, &sumo, &dir)
-            .with_context(|| format!("evaluating {}", path.display()))?;
+        let mut rep =
+            traffic::evaluate(&net, demand, &sumo, &dir).with_context(|| format!("evaluating {}", path.display()))?;
         rep.timings.load = load;
         rep.timings.total += load;
         rep.write(&dir)?;
