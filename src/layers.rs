@@ -83,4 +83,3 @@ fn layers_have_no_cycles() {
     assert!(!deps["design"].contains("formulations"), "design code never imports formulations");
     assert!(!deps["heuristics"].contains("formulations"), "heuristics return designs only");
 }
-
