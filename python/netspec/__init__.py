@@ -26,8 +26,10 @@ from ._netspec import (
     read_model,
     read_spec,
     records_csv,
+    site,
     solve,
     solvers,
+    stats,
     version,
 )
 
@@ -49,8 +51,11 @@ __all__ = [
     "read_spec",
     "records_csv",
     "records_frame",
+    "site",
     "solve",
     "solvers",
+    "stats",
+    "stats_frame",
     "version",
 ]
 
@@ -67,3 +72,19 @@ def records_frame(records: Iterable[Mapping[str, Any]]) -> Any:
     columns: Sequence[str] = csv_columns()
     rows = [{c: r.get(c) for c in columns} for r in records]
     return pd.DataFrame(rows, columns=list(columns))
+
+
+def stats_frame(designs: Iterable[Mapping[str, Any]]) -> Any:
+    """The designs of `stats` as a pandas DataFrame, one row per design: its label and kind,
+    every street statistic, and its mean distance to the reference (pandas is an optional
+    dependency)."""
+    try:
+        import pandas as pd
+    except ImportError as e:  # pragma: no cover - depends on the environment
+        raise ImportError("stats_frame needs pandas: pip install pandas") from e
+    rows = []
+    for d in designs:
+        distance = d.get("distance") or {}
+        rows.append({"label": d["label"], "kind": d["kind"], **d["stats"], "distance": distance.get("mean")})
+    return pd.DataFrame(rows)
+

@@ -184,4 +184,28 @@ def city(
     out: _Path | None = None,
     on_progress: Callable[[Progress], object] | None = None,
 ) -> dict[str, Any]: ...
+def site(
+    extract: _Path,
+    out: _Path,
+    bbox: tuple[float, float, float, float] | Sequence[float] | None = None,
+    polygon: _Path | None = None,
+    holes: Sequence[str] | None = None,
+    major: Sequence[str] | None = None,
+    service: bool = False,
+    grow: bool = False,
+    city: bool = False,
+    largest: bool = False,
+    name: str | None = None,
+    exclude: Sequence[int] | None = None,
+) -> dict[str, Any]: ...
+def stats(
+    designs: Sequence[_Path],
+    labels: Sequence[str] | None = None,
+    region: _Path | None = None,
+    reference: str | None = None,
+    clean_int_tol: float = 10.0,
+    metres_per_unit: float | None = None,
+    window: tuple[float, float, float, float] | Sequence[float] | None = None,
+    out: _Path | None = None,
+) -> list[dict[str, Any]]: ...
 def version() -> str: ...

@@ -10,6 +10,7 @@ mod comparison;
 mod errors;
 mod model;
 mod result;
+mod sites;
 mod spec;
 mod urban;
 
@@ -49,6 +50,8 @@ fn _netspec(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(urban::solvers, m)?)?;
     m.add_function(wrap_pyfunction!(urban::level, m)?)?;
     m.add_function(wrap_pyfunction!(urban::city, m)?)?;
+    m.add_function(wrap_pyfunction!(sites::site, m)?)?;
+    m.add_function(wrap_pyfunction!(sites::stats, m)?)?;
     m.add_function(wrap_pyfunction!(version, m)?)?;
     Ok(())
 }

@@ -82,7 +82,7 @@ pub struct SiteRequest {
 }
 
 /// What was made.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct SiteSummary {
     /// The site's name.
     pub name: String,
