@@ -277,7 +277,7 @@ fn a_window_is_a_city_spec_and_trade_flows() {
         "--steps".as_ref(),
         "10".as_ref(),
         "--window".as_ref(),
-        "300,500,960,1000".as_ref(),
+        "250,450,1000,1050".as_ref(),
         "--out".as_ref(),
         a.as_os_str(),
     ]);
@@ -294,7 +294,7 @@ fn a_window_is_a_city_spec_and_trade_flows() {
         "grow".as_ref(),
         a.as_os_str(),
         "--window".as_ref(),
-        "300,500,960,1000".as_ref(),
+        "250,450,1000,1050".as_ref(),
         "--out".as_ref(),
         b.as_os_str(),
     ]);

@@ -6,7 +6,7 @@
 //! minimum are refused, and no minor road crosses water, forbidden ground or too steep a slope.
 
 use super::context::{Pattern, PatternKind};
-use super::graph::{Class, Graph};
+use super::graph::{Class, Graph, SNAP};
 use super::terrain::{Terrain, LAND};
 use crate::geometry::{closest_on_segment, dist, dot, segment_intersection, sub, P};
 use rand::rngs::Xoshiro256PlusPlus;
@@ -294,13 +294,21 @@ impl Grower<'_> {
             }
             let (c, d) = self.graph.ends(s);
             let g = &self.graph.segs[s as usize];
-            let end = if dist(x, c) <= snap.min(dist(c, d) / 3.0) {
+            let near = snap.min(dist(c, d) / 3.0).max(SNAP);
+            let end = if dist(x, c) <= near {
                 End::Node(g.a)
-            } else if dist(x, d) <= snap.min(dist(c, d) / 3.0) {
+            } else if dist(x, d) <= near {
                 End::Node(g.b)
             } else {
                 End::Split(x)
             };
+            // Snapped to a node, the street meets that node's other streets too.
+            if let End::Node(n) = end {
+                let to = self.graph.nodes[n as usize].pos;
+                if !(self.clear(start, to, from, on_seg, Some(n)) && self.end_angle_ok(n, start, min_angle)) {
+                    return None;
+                }
+            }
             return Some((end, true));
         }
         if let Some(&n) =
@@ -391,4 +399,44 @@ fn normal(rng: &mut Xoshiro256PlusPlus) -> f64 {
     let u = 1.0 - rng.random::<f64>();
     let v = rng.random::<f64>();
     (-2.0 * u.ln()).sqrt() * (std::f64::consts::TAU * v).cos()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::grow::context::Context;
+    use rand::SeedableRng;
+
+    /// A street that crosses a segment next to its end node snaps to that node only where it
+    /// meets the node's other streets at the minimum angle: here it would run 0.6° beside one.
+    #[test]
+    fn a_crossing_snapped_to_a_node_keeps_the_minimum_angle() {
+        let ctx = Context::from_toml("size = [200, 200]").unwrap();
+        let terrain = Terrain { nx: 11, ny: 11, spacing: 20.0, z: vec![0.0; 121], class: vec![LAND; 121] };
+        let mut graph = Graph::new(ctx.size);
+        let c = graph.node_at([50.0, 50.0], true);
+        let d = graph.node_at([50.0, 150.0], true);
+        let e = graph.node_at([150.0, 54.0], true);
+        graph.insert(c, d, Class::Minor, 1.0, 0);
+        graph.insert(c, e, Class::Minor, 1.0, 0);
+        let start = graph.node_at([110.0, 53.0], true);
+        let mut rng = Xoshiro256PlusPlus::seed_from_u64(1);
+        let mut growth = Growth::default();
+        let pattern = ctx.pattern(0).clone();
+        let mut g = Grower {
+            graph: &mut graph,
+            terrain: &terrain,
+            nuclei: &[],
+            pattern: &pattern,
+            slope_cut: 0.15,
+            step: 1,
+            rng: &mut rng,
+            growth: &mut growth,
+        };
+        assert!(g.extend(Seat::Node(start), std::f64::consts::PI, 80.0).is_none());
+        // From the north-east it crosses c–d 6.7 m from c at wide angles to c's streets: it snaps.
+        let start = g.graph.node_at([90.0, 110.0], true);
+        let h = (50.0f64 - 110.0).atan2(45.0 - 90.0);
+        assert_eq!(g.extend(Seat::Node(start), h, 80.0).map(|r| r.0), Some(c));
+    }
 }
