@@ -194,13 +194,30 @@ fn a_second_harbour_appears_when_the_first_saturates() {
     let ctx = small("small-lake.toml");
     let mut sim = Sim::new(&ctx, ctx.seed).unwrap();
     assert_eq!(sim.series[0].ports, 1, "one harbour in the initial network");
+    let first = sim.graph.segs.iter().position(|s| s.class == Class::Harbour).unwrap();
+    let mut second = None;
     for _ in 0..ctx.steps {
         sim.step();
         check_traffic(&sim);
+        if second.is_none() && sim.series.last().unwrap().ports >= 2 {
+            // Built in the step the first harbour's routes came to need more than it carries.
+            let h = &sim.graph.segs[first];
+            let users = sim
+                .traffic
+                .routes
+                .iter()
+                .filter(|r| {
+                    r.born == 0
+                        && r.nodes.windows(2).any(|w| (w[0].min(w[1]), w[0].max(w[1])) == (h.a.min(h.b), h.a.max(h.b)))
+                })
+                .count();
+            let need = |t: u32| users as f64 * sim.demand(t);
+            let cap = sim.traffic.per_lane * h.width;
+            assert!(need(sim.step) > cap && need(sim.step - 1) <= cap, "step {}: {users} routes, {h:?}", sim.step);
+            second = Some(sim.step);
+        }
     }
-    let s = &sim.series;
-    let second = s.iter().position(|r| r.ports >= 2).expect("a second harbour appears");
-    assert!(s[..second].iter().any(|r| r.overflow > 0.0), "the first harbour saturated before: {s:?}");
+    assert!(second.is_some(), "a second harbour appears: {:?}", sim.series);
     assert!(planarity_violations(&sim).is_empty());
     let found = validate(&Network::of(&sim), &sim.ctx);
     assert!(found.is_empty(), "{found:?}");
@@ -608,4 +625,53 @@ polygon = [[900, 0], [1260, 0], [1260, 1260], [600, 1260], [650, 1000], [900, 70
     }
     let found = validate(&Network::of(&sim), &sim.ctx);
     assert!(found.is_empty(), "{found:?}");
+}
+
+/// One road between two cities on open land (every face too large to be a built-up block, so
+/// the road stays extendible) and traffic growing from 10 to 100 units while a lane carries 30:
+/// the road is widened as it saturates, its capacity follows its lanes, and no second road is
+/// built.
+#[test]
+fn widening_relieves_a_saturated_road() {
+    let ctx = Context::from_toml(
+        r#"
+size = [1260, 1260]
+spacing = 20
+radius = 4
+steps = 30
+[[neighbour]]
+position = [0, 600]
+[[neighbour]]
+position = [1260, 640]
+[terrain]
+relief = 5
+[params]
+mu = 0.7
+b = 1
+demand = 5
+growth = [[0, 2], [30, 20]]
+widths = [[0, 1]]
+block_area = 1
+"#,
+    )
+    .unwrap();
+    let mut sim = Sim::new(&ctx, ctx.seed).unwrap();
+    assert_eq!(sim.traffic.routes.len(), 1);
+    for _ in 0..ctx.steps {
+        sim.step();
+        check_traffic(&sim);
+        let route = &sim.traffic.routes[0];
+        for w in route.nodes.windows(2) {
+            let s = &sim.graph.segs[sim.graph.find(w[0], w[1]).unwrap() as usize];
+            let cap = netspec::grow::traffic::capacity(&sim.graph, sim.graph.find(w[0], w[1]).unwrap(), 30.0);
+            assert_eq!(cap, 30.0 * s.width, "capacity follows lanes");
+            assert!(s.load <= cap + 1e-9, "step {}: load {} over capacity {cap}", sim.step, s.load);
+        }
+    }
+    let s = &sim.series;
+    assert!(s.iter().all(|r| r.overflow == 0.0), "widening relieved every shortfall: {s:?}");
+    assert_eq!(sim.traffic.routes.len(), 1, "no second road");
+    let widest = sim.graph.segs.iter().filter(|g| g.class == Class::Major).map(|g| g.width).fold(0.0, f64::max);
+    assert!(widest >= 4.0, "{widest} lanes for 100 units");
+    assert!(s.last().unwrap().lane_km > 3.9 * s[0].lane_km, "{:?} → {:?}", s[0], s.last());
 }

@@ -73,12 +73,14 @@ impl Grower<'_> {
     pub fn grow(&mut self, count: usize) -> usize {
         let spacing = self.terrain.spacing;
         let mut cands: Vec<(f64, f64, P, Seat)> = Vec::new();
+        // RANK(z) = dist(q_N, z) · (1 − STRENGTH(q_N)) of the nucleus q_N nearest to z (the
+        // first of equally near ones), ties by that distance.
         let rank = |p: P| -> (f64, f64) {
             self.nuclei
                 .iter()
-                .map(|q| (dist(q.pos, p) * (1.0 - q.strength), dist(q.pos, p)))
-                .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)))
-                .unwrap_or((0.0, 0.0))
+                .map(|q| (dist(q.pos, p), q.strength))
+                .min_by(|a, b| a.0.total_cmp(&b.0))
+                .map_or((0.0, 0.0), |(d, s)| (d * (1.0 - s), d))
         };
         for (n, node) in self.graph.nodes.iter().enumerate() {
             if !node.spawned && self.graph.road_degree(n as u32) > 0 && self.terrain.class_at(node.pos) == LAND {
