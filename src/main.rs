@@ -366,9 +366,17 @@ enum Command {
         /// Time steps (default: the context's `steps`).
         #[arg(long, value_name = "N")]
         steps: Option<u32>,
-        /// Also write step-NNN.svg every K steps (and at step 0).
+        /// Also write step-NNN.svg every K steps (and at step 0), and steps.svg/.png with them
+        /// side by side.
         #[arg(long, value_name = "K", value_parser = clap::value_parser!(u32).range(1..))]
         every: Option<u32>,
+        /// Draw every minor road, dead-end stubs too (by default the pictures show the streets
+        /// that bound blocks or join roads).
+        #[arg(long)]
+        all_streets: bool,
+        /// Also write gallery.svg/.png: the initial networks of N seeds from the run's seed on.
+        #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
+        gallery: Option<u32>,
         /// A window of the map, metres (x0,y0,x1,y1): writes city.toml (its grown major roads,
         /// water as obstacles, unbuilt sub-regions running no level) and trade.json (the trade
         /// flows across it).
@@ -709,9 +717,10 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 out,
             })
         }
-        Command::Grow { context, out, seed, steps, every, window } => {
-            cli::grow::run(&netspec::grow::GrowRequest { context, out, seed, steps, every }, window)
-        }
+        Command::Grow { context, out, seed, steps, every, all_streets, gallery, window } => cli::grow::run(
+            &netspec::grow::GrowRequest { context, out, seed, steps, every, all_streets, gallery },
+            window,
+        ),
         Command::Field { region, method, h, out } => {
             if let Some(h) = h.filter(|h| !(h.is_finite() && *h > 0.0)) {
                 anyhow::bail!("--h must be a positive number of metres, got {h}");

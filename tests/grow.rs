@@ -218,17 +218,28 @@ fn a_second_harbour_appears_when_the_first_saturates() {
         }
     }
     assert!(second.is_some(), "a second harbour appears: {:?}", sim.series);
+    let harbours: Vec<u32> =
+        (0..sim.graph.segs.len() as u32).filter(|&s| sim.graph.segs[s as usize].class == Class::Harbour).collect();
+    let sites = sim.port_sites(&harbours);
+    assert!(sites.len() >= 2 && dist(sites[0], sites[1]) > 200.0, "the second port is at another site: {sites:?}");
     assert!(planarity_violations(&sim).is_empty());
     let found = validate(&Network::of(&sim), &sim.ctx);
     assert!(found.is_empty(), "{found:?}");
 }
 
 fn run_to(dir: &Path, context: &Path, seed: Option<u64>) -> Vec<u8> {
-    let req =
-        GrowRequest { context: context.to_path_buf(), out: dir.to_path_buf(), seed, steps: Some(10), every: Some(5) };
+    let req = GrowRequest {
+        context: context.to_path_buf(),
+        out: dir.to_path_buf(),
+        seed,
+        steps: Some(10),
+        every: Some(5),
+        all_streets: false,
+        gallery: None,
+    };
     let summary = grow::run(&req, &mut |_, _| {}).unwrap();
     assert!(summary.violations.is_empty() && summary.snapshot_violations.is_empty(), "{:?}", summary.violations);
-    for f in ["network.json", "series.csv", "network.svg", "network.png", "step-000.svg", "step-010.svg"] {
+    for f in ["network.json", "series.csv", "network.svg", "network.png", "step-000.svg", "step-010.svg", "steps.png"] {
         assert!(dir.join(f).exists(), "{f}");
     }
     std::fs::read(dir.join("network.json")).unwrap()
@@ -268,8 +279,15 @@ fn bad_contexts_name_the_field() {
     for (i, (text, field)) in cases.iter().enumerate() {
         let path = tmp.path().join(format!("c{i}.toml"));
         std::fs::write(&path, text).unwrap();
-        let req =
-            GrowRequest { context: path.clone(), out: tmp.path().join("out"), seed: None, steps: Some(1), every: None };
+        let req = GrowRequest {
+            context: path.clone(),
+            out: tmp.path().join("out"),
+            seed: None,
+            steps: Some(1),
+            every: None,
+            all_streets: false,
+            gallery: None,
+        };
         let e = grow::run(&req, &mut |_, _| {}).unwrap_err();
         let msg = e.to_string();
         assert!(msg.contains(field), "case {i}: {msg}");
@@ -565,7 +583,15 @@ fn bad_roads_and_nuclei_name_the_field_and_nothing_is_grown() {
         let path = tmp.path().join(format!("c{i}.toml"));
         std::fs::write(&path, format!("{lake}{text}")).unwrap();
         let out = tmp.path().join(format!("out{i}"));
-        let req = GrowRequest { context: path.clone(), out: out.clone(), seed: None, steps: Some(1), every: None };
+        let req = GrowRequest {
+            context: path.clone(),
+            out: out.clone(),
+            seed: None,
+            steps: Some(1),
+            every: None,
+            all_streets: false,
+            gallery: None,
+        };
         let e = grow::run(&req, &mut |_, _| {}).unwrap_err();
         let msg = e.to_string();
         assert!(msg.contains(field), "case {i}: {msg}");
@@ -674,4 +700,44 @@ block_area = 1
     let widest = sim.graph.segs.iter().filter(|g| g.class == Class::Major).map(|g| g.width).fold(0.0, f64::max);
     assert!(widest >= 4.0, "{widest} lanes for 100 units");
     assert!(s.last().unwrap().lane_km > 3.9 * s[0].lane_km, "{:?} → {:?}", s[0], s.last());
+}
+
+/// The pictures leave dead-end stubs out (every minor road shown bounds a block or joins roads:
+/// no end of it is a dead end among the roads shown) unless all streets are asked for; the step
+/// strip and the gallery put their pictures side by side.
+#[test]
+fn pictures_hide_stubs_and_come_in_strips() {
+    let ctx = small("small-river.toml");
+    let mut sim = Sim::new(&ctx, ctx.seed).unwrap();
+    for _ in 0..15 {
+        sim.step();
+    }
+    let (shown, all) = (grow::output::scene(&sim, false), grow::output::scene(&sim, true));
+    let minor = |s: &netspec::render::grow::GrowScene| s.roads.iter().filter(|r| r.class == "minor").count();
+    assert!(minor(&shown) < minor(&all) && minor(&shown) > minor(&all) / 2, "{} of {}", minor(&shown), minor(&all));
+    let key = |p: P| ((p[0] * 1000.0).round() as i64, (p[1] * 1000.0).round() as i64);
+    let mut degree: BTreeMap<(i64, i64), usize> = BTreeMap::new();
+    for r in shown.roads.iter().filter(|r| r.class != "water") {
+        *degree.entry(key(r.a)).or_default() += 1;
+        *degree.entry(key(r.b)).or_default() += 1;
+    }
+    for r in shown.roads.iter().filter(|r| r.class == "minor") {
+        assert!(degree[&key(r.a)] > 1 && degree[&key(r.b)] > 1, "a stub is drawn: {r:?}");
+    }
+    let tmp = tempfile::tempdir().unwrap();
+    let req = GrowRequest {
+        context: model("small-river.toml"),
+        out: tmp.path().to_path_buf(),
+        seed: None,
+        steps: Some(4),
+        every: Some(2),
+        all_streets: false,
+        gallery: Some(3),
+    };
+    grow::run(&req, &mut |_, _| {}).unwrap();
+    let text = |f: &str| std::fs::read_to_string(tmp.path().join(f)).unwrap();
+    let cities = ctx.neighbour.len();
+    assert_eq!(text("steps.svg").matches("class=\"city\"").count(), 3 * cities, "steps 0, 2 and 4");
+    assert_eq!(text("gallery.svg").matches("class=\"city\"").count(), 3 * cities, "three seeds");
+    assert!(tmp.path().join("gallery.png").exists() && tmp.path().join("steps.png").exists());
 }

@@ -18,6 +18,9 @@ use rand::rngs::Xoshiro256PlusPlus;
 use rand::{RngExt, SeedableRng};
 use std::collections::{HashMap, HashSet};
 
+/// Harbours whose land ends lie within this of a port's first harbour are that port (metres).
+pub const PORT_SITE: f64 = 200.0;
+
 /// A neighbouring city.
 #[derive(Clone, Debug, PartialEq)]
 pub struct City {
@@ -48,7 +51,8 @@ pub struct StepStats {
     pub major_km: f64,
     /// Nuclei.
     pub nuclei: usize,
-    /// Harbour segments.
+    /// Ports: harbour sites ([`Sim::port_sites`]: harbours within [`PORT_SITE`] of a site's first
+    /// harbour are that site).
     pub ports: usize,
     /// Bridges built.
     pub bridges: usize,
@@ -112,8 +116,14 @@ impl Sim {
     /// they are near), the paths between them (through the centre when the context names one),
     /// the nuclei, and the pairs' first routes loaded.
     pub fn new(ctx: &Context, seed: u64) -> Result<Sim, GrowError> {
+        Sim::with_terrain_seed(ctx, seed, seed)
+    }
+
+    /// [`Sim::new`] with the generated terrain drawn from `terrain_seed` (a gallery of initial
+    /// networks on one terrain).
+    pub fn with_terrain_seed(ctx: &Context, seed: u64, terrain_seed: u64) -> Result<Sim, GrowError> {
         let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
-        let terrain = Terrain::build(ctx, seed)?;
+        let terrain = Terrain::build(ctx, terrain_seed)?;
         roads::check_nuclei(ctx, &terrain)?;
         let centre_vertex = roads::centre_vertex(ctx, &terrain)?;
         let p = &ctx.params;
@@ -684,7 +694,7 @@ impl Sim {
     pub fn stats(&self, new_routes: usize) -> StepStats {
         let mut minor = 0.0;
         let mut major = 0.0;
-        let mut ports = 0;
+        let mut harbours = Vec::new();
         let mut lanes = 0.0;
         for (s, g) in self.graph.segs.iter().enumerate() {
             let l = self.graph.length(s as u32);
@@ -693,7 +703,7 @@ impl Sim {
                 Class::Major | Class::Bridge => major += l,
                 Class::Harbour => {
                     major += l;
-                    ports += 1;
+                    harbours.push(s as u32);
                 }
                 Class::Water => {}
             }
@@ -711,7 +721,7 @@ impl Sim {
             minor_km: round(minor / 1000.0, 3),
             major_km: round(major / 1000.0, 3),
             nuclei: self.nuclei.len(),
-            ports,
+            ports: self.port_sites(&harbours).len(),
             bridges: self.bridges,
             trade_routes: self.traffic.routes.len(),
             new_routes,
@@ -721,6 +731,22 @@ impl Sim {
             lane_km_added: round((lanes / 1000.0 - self.series.last().map_or(0.0, |r| r.lane_km)).max(0.0), 3),
             lane_km: round(lanes / 1000.0, 3),
         }
+    }
+
+    /// The harbour sites: the land ends of the harbour segments `harbours`, in order, each
+    /// joining the first site whose first harbour is within [`PORT_SITE`] of it, or founding a
+    /// new one (so a site stays where it was founded as harbours are added); each site's first
+    /// land end.
+    pub fn port_sites(&self, harbours: &[u32]) -> Vec<P> {
+        let mut sites: Vec<P> = Vec::new();
+        for &s in harbours {
+            let (a, b) = self.graph.ends(s);
+            let end = if self.lattice.terrain.class_at(a) == LAND { a } else { b };
+            if sites.iter().all(|&q| dist(q, end) > PORT_SITE) {
+                sites.push(end);
+            }
+        }
+        sites
     }
 
     /// Road segments that cross, or a node lying inside another segment: the planarity check the
