@@ -325,6 +325,13 @@ pub struct Pattern {
     /// Smallest angle between streets at a junction (degrees).
     #[serde(default = "d_min_angle")]
     pub min_angle: f64,
+    /// How far past its end a street looks for a road to extend to (metres; 0: never).
+    #[serde(default = "d_extend")]
+    pub extend: f64,
+    /// A grid's orientation (degrees from the x axis; default: the direction of the major road
+    /// nearest to the nearest nucleus).
+    #[serde(default)]
+    pub angle: Option<f64>,
 }
 
 /// The street pattern kinds.
@@ -335,7 +342,8 @@ pub enum PatternKind {
     Organic,
     /// Straight streets and right-angle branches.
     Grid,
-    /// Alternately along and across the direction to the nearest nucleus.
+    /// Along or across the direction to the nearest nucleus, whichever is nearer the street's
+    /// base heading.
     Radial,
 }
 
@@ -423,6 +431,9 @@ fn d_snap() -> f64 {
 fn d_min_angle() -> f64 {
     30.0
 }
+fn d_extend() -> f64 {
+    20.0
+}
 fn d_patterns() -> Vec<Pattern> {
     let p = |from, kind, length, branch| Pattern {
         from,
@@ -434,6 +445,8 @@ fn d_patterns() -> Vec<Pattern> {
         branch,
         snap: d_snap(),
         min_angle: d_min_angle(),
+        extend: d_extend(),
+        angle: None,
     };
     vec![
         p(0, PatternKind::Organic, 40.0, 0.0),
@@ -642,6 +655,12 @@ impl Context {
             }
             if !(1..=50).contains(&p.segments) {
                 return bad(&f("segments"), format!("must be 1 to 50, got {}", p.segments));
+            }
+            if !(p.extend.is_finite() && p.extend >= 0.0) {
+                return bad(&f("extend"), format!("must be a length ≥ 0, got {}", p.extend));
+            }
+            if p.angle.is_some_and(|a| !a.is_finite()) {
+                return bad(&f("angle"), "must be a finite angle in degrees".into());
             }
             let ok = p.snap.is_finite()
                 && p.snap >= 0.0

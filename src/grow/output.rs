@@ -215,11 +215,11 @@ impl NetworkFile {
 /// `series.csv`: a header and one row per step.
 pub fn series_csv(sim: &Sim) -> String {
     let mut out = String::from(
-        "step,settlements,built_up_ha,blocks,minor_km,major_km,nuclei,ports,bridges,trade_routes,new_routes,overflow,four_way_share,orientation_entropy,lane_km_added,lane_km\n",
+        "step,settlements,built_up_ha,blocks,minor_km,major_km,nuclei,ports,bridges,trade_routes,new_routes,overflow,four_way_share,orientation_entropy,lane_km_added,lane_km,dead_end_share,block_median_m2\n",
     );
     for r in &sim.series {
         out.push_str(&format!(
-            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
+            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
             r.step,
             r.settlements,
             r.built_up_ha,
@@ -235,7 +235,9 @@ pub fn series_csv(sim: &Sim) -> String {
             r.four_way_share,
             r.orientation_entropy,
             r.lane_km_added,
-            r.lane_km
+            r.lane_km,
+            r.dead_end_share,
+            r.block_median_m2
         ));
     }
     out

@@ -72,6 +72,10 @@ pub struct StepStats {
     pub lane_km_added: f64,
     /// Lane-kilometres of major road (bridges and harbours included).
     pub lane_km: f64,
+    /// Dead ends among the dead ends and junctions of the current pattern era's minor roads.
+    pub dead_end_share: f64,
+    /// The median area of the built-up blocks (m²).
+    pub block_median_m2: f64,
 }
 
 /// A running simulation.
@@ -712,7 +716,10 @@ impl Sim {
             }
         }
         let era = self.ctx.pattern(self.step).from;
-        let (four, entropy) = era_measures(&self.graph, era);
+        let (four, entropy, dead_ends) = era_measures(&self.graph, era);
+        let mut areas: Vec<f64> = self.blocks.faces.iter().filter(|f| f.built_up).map(|f| f.area).collect();
+        areas.sort_by(f64::total_cmp);
+        let median = if areas.is_empty() { 0.0 } else { areas[areas.len() / 2] };
         StepStats {
             step: self.step,
             settlements: self.blocks.settlements.len(),
@@ -730,6 +737,8 @@ impl Sim {
             orientation_entropy: round(entropy, 4),
             lane_km_added: round((lanes / 1000.0 - self.series.last().map_or(0.0, |r| r.lane_km)).max(0.0), 3),
             lane_km: round(lanes / 1000.0, 3),
+            dead_end_share: round(dead_ends, 4),
+            block_median_m2: round(median, 0),
         }
     }
 
@@ -806,8 +815,9 @@ fn remove_loops(nodes: &mut Vec<u32>) {
     *nodes = out;
 }
 
-/// The 4-way share and orientation entropy of the minor roads built since step `from`.
-fn era_measures(graph: &Graph, from: u32) -> (f64, f64) {
+/// The 4-way share, orientation entropy and dead-end share of the minor roads built since step
+/// `from`.
+fn era_measures(graph: &Graph, from: u32) -> (f64, f64, f64) {
     let mut bins = [0.0f64; 18];
     let mut nodes = HashSet::new();
     for (s, g) in graph.segs.iter().enumerate() {
@@ -826,9 +836,10 @@ fn era_measures(graph: &Graph, from: u32) -> (f64, f64) {
     } else {
         0.0
     };
-    let (mut junctions, mut four) = (0, 0);
+    let (mut junctions, mut four, mut ends) = (0, 0, 0);
     for n in nodes {
         let d = graph.road_degree(n);
+        ends += (d == 1) as usize;
         if d >= 3 {
             junctions += 1;
             if d >= 4 {
@@ -836,7 +847,8 @@ fn era_measures(graph: &Graph, from: u32) -> (f64, f64) {
             }
         }
     }
-    (if junctions > 0 { four as f64 / junctions as f64 } else { 0.0 }, entropy)
+    let share = |k: usize, of: usize| if of > 0 { k as f64 / of as f64 } else { 0.0 };
+    (share(four, junctions), entropy, share(ends, ends + junctions))
 }
 
 /// The neighbouring cities' border vertices: the context's positions, or `neighbours` (or
