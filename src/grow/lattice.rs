@@ -73,6 +73,9 @@ pub struct Lattice {
     pub bridge_factor: f64,
     steps: Vec<Vec<Step>>,
     lens: Vec<(f64, f64)>,
+    /// Per water vertex, the Chebyshev distance (in vertices, at most 255) to the nearest vertex
+    /// that is not water: a water edge shorter along each axis than this runs over water only.
+    open_water: Vec<u8>,
 }
 
 /// One generated edge.
@@ -121,7 +124,8 @@ impl Lattice {
             }
             steps.push(list);
         }
-        Lattice { terrain, dirs, slope_cut, o1, bridge_max, harbour_factor, bridge_factor, steps, lens }
+        let open_water = open_water(&terrain);
+        Lattice { terrain, dirs, slope_cut, o1, bridge_max, harbour_factor, bridge_factor, steps, lens, open_water }
     }
 
     /// Vertex count.
@@ -216,7 +220,12 @@ impl Lattice {
         if self.class(to) != WATER {
             return None;
         }
-        self.samples(v, d, buf);
+        let k = d[0].abs().max(d[1].abs());
+        if (self.open_water[v as usize] as i32) <= k {
+            self.samples(v, d, buf);
+        } else {
+            buf.clear();
+        }
         if buf.iter().any(|&u| self.class(u) != WATER) {
             return None;
         }
@@ -276,6 +285,54 @@ impl Lattice {
     }
 }
 
+/// The Chebyshev distance from every water vertex to the nearest vertex that is not water (0 on
+/// land and forbidden ground, at most 255), by two chamfer passes over the 8-neighbourhood.
+fn open_water(t: &Terrain) -> Vec<u8> {
+    let (nx, ny) = (t.nx, t.ny);
+    let mut d: Vec<u8> = t.class.iter().map(|&c| if c == WATER { 255 } else { 0 }).collect();
+    let relax = |d: &mut Vec<u8>, v: usize, u: usize| {
+        let through = d[u].saturating_add(1);
+        if through < d[v] {
+            d[v] = through;
+        }
+    };
+    for y in 0..ny {
+        for x in 0..nx {
+            let v = y * nx + x;
+            if x > 0 {
+                relax(&mut d, v, v - 1);
+            }
+            if y > 0 {
+                relax(&mut d, v, v - nx);
+                if x > 0 {
+                    relax(&mut d, v, v - nx - 1);
+                }
+                if x + 1 < nx {
+                    relax(&mut d, v, v - nx + 1);
+                }
+            }
+        }
+    }
+    for y in (0..ny).rev() {
+        for x in (0..nx).rev() {
+            let v = y * nx + x;
+            if x + 1 < nx {
+                relax(&mut d, v, v + 1);
+            }
+            if y + 1 < ny {
+                relax(&mut d, v, v + nx);
+                if x + 1 < nx {
+                    relax(&mut d, v, v + nx + 1);
+                }
+                if x > 0 {
+                    relax(&mut d, v, v + nx - 1);
+                }
+            }
+        }
+    }
+    d
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -285,6 +342,35 @@ mod tests {
         assert_eq!(directions(1).len(), 8);
         assert_eq!(directions(3).len(), 32);
         assert_eq!(directions(8).len(), 176);
+    }
+
+    /// The open-water distance is the Chebyshev distance to the nearest non-water vertex, and a
+    /// water edge found through it is the one the samples give.
+    #[test]
+    fn open_water_skips_only_what_is_water() {
+        let n = 12;
+        let mut class = vec![WATER; n * n];
+        class[5 * n + 2] = LAND;
+        let t = Terrain { nx: n, ny: n, spacing: 1.0, z: vec![0.0; n * n], class: class.clone() };
+        let d = open_water(&t);
+        for y in 0..n {
+            for x in 0..n {
+                let cheb = (x as i64 - 2).abs().max((y as i64 - 5).abs()) as u8;
+                assert_eq!(d[y * n + x], cheb, "({x}, {y})");
+            }
+        }
+        let l = Lattice::new(t, 4, 1.0, 1.0, 10.0, 1.0, 1.0);
+        let mut buf = Vec::new();
+        for v in 0..(n * n) as u32 {
+            for &dir in &l.dirs {
+                let fast = l.water_edge(v, dir, &mut buf);
+                let slow = l.offset(v, dir, 1).filter(|&to| l.class(to) == WATER).and_then(|to| {
+                    l.samples(v, dir, &mut buf);
+                    buf.iter().all(|&u| l.class(u) == WATER).then_some(to)
+                });
+                assert_eq!(fast.map(|f| f.0), slow, "vertex {v} direction {dir:?}");
+            }
+        }
     }
 
     #[test]
