@@ -402,10 +402,10 @@ fn trade_reach(sim: &Sim, from: u32) -> BTreeSet<u32> {
     seen
 }
 
-/// The case: a centre named on a lake's west shore and three neighbours around (one
-/// across the lake). The initial network joins every neighbour to the centre, the centre
-/// nucleus is there, and after the context's steps the minor roads' length-weighted centroid
-/// is within 400 m of it.
+/// `models/grow/lake-shore.toml`: a centre named on a lake's west shore and three neighbours
+/// around (one across the lake). The initial network joins every neighbour to the centre, the
+/// centre nucleus is there, and after the context's steps the minor roads' length-weighted
+/// centroid is within 400 m of it.
 #[test]
 fn the_town_grows_at_the_named_centre() {
     let ctx = small("lake-shore.toml");

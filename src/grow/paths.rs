@@ -52,7 +52,8 @@ pub trait Space {
 /// The least-cost path from `source` to `target`; `h_factor` times the straight distance is the
 /// A* heuristic (0 for Dijkstra; admissible when no edge costs less per metre), `turn` the
 /// penalty of the angle at a state between its incoming and outgoing edges, given as its cosine
-/// (−1 straight on, 1 turning back).
+/// (−1 straight on, 1 turning back); penalties must not be negative (an edge that cannot improve
+/// its far state without one is skipped before its angle is computed).
 pub fn shortest(
     space: &mut dyn Space,
     source: u32,
@@ -87,6 +88,11 @@ pub fn shortest(
                 continue;
             }
             let mut c = g[v as usize] + w;
+            if c >= g[u as usize] {
+                // Penalties are never negative: the edge cannot improve `u`, so its turn angle
+                // (an arc cosine) is not computed. The same path and cost as with it.
+                continue;
+            }
             if let (Some(f), Some(pp)) = (turn, incoming) {
                 let (a, b) = (sub(pp, pv), sub(space.pos(u), pv));
                 let l = length(a) * length(b);
