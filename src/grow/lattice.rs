@@ -255,25 +255,43 @@ impl Lattice {
     }
 
     /// Every edge from `v` not touching a `blocked` vertex: land or water edges in the mask's
-    /// directions, harbour edges to the 8 neighbours of the other class, bridges.
-    pub fn edges<B: Fn(u32) -> bool>(&self, v: u32, blocked: &B, out: &mut Vec<Edge>, buf: &mut Vec<u32>) {
+    /// directions, harbour edges to the 8 neighbours of the other class, bridges. Edges to a
+    /// vertex that `skip` marks (a search's settled vertices) are left out before their weight
+    /// is computed, except bridges (whose far end is known only at the end of the span).
+    pub fn edges<B: Fn(u32) -> bool, S: Fn(u32) -> bool>(
+        &self,
+        v: u32,
+        blocked: &B,
+        skip: &S,
+        out: &mut Vec<Edge>,
+        buf: &mut Vec<u32>,
+    ) {
         out.clear();
         let class = self.class(v);
         if class == FORBIDDEN || blocked(v) {
             return;
         }
         for (k, &d) in self.dirs.iter().enumerate() {
+            let near = self.offset(v, d, 1);
+            let skipped = near.is_some_and(|u| skip(u));
             if class == LAND {
-                if let Some(w) = self.land_edge(v, k, blocked) {
-                    out.push(Edge { to: self.offset(v, d, 1).expect("checked"), weight: w, kind: EdgeKind::Land });
-                } else if let Some((to, w)) = self.bridge_edge(v, d, blocked) {
-                    out.push(Edge { to, weight: w, kind: EdgeKind::Bridge });
+                // A land edge ends at the adjacent vertex in its direction and a bridge needs
+                // water there: when that vertex is skipped and not water, neither is of use.
+                if !skipped || near.is_some_and(|u| self.class(u) == WATER) {
+                    if let Some(w) = self.land_edge(v, k, blocked) {
+                        out.push(Edge { to: self.offset(v, d, 1).expect("checked"), weight: w, kind: EdgeKind::Land });
+                    } else if let Some((to, w)) = self.bridge_edge(v, d, blocked) {
+                        out.push(Edge { to, weight: w, kind: EdgeKind::Bridge });
+                    }
                 }
-            } else if let Some((to, w)) = self.water_edge(v, d, buf) {
-                out.push(Edge { to, weight: w, kind: EdgeKind::Water });
+            } else if !skipped {
+                // A water edge ends at the adjacent vertex in its direction.
+                if let Some((to, w)) = self.water_edge(v, d, buf) {
+                    out.push(Edge { to, weight: w, kind: EdgeKind::Water });
+                }
             }
-            if d[0].abs() <= 1 && d[1].abs() <= 1 {
-                if let Some(u) = self.offset(v, d, 1) {
+            if d[0].abs() <= 1 && d[1].abs() <= 1 && !skipped {
+                if let Some(u) = near {
                     let c = self.class(u);
                     if (class == LAND && c == WATER) || (class == WATER && c == LAND && !blocked(u)) {
                         let len = ((d[0] * d[0] + d[1] * d[1]) as f64).sqrt() * self.terrain.spacing;
@@ -370,6 +388,32 @@ mod tests {
                 });
                 assert_eq!(fast.map(|f| f.0), slow, "vertex {v} direction {dir:?}");
             }
+        }
+    }
+
+    /// Skipping settled vertices leaves out exactly the edges that end at one of them (bridges
+    /// aside), in the same order, and changes no other edge.
+    #[test]
+    fn skipped_vertices_lose_only_their_edges() {
+        let n = 16;
+        let mut class = vec![LAND; n * n];
+        for y in 0..n {
+            for x in 6..9 {
+                class[y * n + x] = WATER;
+            }
+        }
+        class[3 * n + 3] = FORBIDDEN;
+        let z = (0..n * n).map(|v| ((v % n) as f32 * 0.3).sin() + (v / n) as f32 * 0.1).collect();
+        let l = Lattice::new(Terrain { nx: n, ny: n, spacing: 1.0, z, class }, 4, 0.9, 2.0, 6.0, 3.0, 5.0);
+        let skip = |u: u32| u % 3 == 0 || u % 7 == 1;
+        let blocked = |u: u32| u == 2 * n as u32 + 12;
+        let (mut all, mut kept, mut buf) = (Vec::new(), Vec::new(), Vec::new());
+        for v in 0..(n * n) as u32 {
+            l.edges(v, &blocked, &|_| false, &mut all, &mut buf);
+            l.edges(v, &blocked, &skip, &mut kept, &mut buf);
+            let expected: Vec<Edge> =
+                all.iter().copied().filter(|e| e.kind == EdgeKind::Bridge || !skip(e.to)).collect();
+            assert_eq!(kept, expected, "vertex {v}");
         }
     }
 

@@ -45,8 +45,9 @@ pub trait Space {
     }
     /// A state's position (for the heuristic and turn angles).
     fn pos(&self, v: u32) -> P;
-    /// The edges from `v`: `(to, weight)`.
-    fn edges(&mut self, v: u32, out: &mut Vec<(u32, f64)>);
+    /// The edges from `v`: `(to, weight)`. Edges to states that `settled` marks (indexed by
+    /// state) are never used by the search and may be left out where that saves work.
+    fn edges(&mut self, v: u32, settled: &[bool], out: &mut Vec<(u32, f64)>);
 }
 
 /// The least-cost path from `source` to `target`; `h_factor` times the straight distance is the
@@ -82,7 +83,7 @@ pub fn shortest(
         }
         let pv = space.pos(v);
         let incoming = (prev[v as usize] != u32::MAX).then(|| space.pos(prev[v as usize]));
-        space.edges(v, &mut out);
+        space.edges(v, &done, &mut out);
         for &(u, w) in &out {
             if done[u as usize] || !w.is_finite() {
                 continue;
@@ -180,7 +181,7 @@ mod tests {
         fn pos(&self, v: u32) -> P {
             [v as f64, 0.0]
         }
-        fn edges(&mut self, v: u32, out: &mut Vec<(u32, f64)>) {
+        fn edges(&mut self, v: u32, _settled: &[bool], out: &mut Vec<(u32, f64)>) {
             out.clear();
             if (v as usize) + 1 < self.0 {
                 out.push((v + 1, 1.0));

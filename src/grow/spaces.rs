@@ -65,11 +65,11 @@ impl Space for InitialSpace<'_> {
             self.graph.nodes[(v - n) as usize].pos
         }
     }
-    fn edges(&mut self, v: u32, out: &mut Vec<(u32, f64)>) {
+    fn edges(&mut self, v: u32, settled: &[bool], out: &mut Vec<(u32, f64)>) {
         out.clear();
         let nl = self.lattice.len() as u32;
         if v < nl {
-            self.lattice.edges(v, &|_| false, &mut self.edges, &mut self.buf);
+            self.lattice.edges(v, &|_| false, &|u| settled[u as usize], &mut self.edges, &mut self.buf);
             for e in &self.edges {
                 let f = if self.used.contains(&(v.min(e.to), v.max(e.to))) { self.mu } else { 1.0 };
                 out.push((e.to, e.weight * f));
@@ -165,7 +165,7 @@ impl Space for MajorSpace<'_> {
     fn pos(&self, v: u32) -> P {
         self.graph.nodes[v as usize].pos
     }
-    fn edges(&mut self, v: u32, out: &mut Vec<(u32, f64)>) {
+    fn edges(&mut self, v: u32, _settled: &[bool], out: &mut Vec<(u32, f64)>) {
         out.clear();
         for &s in &self.graph.adj[v as usize] {
             let used = self.used.get(&s).copied().unwrap_or(0.0);
@@ -295,12 +295,12 @@ impl Space for NewSpace<'_> {
             self.graph.nodes[(v - n) as usize].pos
         }
     }
-    fn edges(&mut self, v: u32, out: &mut Vec<(u32, f64)>) {
+    fn edges(&mut self, v: u32, settled: &[bool], out: &mut Vec<(u32, f64)>) {
         out.clear();
         let nl = self.lattice.len() as u32;
         if v < nl {
             let built = &self.blocks.built;
-            self.lattice.edges(v, &|u| built[u as usize], &mut self.edges, &mut self.buf);
+            self.lattice.edges(v, &|u| built[u as usize], &|u| settled[u as usize], &mut self.edges, &mut self.buf);
             out.extend(self.edges.iter().map(|e| (e.to, e.weight)));
             if let Some(nodes) = self.stitches.to_nodes.get(&v) {
                 for &n in nodes {
