@@ -273,7 +273,7 @@ impl Lattice {
         }
         for (k, &d) in self.dirs.iter().enumerate() {
             let near = self.offset(v, d, 1);
-            let skipped = near.is_some_and(|u| skip(u));
+            let skipped = near.is_some_and(skip);
             if class == LAND {
                 // A land edge ends at the adjacent vertex in its direction and a bridge needs
                 // water there: when that vertex is skipped and not water, neither is of use.
@@ -405,7 +405,7 @@ mod tests {
         class[3 * n + 3] = FORBIDDEN;
         let z = (0..n * n).map(|v| ((v % n) as f32 * 0.3).sin() + (v / n) as f32 * 0.1).collect();
         let l = Lattice::new(Terrain { nx: n, ny: n, spacing: 1.0, z, class }, 4, 0.9, 2.0, 6.0, 3.0, 5.0);
-        let skip = |u: u32| u % 3 == 0 || u % 7 == 1;
+        let skip = |u: u32| u.is_multiple_of(3) || u % 7 == 1;
         let blocked = |u: u32| u == 2 * n as u32 + 12;
         let (mut all, mut kept, mut buf) = (Vec::new(), Vec::new(), Vec::new());
         for v in 0..(n * n) as u32 {
