@@ -58,6 +58,8 @@ fn sites(c: &mut Criterion) {
         seed: None,
         steps: None,
         every: None,
+        all_streets: false,
+        gallery: None,
     };
     netspec::grow::run(&grow, &mut |_, _| {}).unwrap();
     let region = SiteRegion::load(&onchan.join("site.geojson")).unwrap();

@@ -37,7 +37,7 @@ SITES = [
 GROW_SITES = [
     ("river", "models/grow/river.toml", None, "3600,3600,4800,4800"),
     ("coast", "models/grow/coast.toml", 30, "3800,3600,5000,4800"),
-    ("hills", "models/grow/hills.toml", None, "2600,3300,3800,4500"),
+    ("hills", "models/grow/hills.toml", None, "3800,1600,5000,2800"),
 ]
 TRADE_PER_HOUR = 300
 

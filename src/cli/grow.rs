@@ -28,9 +28,17 @@ pub struct GrowArgs {
     /// Time steps (default: the context's `steps`).
     #[arg(long, value_name = "N")]
     steps: Option<u32>,
-    /// Also write step-NNN.svg every K steps (and at step 0).
+    /// Also write step-NNN.svg every K steps (and at step 0), and steps.svg/.png with them
+    /// side by side.
     #[arg(long, value_name = "K", value_parser = clap::value_parser!(u32).range(1..))]
     every: Option<u32>,
+    /// Draw every minor road, dead-end stubs too (by default the pictures show the streets
+    /// that bound blocks or join roads).
+    #[arg(long)]
+    all_streets: bool,
+    /// Also write gallery.svg/.png: the initial networks of N seeds from the run's seed on.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
+    gallery: Option<u32>,
     /// A window of the map, metres (x0,y0,x1,y1): writes city.toml (its grown major roads,
     /// water as obstacles, unbuilt sub-regions running no level) and trade.json (the trade
     /// flows across it).
@@ -41,8 +49,15 @@ pub struct GrowArgs {
 impl GrowArgs {
     /// Grows the context (or windows a grown network).
     pub fn run(self) -> Result<ExitCode> {
-        let req =
-            GrowRequest { context: self.context, out: self.out, seed: self.seed, steps: self.steps, every: self.every };
+        let req = GrowRequest {
+            context: self.context,
+            out: self.out,
+            seed: self.seed,
+            steps: self.steps,
+            every: self.every,
+            all_streets: self.all_streets,
+            gallery: self.gallery,
+        };
         run(&req, self.window)
     }
 }

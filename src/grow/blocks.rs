@@ -1,8 +1,10 @@
 //! Blocks and the built-up area (§3.4.2, Eq. 1): the faces of the planar road graph, classified
 //! by area into built-up blocks and terrain blocks; the built-up area B rasterised on the
 //! lattice as FILL(built-up blocks) ∪ NB(outlines of every block) (the shell taken as the union
-//! of bounded faces, so dangling roads are not built up); its settlements; and which
-//! segments are extendible (no built-up block on either side).
+//! of bounded faces, so dangling roads are not built up); its settlements, the connected pieces
+//! of the built-up blocks and the NB of their outlines (the bands NB lays along the outlines of
+//! larger, terrain blocks, such as the initial network's major roads, neither make nor join
+//! settlements); and which segments are extendible (no built-up block on either side).
 
 use super::graph::Graph;
 use super::terrain::Terrain;
@@ -39,7 +41,8 @@ pub struct Blocks {
     pub built: Vec<bool>,
     /// Per segment: extendible (no built-up block on either side).
     pub extendible: Vec<bool>,
-    /// Settlements of at least the context's smallest area.
+    /// Settlements of at least the context's smallest area: connected pieces of the built-up
+    /// blocks with the NB of their outlines.
     pub settlements: Vec<Settlement>,
     /// |B| (m²).
     pub built_area: f64,
@@ -133,6 +136,8 @@ pub fn compute(graph: &Graph, terrain: &Terrain, block_area: f64, nb: f64, settl
     }
     let (nx, ny, s) = (terrain.nx, terrain.ny, terrain.spacing);
     let mut built = vec![false; nx * ny];
+    // Built-up blocks and their NB only: the raster settlements are counted on.
+    let mut clusters = vec![false; nx * ny];
     let range = |lo: f64, hi: f64, n: usize| {
         let a = (lo / s).ceil().max(0.0) as usize;
         let b = ((hi / s).floor() + 1.0).clamp(0.0, n as f64) as usize;
@@ -147,6 +152,7 @@ pub fn compute(graph: &Graph, terrain: &Terrain, block_area: f64, nb: f64, settl
             for x in range(x0, x1, nx) {
                 if !built[y * nx + x] && ring_contains(&f.ring, [x as f64 * s, y as f64 * s]) {
                     built[y * nx + x] = true;
+                    clusters[y * nx + x] = true;
                 }
             }
         }
@@ -158,19 +164,25 @@ pub fn compute(graph: &Graph, terrain: &Terrain, block_area: f64, nb: f64, settl
         if !bounded || !graph.segs[i].class.is_road() {
             continue;
         }
+        let of_block = !extendible[i];
         let (a, b) = graph.ends(i as u32);
         for y in range(a[1].min(b[1]) - nb, a[1].max(b[1]) + nb, ny) {
             for x in range(a[0].min(b[0]) - nb, a[0].max(b[0]) + nb, nx) {
+                let v = y * nx + x;
+                if built[v] && (clusters[v] || !of_block) {
+                    continue;
+                }
                 let p = [x as f64 * s, y as f64 * s];
-                if !built[y * nx + x] && dist(p, closest_on_segment(p, a, b).0) <= nb {
-                    built[y * nx + x] = true;
+                if dist(p, closest_on_segment(p, a, b).0) <= nb {
+                    built[v] = true;
+                    clusters[v] |= of_block;
                 }
             }
         }
     }
     let cell = s * s;
     let built_area = built.iter().filter(|&&b| b).count() as f64 * cell;
-    let settlements = components(&built, nx, ny, s).into_iter().filter(|c| c.area >= settlement).collect();
+    let settlements = components(&clusters, nx, ny, s).into_iter().filter(|c| c.area >= settlement).collect();
     Blocks { faces, built, extendible, settlements, built_area }
 }
 
@@ -241,5 +253,29 @@ mod tests {
         assert!(!b.built[(160 / 20) * 11 + 160 / 20]);
         assert!(!b.extendible[0] && b.extendible[4]);
         assert_eq!(b.settlements.len(), 1);
+    }
+
+    /// Two small blocks inside opposite corners of a large terrain block: the NB band along the
+    /// large block's outline joins them in B, but they are two settlements.
+    #[test]
+    fn settlements_follow_blocks_not_road_bands() {
+        let mut g = Graph::new([1100.0, 1100.0]);
+        let square = |g: &mut Graph, x0: f64, y0: f64, side: f64, class: Class| {
+            let pts = [[x0, y0], [x0 + side, y0], [x0 + side, y0 + side], [x0, y0 + side]];
+            let ids: Vec<u32> = pts.iter().map(|&p| g.node_at(p, true)).collect();
+            for i in 0..4 {
+                g.insert(ids[i], ids[(i + 1) % 4], class, 1.0, 0);
+            }
+        };
+        square(&mut g, 20.0, 20.0, 1000.0, Class::Major);
+        square(&mut g, 60.0, 60.0, 60.0, Class::Minor);
+        square(&mut g, 900.0, 900.0, 60.0, Class::Minor);
+        let n = 56;
+        let t = Terrain { nx: n, ny: n, spacing: 20.0, z: vec![0.0; n * n], class: vec![0; n * n] };
+        let b = compute(&g, &t, 50_000.0, 20.0, 5000.0);
+        assert_eq!(b.block_count(), 2);
+        assert_eq!(b.settlements.len(), 2, "{:?}", b.settlements);
+        let band = |x: usize, y: usize| b.built[y * n + x];
+        assert!(band(2, 20) && band(20, 1), "the terrain block's outline is in B");
     }
 }

@@ -198,9 +198,10 @@ pub struct Params {
     /// O₁ (slope weight), O₂ (capacity per lane), O₃ (length weight), O₄ (cost weight).
     #[serde(default = "d_o")]
     pub o: [f64; 4],
-    /// C₁…C₆: major, minor, unbuilt harbour, built harbour, unbuilt bridge, extendible.
+    /// C₁…C₆: major, minor, unbuilt harbour, built harbour, unbuilt bridge, extendible; fixed
+    /// or by era.
     #[serde(default = "d_c")]
-    pub c: [f64; 6],
+    pub c: Eras<6>,
     /// G(t): minor-road seeds per step, `[[t, G], …]`, linear in between.
     #[serde(default = "d_growth")]
     pub growth: Vec<[f64; 2]>,
@@ -208,9 +209,16 @@ pub struct Params {
     #[serde(default = "d_widths")]
     pub widths: Vec<[f64; 2]>,
     /// The turn penalty P(α): centre and width (degrees; α = 180° is straight on) and height
-    /// (metres of equivalent length).
+    /// (metres of equivalent length); fixed or by era.
     #[serde(default = "d_turn")]
-    pub turn: [f64; 3],
+    pub turn: Eras<3>,
+    /// The most lanes widening gives a road.
+    #[serde(default = "d_max_lanes")]
+    pub max_lanes: f64,
+    /// The probability that a pair removed from the initial network's list is added back to the
+    /// pairs whose roads are built (§3.5's variation).
+    #[serde(default = "d_add_back")]
+    pub add_back: f64,
     /// The largest built-up block (m²); larger faces are terrain blocks.
     #[serde(default = "d_block_area")]
     pub block_area: f64,
@@ -234,6 +242,57 @@ pub struct Params {
 impl Default for Params {
     fn default() -> Self {
         toml::from_str("").expect("the defaults deserialise")
+    }
+}
+
+/// Coefficients that change by era: `[a, b, …]` for all time, or `[[t, [a, b, …]], …]`, each
+/// entry from its step `t` on (the first also before it).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Eras<const N: usize> {
+    /// `(t, values)` in increasing `t`.
+    pub table: Vec<(f64, [f64; N])>,
+}
+
+impl<const N: usize> Eras<N> {
+    /// The same values for all time.
+    pub fn fixed(v: [f64; N]) -> Eras<N> {
+        Eras { table: vec![(0.0, v)] }
+    }
+
+    /// The values at step `t`: the last entry whose step is at most `t`, else the first.
+    pub fn at(&self, t: u32) -> [f64; N] {
+        self.table.iter().rev().find(|e| e.0 <= t as f64).unwrap_or(&self.table[0]).1
+    }
+}
+
+impl<'de, const N: usize> Deserialize<'de> for Eras<N> {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        use serde::de::Error;
+        let expected = || {
+            let names = (1..=N).map(|i| format!("v{i}")).collect::<Vec<_>>().join(", ");
+            D::Error::custom(format!("expected [{names}] or [[step, [{names}]], …] ({N} numbers per entry)"))
+        };
+        let v = toml::Value::deserialize(d)?;
+        let number = |x: &toml::Value| x.as_float().or_else(|| x.as_integer().map(|i| i as f64));
+        let values = |x: &toml::Value| -> Option<[f64; N]> {
+            let a = x.as_array()?;
+            let v: Vec<f64> = a.iter().map(number).collect::<Option<_>>()?;
+            v.try_into().ok()
+        };
+        if let Some(v) = values(&v) {
+            return Ok(Eras::fixed(v));
+        }
+        let entries = v.as_array().ok_or_else(expected)?;
+        let mut table = Vec::new();
+        for e in entries {
+            let pair = e.as_array().filter(|p| p.len() == 2).ok_or_else(expected)?;
+            let t = number(&pair[0]).ok_or_else(expected)?;
+            table.push((t, values(&pair[1]).ok_or_else(expected)?));
+        }
+        if table.is_empty() {
+            return Err(expected());
+        }
+        Ok(Eras { table })
     }
 }
 
@@ -266,6 +325,13 @@ pub struct Pattern {
     /// Smallest angle between streets at a junction (degrees).
     #[serde(default = "d_min_angle")]
     pub min_angle: f64,
+    /// How far past its end a street looks for a road to extend to (metres; 0: never).
+    #[serde(default = "d_extend")]
+    pub extend: f64,
+    /// A grid's orientation (degrees from the x axis; default: the direction of the major road
+    /// nearest to the nearest nucleus).
+    #[serde(default)]
+    pub angle: Option<f64>,
 }
 
 /// The street pattern kinds.
@@ -276,7 +342,8 @@ pub enum PatternKind {
     Organic,
     /// Straight streets and right-angle branches.
     Grid,
-    /// Alternately along and across the direction to the nearest nucleus.
+    /// Along or across the direction to the nearest nucleus, whichever is nearer the street's
+    /// base heading.
     Radial,
 }
 
@@ -310,8 +377,14 @@ fn d_slope_cut() -> f64 {
 fn d_o() -> [f64; 4] {
     [20.0, 30.0, 1.0, 1.0]
 }
-fn d_c() -> [f64; 6] {
-    [0.3, 1.5, 20.0, 2.0, 5.0, 0.6]
+fn d_c() -> Eras<6> {
+    Eras::fixed([0.3, 1.5, 20.0, 2.0, 5.0, 0.6])
+}
+fn d_max_lanes() -> f64 {
+    4.0
+}
+fn d_add_back() -> f64 {
+    0.25
 }
 fn d_growth() -> Vec<[f64; 2]> {
     vec![[0.0, 10.0], [150.0, 60.0]]
@@ -319,8 +392,8 @@ fn d_growth() -> Vec<[f64; 2]> {
 fn d_widths() -> Vec<[f64; 2]> {
     vec![[0.0, 1.0], [60.0, 2.0]]
 }
-fn d_turn() -> [f64; 3] {
-    [108.0, 72.0, 200.0]
+fn d_turn() -> Eras<3> {
+    Eras::fixed([108.0, 72.0, 200.0])
 }
 fn d_block_area() -> f64 {
     50_000.0
@@ -358,6 +431,9 @@ fn d_snap() -> f64 {
 fn d_min_angle() -> f64 {
     30.0
 }
+fn d_extend() -> f64 {
+    20.0
+}
 fn d_patterns() -> Vec<Pattern> {
     let p = |from, kind, length, branch| Pattern {
         from,
@@ -369,6 +445,8 @@ fn d_patterns() -> Vec<Pattern> {
         branch,
         snap: d_snap(),
         min_angle: d_min_angle(),
+        extend: d_extend(),
+        angle: None,
     };
     vec![
         p(0, PatternKind::Organic, 40.0, 0.0),
@@ -424,6 +502,16 @@ impl Context {
     pub fn width(&self, t: u32) -> f64 {
         let w = &self.params.widths;
         w.iter().rev().find(|e| e[0] <= t as f64).unwrap_or(&w[0])[1]
+    }
+
+    /// C₁…C₆ at step `t`.
+    pub fn c(&self, t: u32) -> [f64; 6] {
+        self.params.c.at(t)
+    }
+
+    /// The turn penalty's centre, width (degrees) and height (metres) at step `t`.
+    pub fn turn(&self, t: u32) -> [f64; 3] {
+        self.params.turn.at(t)
     }
 
     /// K(t): the last pattern whose `from` is at most `t`.
@@ -568,6 +656,12 @@ impl Context {
             if !(1..=50).contains(&p.segments) {
                 return bad(&f("segments"), format!("must be 1 to 50, got {}", p.segments));
             }
+            if !(p.extend.is_finite() && p.extend >= 0.0) {
+                return bad(&f("extend"), format!("must be a length ≥ 0, got {}", p.extend));
+            }
+            if p.angle.is_some_and(|a| !a.is_finite()) {
+                return bad(&f("angle"), "must be a finite angle in degrees".into());
+            }
             let ok = p.snap.is_finite()
                 && p.snap >= 0.0
                 && (0.0..90.0).contains(&p.min_angle)
@@ -625,6 +719,8 @@ impl Context {
 
     fn check_params(&self) -> Result<(), GrowError> {
         let p = &self.params;
+        let field =
+            |f: &str, message: String| GrowError::Field { path: PathBuf::new(), field: format!("params.{f}"), message };
         let bad = |field: &str, message: String| {
             Err(GrowError::Field { path: PathBuf::new(), field: format!("params.{field}"), message })
         };
@@ -658,8 +754,23 @@ impl Context {
         if p.o.iter().any(|v| !pos(*v)) {
             return bad("o", format!("O₁…O₄ must be positive, got {:?}", p.o));
         }
-        if p.c.iter().any(|v| !pos(*v)) {
-            return bad("c", format!("C₁…C₆ must be positive, got {:?}", p.c));
+        for (i, (t, c)) in p.c.table.iter().enumerate() {
+            if c.iter().any(|v| !pos(*v)) {
+                return bad(&format!("c[{i}]"), format!("C₁…C₆ must be positive, got {c:?}"));
+            }
+            check_era(&p.c.table, i, *t).map_err(|m| field(&format!("c[{i}]"), m))?;
+        }
+        for (i, (t, v)) in p.turn.table.iter().enumerate() {
+            if !(v.iter().all(|v| v.is_finite()) && v[1] > 0.0 && v[2] >= 0.0) {
+                return bad(&format!("turn[{i}]"), format!("must be [centre°, width° > 0, height ≥ 0], got {v:?}"));
+            }
+            check_era(&p.turn.table, i, *t).map_err(|m| field(&format!("turn[{i}]"), m))?;
+        }
+        if !(p.max_lanes.is_finite() && p.max_lanes >= 1.0) {
+            return bad("max_lanes", format!("must be at least 1, got {}", p.max_lanes));
+        }
+        if !(0.0..=1.0).contains(&p.add_back) {
+            return bad("add_back", format!("must be a probability, got {}", p.add_back));
         }
         for (k, table) in [("growth", &p.growth), ("widths", &p.widths)] {
             if table.is_empty() {
@@ -677,11 +788,19 @@ impl Context {
         if p.widths.iter().any(|e| e[1] <= 0.0) {
             return bad("widths", "lane counts must be positive".into());
         }
-        if !(p.turn.iter().all(|v| v.is_finite()) && p.turn[1] > 0.0 && p.turn[2] >= 0.0) {
-            return bad("turn", format!("must be [centre°, width° > 0, height ≥ 0], got {:?}", p.turn));
-        }
         Ok(())
     }
+}
+
+/// An era table's entry `i` at step `t`: a step, after the previous entry's.
+fn check_era<const N: usize>(table: &[(f64, [f64; N])], i: usize, t: f64) -> Result<(), String> {
+    if !(t.is_finite() && t >= 0.0) {
+        return Err(format!("the step must be ≥ 0, got {t}"));
+    }
+    if i > 0 && t <= table[i - 1].0 {
+        return Err("steps must increase".into());
+    }
+    Ok(())
 }
 
 /// A piecewise-linear table's value at `t` (constant beyond its ends).
@@ -712,6 +831,19 @@ mod tests {
         assert_eq!(c.width(59), 1.0);
         assert_eq!(c.width(60), 2.0);
         assert_eq!(c.pattern(120).kind, PatternKind::Grid);
+        assert_eq!(c.c(500), [0.3, 1.5, 20.0, 2.0, 5.0, 0.6]);
+    }
+
+    #[test]
+    fn coefficients_change_by_era() {
+        let c = Context::from_toml(
+            "size = [1000, 800]\n[params]\nc = [[10, [1, 2, 3, 4, 5, 0.5]], [50, [0.2, 2, 3, 4, 5, 0.9]]]\nturn = [90, 60, 100]",
+        )
+        .unwrap();
+        assert_eq!(c.c(0), [1.0, 2.0, 3.0, 4.0, 5.0, 0.5]);
+        assert_eq!(c.c(49)[0], 1.0);
+        assert_eq!(c.c(50), [0.2, 2.0, 3.0, 4.0, 5.0, 0.9]);
+        assert_eq!(c.turn(70), [90.0, 60.0, 100.0]);
     }
 
     #[test]
@@ -724,7 +856,10 @@ mod tests {
         let e = Context::from_toml("size = [1000, 1000]\nbogus = 1").unwrap_err();
         assert!(e.to_string().contains("bogus"), "{e}");
         let e = Context::from_toml("size = [1000, 1000]\n[params]\nc = [1, 2]").unwrap_err();
-        assert!(e.to_string().contains("params.c"), "{e}");
+        assert!(e.to_string().contains("params.c") && e.to_string().contains("6 numbers"), "{e}");
+        let e = Context::from_toml("size = [1000, 1000]\n[params]\nturn = [[0, [90, 60, 100]], [0, [90, 60, 50]]]")
+            .unwrap_err();
+        assert!(e.to_string().contains("params.turn[1]"), "{e}");
         let e = Context::from_toml("size = [1e7, 1e7]\nspacing = 1").unwrap_err();
         assert!(e.to_string().contains("GiB"), "{e}");
     }

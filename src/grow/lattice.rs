@@ -73,6 +73,9 @@ pub struct Lattice {
     pub bridge_factor: f64,
     steps: Vec<Vec<Step>>,
     lens: Vec<(f64, f64)>,
+    /// Per water vertex, the Chebyshev distance (in vertices, at most 255) to the nearest vertex
+    /// that is not water: a water edge shorter along each axis than this runs over water only.
+    open_water: Vec<u8>,
 }
 
 /// One generated edge.
@@ -121,7 +124,8 @@ impl Lattice {
             }
             steps.push(list);
         }
-        Lattice { terrain, dirs, slope_cut, o1, bridge_max, harbour_factor, bridge_factor, steps, lens }
+        let open_water = open_water(&terrain);
+        Lattice { terrain, dirs, slope_cut, o1, bridge_max, harbour_factor, bridge_factor, steps, lens, open_water }
     }
 
     /// Vertex count.
@@ -216,7 +220,12 @@ impl Lattice {
         if self.class(to) != WATER {
             return None;
         }
-        self.samples(v, d, buf);
+        let k = d[0].abs().max(d[1].abs());
+        if (self.open_water[v as usize] as i32) <= k {
+            self.samples(v, d, buf);
+        } else {
+            buf.clear();
+        }
         if buf.iter().any(|&u| self.class(u) != WATER) {
             return None;
         }
@@ -246,25 +255,43 @@ impl Lattice {
     }
 
     /// Every edge from `v` not touching a `blocked` vertex: land or water edges in the mask's
-    /// directions, harbour edges to the 8 neighbours of the other class, bridges.
-    pub fn edges<B: Fn(u32) -> bool>(&self, v: u32, blocked: &B, out: &mut Vec<Edge>, buf: &mut Vec<u32>) {
+    /// directions, harbour edges to the 8 neighbours of the other class, bridges. Edges to a
+    /// vertex that `skip` marks (a search's settled vertices) are left out before their weight
+    /// is computed, except bridges (whose far end is known only at the end of the span).
+    pub fn edges<B: Fn(u32) -> bool, S: Fn(u32) -> bool>(
+        &self,
+        v: u32,
+        blocked: &B,
+        skip: &S,
+        out: &mut Vec<Edge>,
+        buf: &mut Vec<u32>,
+    ) {
         out.clear();
         let class = self.class(v);
         if class == FORBIDDEN || blocked(v) {
             return;
         }
         for (k, &d) in self.dirs.iter().enumerate() {
+            let near = self.offset(v, d, 1);
+            let skipped = near.is_some_and(skip);
             if class == LAND {
-                if let Some(w) = self.land_edge(v, k, blocked) {
-                    out.push(Edge { to: self.offset(v, d, 1).expect("checked"), weight: w, kind: EdgeKind::Land });
-                } else if let Some((to, w)) = self.bridge_edge(v, d, blocked) {
-                    out.push(Edge { to, weight: w, kind: EdgeKind::Bridge });
+                // A land edge ends at the adjacent vertex in its direction and a bridge needs
+                // water there: when that vertex is skipped and not water, neither is of use.
+                if !skipped || near.is_some_and(|u| self.class(u) == WATER) {
+                    if let Some(w) = self.land_edge(v, k, blocked) {
+                        out.push(Edge { to: self.offset(v, d, 1).expect("checked"), weight: w, kind: EdgeKind::Land });
+                    } else if let Some((to, w)) = self.bridge_edge(v, d, blocked) {
+                        out.push(Edge { to, weight: w, kind: EdgeKind::Bridge });
+                    }
                 }
-            } else if let Some((to, w)) = self.water_edge(v, d, buf) {
-                out.push(Edge { to, weight: w, kind: EdgeKind::Water });
+            } else if !skipped {
+                // A water edge ends at the adjacent vertex in its direction.
+                if let Some((to, w)) = self.water_edge(v, d, buf) {
+                    out.push(Edge { to, weight: w, kind: EdgeKind::Water });
+                }
             }
-            if d[0].abs() <= 1 && d[1].abs() <= 1 {
-                if let Some(u) = self.offset(v, d, 1) {
+            if d[0].abs() <= 1 && d[1].abs() <= 1 && !skipped {
+                if let Some(u) = near {
                     let c = self.class(u);
                     if (class == LAND && c == WATER) || (class == WATER && c == LAND && !blocked(u)) {
                         let len = ((d[0] * d[0] + d[1] * d[1]) as f64).sqrt() * self.terrain.spacing;
@@ -276,6 +303,54 @@ impl Lattice {
     }
 }
 
+/// The Chebyshev distance from every water vertex to the nearest vertex that is not water (0 on
+/// land and forbidden ground, at most 255), by two chamfer passes over the 8-neighbourhood.
+fn open_water(t: &Terrain) -> Vec<u8> {
+    let (nx, ny) = (t.nx, t.ny);
+    let mut d: Vec<u8> = t.class.iter().map(|&c| if c == WATER { 255 } else { 0 }).collect();
+    let relax = |d: &mut Vec<u8>, v: usize, u: usize| {
+        let through = d[u].saturating_add(1);
+        if through < d[v] {
+            d[v] = through;
+        }
+    };
+    for y in 0..ny {
+        for x in 0..nx {
+            let v = y * nx + x;
+            if x > 0 {
+                relax(&mut d, v, v - 1);
+            }
+            if y > 0 {
+                relax(&mut d, v, v - nx);
+                if x > 0 {
+                    relax(&mut d, v, v - nx - 1);
+                }
+                if x + 1 < nx {
+                    relax(&mut d, v, v - nx + 1);
+                }
+            }
+        }
+    }
+    for y in (0..ny).rev() {
+        for x in (0..nx).rev() {
+            let v = y * nx + x;
+            if x + 1 < nx {
+                relax(&mut d, v, v + 1);
+            }
+            if y + 1 < ny {
+                relax(&mut d, v, v + nx);
+                if x + 1 < nx {
+                    relax(&mut d, v, v + nx + 1);
+                }
+                if x > 0 {
+                    relax(&mut d, v, v + nx - 1);
+                }
+            }
+        }
+    }
+    d
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -285,6 +360,61 @@ mod tests {
         assert_eq!(directions(1).len(), 8);
         assert_eq!(directions(3).len(), 32);
         assert_eq!(directions(8).len(), 176);
+    }
+
+    /// The open-water distance is the Chebyshev distance to the nearest non-water vertex, and a
+    /// water edge found through it is the one the samples give.
+    #[test]
+    fn open_water_skips_only_what_is_water() {
+        let n = 12;
+        let mut class = vec![WATER; n * n];
+        class[5 * n + 2] = LAND;
+        let t = Terrain { nx: n, ny: n, spacing: 1.0, z: vec![0.0; n * n], class: class.clone() };
+        let d = open_water(&t);
+        for y in 0..n {
+            for x in 0..n {
+                let cheb = (x as i64 - 2).abs().max((y as i64 - 5).abs()) as u8;
+                assert_eq!(d[y * n + x], cheb, "({x}, {y})");
+            }
+        }
+        let l = Lattice::new(t, 4, 1.0, 1.0, 10.0, 1.0, 1.0);
+        let mut buf = Vec::new();
+        for v in 0..(n * n) as u32 {
+            for &dir in &l.dirs {
+                let fast = l.water_edge(v, dir, &mut buf);
+                let slow = l.offset(v, dir, 1).filter(|&to| l.class(to) == WATER).and_then(|to| {
+                    l.samples(v, dir, &mut buf);
+                    buf.iter().all(|&u| l.class(u) == WATER).then_some(to)
+                });
+                assert_eq!(fast.map(|f| f.0), slow, "vertex {v} direction {dir:?}");
+            }
+        }
+    }
+
+    /// Skipping settled vertices leaves out exactly the edges that end at one of them (bridges
+    /// aside), in the same order, and changes no other edge.
+    #[test]
+    fn skipped_vertices_lose_only_their_edges() {
+        let n = 16;
+        let mut class = vec![LAND; n * n];
+        for y in 0..n {
+            for x in 6..9 {
+                class[y * n + x] = WATER;
+            }
+        }
+        class[3 * n + 3] = FORBIDDEN;
+        let z = (0..n * n).map(|v| ((v % n) as f32 * 0.3).sin() + (v / n) as f32 * 0.1).collect();
+        let l = Lattice::new(Terrain { nx: n, ny: n, spacing: 1.0, z, class }, 4, 0.9, 2.0, 6.0, 3.0, 5.0);
+        let skip = |u: u32| u.is_multiple_of(3) || u % 7 == 1;
+        let blocked = |u: u32| u == 2 * n as u32 + 12;
+        let (mut all, mut kept, mut buf) = (Vec::new(), Vec::new(), Vec::new());
+        for v in 0..(n * n) as u32 {
+            l.edges(v, &blocked, &|_| false, &mut all, &mut buf);
+            l.edges(v, &blocked, &skip, &mut kept, &mut buf);
+            let expected: Vec<Edge> =
+                all.iter().copied().filter(|e| e.kind == EdgeKind::Bridge || !skip(e.to)).collect();
+            assert_eq!(kept, expected, "vertex {v}");
+        }
     }
 
     #[test]

@@ -2,16 +2,21 @@
 //! nodes every 1.25 ℓ along segments longer than 2 ℓ), ranked by distance to the nearest
 //! nucleus times (1 − its strength); the first G(t) grow one street each in the pattern K(t),
 //! under the local rules of Parish & Müller: a crossing ends the street at a new junction, an
-//! end near a node snaps to it, an end near a segment makes a T, junction angles below the
-//! minimum are refused, and no minor road crosses water, forbidden ground or too steep a slope.
+//! end near a node snaps to it, an end near a segment makes a T, a street that would cross a
+//! road a little further on is extended to it, junction angles below the minimum are refused,
+//! and no minor road crosses water, forbidden ground or too steep a slope. Grid streets keep to
+//! a frame (their global goal): the pattern's angle, or the nearest major road's direction.
 
 use super::context::{Pattern, PatternKind};
-use super::graph::{Class, Graph};
+use super::graph::{Class, Graph, SNAP};
 use super::terrain::{Terrain, LAND};
 use crate::geometry::{closest_on_segment, dist, dot, segment_intersection, sub, P};
 use rand::rngs::Xoshiro256PlusPlus;
 use rand::RngExt;
 use std::collections::HashSet;
+
+/// How far from a nucleus the major road giving a grid its frame may be (metres).
+pub const FRAME_REACH: f64 = 300.0;
 
 /// A growth nucleus.
 #[derive(Clone, Debug, PartialEq)]
@@ -73,12 +78,14 @@ impl Grower<'_> {
     pub fn grow(&mut self, count: usize) -> usize {
         let spacing = self.terrain.spacing;
         let mut cands: Vec<(f64, f64, P, Seat)> = Vec::new();
+        // RANK(z) = dist(q_N, z) · (1 − STRENGTH(q_N)) of the nucleus q_N nearest to z (the
+        // first of equally near ones), ties by that distance.
         let rank = |p: P| -> (f64, f64) {
             self.nuclei
                 .iter()
-                .map(|q| (dist(q.pos, p) * (1.0 - q.strength), dist(q.pos, p)))
-                .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)))
-                .unwrap_or((0.0, 0.0))
+                .map(|q| (dist(q.pos, p), q.strength))
+                .min_by(|a, b| a.0.total_cmp(&b.0))
+                .map_or((0.0, 0.0), |(d, s)| (d * (1.0 - s), d))
         };
         for (n, node) in self.graph.nodes.iter().enumerate() {
             if !node.spawned && self.graph.road_degree(n as u32) > 0 && self.terrain.class_at(node.pos) == LAND {
@@ -158,6 +165,32 @@ impl Grower<'_> {
         }
     }
 
+    /// The grid frame near `p`: the direction of the trade road nearest to the nucleus nearest to
+    /// `p` (within [`FRAME_REACH`]), else of the trade road nearest to `p`, else 0.
+    fn frame(&self, p: P) -> f64 {
+        let q = self.nuclei.iter().min_by(|a, b| dist(a.pos, p).total_cmp(&dist(b.pos, p))).map(|q| q.pos);
+        for at in q.into_iter().chain([p]) {
+            let nearest = self
+                .graph
+                .segs_near(at, FRAME_REACH)
+                .into_iter()
+                .filter(|&s| {
+                    let c = self.graph.segs[s].class;
+                    c.is_road() && c.is_trade()
+                })
+                .map(|s| {
+                    let (a, b) = self.graph.ends(s as u32);
+                    (dist(at, closest_on_segment(at, a, b).0), s, a, b)
+                })
+                .filter(|x| x.0 <= FRAME_REACH)
+                .min_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
+            if let Some((_, _, a, b)) = nearest {
+                return (b[1] - a[1]).atan2(b[0] - a[0]);
+            }
+        }
+        0.0
+    }
+
     /// One street from a seat: up to the pattern's segment count, with branches for grids.
     fn street(&mut self, seat: Seat) {
         let p = self.pattern.clone();
@@ -166,6 +199,16 @@ impl Grower<'_> {
             Seat::OnSegment(_, q) => q,
         };
         let mut heading = self.base_heading(seat);
+        if p.kind == PatternKind::Grid {
+            // The grid's global goal: headings on its frame (the pattern's angle, or the
+            // direction of the major road nearest to the nearest nucleus), the one nearest to the
+            // base heading.
+            let frame = p.angle.map_or_else(|| self.frame(origin), f64::to_radians);
+            heading = (0..4)
+                .map(|k| frame + k as f64 * std::f64::consts::FRAC_PI_2)
+                .min_by(|a, b| ang_diff(*a, heading).total_cmp(&ang_diff(*b, heading)))
+                .expect("four headings");
+        }
         if p.kind == PatternKind::Radial {
             if let Some(q) = self.nuclei.iter().min_by(|a, b| dist(a.pos, origin).total_cmp(&dist(b.pos, origin))) {
                 let d = sub(origin, q.pos);
@@ -198,7 +241,9 @@ impl Grower<'_> {
                     let side = if self.rng.random::<bool>() { 1.0 } else { -1.0 };
                     queue.push((at, h + side * std::f64::consts::FRAC_PI_2));
                 }
-                if stop {
+                // A grid street goes on through the junction it made (its global goal), so
+                // crossings are 4-way; other patterns end there.
+                if stop && p.kind != PatternKind::Grid {
                     break;
                 }
             }
@@ -226,7 +271,7 @@ impl Grower<'_> {
                 }
             }
         }
-        let (end, stop) = self.constrain(start, q, start_node, on_seg, min_angle, p.snap)?;
+        let (end, stop) = self.constrain(start, q, start_node, on_seg, min_angle, p.snap, p.extend)?;
         let end_pos = match end {
             End::New(x) | End::Split(x) => x,
             End::Node(n) => self.graph.nodes[n as usize].pos,
@@ -251,8 +296,11 @@ impl Grower<'_> {
         Some((last, stop || chain.len() > 2))
     }
 
-    /// The local rules for a proposed segment `start → q`: the first crossing ends it at a
-    /// junction; else an end near a node snaps to it; else an end near a segment makes a T.
+    /// The local rules for a proposed segment `start → q` (Parish & Müller's, in their order):
+    /// the first crossing ends it at a junction; else an end near a node snaps to it; else an
+    /// end near a segment makes a T; else, if the street continued by `reach` would cross a
+    /// road, it is extended to that crossing (closing a block).
+    #[allow(clippy::too_many_arguments)]
     fn constrain(
         &self,
         start: P,
@@ -261,47 +309,14 @@ impl Grower<'_> {
         on_seg: Option<u32>,
         min_angle: f64,
         snap: f64,
+        reach: f64,
     ) -> Option<(End, bool)> {
         let touches = |s: u32| {
             let g = &self.graph.segs[s as usize];
             Some(s) == on_seg || from.is_some_and(|n| g.a == n || g.b == n)
         };
-        let len = dist(start, q);
-        let mid = [(start[0] + q[0]) / 2.0, (start[1] + q[1]) / 2.0];
-        let mut first: Option<(f64, u32, P)> = None;
-        for s in self.graph.segs_near(mid, len / 2.0 + 1.0) {
-            let s = s as u32;
-            if !self.graph.segs[s as usize].class.is_road() || touches(s) {
-                continue;
-            }
-            let (c, d) = self.graph.ends(s);
-            if let Some((t, _)) = segment_intersection(start, q, c, d) {
-                if t > 1e-6 && first.is_none_or(|f| t < f.0) {
-                    first = Some((t, s, [start[0] + (q[0] - start[0]) * t, start[1] + (q[1] - start[1]) * t]));
-                }
-            }
-        }
-        let angle_ok = |s: u32| {
-            let (c, d) = self.graph.ends(s);
-            let u = sub(d, c);
-            let v = sub(q, start);
-            let cos = (dot(u, v) / (u[0].hypot(u[1]) * v[0].hypot(v[1])).max(1e-12)).abs().clamp(0.0, 1.0);
-            cos.acos() >= min_angle
-        };
-        if let Some((_, s, x)) = first {
-            if !angle_ok(s) {
-                return None;
-            }
-            let (c, d) = self.graph.ends(s);
-            let g = &self.graph.segs[s as usize];
-            let end = if dist(x, c) <= snap.min(dist(c, d) / 3.0) {
-                End::Node(g.a)
-            } else if dist(x, d) <= snap.min(dist(c, d) / 3.0) {
-                End::Node(g.b)
-            } else {
-                End::Split(x)
-            };
-            return Some((end, true));
+        if let Some((s, x)) = self.first_crossing(start, q, &touches) {
+            return self.at_crossing(start, q, s, x, from, on_seg, min_angle, snap);
         }
         if let Some(&n) =
             self.graph.nodes_near(q, snap).iter().filter(|&&n| Some(n) != from && self.graph.road_degree(n) > 0).min_by(
@@ -324,13 +339,80 @@ impl Grower<'_> {
             let (c, d) = self.graph.ends(s);
             let (x, t) = closest_on_segment(q, c, d);
             if t > 0.0 && t < 1.0 && dist(x, q) <= snap {
-                if self.clear(start, x, from, on_seg, None) && angle_ok(s) {
+                if self.clear(start, x, from, on_seg, None) && crosses_at(start, q, c, d, min_angle) {
                     return Some((End::Split(x), true));
                 }
                 return None;
             }
         }
+        let len = dist(start, q);
+        if reach > 0.0 && len > 0.0 {
+            let far = [q[0] + (q[0] - start[0]) / len * reach, q[1] + (q[1] - start[1]) / len * reach];
+            if let Some((s, x)) = self.first_crossing(q, far, &touches) {
+                if let Some(end) = self.at_crossing(start, far, s, x, from, on_seg, min_angle, snap) {
+                    return Some(end);
+                }
+            }
+        }
         Some((End::New(q), false))
+    }
+
+    /// The first road segment `a → b` crosses (after `a`), not one `touches` accepts, with the
+    /// crossing point.
+    fn first_crossing(&self, a: P, b: P, touches: &dyn Fn(u32) -> bool) -> Option<(u32, P)> {
+        let mid = [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0];
+        let mut first: Option<(f64, u32, P)> = None;
+        for s in self.graph.segs_near(mid, dist(a, b) / 2.0 + 1.0) {
+            let s = s as u32;
+            if !self.graph.segs[s as usize].class.is_road() || touches(s) {
+                continue;
+            }
+            let (c, d) = self.graph.ends(s);
+            if let Some((t, _)) = segment_intersection(a, b, c, d) {
+                if t > 1e-6 && first.is_none_or(|f| t < f.0) {
+                    first = Some((t, s, [a[0] + (b[0] - a[0]) * t, a[1] + (b[1] - a[1]) * t]));
+                }
+            }
+        }
+        first.map(|f| (f.1, f.2))
+    }
+
+    /// The end of a street `start → q` that crosses segment `s` at `x`: a junction at `x`, or the
+    /// segment's end node when `x` is near it (meeting that node's streets at the minimum angle
+    /// too); `None` when the angle at the crossing is too small.
+    #[allow(clippy::too_many_arguments)]
+    fn at_crossing(
+        &self,
+        start: P,
+        q: P,
+        s: u32,
+        x: P,
+        from: Option<u32>,
+        on_seg: Option<u32>,
+        min_angle: f64,
+        snap: f64,
+    ) -> Option<(End, bool)> {
+        let (c, d) = self.graph.ends(s);
+        if !crosses_at(start, q, c, d, min_angle) {
+            return None;
+        }
+        let g = &self.graph.segs[s as usize];
+        let near = snap.min(dist(c, d) / 3.0).max(SNAP);
+        let end = if dist(x, c) <= near {
+            End::Node(g.a)
+        } else if dist(x, d) <= near {
+            End::Node(g.b)
+        } else {
+            End::Split(x)
+        };
+        // Snapped to a node, the street meets that node's other streets too.
+        if let End::Node(n) = end {
+            let to = self.graph.nodes[n as usize].pos;
+            if !(self.clear(start, to, from, on_seg, Some(n)) && self.end_angle_ok(n, start, min_angle)) {
+                return None;
+            }
+        }
+        Some((end, true))
     }
 
     /// No road segment crosses `a → b` (other than at `from`, `on_seg` or the node `to`).
@@ -381,6 +463,13 @@ impl Grower<'_> {
     }
 }
 
+/// Whether `start → q` meets the line of `c → d` at an angle of at least `min_angle`.
+fn crosses_at(start: P, q: P, c: P, d: P, min_angle: f64) -> bool {
+    let (u, v) = (sub(d, c), sub(q, start));
+    let cos = (dot(u, v) / (u[0].hypot(u[1]) * v[0].hypot(v[1])).max(1e-12)).abs().clamp(0.0, 1.0);
+    cos.acos() >= min_angle
+}
+
 fn ang_diff(a: f64, b: f64) -> f64 {
     let d = (a - b).rem_euclid(std::f64::consts::TAU);
     d.min(std::f64::consts::TAU - d)
@@ -391,4 +480,44 @@ fn normal(rng: &mut Xoshiro256PlusPlus) -> f64 {
     let u = 1.0 - rng.random::<f64>();
     let v = rng.random::<f64>();
     (-2.0 * u.ln()).sqrt() * (std::f64::consts::TAU * v).cos()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::grow::context::Context;
+    use rand::SeedableRng;
+
+    /// A street that crosses a segment next to its end node snaps to that node only where it
+    /// meets the node's other streets at the minimum angle: here it would run 0.6° beside one.
+    #[test]
+    fn a_crossing_snapped_to_a_node_keeps_the_minimum_angle() {
+        let ctx = Context::from_toml("size = [200, 200]").unwrap();
+        let terrain = Terrain { nx: 11, ny: 11, spacing: 20.0, z: vec![0.0; 121], class: vec![LAND; 121] };
+        let mut graph = Graph::new(ctx.size);
+        let c = graph.node_at([50.0, 50.0], true);
+        let d = graph.node_at([50.0, 150.0], true);
+        let e = graph.node_at([150.0, 54.0], true);
+        graph.insert(c, d, Class::Minor, 1.0, 0);
+        graph.insert(c, e, Class::Minor, 1.0, 0);
+        let start = graph.node_at([110.0, 53.0], true);
+        let mut rng = Xoshiro256PlusPlus::seed_from_u64(1);
+        let mut growth = Growth::default();
+        let pattern = ctx.pattern(0).clone();
+        let mut g = Grower {
+            graph: &mut graph,
+            terrain: &terrain,
+            nuclei: &[],
+            pattern: &pattern,
+            slope_cut: 0.15,
+            step: 1,
+            rng: &mut rng,
+            growth: &mut growth,
+        };
+        assert!(g.extend(Seat::Node(start), std::f64::consts::PI, 80.0).is_none());
+        // From the north-east it crosses c–d 6.7 m from c at wide angles to c's streets: it snaps.
+        let start = g.graph.node_at([90.0, 110.0], true);
+        let h = (50.0f64 - 110.0).atan2(45.0 - 90.0);
+        assert_eq!(g.extend(Seat::Node(start), h, 80.0).map(|r| r.0), Some(c));
+    }
 }

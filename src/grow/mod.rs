@@ -107,8 +107,14 @@ pub struct GrowRequest {
     pub seed: Option<u64>,
     /// Overrides the context's step count.
     pub steps: Option<u32>,
-    /// Writes `step-NNN.svg` every K steps (and at step 0).
+    /// Writes `step-NNN.svg` every K steps (and at step 0), and `steps.svg`/`.png` with them
+    /// side by side.
     pub every: Option<u32>,
+    /// Draws every minor road, dead-end stubs too.
+    pub all_streets: bool,
+    /// Writes `gallery.svg`/`.png`: the initial networks of this many seeds from the run's seed
+    /// on (Fig. 10a).
+    pub gallery: Option<u32>,
 }
 
 /// What a run did.
@@ -137,6 +143,27 @@ fn check(sim: &step::Sim) -> Vec<validate::Violation> {
     validate::validate(&validate::Network::of(sim), &sim.ctx)
 }
 
+/// `gallery.svg`/`.png`: the initial networks of seeds `seed, seed + 1, …` (`n` of them) on the
+/// terrain of `seed`.
+fn write_gallery(ctx: &context::Context, seed: u64, n: u32, req: &GrowRequest) -> Result<Vec<PathBuf>, GrowError> {
+    let mut scenes = Vec::new();
+    for k in 0..n as u64 {
+        let sim = step::Sim::with_terrain_seed(ctx, seed + k, seed).map_err(|e| e.in_file(&req.context))?;
+        let mut scene = output::scene(&sim, req.all_streets);
+        let r = &sim.series[0];
+        scene.caption = format!(
+            "seed {}: μ {:.2}, {:.1} km of major road, {} bridges, {} ports",
+            seed + k,
+            sim.mu,
+            r.major_km,
+            r.bridges,
+            r.ports
+        );
+        scenes.push(scene);
+    }
+    output::write_strip(&req.out, "gallery", &scenes)
+}
+
 /// Runs `netspec grow`: reads the context, builds the initial network, runs the steps (calling
 /// `progress(step, steps)` after each), checks the network at every snapshot and at the end
 /// ([`validate`]), and writes the outputs into the request's directory. Violations are not an
@@ -152,8 +179,11 @@ pub fn run(req: &GrowRequest, progress: &mut dyn FnMut(u32, u32)) -> Result<Grow
     let mut files = Vec::new();
     let every = req.every.filter(|&k| k > 0);
     let mut snapshot_violations = Vec::new();
+    let mut strip = Vec::new();
     let mut snapshot = |sim: &step::Sim, files: &mut Vec<PathBuf>| -> Result<(), GrowError> {
-        files.push(output::write_snapshot(&req.out, sim)?);
+        let scene = output::scene(sim, req.all_streets);
+        files.push(output::write_snapshot(&req.out, sim.step, &scene)?);
+        strip.push(scene);
         let found = check(sim).len();
         if found > 0 {
             snapshot_violations.push((sim.step, found));
@@ -174,7 +204,13 @@ pub fn run(req: &GrowRequest, progress: &mut dyn FnMut(u32, u32)) -> Result<Grow
     }
     let step_seconds = t1.elapsed().as_secs_f64();
     let violations = check(&sim);
-    files.extend(output::write_all(&req.out, &sim, &violations)?);
+    files.extend(output::write_all(&req.out, &sim, &violations, req.all_streets)?);
+    if !strip.is_empty() {
+        files.extend(output::write_strip(&req.out, "steps", &strip)?);
+    }
+    if let Some(n) = req.gallery.filter(|&n| n > 0) {
+        files.extend(write_gallery(&ctx, seed, n, req)?);
+    }
     Ok(GrowSummary {
         seed,
         last: sim.series.last().expect("step 0 is always there").clone(),

@@ -8,7 +8,7 @@ use super::validate::Violation;
 use super::GrowError;
 use crate::geometry::site::Projection;
 use crate::geometry::P;
-use crate::render::grow::{grow_svg, Bands, GrowScene, RoadLine};
+use crate::render::grow::{grow_svg, strip_svg, Bands, GrowScene, RoadLine};
 use serde::Deserialize;
 use serde_json::{json, Value};
 use std::collections::BTreeMap;
@@ -222,11 +222,11 @@ impl NetworkFile {
 /// `series.csv`: a header and one row per step.
 pub fn series_csv(sim: &Sim) -> String {
     let mut out = String::from(
-        "step,settlements,built_up_ha,blocks,minor_km,major_km,nuclei,ports,bridges,trade_routes,new_routes,overflow,four_way_share,orientation_entropy\n",
+        "step,settlements,built_up_ha,blocks,minor_km,major_km,nuclei,ports,bridges,trade_routes,new_routes,overflow,four_way_share,orientation_entropy,lane_km_added,lane_km,dead_end_share,block_median_m2\n",
     );
     for r in &sim.series {
         out.push_str(&format!(
-            "{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
+            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
             r.step,
             r.settlements,
             r.built_up_ha,
@@ -240,33 +240,99 @@ pub fn series_csv(sim: &Sim) -> String {
             r.new_routes,
             r.overflow,
             r.four_way_share,
-            r.orientation_entropy
+            r.orientation_entropy,
+            r.lane_km_added,
+            r.lane_km,
+            r.dead_end_share,
+            r.block_median_m2
         ));
     }
     out
 }
 
-/// The picture's plain data.
-pub fn scene(sim: &Sim) -> GrowScene {
+/// Minor-road segments that are stubs: dead-end streets, found by pruning minor segments with
+/// an end no other road segment meets until none is left (what remains bounds a block or joins
+/// other roads).
+pub fn stubs(sim: &Sim) -> Vec<bool> {
+    let g = &sim.graph;
+    let mut stub = vec![false; g.segs.len()];
+    let mut degree: Vec<usize> = (0..g.nodes.len() as u32).map(|n| g.road_degree(n)).collect();
+    let mut leaves: Vec<u32> = (0..g.nodes.len() as u32).filter(|&n| degree[n as usize] == 1).collect();
+    while let Some(n) = leaves.pop() {
+        let Some(&s) = g.adj[n as usize].iter().find(|&&s| g.segs[s as usize].class.is_road() && !stub[s as usize])
+        else {
+            continue;
+        };
+        if g.segs[s as usize].class != Class::Minor || degree[n as usize] != 1 {
+            continue;
+        }
+        stub[s as usize] = true;
+        degree[n as usize] -= 1;
+        let m = g.other(s, n);
+        degree[m as usize] -= 1;
+        if degree[m as usize] == 1 {
+            leaves.push(m);
+        }
+    }
+    stub
+}
+
+/// Straight pieces of the contour lines at `levels` of an elevation raster (`nx × ny` samples
+/// `cell` metres apart, row 0 at y = 0), by marching squares.
+fn contours(z: &[f64], nx: usize, ny: usize, cell: f64, levels: &[f64]) -> Vec<[P; 2]> {
+    let mut out = Vec::new();
+    for y in 0..ny.saturating_sub(1) {
+        for x in 0..nx.saturating_sub(1) {
+            // Corners counter-clockwise from the lower left, and the edges between them.
+            let c = [(x, y), (x + 1, y), (x + 1, y + 1), (x, y + 1)];
+            let v: Vec<f64> = c.iter().map(|&(i, j)| z[j * nx + i]).collect();
+            for &level in levels {
+                let mut pts = Vec::new();
+                for e in 0..4 {
+                    let (a, b) = (e, (e + 1) % 4);
+                    if (v[a] > level) != (v[b] > level) {
+                        let f = (level - v[a]) / (v[b] - v[a]);
+                        let p = |k: usize| [c[k].0 as f64 * cell, c[k].1 as f64 * cell];
+                        let (pa, pb) = (p(a), p(b));
+                        pts.push([pa[0] + (pb[0] - pa[0]) * f, pa[1] + (pb[1] - pa[1]) * f]);
+                    }
+                }
+                for pair in pts.chunks_exact(2) {
+                    out.push([pair[0], pair[1]]);
+                }
+            }
+        }
+    }
+    out
+}
+
+/// The picture's plain data; minor roads that are [`stubs`] are left out unless `all_streets`.
+pub fn scene(sim: &Sim, all_streets: bool) -> GrowScene {
     let t = &sim.lattice.terrain;
     // Contour bands of 60 m would leave flat maps in one band: the band height is the larger of
-    // 10 m and a sixth of the relief.
+    // 10 m and a sixth of the relief; contour lines run between the bands.
     let (lo, hi) = t.z.iter().fold((f32::INFINITY, f32::NEG_INFINITY), |(l, h), &z| (l.min(z), h.max(z)));
     let step = ((hi - lo) as f64 / 6.0).max(10.0);
     let k = (t.nx.max(t.ny) / 200).max(1);
     let (bx, by) = (t.nx.div_ceil(k), t.ny.div_ceil(k));
     let mut band = Vec::with_capacity(bx * by);
+    let mut z = Vec::with_capacity(bx * by);
     for y in 0..by {
         for x in 0..bx {
-            let z = t.z[(y * k).min(t.ny - 1) * t.nx + (x * k).min(t.nx - 1)];
-            band.push((((z - lo) as f64 / step).floor() as u8).min(7));
+            let h = t.z[(y * k).min(t.ny - 1) * t.nx + (x * k).min(t.nx - 1)];
+            band.push((((h - lo) as f64 / step).floor() as u8).min(7));
+            z.push(h as f64);
         }
     }
+    let levels: Vec<f64> = (1..8).map(|i| lo as f64 + i as f64 * step).filter(|&l| l < hi as f64).collect();
+    let cell = t.spacing * k as f64;
     let last = sim.step.max(1) as f64;
     let g = &sim.graph;
+    let hidden = if all_streets { vec![false; g.segs.len()] } else { stubs(sim) };
     GrowScene {
         size: sim.ctx.size,
-        bands: Bands { nx: bx, ny: by, cell: t.spacing * k as f64, band },
+        bands: Bands { nx: bx, ny: by, cell, band },
+        contours: contours(&z, bx, by, cell, &levels),
         water: sim.ctx.water.iter().filter_map(|w| w.polygon.clone()).collect(),
         rivers: sim.ctx.water.iter().filter_map(|w| Some((w.river.clone()?, w.width?))).collect(),
         forbidden: sim.ctx.forbidden.iter().map(|f| f.polygon.clone()).collect(),
@@ -281,6 +347,7 @@ pub fn scene(sim: &Sim) -> GrowScene {
             .segs
             .iter()
             .enumerate()
+            .filter(|&(s, _)| !hidden[s])
             .map(|(s, seg)| {
                 let (a, b) = g.ends(s as u32);
                 RoadLine { a, b, class: seg.class.name(), width: seg.width }
@@ -307,19 +374,36 @@ pub(crate) fn write(dir: &Path, name: &str, bytes: &[u8]) -> Result<PathBuf, Gro
     Ok(path)
 }
 
-/// Writes `step-NNN.svg` for the current step.
-pub fn write_snapshot(dir: &Path, sim: &Sim) -> Result<PathBuf, GrowError> {
-    write(dir, &format!("step-{:03}.svg", sim.step), grow_svg(&scene(sim)).as_bytes())
+/// Writes `step-NNN.svg` of a step's scene.
+pub fn write_snapshot(dir: &Path, step: u32, scene: &GrowScene) -> Result<PathBuf, GrowError> {
+    write(dir, &format!("step-{step:03}.svg"), grow_svg(scene).as_bytes())
+}
+
+/// Panels to a row in a strip of pictures.
+pub const STRIP_COLUMNS: usize = 5;
+
+/// Writes `NAME.svg` and `NAME.png`: the scenes side by side, [`STRIP_COLUMNS`] to a row.
+pub fn write_strip(dir: &Path, name: &str, scenes: &[GrowScene]) -> Result<Vec<PathBuf>, GrowError> {
+    let svg = strip_svg(scenes, STRIP_COLUMNS, 400.0);
+    Ok(vec![
+        write(dir, &format!("{name}.svg"), svg.as_bytes())?,
+        write(dir, &format!("{name}.png"), &crate::render::png(&svg)?)?,
+    ])
 }
 
 /// Writes `network.json` (with `violations`), `series.csv`, `network.svg`, `network.png` and
-/// (with an origin) `network.geojson`.
-pub fn write_all(dir: &Path, sim: &Sim, violations: &[Violation]) -> Result<Vec<PathBuf>, GrowError> {
+/// (with an origin) `network.geojson`; the pictures leave stubs out unless `all_streets`.
+pub fn write_all(
+    dir: &Path,
+    sim: &Sim,
+    violations: &[Violation],
+    all_streets: bool,
+) -> Result<Vec<PathBuf>, GrowError> {
     let mut files = Vec::new();
     let json = serde_json::to_string(&network_json(sim, violations)).expect("JSON serialises") + "\n";
     files.push(write(dir, "network.json", json.as_bytes())?);
     files.push(write(dir, "series.csv", series_csv(sim).as_bytes())?);
-    let svg = grow_svg(&scene(sim));
+    let svg = grow_svg(&scene(sim, all_streets));
     files.push(write(dir, "network.svg", svg.as_bytes())?);
     files.push(write(dir, "network.png", &crate::render::png(&svg)?)?);
     if let Some(origin) = sim.ctx.origin {

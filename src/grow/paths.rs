@@ -45,14 +45,16 @@ pub trait Space {
     }
     /// A state's position (for the heuristic and turn angles).
     fn pos(&self, v: u32) -> P;
-    /// The edges from `v`: `(to, weight)`.
-    fn edges(&mut self, v: u32, out: &mut Vec<(u32, f64)>);
+    /// The edges from `v`: `(to, weight)`. Edges to states that `settled` marks (indexed by
+    /// state) are never used by the search and may be left out where that saves work.
+    fn edges(&mut self, v: u32, settled: &[bool], out: &mut Vec<(u32, f64)>);
 }
 
 /// The least-cost path from `source` to `target`; `h_factor` times the straight distance is the
 /// A* heuristic (0 for Dijkstra; admissible when no edge costs less per metre), `turn` the
 /// penalty of the angle at a state between its incoming and outgoing edges, given as its cosine
-/// (−1 straight on, 1 turning back).
+/// (−1 straight on, 1 turning back); penalties must not be negative (an edge that cannot improve
+/// its far state without one is skipped before its angle is computed).
 pub fn shortest(
     space: &mut dyn Space,
     source: u32,
@@ -81,12 +83,17 @@ pub fn shortest(
         }
         let pv = space.pos(v);
         let incoming = (prev[v as usize] != u32::MAX).then(|| space.pos(prev[v as usize]));
-        space.edges(v, &mut out);
+        space.edges(v, &done, &mut out);
         for &(u, w) in &out {
             if done[u as usize] || !w.is_finite() {
                 continue;
             }
             let mut c = g[v as usize] + w;
+            if c >= g[u as usize] {
+                // Penalties are never negative: the edge cannot improve `u`, so its turn angle
+                // (an arc cosine) is not computed. The same path and cost as with it.
+                continue;
+            }
             if let (Some(f), Some(pp)) = (turn, incoming) {
                 let (a, b) = (sub(pp, pv), sub(space.pos(u), pv));
                 let l = length(a) * length(b);
@@ -174,7 +181,7 @@ mod tests {
         fn pos(&self, v: u32) -> P {
             [v as f64, 0.0]
         }
-        fn edges(&mut self, v: u32, out: &mut Vec<(u32, f64)>) {
+        fn edges(&mut self, v: u32, _settled: &[bool], out: &mut Vec<(u32, f64)>) {
             out.clear();
             if (v as usize) + 1 < self.0 {
                 out.push((v + 1, 1.0));

@@ -65,11 +65,11 @@ impl Space for InitialSpace<'_> {
             self.graph.nodes[(v - n) as usize].pos
         }
     }
-    fn edges(&mut self, v: u32, out: &mut Vec<(u32, f64)>) {
+    fn edges(&mut self, v: u32, settled: &[bool], out: &mut Vec<(u32, f64)>) {
         out.clear();
         let nl = self.lattice.len() as u32;
         if v < nl {
-            self.lattice.edges(v, &|_| false, &mut self.edges, &mut self.buf);
+            self.lattice.edges(v, &|_| false, &|u| settled[u as usize], &mut self.edges, &mut self.buf);
             for e in &self.edges {
                 let f = if self.used.contains(&(v.min(e.to), v.max(e.to))) { self.mu } else { 1.0 };
                 out.push((e.to, e.weight * f));
@@ -102,14 +102,18 @@ pub struct Costs {
     pub c: [f64; 6],
     /// O₂.
     pub per_lane: f64,
+    /// The most lanes widening gives a road.
+    pub max_lanes: f64,
     /// The shortfall a segment must have room for (unless it can be widened).
     pub delta: f64,
 }
 
 impl Costs {
-    /// The weight of a built segment, or `None` when it is saturated and cannot be widened (a
-    /// fixed segment cannot), or a fixed minor road (which never becomes major).
-    pub fn segment(&self, graph: &Graph, blocks: &Blocks, s: u32, trade_only: bool) -> Option<f64> {
+    /// The weight of a built segment, or `None` when it has no room for the shortfall beside its
+    /// traffic and `used` (the pair's own routes saturated, [`super::traffic::Traffic::saturation`]) and
+    /// widening to `max_lanes` would not give it (a fixed or non-extendible segment cannot be
+    /// widened), or a fixed minor road (which never becomes major).
+    pub fn segment(&self, graph: &Graph, blocks: &Blocks, s: u32, trade_only: bool, used: f64) -> Option<f64> {
         let g = &graph.segs[s as usize];
         if trade_only && !g.class.is_trade() {
             return None;
@@ -120,8 +124,9 @@ impl Costs {
         let ext = blocks.extendible.get(s as usize).copied().unwrap_or(true);
         let widenable = ext && !g.fixed && matches!(g.class, Class::Major | Class::Minor);
         if g.class != Class::Water && g.class != Class::Minor {
-            let room = capacity(graph, s, self.per_lane) - g.load;
-            if room < self.delta && (trade_only || !widenable) {
+            let room = capacity(graph, s, self.per_lane) - g.load - used;
+            let widened = self.per_lane * self.max_lanes.max(g.width) - g.load - used;
+            if room < self.delta && (trade_only || !widenable || widened < self.delta) {
                 return None;
             }
         }
@@ -149,6 +154,8 @@ pub struct MajorSpace<'a> {
     pub blocks: &'a Blocks,
     /// Weights.
     pub costs: Costs,
+    /// The traffic the pair's own routes take per segment when saturated.
+    pub used: &'a HashMap<u32, f64>,
 }
 
 impl Space for MajorSpace<'_> {
@@ -158,10 +165,11 @@ impl Space for MajorSpace<'_> {
     fn pos(&self, v: u32) -> P {
         self.graph.nodes[v as usize].pos
     }
-    fn edges(&mut self, v: u32, out: &mut Vec<(u32, f64)>) {
+    fn edges(&mut self, v: u32, _settled: &[bool], out: &mut Vec<(u32, f64)>) {
         out.clear();
         for &s in &self.graph.adj[v as usize] {
-            if let Some(w) = self.costs.segment(self.graph, self.blocks, s, true) {
+            let used = self.used.get(&s).copied().unwrap_or(0.0);
+            if let Some(w) = self.costs.segment(self.graph, self.blocks, s, true, used) {
                 out.push((self.graph.other(s, v), w));
             }
         }
@@ -233,6 +241,8 @@ pub struct NewSpace<'a> {
     pub stitches: &'a Stitches,
     /// Weights.
     pub costs: Costs,
+    /// The traffic the pair's own routes take per segment when saturated.
+    pub used: &'a HashMap<u32, f64>,
     /// Scratch.
     pub edges: Vec<Edge>,
     /// Scratch.
@@ -285,12 +295,12 @@ impl Space for NewSpace<'_> {
             self.graph.nodes[(v - n) as usize].pos
         }
     }
-    fn edges(&mut self, v: u32, out: &mut Vec<(u32, f64)>) {
+    fn edges(&mut self, v: u32, settled: &[bool], out: &mut Vec<(u32, f64)>) {
         out.clear();
         let nl = self.lattice.len() as u32;
         if v < nl {
             let built = &self.blocks.built;
-            self.lattice.edges(v, &|u| built[u as usize], &mut self.edges, &mut self.buf);
+            self.lattice.edges(v, &|u| built[u as usize], &|u| settled[u as usize], &mut self.edges, &mut self.buf);
             out.extend(self.edges.iter().map(|e| (e.to, e.weight)));
             if let Some(nodes) = self.stitches.to_nodes.get(&v) {
                 for &n in nodes {
@@ -302,7 +312,8 @@ impl Space for NewSpace<'_> {
         } else {
             let n = v - nl;
             for &s in &self.graph.adj[n as usize] {
-                if let Some(w) = self.costs.segment(self.graph, self.blocks, s, false) {
+                let used = self.used.get(&s).copied().unwrap_or(0.0);
+                if let Some(w) = self.costs.segment(self.graph, self.blocks, s, false, used) {
                     out.push((nl + self.graph.other(s, n), w));
                 }
             }

@@ -16,7 +16,10 @@ use super::GrowError;
 use crate::geometry::{dist, segment_intersection, P};
 use rand::rngs::Xoshiro256PlusPlus;
 use rand::{RngExt, SeedableRng};
-use std::collections::HashSet;
+use std::collections::{HashMap, HashSet};
+
+/// Harbours whose land ends lie within this of a port's first harbour are that port (metres).
+pub const PORT_SITE: f64 = 200.0;
 
 /// A neighbouring city.
 #[derive(Clone, Debug, PartialEq)]
@@ -48,7 +51,8 @@ pub struct StepStats {
     pub major_km: f64,
     /// Nuclei.
     pub nuclei: usize,
-    /// Harbour segments.
+    /// Ports: harbour sites ([`Sim::port_sites`]: harbours within [`PORT_SITE`] of a site's first
+    /// harbour are that site).
     pub ports: usize,
     /// Bridges built.
     pub bridges: usize,
@@ -63,6 +67,15 @@ pub struct StepStats {
     pub four_way_share: f64,
     /// Orientation entropy (bits, 18 bins of 10°, length-weighted) of the era's minor roads.
     pub orientation_entropy: f64,
+    /// Lane-kilometres of major road added in the step (new roads, minor roads made major, and
+    /// widening).
+    pub lane_km_added: f64,
+    /// Lane-kilometres of major road (bridges and harbours included).
+    pub lane_km: f64,
+    /// Dead ends among the dead ends and junctions of the current pattern era's minor roads.
+    pub dead_end_share: f64,
+    /// The median area of the built-up blocks (m²).
+    pub block_median_m2: f64,
 }
 
 /// A running simulation.
@@ -107,12 +120,19 @@ impl Sim {
     /// they are near), the paths between them (through the centre when the context names one),
     /// the nuclei, and the pairs' first routes loaded.
     pub fn new(ctx: &Context, seed: u64) -> Result<Sim, GrowError> {
+        Sim::with_terrain_seed(ctx, seed, seed)
+    }
+
+    /// [`Sim::new`] with the generated terrain drawn from `terrain_seed` (a gallery of initial
+    /// networks on one terrain).
+    pub fn with_terrain_seed(ctx: &Context, seed: u64, terrain_seed: u64) -> Result<Sim, GrowError> {
         let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
-        let terrain = Terrain::build(ctx, seed)?;
+        let terrain = Terrain::build(ctx, terrain_seed)?;
         roads::check_nuclei(ctx, &terrain)?;
         let centre_vertex = roads::centre_vertex(ctx, &terrain)?;
         let p = &ctx.params;
-        let lattice = Lattice::new(terrain, ctx.radius, p.slope_cut, p.o[0], p.bridge, p.c[2], p.c[4]);
+        let c = ctx.c(0);
+        let lattice = Lattice::new(terrain, ctx.radius, p.slope_cut, p.o[0], p.bridge, c[2], c[4]);
         let mu = p.mu.unwrap_or_else(|| 0.5 + 0.4 * rng.random::<f64>());
         let b = p.b.unwrap_or_else(|| 0.7 + 0.6 * rng.random::<f64>());
         let vertices = place_cities(ctx, &lattice, &mut rng)?;
@@ -214,7 +234,7 @@ impl Sim {
         stitches: &Stitches,
     ) -> Result<(), GrowError> {
         let mut used: HashSet<(u32, u32)> = HashSet::new();
-        let c = self.ctx.params.c;
+        let c = self.ctx.c(0);
         let h = [self.mu, 1.0, c[2], c[4]].into_iter().fold(f64::INFINITY, f64::min);
         if let Some(target) = centre {
             let mut order: Vec<usize> = (0..self.cities.len()).collect();
@@ -237,8 +257,9 @@ impl Sim {
             self.traffic.pairs.push(Pair { cities: pair, routes: Vec::new(), overflow: 0.0 });
             let (u, v) = (self.cities[pair[0]].node, self.cities[pair[1]].node);
             if centre.is_some() || found.contains(&pair) {
-                let costs = Costs { c, per_lane: self.traffic.per_lane, delta: 0.0 };
-                let mut space = MajorSpace { graph: &self.graph, blocks: &self.blocks, costs };
+                let costs = self.costs(c, 0.0);
+                let none = HashMap::new();
+                let mut space = MajorSpace { graph: &self.graph, blocks: &self.blocks, costs, used: &none };
                 if let Some(f) = shortest(&mut space, u, v, 0.0, None) {
                     self.add_route(idx, f.states);
                     continue;
@@ -269,7 +290,7 @@ impl Sim {
             stitches,
             used,
             mu: self.mu,
-            c: self.ctx.params.c,
+            c: self.ctx.c(0),
             edges: Vec::new(),
             buf: Vec::new(),
         };
@@ -479,6 +500,8 @@ impl Sim {
         self.step += 1;
         let t = self.step;
         self.add_context_nuclei(t);
+        let c = self.ctx.c(t);
+        (self.lattice.harbour_factor, self.lattice.bridge_factor) = (c[2], c[4]);
         let count = self.ctx.growth(t).round() as usize;
         let mark = self.graph.splits.len();
         {
@@ -516,17 +539,18 @@ impl Sim {
     /// PROPOSEFROMMAJOR and PROPOSEFROMNEW for a pair short of `delta`; the winner (least
     /// O₃ · LENGTH + O₄ · COST) becomes a new trade route. Returns whether one was added.
     fn propose(&mut self, pair: usize, delta: f64, stitches: &mut Stitches) -> bool {
+        let costs = self.costs(self.ctx.c(self.step), delta);
         let p = &self.ctx.params;
-        let costs = Costs { c: p.c, per_lane: self.traffic.per_lane, delta };
-        let [sc, sw, sh] = p.turn;
+        let [sc, sw, sh] = self.ctx.turn(self.step);
         let penalty = TurnPenalty::new(sc.to_radians(), sw.to_radians(), sh);
         let turn = move |c: f64| penalty.at_cos(c);
         let [a, b] = self.traffic.pairs[pair].cities;
         let (u, v) = (self.cities[a].node, self.cities[b].node);
         let nl = self.lattice.len() as u32;
         let h = costs.min_factor();
+        let used = self.traffic.saturation(&self.graph, pair);
         let major = {
-            let mut space = MajorSpace { graph: &self.graph, blocks: &self.blocks, costs };
+            let mut space = MajorSpace { graph: &self.graph, blocks: &self.blocks, costs, used: &used };
             shortest(&mut space, u, v, h, Some(&turn))
         };
         let new = {
@@ -536,6 +560,7 @@ impl Sim {
                 blocks: &self.blocks,
                 stitches,
                 costs,
+                used: &used,
                 edges: Vec::new(),
                 buf: Vec::new(),
             };
@@ -576,7 +601,7 @@ impl Sim {
             let n = new.expect("chosen");
             let before_nodes = self.graph.nodes.len();
             let chain = self.build_lattice_path(&n.states, self.step);
-            self.widen(&chain);
+            self.widen(&chain, delta, &used);
             self.new_nuclei(&chain, before_nodes);
             stitches.extend(&self.graph, &self.lattice, &self.blocks);
             chain
@@ -591,23 +616,41 @@ impl Sim {
         true
     }
 
-    /// Widens a new route's extendible pieces to A(t) and makes reused minor roads major (F16);
-    /// fixed roads are kept as they are.
-    fn widen(&mut self, chain: &[u32]) {
+    /// The segment weights of the proposal graphs at coefficients `c` for a shortfall `delta`.
+    fn costs(&self, c: [f64; 6], delta: f64) -> Costs {
+        Costs { c, per_lane: self.traffic.per_lane, max_lanes: self.ctx.params.max_lanes, delta }
+    }
+
+    /// Widens a new route's extendible pieces (F16) and makes reused minor roads major: each to
+    /// at least A(t) lanes, and one without room for the shortfall `delta` beside its traffic
+    /// and what the pair's own routes take on it (`used`) to one lane more, or to as many as
+    /// they need, at most `max_lanes` (capacity follows lanes: O₂ per lane). Non-extendible reused minor roads get one lane; fixed roads are kept as
+    /// they are.
+    fn widen(&mut self, chain: &[u32], delta: f64, used: &HashMap<u32, f64>) {
         let a = self.ctx.width(self.step);
+        let per = self.traffic.per_lane;
+        let max = self.ctx.params.max_lanes;
         for s in traffic::segments(&self.graph, chain) {
             let ext = self.blocks.extendible.get(s as usize).copied().unwrap_or(true);
             let g = &mut self.graph.segs[s as usize];
-            if g.fixed {
+            if g.fixed || !matches!(g.class, Class::Minor | Class::Major) {
                 continue;
             }
-            match g.class {
-                Class::Minor => {
-                    g.class = Class::Major;
-                    g.width = if ext { a } else { g.width.max(1.0) };
+            let load = g.load + used.get(&s).copied().unwrap_or(0.0);
+            let lanes = if ext {
+                let mut w = g.width.max(a);
+                if per * w - load < delta {
+                    w = w.max(g.width + 1.0).max(((load + delta) / per).ceil());
                 }
-                Class::Major if ext => g.width = g.width.max(a),
-                _ => {}
+                w.min(max.max(g.width))
+            } else {
+                g.width.max(1.0)
+            };
+            if g.class == Class::Minor {
+                g.class = Class::Major;
+                g.width = lanes;
+            } else if ext {
+                g.width = lanes;
             }
         }
     }
@@ -655,7 +698,8 @@ impl Sim {
     pub fn stats(&self, new_routes: usize) -> StepStats {
         let mut minor = 0.0;
         let mut major = 0.0;
-        let mut ports = 0;
+        let mut harbours = Vec::new();
+        let mut lanes = 0.0;
         for (s, g) in self.graph.segs.iter().enumerate() {
             let l = self.graph.length(s as u32);
             match g.class {
@@ -663,13 +707,19 @@ impl Sim {
                 Class::Major | Class::Bridge => major += l,
                 Class::Harbour => {
                     major += l;
-                    ports += 1;
+                    harbours.push(s as u32);
                 }
                 Class::Water => {}
             }
+            if g.class.is_road() && g.class.is_trade() {
+                lanes += g.width * l;
+            }
         }
         let era = self.ctx.pattern(self.step).from;
-        let (four, entropy) = era_measures(&self.graph, era);
+        let (four, entropy, dead_ends) = era_measures(&self.graph, era);
+        let mut areas: Vec<f64> = self.blocks.faces.iter().filter(|f| f.built_up).map(|f| f.area).collect();
+        areas.sort_by(f64::total_cmp);
+        let median = if areas.is_empty() { 0.0 } else { areas[areas.len() / 2] };
         StepStats {
             step: self.step,
             settlements: self.blocks.settlements.len(),
@@ -678,14 +728,34 @@ impl Sim {
             minor_km: round(minor / 1000.0, 3),
             major_km: round(major / 1000.0, 3),
             nuclei: self.nuclei.len(),
-            ports,
+            ports: self.port_sites(&harbours).len(),
             bridges: self.bridges,
             trade_routes: self.traffic.routes.len(),
             new_routes,
             overflow: round(self.traffic.pairs.iter().map(|p| p.overflow).sum(), 3),
             four_way_share: round(four, 4),
             orientation_entropy: round(entropy, 4),
+            lane_km_added: round((lanes / 1000.0 - self.series.last().map_or(0.0, |r| r.lane_km)).max(0.0), 3),
+            lane_km: round(lanes / 1000.0, 3),
+            dead_end_share: round(dead_ends, 4),
+            block_median_m2: round(median, 0),
         }
+    }
+
+    /// The harbour sites: the land ends of the harbour segments `harbours`, in order, each
+    /// joining the first site whose first harbour is within [`PORT_SITE`] of it, or founding a
+    /// new one (so a site stays where it was founded as harbours are added); each site's first
+    /// land end.
+    pub fn port_sites(&self, harbours: &[u32]) -> Vec<P> {
+        let mut sites: Vec<P> = Vec::new();
+        for &s in harbours {
+            let (a, b) = self.graph.ends(s);
+            let end = if self.lattice.terrain.class_at(a) == LAND { a } else { b };
+            if sites.iter().all(|&q| dist(q, end) > PORT_SITE) {
+                sites.push(end);
+            }
+        }
+        sites
     }
 
     /// Road segments that cross, or a node lying inside another segment: the planarity check the
@@ -745,8 +815,9 @@ fn remove_loops(nodes: &mut Vec<u32>) {
     *nodes = out;
 }
 
-/// The 4-way share and orientation entropy of the minor roads built since step `from`.
-fn era_measures(graph: &Graph, from: u32) -> (f64, f64) {
+/// The 4-way share, orientation entropy and dead-end share of the minor roads built since step
+/// `from`.
+fn era_measures(graph: &Graph, from: u32) -> (f64, f64, f64) {
     let mut segments = Vec::new();
     let mut nodes = HashSet::new();
     for (s, g) in graph.segs.iter().enumerate() {
@@ -758,9 +829,10 @@ fn era_measures(graph: &Graph, from: u32) -> (f64, f64) {
         nodes.insert(g.b);
     }
     let entropy = crate::stats::orientation::axial_entropy_bits(segments, 18);
-    let (mut junctions, mut four) = (0, 0);
+    let (mut junctions, mut four, mut ends) = (0, 0, 0);
     for n in nodes {
         let d = graph.road_degree(n);
+        ends += (d == 1) as usize;
         if d >= 3 {
             junctions += 1;
             if d >= 4 {
@@ -768,7 +840,8 @@ fn era_measures(graph: &Graph, from: u32) -> (f64, f64) {
             }
         }
     }
-    (if junctions > 0 { four as f64 / junctions as f64 } else { 0.0 }, entropy)
+    let share = |k: usize, of: usize| if of > 0 { k as f64 / of as f64 } else { 0.0 };
+    (share(four, junctions), entropy, share(ends, ends + junctions))
 }
 
 /// The neighbouring cities' border vertices: the context's positions, or `neighbours` (or
@@ -836,8 +909,9 @@ fn place_cities(ctx: &Context, lattice: &Lattice, rng: &mut Xoshiro256PlusPlus) 
 }
 
 /// The pair lists: all pairs sorted by the angle they span at the centre, the smallest removed
-/// while the remaining pair graph stays connected (stopping at the first that would disconnect
-/// it); the rest permuted is γ′ (built), the removed pairs are only found in G.
+/// while the initial road network stays connected (stopping at the first that would disconnect
+/// it, [`roads_connected`]); the rest permuted is γ′ (built), and each removed pair is added back
+/// to γ′ at a random place with probability `add_back` (§3.5's variation) or only found in G.
 fn pairs(ctx: &Context, cities: &[City], rng: &mut Xoshiro256PlusPlus) -> (Vec<[usize; 2]>, Vec<[usize; 2]>) {
     let x = ctx.center_position();
     let mut all: Vec<(f64, [usize; 2])> = Vec::new();
@@ -848,11 +922,12 @@ fn pairs(ctx: &Context, cities: &[City], rng: &mut Xoshiro256PlusPlus) -> (Vec<[
         }
     }
     all.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+    let pos: Vec<P> = cities.iter().map(|c| c.pos).collect();
     let mut keep: Vec<[usize; 2]> = all.iter().map(|a| a.1).collect();
     let mut removed = Vec::new();
     while let Some(&cand) = keep.first() {
         let rest: Vec<[usize; 2]> = keep[1..].to_vec();
-        if !connected(cities.len(), &rest) {
+        if !roads_connected(&pos, &rest) {
             break;
         }
         removed.push(cand);
@@ -862,7 +937,42 @@ fn pairs(ctx: &Context, cities: &[City], rng: &mut Xoshiro256PlusPlus) -> (Vec<[
         let j = rng.random_range(0..=i);
         keep.swap(i, j);
     }
-    (keep, removed)
+    let mut found = Vec::new();
+    for pair in removed {
+        if rng.random::<f64>() < ctx.params.add_back {
+            let at = rng.random_range(0..=keep.len());
+            keep.insert(at, pair);
+        } else {
+            found.push(pair);
+        }
+    }
+    (keep, found)
+}
+
+/// Whether the roads of `pairs`, taken as straight lines between their cities at `pos`, make
+/// one connected network reaching every city: two roads are joined where they share a city or
+/// cross (the initial network's junctions), before any road is built.
+pub fn roads_connected(pos: &[P], pairs: &[[usize; 2]]) -> bool {
+    let n = pairs.len();
+    let mut covered = vec![false; pos.len()];
+    for p in pairs {
+        covered[p[0]] = true;
+        covered[p[1]] = true;
+    }
+    if n == 0 || covered.iter().any(|c| !c) {
+        return false;
+    }
+    let mut joins: Vec<[usize; 2]> = Vec::new();
+    for i in 0..n {
+        for j in i + 1..n {
+            let (a, b) = (pairs[i], pairs[j]);
+            let share = a.iter().any(|c| b.contains(c));
+            if share || segment_intersection(pos[a[0]], pos[a[1]], pos[b[0]], pos[b[1]]).is_some() {
+                joins.push([i, j]);
+            }
+        }
+    }
+    connected(n, &joins)
 }
 
 fn connected(n: usize, edges: &[[usize; 2]]) -> bool {
@@ -886,4 +996,18 @@ fn connected(n: usize, edges: &[[usize; 2]]) -> bool {
     }
     let root = find(&mut parent, 0);
     (0..n).all(|i| find(&mut parent, i) == root)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn crossing_roads_join_the_initial_network() {
+        let corners = [[0.0, 0.0], [100.0, 0.0], [100.0, 100.0], [0.0, 100.0]];
+        assert!(roads_connected(&corners, &[[0, 2], [1, 3]]), "the diagonals cross");
+        assert!(!roads_connected(&corners, &[[0, 1], [2, 3]]), "two opposite sides do not meet");
+        assert!(!roads_connected(&corners, &[[0, 2]]), "cities 1 and 3 are on no road");
+        assert!(roads_connected(&corners, &[[0, 1], [1, 2], [2, 3]]));
+    }
 }

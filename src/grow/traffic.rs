@@ -115,19 +115,30 @@ impl Traffic {
     /// T_A(𝒫) of a pair: its routes saturated one by one, shortest first, the traffic this took
     /// summed (nothing is changed).
     pub fn available_list(&self, graph: &Graph, pair: usize) -> f64 {
+        self.saturate(graph, pair).0
+    }
+
+    /// The traffic a pair's routes take on each segment when saturated one by one, shortest
+    /// first (as [`Traffic::available_list`] counts them): what a new route of the pair finds
+    /// already used beside the other pairs' traffic.
+    pub fn saturation(&self, graph: &Graph, pair: usize) -> HashMap<u32, f64> {
+        self.saturate(graph, pair).1
+    }
+
+    fn saturate(&self, graph: &Graph, pair: usize) -> (f64, HashMap<u32, f64>) {
         let mut extra: HashMap<u32, f64> = HashMap::new();
         let mut total = 0.0;
         for r in self.by_length(graph, pair) {
             let a = self.available(graph, r, &extra);
             if a.is_infinite() {
-                return f64::INFINITY;
+                return (f64::INFINITY, extra);
             }
             total += a;
             for s in segments(graph, &self.routes[r].nodes) {
                 *extra.entry(s).or_insert(0.0) += a;
             }
         }
-        total
+        (total, extra)
     }
 
     /// Removes a pair's traffic from its routes and segments.

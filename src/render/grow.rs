@@ -1,6 +1,7 @@
-//! A grown road network (`netspec grow`): terrain in contour bands, water, blocks coloured by age
-//! (older darker), minor roads grey under major roads (yellow), bridges and harbours, cities and
-//! nuclei. Plain data in metres (y up).
+//! A grown road network (`netspec grow`): terrain in elevation bands with contour lines, water,
+//! blocks coloured by age (older darker), minor roads grey under major roads (yellow), bridges and
+//! harbours, cities and nuclei; and pictures side by side (a step series, a gallery). Plain data
+//! in metres (y up).
 
 use super::writer::{Fit, Svg};
 use std::fmt::Write;
@@ -38,6 +39,8 @@ pub struct GrowScene {
     pub size: [f64; 2],
     /// Terrain bands.
     pub bands: Bands,
+    /// Contour lines: straight pieces (metres).
+    pub contours: Vec<[[f64; 2]; 2]>,
     /// Water polygons.
     pub water: Vec<Vec<[f64; 2]>>,
     /// Rivers: centre line and width (metres).
@@ -87,6 +90,13 @@ pub fn grow_svg(scene: &GrowScene) -> String {
             );
             x = e;
         }
+    }
+    for c in &scene.contours {
+        let ((x0, y0), (x1, y1)) = (tx(c[0]), tx(c[1]));
+        let _ = writeln!(
+            svg,
+            r##"<line class="contour" x1="{x0:.1}" y1="{y0:.1}" x2="{x1:.1}" y2="{y1:.1}" stroke="#a89878" stroke-width="0.6"/>"##
+        );
     }
     for w in &scene.water {
         let _ = writeln!(svg, r##"<polygon class="water" points="{}" fill="#9ecae1" stroke="none"/>"##, pts(w));
@@ -154,6 +164,37 @@ pub fn grow_svg(scene: &GrowScene) -> String {
     svg.finish()
 }
 
+/// Pictures side by side, `columns` to a row, each scaled to `panel` pixels across: a step
+/// series (Figs. 2, 12) or a gallery (Fig. 10a). Each panel is a picture of [`grow_svg`].
+pub fn strip_svg(panels: &[GrowScene], columns: usize, panel: f64) -> String {
+    let columns = columns.max(1).min(panels.len().max(1));
+    let rows = panels.len().div_ceil(columns).max(1);
+    let pictures: Vec<(String, f64, f64)> = panels.iter().map(picture).collect();
+    let aspect = pictures.iter().map(|p| p.2 / p.1).fold(0.0, f64::max).max(0.1);
+    let (w, h) = (panel, panel * aspect);
+    let mut svg = Svg::new(columns as f64 * w, rows as f64 * h, Some(12.0));
+    for (i, (body, pw, ph)) in pictures.iter().enumerate() {
+        let (x, y) = ((i % columns) as f64 * w, (i / columns) as f64 * h);
+        let _ = writeln!(
+            svg,
+            r#"<svg x="{x:.1}" y="{y:.1}" width="{w:.1}" height="{:.1}" viewBox="0 0 {pw:.1} {ph:.1}">"#,
+            w * ph / pw
+        );
+        let _ = svg.write_str(body);
+        let _ = writeln!(svg, "</svg>");
+    }
+    svg.finish()
+}
+
+/// A scene's picture without its root element: the body, width and height.
+fn picture(scene: &GrowScene) -> (String, f64, f64) {
+    let fit = Fit::new([[0.0, 0.0], scene.size].iter(), 800.0);
+    let full = grow_svg(scene);
+    let start = full.find('\n').map_or(0, |i| i + 1);
+    let end = full.rfind("</svg>").unwrap_or(full.len());
+    (full[start..end].to_string(), fit.width, fit.height)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -163,6 +204,7 @@ mod tests {
         let scene = GrowScene {
             size: [100.0, 100.0],
             bands: Bands { nx: 2, ny: 2, cell: 50.0, band: vec![0, 0, 1, 2] },
+            contours: vec![[[0.0, 60.0], [100.0, 60.0]]],
             water: vec![vec![[0.0, 0.0], [10.0, 0.0], [10.0, 10.0]]],
             rivers: vec![(vec![[0.0, 50.0], [100.0, 50.0]], 10.0)],
             forbidden: vec![],
@@ -176,10 +218,14 @@ mod tests {
             caption: "test".into(),
         };
         let svg = grow_svg(&scene);
-        for class in ["water", "river", "block", "major", "minor", "city", "nucleus"] {
+        for class in ["water", "river", "block", "major", "minor", "city", "nucleus", "contour"] {
             assert!(svg.contains(&format!("class=\"{class}\"")), "{class}");
         }
         assert!(svg.find("class=\"minor\"").unwrap() < svg.find("class=\"major\"").unwrap());
         resvg::usvg::Tree::from_str(&svg, &resvg::usvg::Options::default()).unwrap();
+        let strip = strip_svg(&[scene.clone(), scene.clone(), scene], 2, 300.0);
+        assert_eq!(strip.matches("class=\"city\"").count(), 3);
+        let tree = resvg::usvg::Tree::from_str(&strip, &resvg::usvg::Options::default()).unwrap();
+        assert_eq!(tree.size().width(), 600.0);
     }
 }
