@@ -221,3 +221,21 @@ pub fn run(req: &GrowRequest, progress: &mut dyn FnMut(u32, u32)) -> Result<Grow
         snapshot_violations,
     })
 }
+
+/// `x` rounded to the millimetre, as every length and coordinate in the files.
+pub(crate) fn mm(x: f64) -> f64 {
+    (x * 1000.0).round() / 1000.0
+}
+
+/// The node ids written: nodes with at least one segment, numbered in order.
+pub(crate) fn node_ids(sim: &step::Sim) -> Vec<Option<usize>> {
+    let mut ids = vec![None; sim.graph.nodes.len()];
+    let mut next = 0;
+    for (n, adj) in sim.graph.adj.iter().enumerate() {
+        if !adj.is_empty() {
+            ids[n] = Some(next);
+            next += 1;
+        }
+    }
+    ids
+}

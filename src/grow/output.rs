@@ -5,7 +5,7 @@
 use super::graph::Class;
 use super::step::Sim;
 use super::validate::Violation;
-use super::GrowError;
+use super::{mm, node_ids, GrowError};
 use crate::geometry::site::Projection;
 use crate::geometry::P;
 use crate::render::grow::{grow_svg, strip_svg, Bands, GrowScene, RoadLine};
@@ -14,26 +14,8 @@ use serde_json::{json, Value};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-/// `x` rounded to the millimetre, as every length and coordinate in the files.
-pub(crate) fn mm(x: f64) -> f64 {
-    (x * 1000.0).round() / 1000.0
-}
-
 fn pt(p: P) -> [f64; 2] {
     [mm(p[0]), mm(p[1])]
-}
-
-/// The node ids written: nodes with at least one segment, numbered in order.
-pub(crate) fn node_ids(sim: &Sim) -> Vec<Option<usize>> {
-    let mut ids = vec![None; sim.graph.nodes.len()];
-    let mut next = 0;
-    for (n, adj) in sim.graph.adj.iter().enumerate() {
-        if !adj.is_empty() {
-            ids[n] = Some(next);
-            next += 1;
-        }
-    }
-    ids
 }
 
 /// `network.json`: nodes, road segments, waterways, water, settlements, cities, nuclei, the

@@ -29,8 +29,8 @@
 
 use super::context::Context;
 use super::graph::{Class, SNAP};
-use super::output::{mm, node_ids};
 use super::step::Sim;
+use super::{mm, node_ids};
 use crate::geometry::index::SegmentIndex;
 use crate::geometry::{closest_on_segment, dist, ring_covers, P};
 use serde::Serialize;
