@@ -64,6 +64,21 @@ fn same_seed_same_bytes_other_seed_other_layout() {
     let json: serde_json::Value = serde_json::from_slice(&a).unwrap();
     assert!(json["streets"][0]["polyline"].is_array() && json["parcels"][0]["use"].is_string());
     assert!(json["metrics"]["corner_deviation_mean"].is_number());
+    // The tree of parts: every node says how it was split or settled; leaves name their parcels.
+    let parts = &json["parts"];
+    assert_eq!((parts["id"].as_str(), parts["how"].as_str()), (Some("0"), Some("streamline")));
+    fn leaves(n: &serde_json::Value, out: &mut Vec<String>) {
+        match n["children"].as_array() {
+            Some(c) => c.iter().for_each(|k| leaves(k, out)),
+            None => out.push(n["id"].as_str().unwrap().to_string()),
+        }
+    }
+    let mut ids = Vec::new();
+    leaves(parts, &mut ids);
+    for p in json["parcels"].as_array().unwrap() {
+        assert!(ids.iter().any(|id| p["part"] == id.as_str()), "{}", p["part"]);
+    }
+    assert!(json["settings"]["templates_first"].as_bool().unwrap());
 }
 
 #[test]

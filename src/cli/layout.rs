@@ -27,12 +27,14 @@ pub fn run(req: &LayoutRequest) -> Result<ExitCode> {
     for l in &layouts {
         let m = &l.metrics;
         println!(
-            "{} seed {}: {} cuts ({} candidates) · {} blocks · {} parcels ({} undesirable) · corners {:.2}° · area ratio {:.3} · streets {:.1} % · {:.2} s split, {:.2} s parcels, {:.2} s check · {}",
+            "{} seed {}: {} cuts ({} candidates) · {} blocks, {} of {} parts by template · {} parcels ({} undesirable) · corners {:.2}° · area ratio {:.3} · streets {:.1} % · {:.2} s split, {:.2} s parcels, {:.2} s check · {}",
             l.name,
             l.seed,
             l.split.cuts,
             l.split.candidates,
             l.split.blocks,
+            l.split.by_template,
+            l.split.leaves,
             m.parcels,
             m.undesirable,
             m.corner_deviation_mean,

@@ -197,11 +197,11 @@ mod tests {
         let region = Polygon::new(vec![[0.0, 0.0], [300.0, 0.0], [300.0, 300.0], [0.0, 300.0]], vec![]).unwrap();
         let ring = vec![[0.0, 0.0], [300.0, 0.0], [300.0, 300.0], [0.0, 300.0], [0.0, 0.0]];
         let streets = vec![
-            Street { polyline: ring, width: 15.0, level: 0 },
-            Street { polyline: vec![[150.0, 0.0], [150.0, 300.0]], width: 15.0, level: 1 },
-            Street { polyline: vec![[0.0, 150.0], [150.0, 150.0]], width: 15.0, level: 2 },
-            Street { polyline: vec![[150.0, 150.0], [300.0, 150.0]], width: 15.0, level: 2 },
-            Street { polyline: vec![[75.0, 150.0], [75.0, 100.0]], width: 15.0, level: 3 },
+            Street::new(ring, 15.0, 0),
+            Street::new(vec![[150.0, 0.0], [150.0, 300.0]], 15.0, 1),
+            Street::new(vec![[0.0, 150.0], [150.0, 150.0]], 15.0, 2),
+            Street::new(vec![[150.0, 150.0], [300.0, 150.0]], 15.0, 2),
+            Street::new(vec![[75.0, 150.0], [75.0, 100.0]], 15.0, 3),
         ];
         let b = blocks(&region, &streets);
         let parcels = parcellate(&b, &StreetIndex::new(&streets), 30.0, 18.0);

@@ -1,6 +1,6 @@
-//! Urban layouts by hierarchical domain splitting (Yang, Wang, Vouga, Wonka 2013): a region is
-//! split along streamlines of a boundary-aligned cross field, and by warped templates, down to
-//! parcels.
+//! Urban layouts by hierarchical domain splitting (Yang, Wang, Vouga, Wonka 2013): every part of
+//! a region is matched against a library of templates first and split along a streamline of a
+//! boundary-aligned cross field only where none fits, down to parcels ([`tree`]).
 
 pub mod field;
 pub mod metrics;
@@ -8,9 +8,11 @@ pub mod optimise;
 pub mod parcels;
 pub mod region;
 pub mod run;
+pub mod settings;
 pub mod split;
 pub mod streamline;
 pub mod template;
+pub mod tree;
 pub mod validate;
 
 use crate::geometry::P;
@@ -26,6 +28,16 @@ pub struct Street {
     pub width: f64,
     /// The level.
     pub level: usize,
+    /// The part of the layout's tree whose split made it (`""`: given, or not from a layout).
+    #[serde(default, skip_serializing_if = "String::is_empty")]
+    pub part: String,
+}
+
+impl Street {
+    /// A street of no part.
+    pub fn new(polyline: Vec<P>, width: f64, level: usize) -> Street {
+        Street { polyline, width, level, part: String::new() }
+    }
 }
 
 /// What a parcel is used for.
@@ -53,4 +65,7 @@ pub struct Parcel {
     /// The template it comes from (`None`: the row parceller).
     #[serde(default)]
     pub template: Option<String>,
+    /// The leaf of the layout's tree it lies in (`""`: not from a layout).
+    #[serde(default, skip_serializing_if = "String::is_empty")]
+    pub part: String,
 }

@@ -108,7 +108,7 @@ pub fn parcellate(blocks: &[geo::Polygon<f64>], streets: &StreetIndex, depth: f6
             } else {
                 Use::Park
             };
-            out.push(Parcel { polygon: ring, use_, template: None });
+            out.push(Parcel { polygon: ring, use_, template: None, part: String::new() });
         }
     }
     out
@@ -201,7 +201,7 @@ mod tests {
     use super::*;
 
     fn street(pts: &[P], level: usize) -> Street {
-        Street { polyline: pts.to_vec(), width: 15.0, level }
+        Street::new(pts.to_vec(), 15.0, level)
     }
 
     #[test]

@@ -2,6 +2,7 @@
 //! major roads) with the street widths, the parcel size and a seed, from TOML (local metres) or
 //! GeoJSON (WGS 84, projected to local metres by [`crate::geometry::site`]).
 
+use super::settings::{self, BlockSize, BlockToml, Fit, FitToml, Weights};
 use super::template::{library, Template, TemplateError};
 use crate::geometry::polygon::{Polygon, PolygonError, Ring};
 use crate::geometry::site::{self, Projection, SiteError};
@@ -73,10 +74,17 @@ struct RegionToml {
     origin: Option<[f64; 2]>,
     #[serde(default)]
     templates: Option<TemplatesToml>,
+    #[serde(default)]
+    block: BlockToml,
+    #[serde(default)]
+    fit: FitToml,
+    #[serde(default)]
+    weights: Weights,
 }
 
-/// `[templates]`: a directory of the user's template files (relative to the region file), and
-/// whether the built-in ones are used.
+/// `[templates]`: a directory of the user's template files (relative to the region file),
+/// whether the built-in ones are used, and whether a part is matched against them before it is
+/// cut (`first`, the paper's control loop) or only once it is small enough for a block.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct TemplatesToml {
@@ -84,6 +92,8 @@ struct TemplatesToml {
     dir: Option<PathBuf>,
     #[serde(default = "yes")]
     builtin: bool,
+    #[serde(default = "yes")]
+    first: bool,
 }
 
 fn yes() -> bool {
@@ -112,6 +122,15 @@ pub struct Region {
     pub projection: Option<Projection>,
     /// The block templates: the built-in library, with a TOML region's `[templates] dir` added.
     pub templates: Vec<Template>,
+    /// Whether every part is matched against the templates before it is cut (the paper's
+    /// control loop) rather than only once it passes the fit test.
+    pub templates_first: bool,
+    /// The block size.
+    pub block: BlockSize,
+    /// The fit thresholds.
+    pub fit: Fit,
+    /// The weights of the streamline scores.
+    pub weights: Weights,
 }
 
 impl Region {
@@ -119,16 +138,22 @@ impl Region {
     /// 30 × 18 m parcels, seed 0, the built-in templates — for a site given by another command
     /// (a city's domain).
     pub fn with_defaults(name: &str, polygon: Polygon, roads: Vec<Vec<P>>) -> Region {
+        let parcel = ParcelSize::default();
+        let street_widths = default_widths();
         Region {
             name: name.to_string(),
             polygon,
             roads,
-            street_widths: default_widths(),
+            block: BlockToml::default().resolve(parcel.depth, parcel.width, street_widths[0]),
+            street_widths,
             boundary: Boundary::Street,
-            parcel: ParcelSize::default(),
+            parcel,
             seed: 0,
             projection: None,
             templates: super::template::file::builtin(),
+            templates_first: true,
+            fit: FitToml::default().resolve(),
+            weights: Weights::default(),
         }
     }
 
@@ -249,10 +274,11 @@ pub fn region_from_toml(text: &str, path: &Path, stem: &str) -> Result<Region, R
             .map_err(|source| RegionError::Site { path: path.into(), source })?;
         roads.extend(pieces);
     }
-    let (dir, builtin) = match t.templates {
-        Some(d) => (d.dir.map(|d| path.parent().unwrap_or(Path::new("")).join(d)), d.builtin),
-        None => (None, true),
+    let (dir, builtin, first) = match t.templates {
+        Some(d) => (d.dir.map(|d| path.parent().unwrap_or(Path::new("")).join(d)), d.builtin, d.first),
+        None => (None, true, true),
     };
+    let street = t.street_widths.get(1).or(t.street_widths.last()).copied().unwrap_or(15.0);
     let templates = library(dir.as_deref(), builtin)?;
     let projection =
         t.origin.map(Projection::new).transpose().map_err(|source| RegionError::Site { path: path.into(), source })?;
@@ -260,12 +286,16 @@ pub fn region_from_toml(text: &str, path: &Path, stem: &str) -> Result<Region, R
         name: t.name.unwrap_or_else(|| stem.to_string()),
         polygon,
         roads,
+        block: t.block.resolve(t.parcel.depth, t.parcel.width, street),
         street_widths: t.street_widths,
         boundary: t.boundary,
         parcel: t.parcel,
         seed: t.seed,
         projection,
         templates,
+        templates_first: first,
+        fit: t.fit.resolve(),
+        weights: t.weights,
     };
     check(region, path)
 }
@@ -300,19 +330,32 @@ pub fn region_from_geojson(text: &str, path: &Path, stem: &str) -> Result<Region
         None => default_widths(),
         Some(v) => serde_json::from_value(v.clone()).map_err(|_| bad("street_widths", v, "a list of numbers"))?,
     };
+    let opt = |key: &str| -> Result<Option<f64>, RegionError> {
+        p.get(key).map(|v| v.as_f64().ok_or_else(|| bad(key, v, "a number"))).transpose()
+    };
+    let templates_first = match p.get("templates_first") {
+        None => true,
+        Some(v) => v.as_bool().ok_or_else(|| bad("templates_first", v, "true or false"))?,
+    };
+    let parcel =
+        ParcelSize { depth: num("parcel_depth", default_depth())?, width: num("parcel_width", default_width())? };
+    let street = street_widths.get(1).or(street_widths.last()).copied().unwrap_or(15.0);
+    let block = BlockToml { width: opt("block_width")?, max_length: opt("block_length")? };
+    let fit = FitToml { threshold: opt("fit_threshold")?, ..FitToml::default() };
     let region = Region {
         name: p.get("name").and_then(|v| v.as_str()).map_or_else(|| stem.to_string(), str::to_string),
         polygon: s.polygon,
         roads: s.roads,
+        block: block.resolve(parcel.depth, parcel.width, street),
         street_widths,
         boundary,
-        parcel: ParcelSize {
-            depth: num("parcel_depth", default_depth())?,
-            width: num("parcel_width", default_width())?,
-        },
+        parcel,
         seed,
         projection: Some(s.projection),
         templates: super::template::file::builtin(),
+        templates_first,
+        fit: fit.resolve(),
+        weights: Weights::default(),
     };
     check(region, path)
 }
@@ -353,6 +396,17 @@ fn check(region: Region, path: &Path) -> Result<Region, RegionError> {
     }
     for (i, &w) in region.street_widths.iter().enumerate() {
         positive(&format!("street_widths[{i}]"), w)?;
+    }
+    for (field, v) in settings::positive_fields(&region.block, &region.fit) {
+        positive(field, v)?;
+    }
+    if let Some((field, v)) = settings::check_weights(&region.weights) {
+        return Err(RegionError::Value {
+            path: path.into(),
+            field: field.into(),
+            value: v.to_string(),
+            expected: "weights of at least 0, one of them positive",
+        });
     }
     let parcels = region.parcel_estimate();
     if parcels > MAX_PARCELS {
@@ -401,5 +455,28 @@ mod tests {
         assert!(matches!(e, RegionError::TooLarge { .. }) && e.to_string().contains("10000.0 km²"), "{e}");
         let e = toml("outer = [[0, 0], [4, 0], [4, 3], [0, 3]]\nstreet_widths = []\n").unwrap_err();
         assert!(e.to_string().contains("street_widths"), "{e}");
+    }
+
+    #[test]
+    fn block_size_fit_and_weights_are_settings() {
+        let square = "outer = [[0, 0], [400, 0], [400, 300], [0, 300]]\nstreet_widths = [20, 12]\n";
+        let r = toml(square).unwrap();
+        // Defaults: a double-loaded block between first-split streets, 14 parcels long.
+        assert_eq!((r.block.width, r.block.max_length), (72.0, 252.0));
+        assert_eq!((r.fit.threshold, r.fit.max_width, r.fit.min_parcels), (0.02, 1.35, 4.0));
+        assert!(r.templates_first && r.weights.as_array() == [1.0; 4]);
+        let set = format!(
+            "{square}[block]\nwidth = 80\nmax_length = 400\n[fit]\nthreshold = 0.01\n[weights]\ncontinuity = 2\n[templates]\nfirst = false\n"
+        );
+        let r = toml(&set).unwrap();
+        assert_eq!((r.block.width, r.block.max_length, r.fit.threshold), (80.0, 400.0, 0.01));
+        assert_eq!((r.weights.continuity, r.weights.divergence, r.templates_first), (2.0, 1.0, false));
+        let e = toml(&format!("{square}[block]\nwidth = -1\n")).unwrap_err();
+        assert!(e.to_string().contains("block.width = -1"), "{e}");
+        let e = toml(&format!("{square}[fit]\nslack = 1\n")).unwrap_err();
+        assert!(e.to_string().contains("slack"), "{e}");
+        let zero = "[weights]\ndivergence = 0\nboundary = 0\nsingularities = 0\ncontinuity = 0\n";
+        let e = toml(&format!("{square}{zero}")).unwrap_err();
+        assert!(e.to_string().contains("weights"), "{e}");
     }
 }

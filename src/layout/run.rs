@@ -4,10 +4,12 @@
 use super::field::FieldMethod;
 use super::metrics::{metrics, parcel_shape, Metrics};
 use super::optimise::{optimise, OptimiseOptions};
-use super::parcels::blocks;
+use super::parcels::{blocks, parcellate, StreetIndex};
 use super::region::Region;
-use super::split::{split_with_progress, Selection, SplitError, SplitOptions};
-use super::template::parcellate_with_templates;
+use super::settings::{BlockSize, Fit, Weights};
+use super::split::{Selection, SplitError, SplitOptions};
+use super::template::select::{choose_greedy, template_parcels, Matcher, PlaceContext};
+use super::tree::{grow, match_leaves, Grown, How, PartTree};
 use super::validate::{validate, Violation};
 use super::{Parcel, Street};
 use crate::geometry::P;
@@ -64,6 +66,10 @@ pub struct Layout {
     pub optimisation: Optimisation,
     /// Blocks parcelled per template (the others by the row parceller).
     pub templates: std::collections::BTreeMap<String, usize>,
+    /// The settings of the control loop.
+    pub settings: Settings,
+    /// The tree of parts: how every part was split or settled, with its score.
+    pub parts: PartTree,
     /// Seconds per stage (not written to `layout.json`, so equal seeds give equal bytes).
     #[serde(skip)]
     pub times: Times,
@@ -78,6 +84,23 @@ pub struct SplitCounts {
     pub cuts: usize,
     /// Blocks.
     pub blocks: usize,
+    /// Leaves of the tree of parts.
+    pub leaves: usize,
+    /// Leaves settled by a template.
+    pub by_template: usize,
+}
+
+/// The settings of the control loop a layout was made with.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Settings {
+    /// Templates tried on every part before it is cut (else on the leaves only).
+    pub templates_first: bool,
+    /// The block size.
+    pub block: BlockSize,
+    /// The fit thresholds.
+    pub fit: Fit,
+    /// The weights of the streamline scores.
+    pub weights: Weights,
 }
 
 /// What the global optimisation did.
@@ -93,8 +116,10 @@ pub struct Optimisation {
 /// Seconds per stage.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
 pub struct Times {
-    /// Splitting (fields, candidates, cuts).
+    /// The control loop: fields, candidates, cuts and template matching.
     pub split: f64,
+    /// The template matching within it.
+    pub matching: f64,
     /// The global optimisation.
     pub optimise: f64,
     /// Blocks and parcels.
@@ -209,11 +234,15 @@ pub fn layout_with_progress(
 ) -> Result<Layout, LayoutError> {
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(opts.seed);
     let t0 = Instant::now();
-    let s =
-        split_with_progress(region, &SplitOptions::for_region(region, opts.field, opts.selection), &mut rng, progress)?;
-    let t1 = Instant::now();
+    let split_opts = SplitOptions::for_region(region, opts.field, opts.selection);
+    let mut matcher = Matcher::new(&region.templates, region);
+    let first = region.templates_first.then_some(&mut matcher);
+    let mut g = grow(region, &split_opts, first, &mut rng, progress)?;
     let split_streets: Vec<Street> =
-        s.streets.iter().map(|st| Street { polyline: round(&st.polyline), ..st.clone() }).collect();
+        g.streets.iter().map(|st| Street { polyline: round(&st.polyline), ..st.clone() }).collect();
+    match_leaves(&mut g, &split_streets, region, &mut matcher, false);
+    let matching = matcher.seconds;
+    let t1 = Instant::now();
     let optimised: Vec<Street> = optimise(
         region,
         &split_streets,
@@ -223,10 +252,16 @@ pub fn layout_with_progress(
     .map(|st| Street { polyline: round(&st.polyline), ..st })
     .collect();
     let t2 = Instant::now();
-    let mut done = Finished::new(region, optimised, opts.selection, &mut rng);
     let mut kept = opts.optimise > 0;
+    let mut done = if kept {
+        let mut moved = g.clone();
+        match_leaves(&mut moved, &optimised, region, &mut matcher, true);
+        Finished::new(region, moved, optimised, opts.selection, &mut rng)
+    } else {
+        Finished::new(region, g.clone(), split_streets.clone(), opts.selection, &mut rng)
+    };
     if kept && !done.violations.is_empty() {
-        let plain = Finished::new(region, split_streets, opts.selection, &mut rng);
+        let plain = Finished::new(region, g, split_streets, opts.selection, &mut rng);
         if plain.violations.is_empty() {
             done = plain;
             kept = false;
@@ -235,11 +270,19 @@ pub fn layout_with_progress(
     let t3 = Instant::now();
     let times = Times {
         split: (t1 - t0).as_secs_f64(),
+        matching,
         optimise: (t2 - t1).as_secs_f64(),
         parcels: done.parcel_seconds,
         check: (t3 - t2).as_secs_f64() - done.parcel_seconds,
     };
-    let split = SplitCounts { candidates: s.candidates, cuts: s.cuts, blocks: done.blocks };
+    let by_template = done.grown.leaves.iter().filter(|l| done.grown.nodes[l.node].how == How::Template).count();
+    let split = SplitCounts {
+        candidates: done.grown.candidates,
+        cuts: done.grown.cuts,
+        blocks: done.blocks,
+        leaves: done.grown.leaves.len(),
+        by_template,
+    };
     Ok(Layout {
         name: region.name.clone(),
         seed: opts.seed,
@@ -248,6 +291,7 @@ pub fn layout_with_progress(
         outer: region.polygon.outer().to_vec(),
         origin: region.projection.as_ref().map(|p| p.origin()),
         holes: region.polygon.holes().to_vec(),
+        parts: done.grown.tree(0),
         streets: done.streets,
         parcels: done.parcels,
         metrics: done.metrics,
@@ -255,13 +299,20 @@ pub fn layout_with_progress(
         split,
         optimisation: Optimisation { iterations: opts.optimise, kept },
         templates: done.templates,
+        settings: Settings {
+            templates_first: region.templates_first,
+            block: region.block,
+            fit: region.fit,
+            weights: region.weights,
+        },
         times,
     })
 }
 
-/// Streets with their blocks, parcels (templates first, the row parceller where none fits),
+/// Streets with their blocks, parcels (every leaf by its template, or by the row parceller),
 /// metrics and check.
 struct Finished {
+    grown: Grown,
     streets: Vec<Street>,
     parcels: Vec<Parcel>,
     templates: std::collections::BTreeMap<String, usize>,
@@ -272,26 +323,88 @@ struct Finished {
 }
 
 impl Finished {
-    fn new(region: &Region, mut streets: Vec<Street>, selection: Selection, rng: &mut Xoshiro256PlusPlus) -> Finished {
+    fn new(
+        region: &Region,
+        mut grown: Grown,
+        mut streets: Vec<Street>,
+        selection: Selection,
+        rng: &mut Xoshiro256PlusPlus,
+    ) -> Finished {
         let t = Instant::now();
         let blocks = blocks(&region.polygon, &streets);
-        let parcelled = parcellate_with_templates(&blocks, &streets, region, &region.templates, selection, rng);
-        streets.extend(parcelled.streets.into_iter().map(|st| Street { polyline: round(&st.polyline), ..st }));
-        let parcels: Vec<Parcel> =
-            parcelled.parcels.into_iter().map(|p| Parcel { polygon: round(&p.polygon), ..p }).collect();
+        let (parcels, extra, templates) = parcel_leaves(region, &mut grown, &streets, selection, rng);
+        streets.extend(extra.into_iter().map(|st| Street { polyline: round(&st.polyline), ..st }));
+        let parcels: Vec<Parcel> = parcels.into_iter().map(|p| Parcel { polygon: round(&p.polygon), ..p }).collect();
         let parcel_seconds = t.elapsed().as_secs_f64();
         let metrics = metrics(&region.polygon, &streets, &blocks, &parcels);
         let violations = validate(&region.polygon, &streets, &parcels);
-        Finished {
-            streets,
-            parcels,
-            templates: parcelled.uses,
-            blocks: blocks.len(),
-            metrics,
-            violations,
-            parcel_seconds,
+        Finished { grown, streets, parcels, templates, blocks: blocks.len(), metrics, violations, parcel_seconds }
+    }
+}
+
+/// The parcels of every leaf — its template's (the first accepted whose count is not used up,
+/// leaves with the largest block choosing first) or the row parceller's — the template streets,
+/// and the uses per template; every leaf's node records its template and energy.
+fn parcel_leaves(
+    region: &Region,
+    g: &mut Grown,
+    streets: &[Street],
+    selection: Selection,
+    rng: &mut Xoshiro256PlusPlus,
+) -> (Vec<Parcel>, Vec<Street>, std::collections::BTreeMap<String, usize>) {
+    let lib = &region.templates;
+    let index = StreetIndex::new(streets);
+    let ctx = PlaceContext::new(streets, region);
+    let mut order: Vec<usize> = (0..g.leaves.len()).collect();
+    order.sort_by(|&a, &b| {
+        block_key(&g.leaves[a]).partial_cmp(&block_key(&g.leaves[b])).unwrap_or(std::cmp::Ordering::Equal)
+    });
+    let mut uses = std::collections::BTreeMap::new();
+    let mut per_leaf: Vec<(Vec<Parcel>, Vec<Street>)> = vec![(Vec::new(), Vec::new()); g.leaves.len()];
+    for k in order {
+        let leaf = &g.leaves[k];
+        let node = &mut g.nodes[leaf.node];
+        let chosen = choose_greedy(leaf.options.clone(), lib, &uses, selection, rng);
+        match (chosen, &leaf.block) {
+            (Some(c), Some(block)) => {
+                let t = &lib[c.template];
+                let (mut parcels, new_streets) = template_parcels(block, &c, t, &ctx, &index, &node.id);
+                for b in leaf.blocks.iter().skip(1) {
+                    parcels.extend(rows(b, &index, region, &node.id));
+                }
+                *uses.entry(t.name.clone()).or_default() += 1;
+                node.how = How::Template;
+                node.template = Some(t.name.clone());
+                node.score = Some(c.warp.energy);
+                per_leaf[k] = (parcels, new_streets);
+            }
+            _ => {
+                node.how = How::Rows;
+                node.template = None;
+                node.score = None;
+                per_leaf[k].0 = leaf.blocks.iter().flat_map(|b| rows(b, &index, region, &node.id)).collect();
+            }
         }
     }
+    let (parcels, new_streets): (Vec<Vec<Parcel>>, Vec<Vec<Street>>) = per_leaf.into_iter().unzip();
+    (parcels.concat(), new_streets.concat(), uses)
+}
+
+/// The row parceller's parcels of one block, in a part.
+fn rows(b: &geo::Polygon<f64>, index: &StreetIndex, region: &Region, part: &str) -> Vec<Parcel> {
+    parcellate(std::slice::from_ref(b), index, region.parcel.depth, region.parcel.width)
+        .into_iter()
+        .map(|p| Parcel { part: part.to_string(), ..p })
+        .collect()
+}
+
+/// Leaves with the largest block first (ties by the block's first vertex).
+fn block_key(l: &super::tree::Leaf) -> (f64, i64, i64) {
+    use geo::Area;
+    l.blocks.first().map_or((0.0, 0, 0), |b| {
+        let c = b.exterior().0.first().map_or((0, 0), |c| ((c.x * 1e3).round() as i64, (c.y * 1e3).round() as i64));
+        (-(b.unsigned_area() * 1e3).round(), c.0, c.1)
+    })
 }
 
 /// Coordinates rounded to the millimetre (compact, stable files).

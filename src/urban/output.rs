@@ -130,12 +130,13 @@ pub fn layout_metrics(
     let width = region.street_width(0);
     let mut all: Vec<Street> = major
         .iter()
-        .map(|g| Street { polyline: scale(g), width, level: 0 })
-        .chain(streets.iter().filter(|s| s.points.len() >= 2).map(|s| Street {
-            polyline: scale(&s.points),
-            width,
-            level: s.level as usize,
-        }))
+        .map(|g| Street::new(scale(g), width, 0))
+        .chain(
+            streets
+                .iter()
+                .filter(|s| s.points.len() >= 2)
+                .map(|s| Street::new(scale(&s.points), width, s.level as usize)),
+        )
         .collect();
     let blocks = parcels::blocks(&region.polygon, &all);
     let mut rng = <rand::rngs::Xoshiro256PlusPlus as rand::SeedableRng>::seed_from_u64(region.seed);

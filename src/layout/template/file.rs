@@ -114,14 +114,11 @@ pub struct Template {
     pub repeat: Option<Repeat>,
     /// At most this many uses in a layout.
     pub max_uses: Option<usize>,
-    /// Accepted when its energy is below this (default [`DEFAULT_THRESHOLD`]).
-    pub threshold: f64,
+    /// Accepted when its energy is below this (default: the region's `[fit] threshold`).
+    pub threshold: Option<f64>,
     /// The file it came from (`builtin:row.toml` for embedded ones).
     pub source: String,
 }
-
-/// The energy threshold (mean registration distance over the square root of the block's area).
-pub const DEFAULT_THRESHOLD: f64 = 0.02;
 
 /// Why a template file was refused; every variant names the file, and the field where one is at
 /// fault.
@@ -309,8 +306,7 @@ pub fn parse_template(text: &str, path: &str, stem: &str) -> Result<Template, Te
             Some(Repeat { axis, unit: r.unit, min: r.min, max: r.max })
         }
     };
-    let threshold = t.threshold.unwrap_or(DEFAULT_THRESHOLD);
-    if !(threshold.is_finite() && threshold > 0.0) {
+    if let Some(threshold) = t.threshold.filter(|v| !(v.is_finite() && *v > 0.0)) {
         return Err(bad("threshold".into(), format!("{threshold} is not a positive number")));
     }
     let vertices: Vec<P> = faces.iter().flat_map(|f| f.polygon.iter().copied()).collect();
@@ -337,7 +333,7 @@ pub fn parse_template(text: &str, path: &str, stem: &str) -> Result<Template, Te
         corners: t.corner.into_iter().map(|c| (c.at, c.kind)).collect(),
         repeat,
         max_uses: t.max_uses,
-        threshold,
+        threshold: t.threshold,
         source: path.into(),
     };
     let units = template.repeat.map_or(1, |r| r.min);

@@ -205,7 +205,7 @@ mod tests {
     use crate::layout::Street;
 
     fn block(pts: Vec<P>) -> Block {
-        let street = Street { polyline: vec![[-50.0, -7.5], [400.0, -7.5]], width: 15.0, level: 0 };
+        let street = Street::new(vec![[-50.0, -7.5], [400.0, -7.5]], 15.0, 0);
         Block::new(pts, &StreetIndex::new(&[street]), 10.0)
     }
 
