@@ -335,10 +335,12 @@ enum Command {
         #[arg(long, value_name = "R", requires = "export_spec")]
         coverage: Option<f64>,
     },
-    /// Lay out an urban region by hierarchical domain splitting (Yang et al. 2013): cuts along
-    /// streamlines of a boundary-aligned cross field down to blocks, parcels in rows, the §7
-    /// metrics and an independent check. REGION is TOML (metres) or GeoJSON (WGS 84); format in
-    /// docs/layout.md. Writes layout.json, layout.svg/.png, layout.geojson and run.json with --out.
+    /// Lay out an urban region by hierarchical domain splitting (Yang et al. 2013): every part is
+    /// matched against the template library first and cut along a streamline of its
+    /// boundary-aligned cross field only where no template fits; zones marked in the region keep
+    /// their use; the §7 metrics and an independent check. REGION is TOML (metres) or GeoJSON
+    /// (WGS 84); format in docs/layout.md. Writes layout.json, layout.svg/.png, layout.geojson and
+    /// run.json with --out.
     Layout {
         /// The region file.
         region: PathBuf,
@@ -362,6 +364,13 @@ enum Command {
         /// Output directory.
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
+        /// A layout.json of this region to lay a part of out again (with --relayout).
+        #[arg(long, value_name = "LAYOUT.json", requires = "relayout")]
+        from: Option<PathBuf>,
+        /// The part (an id of the `parts` tree in --from's layout.json) to lay out again, the rest
+        /// kept as it is.
+        #[arg(long, value_name = "PART", requires = "from", conflicts_with_all = ["optimise", "variations"])]
+        relayout: Option<String>,
     },
     /// Grow a road network by traffic (Beneš, Wilkie & Křivánek 2014): settlements, minor streets
     /// around growth nuclei and major roads built where trade between neighbouring cities
@@ -722,7 +731,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 seeds: seeds as usize,
             })
         }
-        Command::Layout { region, seed, variations, field, mode, optimise, out } => {
+        Command::Layout { region, seed, variations, field, mode, optimise, out, from, relayout } => {
             cli::layout::run(&netspec::layout::run::LayoutRequest {
                 region,
                 field: field.into(),
@@ -731,6 +740,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 variations: variations as usize,
                 optimise: optimise as usize,
                 out,
+                relayout: from.zip(relayout),
             })
         }
         Command::Grow { context, out, seed, steps, every, window } => {

@@ -7,13 +7,16 @@ pub mod metrics;
 pub mod optimise;
 pub mod parcels;
 pub mod region;
+pub mod relayout;
 pub mod run;
 pub mod settings;
+pub mod skeleton;
 pub mod split;
 pub mod streamline;
 pub mod template;
 pub mod tree;
 pub mod validate;
+pub mod zone;
 
 use crate::geometry::P;
 use serde::{Deserialize, Serialize};
@@ -50,6 +53,10 @@ pub enum Use {
     Park,
     /// Shops and offices.
     Commercial,
+    /// A school and its grounds.
+    School,
+    /// Land kept as it is (a `keep` zone).
+    Keep,
     /// Remnants too small or too thin to build on.
     Other,
 }
@@ -68,4 +75,18 @@ pub struct Parcel {
     /// The leaf of the layout's tree it lies in (`""`: not from a layout).
     #[serde(default, skip_serializing_if = "String::is_empty")]
     pub part: String,
+    /// A template parcel's registration distance to its ideal (metres): the mean distance of the
+    /// face's vertices from the template face registered onto them by a similarity.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub registration: Option<f64>,
+    /// A template parcel's ideal area (m²): its template face's.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ideal: Option<f64>,
+}
+
+impl Parcel {
+    /// A parcel of no part, template or ideal.
+    pub fn new(polygon: Vec<P>, use_: Use) -> Parcel {
+        Parcel { polygon, use_, template: None, part: String::new(), registration: None, ideal: None }
+    }
 }

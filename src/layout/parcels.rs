@@ -108,13 +108,15 @@ pub fn parcellate(blocks: &[geo::Polygon<f64>], streets: &StreetIndex, depth: f6
             } else {
                 Use::Park
             };
-            out.push(Parcel { polygon: ring, use_, template: None, part: String::new() });
+            out.push(Parcel::new(ring, use_));
         }
     }
     out
 }
 
-/// The outer ring of a geo polygon, counter-clockwise, not closed.
+/// The outer ring of a geo polygon, counter-clockwise, not closed, without spikes (a vertex
+/// where the ring turns back on itself along a zero-width sliver, as a boolean leaves where a
+/// cut ends exactly on an edge).
 pub fn ring_of(p: &geo::Polygon<f64>) -> Vec<P> {
     let mut r: Vec<P> = p.exterior().0.iter().map(|c| [c.x, c.y]).collect();
     if r.len() > 1 && r.first() == r.last() {
@@ -122,6 +124,27 @@ pub fn ring_of(p: &geo::Polygon<f64>) -> Vec<P> {
     }
     if crate::geometry::ring_area2(&r) < 0.0 {
         r.reverse();
+    }
+    without_spikes(r)
+}
+
+/// A ring with its spikes removed: vertices whose two edges run back along each other (their
+/// triangle's height under a millimetre, the neighbours on the same side of it).
+pub fn without_spikes(mut r: Vec<P>) -> Vec<P> {
+    use crate::geometry::{cross, dist, dot, sub};
+    let mut i = 0;
+    while r.len() > 3 && i < r.len() {
+        let n = r.len();
+        let (a, b, c) = (r[(i + n - 1) % n], r[i], r[(i + 1) % n]);
+        let (u, v) = (sub(a, b), sub(c, b));
+        let base = dist(a, c).max(dist(a, b)).max(dist(b, c));
+        let spike = dot(u, v) > 0.0 && cross(u, v).abs() <= 1e-3 * base;
+        if spike || dist(a, b) < 1e-9 {
+            r.remove(i);
+            i = i.saturating_sub(1);
+        } else {
+            i += 1;
+        }
     }
     r
 }
@@ -218,6 +241,12 @@ mod tests {
         assert!(parcels.iter().all(|p| p.use_ == Use::Residential));
         let total: f64 = parcels.iter().map(|p| crate::geometry::ring_area2(&p.polygon) / 2.0).sum();
         assert!((total - 225.0 * 60.0).abs() < 1e-3, "{total}");
+    }
+
+    #[test]
+    fn spikes_are_removed_from_rings() {
+        let r = without_spikes(vec![[0.0, 0.0], [15.0, 0.0], [15.0, 22.0], [15.0, 30.0], [15.0, 23.0], [0.0, 23.0]]);
+        assert_eq!(r, vec![[0.0, 0.0], [15.0, 0.0], [15.0, 22.0], [15.0, 23.0], [0.0, 23.0]]);
     }
 
     #[test]

@@ -4,6 +4,7 @@
 
 use super::settings::{self, BlockSize, BlockToml, Fit, FitToml, Weights};
 use super::template::{library, Template, TemplateError};
+use super::zone::{self, Zone, ZoneProblem};
 use crate::geometry::polygon::{Polygon, PolygonError, Ring};
 use crate::geometry::site::{self, Projection, SiteError};
 use crate::geometry::P;
@@ -80,6 +81,17 @@ struct RegionToml {
     fit: FitToml,
     #[serde(default)]
     weights: Weights,
+    #[serde(default)]
+    zone: Vec<ZoneToml>,
+}
+
+/// `[[zone]]`: land marked for a use.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ZoneToml {
+    polygon: Vec<[f64; 2]>,
+    #[serde(rename = "use")]
+    use_: String,
 }
 
 /// `[templates]`: a directory of the user's template files (relative to the region file),
@@ -94,6 +106,21 @@ struct TemplatesToml {
     builtin: bool,
     #[serde(default = "yes")]
     first: bool,
+    #[serde(default)]
+    counts: std::collections::BTreeMap<String, CountToml>,
+}
+
+/// `[templates.counts] NAME = { min, max, probability }`: a template's counts and probability for
+/// this region, over its file's.
+#[derive(Clone, Copy, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct CountToml {
+    #[serde(default)]
+    min: Option<usize>,
+    #[serde(default)]
+    max: Option<usize>,
+    #[serde(default)]
+    probability: Option<f64>,
 }
 
 fn yes() -> bool {
@@ -131,6 +158,8 @@ pub struct Region {
     pub fit: Fit,
     /// The weights of the streamline scores.
     pub weights: Weights,
+    /// Zones: land marked for a use, laid out around.
+    pub zones: Vec<Zone>,
 }
 
 impl Region {
@@ -154,6 +183,7 @@ impl Region {
             templates_first: true,
             fit: FitToml::default().resolve(),
             weights: Weights::default(),
+            zones: Vec::new(),
         }
     }
 
@@ -198,6 +228,16 @@ pub enum RegionError {
         path: PathBuf,
         /// Why.
         source: SiteError,
+    },
+    /// A zone was refused.
+    #[error("{path}: {zone}: {problem}")]
+    Zone {
+        /// The file.
+        path: PathBuf,
+        /// The zone (`zone[i]`, or `features[i]` in GeoJSON).
+        zone: String,
+        /// Why.
+        problem: ZoneProblem,
     },
     /// An invalid polygon.
     #[error("{path}: {field}: {source}")]
@@ -268,18 +308,28 @@ pub fn region_from_toml(text: &str, path: &Path, stem: &str) -> Result<Region, R
         };
         RegionError::Polygon { path: path.into(), field, source }
     })?;
+    let zone_err = |(zone, problem)| RegionError::Zone { path: path.into(), zone, problem };
+    let zones = t
+        .zone
+        .iter()
+        .enumerate()
+        .map(|(i, z)| Zone::new(format!("zone[{i}]"), z.polygon.clone(), &z.use_))
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(zone_err)?;
+    zone::check(&polygon, &zones).map_err(zone_err)?;
     let mut roads = Vec::new();
     for (i, r) in t.roads.iter().enumerate() {
         let pieces = site::clip_road(&polygon, r, &format!("roads[{i}]"))
             .map_err(|source| RegionError::Site { path: path.into(), source })?;
         roads.extend(pieces);
     }
-    let (dir, builtin, first) = match t.templates {
-        Some(d) => (d.dir.map(|d| path.parent().unwrap_or(Path::new("")).join(d)), d.builtin, d.first),
-        None => (None, true, true),
+    let (dir, builtin, first, counts) = match t.templates {
+        Some(d) => (d.dir.map(|d| path.parent().unwrap_or(Path::new("")).join(d)), d.builtin, d.first, d.counts),
+        None => (None, true, true, Default::default()),
     };
     let street = t.street_widths.get(1).or(t.street_widths.last()).copied().unwrap_or(15.0);
-    let templates = library(dir.as_deref(), builtin)?;
+    let mut templates = library(dir.as_deref(), builtin)?;
+    set_counts(&mut templates, &counts, path)?;
     let projection =
         t.origin.map(Projection::new).transpose().map_err(|source| RegionError::Site { path: path.into(), source })?;
     let region = Region {
@@ -296,6 +346,7 @@ pub fn region_from_toml(text: &str, path: &Path, stem: &str) -> Result<Region, R
         templates_first: first,
         fit: t.fit.resolve(),
         weights: t.weights,
+        zones,
     };
     check(region, path)
 }
@@ -342,6 +393,14 @@ pub fn region_from_geojson(text: &str, path: &Path, stem: &str) -> Result<Region
     let street = street_widths.get(1).or(street_widths.last()).copied().unwrap_or(15.0);
     let block = BlockToml { width: opt("block_width")?, max_length: opt("block_length")? };
     let fit = FitToml { threshold: opt("fit_threshold")?, ..FitToml::default() };
+    let zone_err = |(zone, problem)| RegionError::Zone { path: path.into(), zone, problem };
+    let zones = s
+        .zones
+        .iter()
+        .map(|z| Zone::new(format!("features[{}]", z.feature), z.ring.clone(), &z.use_))
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(zone_err)?;
+    zone::check(&s.polygon, &zones).map_err(zone_err)?;
     let region = Region {
         name: p.get("name").and_then(|v| v.as_str()).map_or_else(|| stem.to_string(), str::to_string),
         polygon: s.polygon,
@@ -356,8 +415,38 @@ pub fn region_from_geojson(text: &str, path: &Path, stem: &str) -> Result<Region
         templates_first,
         fit: fit.resolve(),
         weights: Weights::default(),
+        zones,
     };
     check(region, path)
+}
+
+/// Applies `[templates.counts]` to the library; refuses an unknown name, a minimum above the
+/// maximum and a probability that is not positive, naming the field.
+fn set_counts(
+    templates: &mut [Template],
+    counts: &std::collections::BTreeMap<String, CountToml>,
+    path: &Path,
+) -> Result<(), RegionError> {
+    for (name, c) in counts {
+        let field = format!("templates.counts.{name}");
+        let bad =
+            |field: String, value: String, expected| RegionError::Value { path: path.into(), field, value, expected };
+        let Some(t) = templates.iter_mut().find(|t| &t.name == name) else {
+            return Err(bad(field, name.clone(), "the name of a template of the library"));
+        };
+        t.min_uses = c.min.unwrap_or(t.min_uses);
+        t.max_uses = c.max.or(t.max_uses);
+        if let Some(max) = t.max_uses.filter(|&m| m < t.min_uses) {
+            return Err(bad(format!("{field}.min"), format!("{} (max {max})", t.min_uses), "at most the maximum"));
+        }
+        if let Some(p) = c.probability {
+            if !(p.is_finite() && p > 0.0) {
+                return Err(bad(format!("{field}.probability"), p.to_string(), "a positive number"));
+            }
+            t.probability = p;
+        }
+    }
+    Ok(())
 }
 
 fn ring_of(e: &PolygonError) -> Option<Ring> {
@@ -478,5 +567,35 @@ mod tests {
         let zero = "[weights]\ndivergence = 0\nboundary = 0\nsingularities = 0\ncontinuity = 0\n";
         let e = toml(&format!("{square}{zero}")).unwrap_err();
         assert!(e.to_string().contains("weights"), "{e}");
+    }
+
+    #[test]
+    fn zones_are_read_and_refused_with_the_file_and_zone_named() {
+        let square = "outer = [[0, 0], [400, 0], [400, 300], [0, 300]]\n";
+        let park = "[[zone]]\npolygon = [[100, 100], [200, 100], [200, 200], [100, 200]]\nuse = \"park\"\n";
+        let r = toml(&format!("{square}{park}")).unwrap();
+        assert_eq!((r.zones.len(), r.zones[0].use_), (1, zone::ZoneUse::Park));
+        let mall = park.replace("park", "mall");
+        let e = toml(&format!("{square}{park}{mall}")).unwrap_err().to_string();
+        assert_eq!(e, "r.toml: zone[1]: use = \"mall\" is not park, school, commercial or keep");
+        let over = park.replace("[100, 100], [200, 100]", "[150, 150], [250, 150]");
+        let e = toml(&format!("{square}{park}{over}")).unwrap_err().to_string();
+        assert_eq!(e, "r.toml: zone[1]: overlaps zone[0]");
+        let out = park.replace("[200, 100], [200, 200]", "[500, 100], [500, 200]");
+        let e = toml(&format!("{square}{out}")).unwrap_err().to_string();
+        assert!(e.starts_with("r.toml: zone[0]: crosses the region's outline"), "{e}");
+    }
+
+    #[test]
+    fn template_counts_are_set_per_region() {
+        let square = "outer = [[0, 0], [400, 0], [400, 300], [0, 300]]\n";
+        let r = toml(&format!("{square}[templates.counts]\ntownhouses = {{ min = 2, max = 5, probability = 0.5 }}\n"))
+            .unwrap();
+        let t = r.templates.iter().find(|t| t.name == "townhouses").unwrap();
+        assert_eq!((t.min_uses, t.max_uses, t.probability), (2, Some(5), 0.5));
+        let e = toml(&format!("{square}[templates.counts]\nvillas = {{ min = 1 }}\n")).unwrap_err();
+        assert!(e.to_string().contains("templates.counts.villas"), "{e}");
+        let e = toml(&format!("{square}[templates.counts]\nspike = {{ min = 9 }}\n")).unwrap_err();
+        assert!(e.to_string().contains("templates.counts.spike.min = 9 (max 6)"), "{e}");
     }
 }

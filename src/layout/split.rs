@@ -202,10 +202,12 @@ fn other(m: FieldMethod) -> FieldMethod {
     }
 }
 
-/// The region cut along its major roads (each split at its crossings with earlier ones); roads
-/// that split nothing stay as streets. Returns the parts to work on (with level 0) and the level-0
-/// streets, the boundary street first when the boundary is one.
-pub fn major_roads(region: &Region) -> (Vec<(Polygon, usize)>, Vec<Street>) {
+/// The region's first parts: the region less its zones, cut along its major roads (each split at
+/// its crossings with earlier ones; the pieces inside zones left out), then the zones, each with
+/// its use as its label. Returns the parts in the order they are worked on, and the level-0
+/// streets: the boundary street first when the boundary is one, the streets along zones, the
+/// major roads.
+pub fn initial_parts(region: &Region) -> (Vec<(Polygon, String)>, Vec<Street>) {
     let w = region.street_width(0);
     let mut streets = Vec::new();
     if region.boundary == super::region::Boundary::Street {
@@ -215,20 +217,24 @@ pub fn major_roads(region: &Region) -> (Vec<(Polygon, usize)>, Vec<Street>) {
             streets.push(Street::new(closed, w, 0));
         }
     }
-    let mut parts = vec![region.polygon.clone()];
+    streets.extend(super::zone::streets(&region.polygon, &region.zones, w));
+    let mut parts = super::zone::carve(&region.polygon, &region.zones);
     let mut placed: Vec<Vec<P>> = Vec::new();
-    for road in &region.roads {
-        for piece in split_at_crossings(road, &placed) {
+    for road in super::zone::clip_roads(&region.roads, &region.zones) {
+        for piece in split_at_crossings(&road, &placed) {
             if let Some(k) = parts.iter().position(|p| p.contains(midpoint(&piece))) {
                 if let Some((a, b)) = parts[k].cut(&piece, 1e-4) {
                     parts.splice(k..=k, [a, b]);
                 }
             }
         }
-        placed.push(road.clone());
         streets.push(Street::new(road.clone(), w, 0));
+        placed.push(road);
     }
-    (parts.into_iter().rev().map(|p| (p, 0)).collect(), streets)
+    let block = super::tree::BLOCK.to_string();
+    let mut out: Vec<(Polygon, String)> = parts.into_iter().map(|p| (p, block.clone())).collect();
+    out.extend(region.zones.iter().map(|z| (z.polygon(), z.use_.label().to_string())));
+    (out, streets)
 }
 
 fn midpoint(line: &[P]) -> P {

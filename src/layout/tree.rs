@@ -15,7 +15,7 @@
 
 use super::parcels::{blocks, ring_of, StreetIndex};
 use super::region::Region;
-use super::split::{cut_part, fits_block, major_roads, street_ends, CandidateScore, SplitError, SplitOptions};
+use super::split::{cut_part, fits_block, initial_parts, street_ends, CandidateScore, SplitError, SplitOptions};
 use super::template::arclength::Block;
 use super::template::select::{Candidate, Matcher};
 use super::Street;
@@ -24,18 +24,26 @@ use geo::Area;
 use rand::rngs::Xoshiro256PlusPlus;
 use serde::{Deserialize, Serialize};
 
+/// The label of a part between streets.
+pub const BLOCK: &str = "block";
+
 /// How a part was split or settled.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum How {
-    /// Cut along the given major roads.
-    Roads,
+    /// Cut along the given major roads, and the zones set apart.
+    Given,
     /// Cut along a streamline.
     Streamline,
     /// Settled by a template.
     Template,
     /// Parcelled by the row parceller (no template accepted).
     Rows,
+    /// Parcelled by the straight-skeleton parceller (no template accepted, and the rows leave
+    /// more undesirable parcels).
+    Skeleton,
+    /// A zone no template of its use fills: one parcel of its use.
+    Zone,
 }
 
 /// A node of the tree while it grows.
@@ -45,6 +53,8 @@ pub struct Node {
     pub id: String,
     /// The level of the street that made it (0: the region and the parts of its major roads).
     pub level: usize,
+    /// The label of the region it is (`block`; a zone's use), which templates must agree with.
+    pub label: String,
     /// The part.
     pub polygon: Polygon,
     /// How it was split or settled.
@@ -53,6 +63,8 @@ pub struct Node {
     pub score: Option<f64>,
     /// The template that settled it.
     pub template: Option<String>,
+    /// The area templates that filled its template's area faces.
+    pub nested: Vec<String>,
     /// A streamline node's candidates (each one's scores) and the chosen one's index.
     pub candidates: Vec<CandidateScore>,
     /// The chosen candidate.
@@ -62,14 +74,17 @@ pub struct Node {
 }
 
 impl Node {
-    fn new(id: String, level: usize, polygon: Polygon) -> Node {
+    /// A node not yet split or settled.
+    pub fn new(id: String, level: usize, label: &str, polygon: Polygon) -> Node {
         Node {
             id,
             level,
+            label: label.to_string(),
             polygon,
             how: How::Rows,
             score: None,
             template: None,
+            nested: Vec::new(),
             candidates: Vec::new(),
             chosen: None,
             children: Vec::new(),
@@ -117,30 +132,71 @@ pub fn grow(
     rng: &mut Xoshiro256PlusPlus,
     progress: &mut dyn FnMut(f64),
 ) -> Result<Grown, SplitError> {
-    let (parts, streets) = major_roads(region);
-    let mut g = Grown {
-        nodes: vec![Node::new("0".into(), 0, region.polygon.clone())],
-        leaves: Vec::new(),
-        streets,
-        candidates: 0,
-        cuts: 0,
+    let (parts, streets) = initial_parts(region);
+    let root = Node::new("0".into(), 0, BLOCK, region.polygon.clone());
+    grow_from(region, opts, matcher, root, parts, streets, rng, progress)
+}
+
+/// Grows the subtree of one part (`--relayout`): the part (node id, level, label and polygon in
+/// `root`) among the `streets` kept around it, the region's zones that lie inside it set apart.
+#[allow(clippy::too_many_arguments)]
+pub fn grow_part(
+    region: &Region,
+    opts: &SplitOptions,
+    matcher: Option<&mut Matcher>,
+    root: Node,
+    mut streets: Vec<Street>,
+    rng: &mut Xoshiro256PlusPlus,
+    progress: &mut dyn FnMut(f64),
+) -> Result<Grown, SplitError> {
+    let parts = if root.label == BLOCK {
+        let zones: Vec<_> =
+            region.zones.iter().filter(|z| z.ring.iter().all(|&p| root.polygon.covers(p, 1e-6))).cloned().collect();
+        streets.extend(super::zone::streets(&region.polygon, &zones, region.street_width(0)));
+        let mut parts: Vec<(Polygon, String)> =
+            super::zone::carve(&root.polygon, &zones).into_iter().map(|p| (p, BLOCK.to_string())).collect();
+        parts.extend(zones.iter().map(|z| (z.polygon(), z.use_.label().to_string())));
+        parts
+    } else {
+        vec![(root.polygon.clone(), root.label.clone())]
     };
+    grow_from(region, opts, matcher, root, parts, streets, rng, progress)
+}
+
+/// The loop from a root node, its first parts (the root itself when it is the only one) and the
+/// streets so far.
+#[allow(clippy::too_many_arguments)]
+fn grow_from(
+    region: &Region,
+    opts: &SplitOptions,
+    matcher: Option<&mut Matcher>,
+    root: Node,
+    parts: Vec<(Polygon, String)>,
+    streets: Vec<Street>,
+    rng: &mut Xoshiro256PlusPlus,
+    progress: &mut dyn FnMut(f64),
+) -> Result<Grown, SplitError> {
+    let total = root.polygon.area();
+    let whole = parts.len() == 1 && parts[0].1 == root.label && parts[0].0 == root.polygon;
+    let mut g = Grown { nodes: vec![root], leaves: Vec::new(), streets, candidates: 0, cuts: 0 };
     let mut work: Vec<usize> = Vec::new();
-    if parts.len() > 1 {
-        g.nodes[0].how = How::Roads;
-        // `major_roads` lists the parts last first, as the stack pops them.
-        for (k, (poly, level)) in parts.into_iter().rev().enumerate() {
-            let child = g.add_child(0, k, level, poly);
+    if !whole {
+        g.nodes[0].how = How::Given;
+        let level = g.nodes[0].level;
+        for (k, (poly, label)) in parts.into_iter().enumerate() {
+            let child = g.add_child(0, k, level, &label, poly);
             work.insert(0, child);
         }
     } else {
         work.push(0);
     }
-    let mut loop_ = Loop { region, matcher, total: region.polygon.area(), settled: 0.0 };
+    let mut loop_ = Loop { region, matcher, total, settled: 0.0 };
     let mut ends: Vec<(P, P)> = g.streets.iter().flat_map(|s| street_ends(&s.polyline)).collect();
     while let Some(n) = work.pop() {
         let leaf = loop_.match_part(&g, n);
-        if leaf.as_ref().is_some_and(|l| !l.options.is_empty()) || fits_block(&g.nodes[n].polygon, region, opts) {
+        let zone = g.nodes[n].label != BLOCK;
+        if zone || leaf.as_ref().is_some_and(|l| !l.options.is_empty()) || fits_block(&g.nodes[n].polygon, region, opts)
+        {
             loop_.settle(&mut g, n, leaf, progress);
             continue;
         }
@@ -161,7 +217,8 @@ pub fn grow(
         node.candidates = cut.scores;
         node.chosen = Some(cut.chosen);
         let (a, b) = cut.parts;
-        let (ca, cb) = (g.add_child(n, 0, level, a), g.add_child(n, 1, level, b));
+        let label = g.nodes[n].label.clone();
+        let (ca, cb) = (g.add_child(n, 0, level, &label, a), g.add_child(n, 1, level, &label, b));
         // Right part first on the stack, so the left one is settled first.
         work.push(cb);
         work.push(ca);
@@ -181,14 +238,14 @@ impl Loop<'_, '_, '_> {
     /// With templates first: the part as a leaf, its blocks and the templates accepted on it.
     fn match_part(&mut self, g: &Grown, n: usize) -> Option<Leaf> {
         let m = self.matcher.as_deref_mut()?;
-        Some(leaf_of(n, &g.nodes[n].polygon, &g.streets, self.region, Some(m)))
+        Some(leaf_of(&g.nodes[n], n, &g.streets, self.region, Some(m)))
     }
 
     /// Settles node `n` as a leaf (its blocks found later, by [`match_leaves`], when not yet), and
     /// reports progress.
     fn settle(&mut self, g: &mut Grown, n: usize, leaf: Option<Leaf>, progress: &mut dyn FnMut(f64)) {
         let leaf = leaf.unwrap_or(Leaf { node: n, blocks: Vec::new(), block: None, options: Vec::new() });
-        g.nodes[n].how = if leaf.options.is_empty() { How::Rows } else { How::Template };
+        g.nodes[n].how = fallback_or_template(&g.nodes[n], &leaf);
         g.leaves.push(leaf);
         self.settled += g.nodes[n].polygon.area();
         progress(self.settled / self.total);
@@ -196,9 +253,9 @@ impl Loop<'_, '_, '_> {
 }
 
 impl Grown {
-    fn add_child(&mut self, parent: usize, k: usize, level: usize, polygon: Polygon) -> usize {
+    fn add_child(&mut self, parent: usize, k: usize, level: usize, label: &str, polygon: Polygon) -> usize {
         let id = format!("{}.{k}", self.nodes[parent].id);
-        self.nodes.push(Node::new(id, level, polygon));
+        self.nodes.push(Node::new(id, level, label, polygon));
         let i = self.nodes.len() - 1;
         self.nodes[parent].children.push(i);
         i
@@ -211,16 +268,29 @@ pub fn match_leaves(g: &mut Grown, streets: &[Street], region: &Region, matcher:
     for k in 0..g.leaves.len() {
         let n = g.leaves[k].node;
         if fresh || g.leaves[k].blocks.is_empty() {
-            let poly = g.nodes[n].polygon.clone();
-            g.leaves[k] = leaf_of(n, &poly, streets, region, Some(matcher));
+            g.leaves[k] = leaf_of(&g.nodes[n], n, streets, region, Some(matcher));
         }
-        g.nodes[n].how = if g.leaves[k].options.is_empty() { How::Rows } else { How::Template };
+        g.nodes[n].how = fallback_or_template(&g.nodes[n], &g.leaves[k]);
     }
 }
 
-/// A leaf: the part's blocks on the streets near it and, with a matcher, the templates accepted
-/// on its largest block (when that has no holes; smaller pieces are remnants the fallback takes).
-pub fn leaf_of(n: usize, poly: &Polygon, streets: &[Street], region: &Region, matcher: Option<&mut Matcher>) -> Leaf {
+/// How a leaf is settled before the assignment: by a template when one is accepted, else by its
+/// fallback (a zone whole, a block by the row parceller).
+pub fn fallback_or_template(node: &Node, leaf: &Leaf) -> How {
+    if !leaf.options.is_empty() {
+        How::Template
+    } else if node.label == BLOCK {
+        How::Rows
+    } else {
+        How::Zone
+    }
+}
+
+/// A leaf of node `n`: the part's blocks on the streets near it and, with a matcher, the
+/// templates of its label accepted on its largest block (when that has no holes; smaller pieces
+/// are remnants the fallback takes).
+pub fn leaf_of(node: &Node, n: usize, streets: &[Street], region: &Region, matcher: Option<&mut Matcher>) -> Leaf {
+    let poly = &node.polygon;
     let near = streets_near(poly, streets);
     let bl = blocks(poly, &near);
     let block = bl.first().filter(|b| b.interiors().is_empty() && b.unsigned_area() > 0.0).map(|b| {
@@ -228,7 +298,7 @@ pub fn leaf_of(n: usize, poly: &Polygon, streets: &[Street], region: &Region, ma
         Block::new(ring_of(b), &index, region.parcel.depth / 3.0)
     });
     let options = match (&block, matcher) {
-        (Some(b), Some(m)) => m.acceptable(b),
+        (Some(b), Some(m)) => m.acceptable(b, &node.label),
         _ => Vec::new(),
     };
     Leaf { node: n, blocks: bl, block, options }
@@ -258,9 +328,14 @@ pub struct PartTree {
     pub how: How,
     /// The level of the street that made it.
     pub level: usize,
+    /// The label of the region it is.
+    pub label: String,
     /// The template that settled it.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub template: Option<String>,
+    /// The area templates that filled its template's area faces.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub nested: Vec<String>,
     /// A streamline's quality; a template's energy.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub score: Option<f64>,
@@ -297,7 +372,9 @@ impl Grown {
             id: node.id.clone(),
             how: node.how,
             level: node.level,
+            label: node.label.clone(),
             template: node.template.clone(),
+            nested: node.nested.clone(),
             score: node.score.map(|s| (s * 1e6).round() / 1e6),
             candidates: node.candidates.iter().map(round_score).collect(),
             chosen: node.chosen,

@@ -13,7 +13,7 @@
 //! piece under a quarter of a parcel's area "other", as in the row parceller.
 
 use super::arclength::{matches, Block};
-use super::file::Template;
+use super::file::{Fill, Template};
 use super::instance::{instantiate, Instance};
 use super::warp::{face_polygons, simple_ccw, warp, Warp, ROUNDS};
 use crate::geometry::{closest_on_segment, dist, P};
@@ -30,6 +30,8 @@ use std::collections::BTreeMap;
 pub const SELECT_TOLERANCE: f64 = 0.005;
 /// Corner matches warped per template (the least distorted).
 const WARPED_PER_TEMPLATE: usize = 3;
+/// A template is tried on blocks within this factor of its area.
+const AREA_SPAN: f64 = 2.0;
 
 /// The parcels of all blocks, the template streets, and how often each template was used.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -73,18 +75,33 @@ impl<'a> Instances<'a> {
 }
 
 /// Every template's best warp onto the block (lowest energy over its least distorted matches),
-/// in library order; `rounds` as in [`warp`]. A repeated template is not tried beyond
-/// `max_length` along its repeat axis.
-pub fn candidates(block: &Block, instances: &mut Instances, rounds: usize, max_length: f64) -> Vec<Candidate> {
+/// in library order; `rounds` as in [`warp`]. Only templates whose label (`kind`) is `label` and
+/// that may be used at all are tried; a repeated one not beyond `max_length` along its axis, and
+/// none on a block of more than twice or less than half its area.
+pub fn candidates(
+    block: &Block,
+    instances: &mut Instances,
+    rounds: usize,
+    max_length: f64,
+    label: &str,
+) -> Vec<Candidate> {
     let mut out = Vec::new();
     for t in 0..instances.library.len() {
         let tpl = &instances.library[t];
+        if tpl.kind != label || tpl.max_uses == Some(0) {
+            continue;
+        }
         let units = tpl.repeat.map_or(1..=1, |r| r.min..=r.max);
         let mut tried: Vec<(f64, usize, super::arclength::Match)> = Vec::new();
         for u in units {
             let Some(inst) = instances.get(t, u) else { continue };
             if tpl.repeat.is_some_and(|r| extent(inst, r.axis) > max_length) {
                 break;
+            }
+            // A block of more than twice or less than half a template's area is beyond what its
+            // faces' tolerances allow.
+            if block.area > AREA_SPAN * inst.area || block.area * AREA_SPAN < inst.area {
+                continue;
             }
             if let Some(m) = matches(inst, block).into_iter().next() {
                 tried.push((m.distortion, u, m));
@@ -139,13 +156,13 @@ impl<'a> Matcher<'a> {
         self.library
     }
 
-    /// The templates accepted on a block, lowest energy first (ties by library order): energy
-    /// below the template's threshold, every face within its tolerance, every face a simple
-    /// counter-clockwise polygon (the warp did not fold).
-    pub fn acceptable(&mut self, block: &Block) -> Vec<Candidate> {
+    /// The templates of a label accepted on a block, lowest energy first (ties by library order):
+    /// energy below the template's threshold, every face within its tolerance, every face a
+    /// simple counter-clockwise polygon (the warp did not fold).
+    pub fn acceptable(&mut self, block: &Block, label: &str) -> Vec<Candidate> {
         let t0 = std::time::Instant::now();
         let (lib, threshold) = (self.library, self.threshold);
-        let mut out: Vec<Candidate> = candidates(block, &mut self.instances, ROUNDS, self.max_length)
+        let mut out: Vec<Candidate> = candidates(block, &mut self.instances, ROUNDS, self.max_length, label)
             .into_iter()
             .filter(|c| c.warp.energy < lib[c.template].threshold.unwrap_or(threshold) && c.warp.within_tolerance)
             .filter(|c| face_polygons(&c.instance, block, &c.warp).iter().all(|f| simple_ccw(f)))
@@ -175,7 +192,7 @@ pub fn parcellate_with_templates(
         let mut placed = false;
         if b.interiors().is_empty() {
             let block = Block::new(ring_of(b), &index, depth / 3.0);
-            let cands = matcher.acceptable(&block);
+            let cands = matcher.acceptable(&block, "block");
             if let Some(c) = choose_greedy(cands, library, &out.uses, selection, rng) {
                 let (parcels, new_streets) = template_parcels(&block, &c, &library[c.template], &ctx, &index, "");
                 out.parcels.extend(parcels);
@@ -229,6 +246,8 @@ pub struct PlaceContext<'a> {
     pub width: f64,
     /// A parcel's area (m²).
     pub parcel_area: f64,
+    /// The parcel's depth and width (metres), for the row parceller.
+    pub parcel: (f64, f64),
 }
 
 impl<'a> PlaceContext<'a> {
@@ -239,13 +258,15 @@ impl<'a> PlaceContext<'a> {
             level: streets.iter().map(|s| s.level).max().map_or(0, |l| l + 1),
             width: region.street_widths.iter().copied().fold(f64::INFINITY, f64::min),
             parcel_area: region.parcel.depth * region.parcel.width,
+            parcel: (region.parcel.depth, region.parcel.width),
         }
     }
 }
 
-/// The parcels and template streets of candidate `c` (of template `t`) on its block; `part`
-/// names the part they belong to. Template streets are carved out of the faces; a residential
-/// face without street access is a park, a piece under a quarter of a parcel's area "other".
+/// The parcels and template streets of candidate `c` (of template `t`) on its block, its area
+/// faces left out (see [`super::assign::choice_parcels`]); `part` names the part they belong to.
+/// Template streets are carved out of the faces; a residential face without street access is a
+/// park, a piece under a quarter of a parcel's area "other".
 pub fn template_parcels(
     block: &Block,
     c: &Candidate,
@@ -285,15 +306,28 @@ pub fn template_parcels(
             if ring.len() < 3 || area < 1e-3 * ctx.parcel_area {
                 continue;
             }
-            let use_ = match face.use_ {
+            let use_ = match face.fill {
+                Fill::Area => continue,
                 _ if area < 0.25 * ctx.parcel_area => Use::Other,
-                Use::Residential if !(index.fronts(&ring) || local.fronts(&ring)) => Use::Park,
-                u => u,
+                Fill::Use(Use::Residential) if !(index.fronts(&ring) || local.fronts(&ring)) => Use::Park,
+                Fill::Use(u) => u,
             };
-            out.push(Parcel { polygon: ring, use_, template: Some(t.name.clone()), part: part.into() });
+            out.push(Parcel {
+                template: Some(t.name.clone()),
+                part: part.into(),
+                registration: Some(c.warp.face_similarity[fi]),
+                ideal: Some(ideal_area(&c.instance, fi)),
+                ..Parcel::new(ring, use_)
+            });
         }
     }
     (out, new_streets)
+}
+
+/// The area of a concrete template's face (m²).
+pub fn ideal_area(inst: &Instance, face: usize) -> f64 {
+    let ring: Vec<P> = inst.faces[face].iter().map(|&v| inst.verts[v]).collect();
+    crate::geometry::ring_area2(&ring).abs() / 2.0
 }
 
 /// A template street's warped centreline, each end on the block's boundary extended to the
