@@ -2,6 +2,7 @@
 //! a region is matched against a library of templates first and split along a streamline of a
 //! boundary-aligned cross field only where none fits, down to parcels ([`tree`]).
 
+pub mod fallback;
 pub mod field;
 pub mod metrics;
 pub mod optimise;

@@ -128,8 +128,12 @@ pub fn ring_of(p: &geo::Polygon<f64>) -> Vec<P> {
     without_spikes(r)
 }
 
+/// Spikes narrower than this (metres) are removed from rings.
+const SPIKE_WIDTH: f64 = 0.05;
+
 /// A ring with its spikes removed: vertices whose two edges run back along each other (their
-/// triangle's height under a millimetre, the neighbours on the same side of it).
+/// triangle's height over its longest side under [`SPIKE_WIDTH`], the neighbours on the same
+/// side of it).
 pub fn without_spikes(mut r: Vec<P>) -> Vec<P> {
     use crate::geometry::{cross, dist, dot, sub};
     let mut i = 0;
@@ -138,7 +142,7 @@ pub fn without_spikes(mut r: Vec<P>) -> Vec<P> {
         let (a, b, c) = (r[(i + n - 1) % n], r[i], r[(i + 1) % n]);
         let (u, v) = (sub(a, b), sub(c, b));
         let base = dist(a, c).max(dist(a, b)).max(dist(b, c));
-        let spike = dot(u, v) > 0.0 && cross(u, v).abs() <= 1e-3 * base;
+        let spike = dot(u, v) > 0.0 && cross(u, v).abs() <= SPIKE_WIDTH * base;
         if spike || dist(a, b) < 1e-9 {
             r.remove(i);
             i = i.saturating_sub(1);
@@ -247,6 +251,12 @@ mod tests {
     fn spikes_are_removed_from_rings() {
         let r = without_spikes(vec![[0.0, 0.0], [15.0, 0.0], [15.0, 22.0], [15.0, 30.0], [15.0, 23.0], [0.0, 23.0]]);
         assert_eq!(r, vec![[0.0, 0.0], [15.0, 0.0], [15.0, 22.0], [15.0, 23.0], [0.0, 23.0]]);
+        // A boolean's spike is off by a few millimetres; a real sharp corner is kept.
+        let r =
+            without_spikes(vec![[455.252, 30.23], [455.25, 37.729], [455.254, 7.5], [470.162, 7.5], [470.16, 30.234]]);
+        assert_eq!(r.len(), 4, "{r:?}");
+        let wedge = vec![[0.0, 0.0], [30.0, 0.0], [0.0, 5.0]];
+        assert_eq!(without_spikes(wedge.clone()), wedge);
     }
 
     #[test]

@@ -4,7 +4,7 @@
 use super::field::FieldMethod;
 use super::metrics::{metrics, parcel_shape, Metrics};
 use super::optimise::{optimise, OptimiseOptions};
-use super::parcels::{blocks, parcellate, StreetIndex};
+use super::parcels::{blocks, StreetIndex};
 use super::region::Region;
 use super::settings::{BlockSize, Fit, Weights};
 use super::split::{Selection, SplitError, SplitOptions};
@@ -564,7 +564,7 @@ fn parcel_leaves(
             Some(ch) => {
                 let (mut parcels, new_streets) = choice_parcels(ch, lib, &ctx, &index, &node.id);
                 for b in leaf.blocks.iter().skip(1) {
-                    parcels.extend(rows(b, &index, region, &node.id));
+                    parcels.extend(fallback(b, &index, region, &node.id).0);
                 }
                 node.how = How::Template;
                 node.template = Some(lib[ch.candidate.template].name.clone());
@@ -615,29 +615,9 @@ fn nested(ch: &Choice, lib: &[super::template::Template]) -> Vec<String> {
         .collect()
 }
 
-/// The fallback parcels of one block where no template is accepted: the row parceller's, or
-/// the straight-skeleton parceller's when they leave fewer undesirable parcels.
+/// The fallback's parcels of one block where no template is accepted ([`super::fallback`]).
 fn fallback(b: &geo::Polygon<f64>, index: &StreetIndex, region: &Region, part: &str) -> (Vec<Parcel>, How) {
-    let rows = rows(b, index, region, part);
-    let bad = |ps: &[Parcel]| ps.iter().filter(|p| parcel_shape(&p.polygon).undesirable()).count();
-    let r = bad(&rows);
-    if r == 0 {
-        return (rows, How::Rows);
-    }
-    match super::skeleton::parcellate(b, index, region.parcel.depth, region.parcel.width) {
-        Some(sk) if bad(&sk) < r => {
-            (sk.into_iter().map(|p| Parcel { part: part.to_string(), ..p }).collect(), How::Skeleton)
-        }
-        _ => (rows, How::Rows),
-    }
-}
-
-/// The row parceller's parcels of one block, in a part.
-fn rows(b: &geo::Polygon<f64>, index: &StreetIndex, region: &Region, part: &str) -> Vec<Parcel> {
-    parcellate(std::slice::from_ref(b), index, region.parcel.depth, region.parcel.width)
-        .into_iter()
-        .map(|p| Parcel { part: part.to_string(), ..p })
-        .collect()
+    super::fallback::parcel_block(b, index, region.parcel.depth, region.parcel.width, part)
 }
 
 /// Leaves with the largest block first (ties by the block's first vertex).
