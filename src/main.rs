@@ -339,8 +339,8 @@ enum Command {
     /// matched against the template library first and cut along a streamline of its
     /// boundary-aligned cross field only where no template fits; zones marked in the region keep
     /// their use; the §7 metrics and an independent check. REGION is TOML (metres) or GeoJSON
-    /// (WGS 84); format in docs/layout.md. Writes layout.json, layout.svg/.png, layout.geojson and
-    /// run.json with --out.
+    /// (WGS 84); format in docs/layout.md. Writes layout.json, layout.svg/.png, registration and
+    /// histograms pictures, layout.geojson and run.json with --out.
     Layout {
         /// The region file.
         region: PathBuf,
@@ -357,8 +357,8 @@ enum Command {
         #[arg(long, value_enum, default_value = "best")]
         mode: SelectionKind,
         /// Iterations of the global optimisation of the streets (fairness and strip fitting,
-        /// the paper's §6, which runs 10); 0 for none. Off by default: with the row parceller
-        /// it costs parcel quality (docs/layout.md).
+        /// the paper's §6, which runs 10); 0 for none. Off by default: on most example regions
+        /// it raises the registration distance and the corner deviation (docs/layout.md).
         #[arg(long, value_name = "N", default_value_t = 0, value_parser = clap::value_parser!(u64).range(0..=100))]
         optimise: u64,
         /// Output directory.

@@ -195,7 +195,10 @@ fn grow_from(
     while let Some(n) = work.pop() {
         let leaf = loop_.match_part(&g, n);
         let zone = g.nodes[n].label != BLOCK;
-        if zone || leaf.as_ref().is_some_and(|l| !l.options.is_empty()) || fits_block(&g.nodes[n].polygon, region, opts)
+        let fits = fits_block(&g.nodes[n].polygon, region, opts);
+        if zone
+            || leaf.as_ref().is_some_and(|l| !l.options.is_empty())
+            || (fits && !refine(&g, n, leaf.as_ref(), region))
         {
             loop_.settle(&mut g, n, leaf, progress);
             continue;
@@ -250,6 +253,27 @@ impl Loop<'_, '_, '_> {
         self.settled += g.nodes[n].polygon.area();
         progress(self.settled / self.total);
     }
+}
+
+/// Parts no template takes are cut further, though they pass the fit test, when they hold at
+/// least this many parcels.
+pub const REFINE_PARCELS: f64 = 12.0;
+
+/// With templates first: whether a part that passes the fit test but that no template takes is
+/// cut once more (the paper splits wherever no template matches): when it holds at least
+/// [`REFINE_PARCELS`] parcels and the fallback would leave undesirable parcels in its blocks.
+fn refine(g: &Grown, n: usize, leaf: Option<&Leaf>, region: &Region) -> bool {
+    let Some(leaf) = leaf else { return false };
+    let parcel = region.parcel.depth * region.parcel.width;
+    if g.nodes[n].polygon.area() < REFINE_PARCELS * parcel {
+        return false;
+    }
+    let index = StreetIndex::new(&streets_near(&g.nodes[n].polygon, &g.streets));
+    leaf.blocks.iter().any(|b| {
+        let (parcels, _) =
+            super::fallback::parcel_block(b, &index, region.parcel.depth, region.parcel.width, &g.nodes[n].id);
+        super::fallback::undesirable(&parcels) > 0
+    })
 }
 
 impl Grown {

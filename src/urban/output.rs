@@ -114,7 +114,7 @@ fn polyline_length(points: &[[f64; 2]]) -> f64 {
 
 /// The layout metrics of a city's streets (see [`CityResult::layout_metrics`]): the domain and the
 /// streets in metres, the major roads and the domain boundary as level-0 streets, parcels from
-/// the built-in templates and the row parceller (as `netspec layout` makes them).
+/// the built-in templates block by block and the row parceller where none is accepted.
 pub fn layout_metrics(
     spec: &CitySpec,
     major: &[[[f64; 2]; 2]],
