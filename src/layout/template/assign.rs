@@ -190,8 +190,8 @@ pub fn assign(
         memo: HashMap::new(),
     };
     // Minimums no assignment can reach are lowered to what the slots can hold.
-    for t in 0..n {
-        let cap: usize = initial[t] + s.slots.iter().map(|sl| sl.potential[t]).sum::<usize>();
+    for (t, &start) in initial.iter().enumerate() {
+        let cap: usize = start + s.slots.iter().map(|sl| sl.potential[t]).sum::<usize>();
         s.min[t] = s.min[t].min(cap);
     }
     if !s.dfs(0) {
