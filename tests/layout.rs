@@ -64,6 +64,21 @@ fn same_seed_same_bytes_other_seed_other_layout() {
     let json: serde_json::Value = serde_json::from_slice(&a).unwrap();
     assert!(json["streets"][0]["polyline"].is_array() && json["parcels"][0]["use"].is_string());
     assert!(json["metrics"]["corner_deviation_mean"].is_number());
+    // The tree of parts: every node says how it was split or settled; leaves name their parcels.
+    let parts = &json["parts"];
+    assert_eq!((parts["id"].as_str(), parts["how"].as_str()), (Some("0"), Some("streamline")));
+    fn leaves(n: &serde_json::Value, out: &mut Vec<String>) {
+        match n["children"].as_array() {
+            Some(c) => c.iter().for_each(|k| leaves(k, out)),
+            None => out.push(n["id"].as_str().unwrap().to_string()),
+        }
+    }
+    let mut ids = Vec::new();
+    leaves(parts, &mut ids);
+    for p in json["parcels"].as_array().unwrap() {
+        assert!(ids.iter().any(|id| p["part"] == id.as_str()), "{}", p["part"]);
+    }
+    assert!(json["settings"]["templates_first"].as_bool().unwrap());
 }
 
 #[test]
@@ -111,6 +126,19 @@ fn bad_regions_are_refused_naming_the_field() {
         ("road.toml", "outer = [[0, 0], [100, 0], [100, 100], [0, 100]]\nroads = [[[200, 0], [300, 0]]]\n", "roads[0]"),
         ("big.toml", "outer = [[0, 0], [1e5, 0], [1e5, 1e5], [0, 1e5]]\n", "parcels"),
         ("nan.geojson", "{\"type\": \"Polygon\", \"coordinates\": [[[0, 0], [1, 0], [1, 91], [0, 0]]]}", "features[0]"),
+        (
+            "zones.toml",
+            "outer = [[0, 0], [100, 0], [100, 100], [0, 100]]\n[[zone]]\npolygon = [[0, 0], [50, 0], [50, 50]]\nuse = \"park\"\n\
+             [[zone]]\npolygon = [[10, 0], [60, 0], [60, 50]]\nuse = \"school\"\n",
+            "zone[1]: overlaps zone[0]",
+        ),
+        (
+            "zone.geojson",
+            "{\"type\": \"FeatureCollection\", \"features\": [\
+             {\"type\": \"Feature\", \"properties\": {}, \"geometry\": {\"type\": \"Polygon\", \"coordinates\": [[[11, 48], [11.01, 48], [11.01, 48.01], [11, 48.01], [11, 48]]]}},\
+             {\"type\": \"Feature\", \"properties\": {\"use\": \"mall\"}, \"geometry\": {\"type\": \"Polygon\", \"coordinates\": [[[11.001, 48.001], [11.002, 48.001], [11.002, 48.002], [11.001, 48.001]]]}}]}",
+            "features[1]: use = \"mall\"",
+        ),
     ];
     for (file, text, needle) in cases {
         let path = dir.path().join(file);
@@ -156,12 +184,97 @@ fn a_regions_template_dir_adds_its_templates_and_bad_files_are_named() {
     std::fs::write(dir.path().join("r.toml"), format!("{lake}\n[templates]\ndir = \"mine\"\n")).unwrap();
     std::fs::create_dir(dir.path().join("mine")).unwrap();
     // A user's row template replaces the built-in one of the same name.
-    let row = "name = \"row\"\nkind = \"row\"\nmax_uses = 0\n[[face]]\npolygon = [[0, 0], [18, 0], [18, 30], [0, 30]]\nuse = \"commercial\"\n";
+    let row = "name = \"row\"\nkind = \"block\"\nmax_uses = 0\n[[face]]\npolygon = [[0, 0], [18, 0], [18, 30], [0, 30]]\nuse = \"commercial\"\n";
     std::fs::write(dir.path().join("mine/a.toml"), row).unwrap();
     let region = read_region(&dir.path().join("r.toml")).unwrap();
     let mine = region.templates.iter().find(|t| t.name == "row").unwrap();
-    assert_eq!((mine.max_uses, region.templates.len()), (Some(0), 5));
+    assert_eq!((mine.max_uses, region.templates.len()), (Some(0), 13));
     std::fs::write(dir.path().join("mine/b.toml"), format!("{row}class = \"fluid\"\n")).unwrap();
     let e = read_region(&dir.path().join("r.toml")).unwrap_err().to_string();
     assert!(e.contains("mine/b.toml") && e.contains("face[0].class"), "{e}");
+}
+
+/// The use of the parcels whose label points lie in a ring.
+fn uses_in(parcels: &[netspec::layout::Parcel], ring: &[[f64; 2]]) -> Vec<netspec::layout::Use> {
+    parcels
+        .iter()
+        .filter(|p| {
+            let n = p.polygon.len() as f64;
+            let c = p.polygon.iter().fold([0.0, 0.0], |a, q| [a[0] + q[0] / n, a[1] + q[1] / n]);
+            netspec::geometry::ring_contains(ring, c)
+        })
+        .map(|p| p.use_)
+        .collect()
+}
+
+#[test]
+fn zones_keep_their_use_and_template_counts_are_met_or_reported() {
+    use netspec::layout::Use;
+    let region = read_region(&model("fig13.toml")).unwrap();
+    let l = layout(
+        &region,
+        &LayoutOptions { field: FieldMethod::Distance, selection: Selection::Best, seed: region.seed, optimise: 0 },
+    )
+    .unwrap();
+    assert_eq!(l.violations, vec![]);
+    for (zone, want) in region.zones.iter().zip([Use::School, Use::Commercial, Use::Park]) {
+        let uses = uses_in(&l.parcels, &zone.ring);
+        assert!(!uses.is_empty() && uses.iter().all(|&u| u == want || u == Use::Other), "{}: {uses:?}", zone.name);
+    }
+    // The school zone is filled by the school template: a building lot and its field.
+    let school = uses_in(&l.parcels, &region.zones[0].ring);
+    assert!(school.iter().filter(|&&u| u == Use::School).count() >= 2, "{school:?}");
+    // Every minimum is met or reported, never dropped.
+    for c in &l.counts {
+        let reported = l.unmet.iter().any(|u| u.template == c.template && u.used == c.used && u.min == c.min);
+        assert!(c.used >= c.min || reported, "{c:?} {:?}", l.unmet);
+    }
+    let used = |name: &str| l.templates.get(name).copied().unwrap_or(0);
+    assert!(used("townhouses") + used("apartments") + used("mixed") >= 3, "{:?}", l.templates);
+}
+
+#[test]
+fn a_part_is_laid_out_again_with_the_rest_kept() {
+    let dir = tempfile::tempdir().unwrap();
+    let lake = model("lake.toml");
+    let first = dir.path().join("first");
+    let o = netspec().args(["layout", lake.to_str().unwrap(), "--out"]).arg(&first).output().unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let before: serde_json::Value = serde_json::from_slice(&std::fs::read(first.join("layout.json")).unwrap()).unwrap();
+    // The first part cut along a streamline, below the root.
+    let part = before["parts"]["children"][1]["id"].as_str().unwrap().to_string();
+    let again = dir.path().join("again");
+    let o = netspec()
+        .args(["layout", lake.to_str().unwrap(), "--mode", "random", "--seed", "9", "--relayout", &part, "--from"])
+        .arg(first.join("layout.json"))
+        .arg("--out")
+        .arg(&again)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let after: serde_json::Value = serde_json::from_slice(&std::fs::read(again.join("layout.json")).unwrap()).unwrap();
+    assert_eq!(after["relayout"], part.as_str());
+    assert_eq!(after["violations"].as_array().unwrap().len(), 0);
+    let within = |p: &serde_json::Value| {
+        let id = p["part"].as_str().unwrap_or("");
+        id == part || id.starts_with(&format!("{part}."))
+    };
+    let outside = |l: &serde_json::Value, key: &str| -> Vec<serde_json::Value> {
+        l[key].as_array().unwrap().iter().filter(|p| !within(p)).cloned().collect()
+    };
+    for key in ["parcels", "streets"] {
+        let (a, b) = (outside(&before, key), outside(&after, key));
+        assert!(!a.is_empty() && a.iter().all(|p| b.contains(p)), "{key} outside {part} are kept");
+    }
+    assert_ne!(before["parcels"], after["parcels"], "the part is laid out anew");
+    assert!(after["parcels"].as_array().unwrap().iter().any(within));
+    // An unknown part is refused, naming the file and the part.
+    let o = netspec()
+        .args(["layout", lake.to_str().unwrap(), "--relayout", "0.9.9", "--from"])
+        .arg(first.join("layout.json"))
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(err.contains("layout.json") && err.contains("no part 0.9.9"), "{err}");
 }

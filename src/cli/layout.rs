@@ -31,13 +31,20 @@ pub struct LayoutArgs {
     #[arg(long, default_value = "best", value_name = "MODE")]
     mode: Selection,
     /// Iterations of the global optimisation of the streets (fairness and strip fitting,
-    /// the paper's §6, which runs 10); 0 for none. Off by default: with the row parceller
-    /// it costs parcel quality (docs/layout.md).
+    /// the paper's §6, which runs 10); 0 for none. Off by default: on most example regions
+    /// it raises the registration distance and the corner deviation (docs/layout.md).
     #[arg(long, value_name = "N", default_value_t = 0, value_parser = clap::value_parser!(u64).range(0..=100))]
     optimise: u64,
     /// Output directory.
     #[arg(long, value_name = "DIR")]
     out: Option<PathBuf>,
+    /// A layout.json of this region to lay a part of out again (with --relayout).
+    #[arg(long, value_name = "LAYOUT.json", requires = "relayout")]
+    from: Option<PathBuf>,
+    /// The part (an id of the `parts` tree in --from's layout.json) to lay out again, the rest
+    /// kept as it is.
+    #[arg(long, value_name = "PART", requires = "from", conflicts_with_all = ["optimise", "variations"])]
+    relayout: Option<String>,
 }
 
 impl From<LayoutArgs> for LayoutRequest {
@@ -50,6 +57,7 @@ impl From<LayoutArgs> for LayoutRequest {
             variations: a.variations as usize,
             optimise: a.optimise as usize,
             out: a.out,
+            relayout: a.from.zip(a.relayout),
         }
     }
 }
@@ -104,12 +112,14 @@ fn run(req: &LayoutRequest) -> Result<ExitCode> {
     for l in &layouts {
         let m = &l.metrics;
         println!(
-            "{} seed {}: {} cuts ({} candidates) · {} blocks · {} parcels ({} undesirable) · corners {:.2}° · area ratio {:.3} · streets {:.1} % · {:.2} s split, {:.2} s parcels, {:.2} s check · {}",
+            "{} seed {}: {} cuts ({} candidates) · {} blocks, {} of {} parts by template · {} parcels ({} undesirable) · corners {:.2}° · area ratio {:.3} · streets {:.1} % · {:.2} s split, {:.2} s parcels, {:.2} s check · {}",
             l.name,
             l.seed,
             l.split.cuts,
             l.split.candidates,
             l.split.blocks,
+            l.split.by_template,
+            l.split.leaves,
             m.parcels,
             m.undesirable,
             m.corner_deviation_mean,

@@ -75,10 +75,12 @@ pub enum Command {
     /// `--export-spec`, also writes the first layout as mesh.json and network.toml (a spec for
     /// `netspec solve` whose network passes between rooms only through doors).
     Level(level::LevelArgs),
-    /// Lay out an urban region by hierarchical domain splitting (Yang et al. 2013): cuts along
-    /// streamlines of a boundary-aligned cross field down to blocks, parcels in rows, the §7
-    /// metrics and an independent check. REGION is TOML (metres) or GeoJSON (WGS 84); format in
-    /// docs/layout.md. Writes layout.json, layout.svg/.png, layout.geojson and run.json with --out.
+    /// Lay out an urban region by hierarchical domain splitting (Yang et al. 2013): every part is
+    /// matched against the template library first and cut along a streamline of its
+    /// boundary-aligned cross field only where no template fits; zones marked in the region keep
+    /// their use; the §7 metrics and an independent check. REGION is TOML (metres) or GeoJSON
+    /// (WGS 84); format in docs/layout.md. Writes layout.json, layout.svg/.png, registration and
+    /// histograms pictures, layout.geojson and run.json with --out.
     Layout(layout::LayoutArgs),
     /// Grow a road network by traffic (Beneš, Wilkie & Křivánek 2014): settlements, minor streets
     /// around growth nuclei and major roads built where trade between neighbouring cities

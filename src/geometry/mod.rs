@@ -8,6 +8,7 @@ pub mod index;
 pub mod planar;
 pub mod polygon;
 pub mod site;
+pub mod skeleton;
 pub mod sparse;
 
 pub use polygon::{Polygon, PolygonError};

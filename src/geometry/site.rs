@@ -2,7 +2,9 @@
 //! projected to local metres by a transverse Mercator centred on the site, and back.
 //!
 //! A site file is a GeoJSON `FeatureCollection` (or a single `Feature`/`Polygon`): its one
-//! `Polygon` feature is the region (its inner rings are holes), and `LineString` features whose
+//! `Polygon` feature without a `use` property is the region (its inner rings are holes),
+//! further `Polygon` features with a `use` property are zones (land marked for a use, one ring
+//! each; the caller checks the use and where they lie), and `LineString` features whose
 //! `kind` property is `"road"` are major roads. The polygon feature's `origin` property
 //! (`[longitude, latitude]`), when present, is the projection's centre (so that several files
 //! of one site share their metres, as `netspec site` writes them); otherwise the centre of the
@@ -33,6 +35,14 @@ pub enum SiteError {
         first: usize,
         /// The second.
         second: usize,
+    },
+    /// A zone with inner rings, or whose `use` is not a string.
+    #[error("features[{feature}] (a zone): {problem}")]
+    Zone {
+        /// The feature.
+        feature: usize,
+        /// Why.
+        problem: String,
     },
     /// A geometry of a type the site does not use.
     #[error("features[{feature}].geometry: a {kind} is not part of a site (a Polygon region and LineString roads)")]
@@ -150,6 +160,19 @@ pub struct Site {
     pub projection: Projection,
     /// The region feature's properties.
     pub properties: Map<String, Value>,
+    /// The zones, in file order.
+    pub zones: Vec<SiteZone>,
+}
+
+/// A zone of a site: a further `Polygon` feature with a `use` property, in local metres.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SiteZone {
+    /// Its index in the collection.
+    pub feature: usize,
+    /// Its ring.
+    pub ring: Vec<P>,
+    /// Its `use`, as written.
+    pub use_: String,
 }
 
 /// The region feature: its index, rings (WGS 84) and properties.
@@ -165,10 +188,21 @@ pub fn read_geojson(text: &str) -> Result<Site, SiteError> {
     };
     let mut region: Option<RegionFeature> = None;
     let mut roads: Vec<(usize, Vec<[f64; 2]>)> = Vec::new();
+    let mut zones: Vec<(usize, Vec<[f64; 2]>, String)> = Vec::new();
     for (i, f) in features.iter().enumerate() {
         let Some(g) = &f.geometry else { continue };
         let props = f.properties.clone().unwrap_or_default();
         match &g.value {
+            geojson::GeometryValue::Polygon { coordinates } if props.contains_key("use") => {
+                let zone = |problem: String| SiteError::Zone { feature: i, problem };
+                let use_ =
+                    props["use"].as_str().ok_or_else(|| zone(format!("use = {} is not a string", props["use"])))?;
+                if coordinates.len() > 1 {
+                    return Err(zone("a zone is one ring; it has inner rings".into()));
+                }
+                let ring = coordinates.first().map(|r| positions(i, r)).transpose()?.unwrap_or_default();
+                zones.push((i, ring, use_.to_string()));
+            }
             geojson::GeometryValue::Polygon { coordinates } => {
                 if let Some((first, ..)) = &region {
                     return Err(SiteError::TwoPolygons { first: *first, second: i });
@@ -202,7 +236,11 @@ pub fn read_geojson(text: &str) -> Result<Site, SiteError> {
         let what = format!("features[{i}] (a road)");
         clipped.extend(clip_road(&polygon, &local(road)?, &what)?);
     }
-    Ok(Site { polygon, roads: clipped, projection, properties })
+    let zones = zones
+        .iter()
+        .map(|(feature, ring, use_)| Ok(SiteZone { feature: *feature, ring: local(ring)?, use_: use_.clone() }))
+        .collect::<Result<Vec<_>, SiteError>>()?;
+    Ok(Site { polygon, roads: clipped, projection, properties, zones })
 }
 
 /// A road clipped to a region: the pieces inside it (split where it crosses a hole), or an error
@@ -349,5 +387,23 @@ mod tests {
             Err(SiteError::NoPolygon)
         ));
         assert!(matches!(read_geojson("not json"), Err(SiteError::Json(_))));
+    }
+
+    #[test]
+    fn further_polygons_with_a_use_are_zones_and_a_second_region_is_still_refused() {
+        let zone = r#"{"type": "Feature", "properties": {"use": "park"}, "geometry": {"type": "Polygon",
+            "coordinates": [[[11.001, 48.001], [11.003, 48.001], [11.003, 48.003], [11.001, 48.003], [11.001, 48.001]]]}}"#;
+        let with = SITE.replacen("\"features\": [", &format!("\"features\": [{zone}, "), 1);
+        let site = read_geojson(&with).unwrap();
+        assert_eq!(site.zones.len(), 1);
+        assert_eq!((site.zones[0].feature, site.zones[0].use_.as_str(), site.zones[0].ring.len()), (0, "park", 5));
+        assert_eq!(site.properties["name"], "block", "the region is the polygon without a use");
+        assert_eq!(site.roads.len(), 1);
+        let second = zone.replace("\"use\": \"park\"", "\"name\": \"another\"");
+        let two = SITE.replacen("\"features\": [", &format!("\"features\": [{second}, "), 1);
+        assert!(matches!(read_geojson(&two), Err(SiteError::TwoPolygons { first: 0, second: 1 })));
+        let bad = SITE.replacen("\"features\": [", &format!("\"features\": [{}, ", zone.replace("\"park\"", "3")), 1);
+        let e = read_geojson(&bad).unwrap_err().to_string();
+        assert_eq!(e, "features[0] (a zone): use = 3 is not a string");
     }
 }

@@ -13,7 +13,13 @@
 //! * parcel corners are the vertices of the parcel simplified by Douglas–Peucker at 0.5 m whose
 //!   turn is at least 20°; the corner deviation is |interior angle − 90°|; the area ratio is the
 //!   minimum rotated rectangle's area over the parcel's; a parcel is undesirable when its own
-//!   mean deviation exceeds 15° or its ratio 1.2.
+//!   mean deviation exceeds 15° or its ratio 1.2;
+//! * over the parcels templates made (the paper measures them "for our results only"):
+//!   `p_similarity`, the mean registration distance of a parcel to its ideal (its template face
+//!   registered onto it by a similarity, metres), and `p_ideal`, the mean of the larger of a
+//!   parcel's area over its ideal area and the reverse;
+//! * histograms (§7's panel): parcel areas (20 bins up to twice the median area), corner
+//!   deviations (1.5° bins) and registration distances (0.25 m bins), the last bin open.
 
 use super::parcels::{ring_of, street_area};
 use super::{Parcel, Street, Use};
@@ -75,7 +81,56 @@ pub struct Metrics {
     pub area_ratio_mean: f64,
     /// Parcels with a mean corner deviation over 15° or an area ratio over 1.2.
     pub undesirable: usize,
+    /// Parcels made by templates.
+    #[serde(default)]
+    pub template_parcels: usize,
+    /// §7's `p_similarity`: the template parcels' mean registration distance to their ideal (m).
+    #[serde(default)]
+    pub similarity_mean: Option<f64>,
+    /// §7's `p_ideal`: the template parcels' mean area distortion against their ideal (≥ 1).
+    #[serde(default)]
+    pub ideal_ratio_mean: Option<f64>,
+    /// Histograms of the parcels.
+    #[serde(default)]
+    pub histograms: Histograms,
 }
+
+/// Counts of values in bins: `counts[i]` between `edges[i]` and `edges[i + 1]`, the last bin
+/// open above.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Histogram {
+    /// Bin edges.
+    pub edges: Vec<f64>,
+    /// Counts per bin.
+    pub counts: Vec<usize>,
+}
+
+impl Histogram {
+    /// `bins` bins of `width` from 0, the last open above.
+    pub fn new(values: impl Iterator<Item = f64>, width: f64, bins: usize) -> Histogram {
+        let r = |x: f64| (x * 1000.0).round() / 1000.0;
+        let mut counts = vec![0; bins];
+        for v in values.filter(|v| v.is_finite()) {
+            let i = if width > 0.0 { (v.max(0.0) / width).floor() as usize } else { 0 };
+            counts[i.min(bins - 1)] += 1;
+        }
+        Histogram { edges: (0..=bins).map(|i| r(i as f64 * width)).collect(), counts }
+    }
+}
+
+/// The parcel histograms of §7's panel.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Histograms {
+    /// Parcel areas (m²).
+    pub area: Histogram,
+    /// Each parcel's mean corner deviation (degrees).
+    pub corner_deviation: Histogram,
+    /// Template parcels' registration distances (m).
+    pub registration: Histogram,
+}
+
+/// Bins per histogram.
+const BINS: usize = 20;
 
 /// One parcel's shape measures.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -126,8 +181,11 @@ pub fn metrics(region: &Polygon, streets: &[Street], blocks: &[geo::Polygon<f64>
     let by_use = |u: &[Use]| {
         pct(parcels.iter().filter(|p| u.contains(&p.use_)).map(|p| ring_area2(&p.polygon).abs() / 2.0).sum())
     };
-    let (residential, parks, other) =
-        (by_use(&[Use::Residential]), by_use(&[Use::Park]), by_use(&[Use::Other, Use::Commercial]));
+    let (residential, parks, other) = (
+        by_use(&[Use::Residential]),
+        by_use(&[Use::Park]),
+        by_use(&[Use::Other, Use::Commercial, Use::School, Use::Keep]),
+    );
     let perimeters: Vec<f64> = blocks
         .iter()
         .map(|b| {
@@ -166,6 +224,30 @@ pub fn metrics(region: &Polygon, streets: &[Street], blocks: &[geo::Polygon<f64>
         corner_deviation_mean: shapes.iter().map(|s| s.deviation_sum).sum::<f64>() / corners.max(1) as f64,
         area_ratio_mean: mean(&shapes.iter().map(|s| s.area_ratio).collect::<Vec<_>>()),
         undesirable: shapes.iter().filter(|s| s.undesirable()).count(),
+        template_parcels: parcels.iter().filter(|p| p.registration.is_some()).count(),
+        similarity_mean: mean_of(parcels.iter().filter_map(|p| p.registration)),
+        ideal_ratio_mean: mean_of(parcels.iter().filter_map(|p| {
+            let a = ring_area2(&p.polygon).abs() / 2.0;
+            p.ideal.filter(|&i| i > 0.0 && a > 0.0).map(|i| (a / i).max(i / a))
+        })),
+        histograms: histograms(parcels, &shapes),
+    }
+}
+
+fn mean_of(v: impl Iterator<Item = f64>) -> Option<f64> {
+    let (sum, n) = v.fold((0.0, 0usize), |(s, n), x| (s + x, n + 1));
+    (n > 0).then(|| sum / n as f64)
+}
+
+fn histograms(parcels: &[Parcel], shapes: &[ParcelShape]) -> Histograms {
+    let mut areas: Vec<f64> = parcels.iter().map(|p| ring_area2(&p.polygon).abs() / 2.0).collect();
+    areas.sort_by(f64::total_cmp);
+    let median = areas.get(areas.len() / 2).copied().unwrap_or(0.0);
+    let width = (2.0 * median / BINS as f64).max(1e-9);
+    Histograms {
+        area: Histogram::new(areas.iter().copied(), (width * 100.0).round().max(1.0) / 100.0, BINS),
+        corner_deviation: Histogram::new(shapes.iter().map(|s| s.deviation_sum / s.corners.max(1) as f64), 1.5, BINS),
+        registration: Histogram::new(parcels.iter().filter_map(|p| p.registration), 0.25, BINS),
     }
 }
 
@@ -197,11 +279,11 @@ mod tests {
         let region = Polygon::new(vec![[0.0, 0.0], [300.0, 0.0], [300.0, 300.0], [0.0, 300.0]], vec![]).unwrap();
         let ring = vec![[0.0, 0.0], [300.0, 0.0], [300.0, 300.0], [0.0, 300.0], [0.0, 0.0]];
         let streets = vec![
-            Street { polyline: ring, width: 15.0, level: 0 },
-            Street { polyline: vec![[150.0, 0.0], [150.0, 300.0]], width: 15.0, level: 1 },
-            Street { polyline: vec![[0.0, 150.0], [150.0, 150.0]], width: 15.0, level: 2 },
-            Street { polyline: vec![[150.0, 150.0], [300.0, 150.0]], width: 15.0, level: 2 },
-            Street { polyline: vec![[75.0, 150.0], [75.0, 100.0]], width: 15.0, level: 3 },
+            Street::new(ring, 15.0, 0),
+            Street::new(vec![[150.0, 0.0], [150.0, 300.0]], 15.0, 1),
+            Street::new(vec![[0.0, 150.0], [150.0, 150.0]], 15.0, 2),
+            Street::new(vec![[150.0, 150.0], [300.0, 150.0]], 15.0, 2),
+            Street::new(vec![[75.0, 150.0], [75.0, 100.0]], 15.0, 3),
         ];
         let b = blocks(&region, &streets);
         let parcels = parcellate(&b, &StreetIndex::new(&streets), 30.0, 18.0);

@@ -466,7 +466,7 @@ outer = [[0, 0], [200, 0], [200, 120], [0, 120]]
     fn fairs_a_wiggly_street_and_keeps_its_ends_on_the_boundary() {
         let region = square();
         let wiggle: Vec<P> = (0..=40).map(|i| [5.0 * i as f64, 60.0 + 3.0 * ((i as f64) * 1.3).sin()]).collect();
-        let streets = vec![Street { polyline: wiggle.clone(), width: 12.0, level: 1 }];
+        let streets = vec![Street::new(wiggle.clone(), 12.0, 1)];
         let out = optimise(&region, &streets, &OptimiseOptions::for_region(&region));
         let bend = |l: &[P]| l.windows(3).map(|w| norm(add(sub(w[0], w[1]), sub(w[2], w[1])))).sum::<f64>();
         let before = bend(&resample(&wiggle, 4.5));
@@ -483,8 +483,7 @@ outer = [[0, 0], [200, 0], [200, 120], [0, 120]]
         let main: Vec<P> = (0..=20).map(|i| [10.0 * i as f64, 60.0 + 2.0 * (i as f64).sin()]).collect();
         let at = main[8];
         let branch: Vec<P> = vec![at, [at[0] + 3.0, 90.0], [at[0], 120.0]];
-        let streets =
-            vec![Street { polyline: main, width: 12.0, level: 1 }, Street { polyline: branch, width: 10.0, level: 2 }];
+        let streets = vec![Street::new(main, 12.0, 1), Street::new(branch, 10.0, 2)];
         let out = optimise(&region, &streets, &OptimiseOptions::for_region(&region));
         let end = out[1].polyline[0];
         assert!(out[0].polyline.contains(&end), "junction {end:?} not on the main street");

@@ -108,13 +108,15 @@ pub fn parcellate(blocks: &[geo::Polygon<f64>], streets: &StreetIndex, depth: f6
             } else {
                 Use::Park
             };
-            out.push(Parcel { polygon: ring, use_, template: None });
+            out.push(Parcel::new(ring, use_));
         }
     }
     out
 }
 
-/// The outer ring of a geo polygon, counter-clockwise, not closed.
+/// The outer ring of a geo polygon, counter-clockwise, not closed, without spikes (a vertex
+/// where the ring turns back on itself along a zero-width sliver, as a boolean leaves where a
+/// cut ends exactly on an edge).
 pub fn ring_of(p: &geo::Polygon<f64>) -> Vec<P> {
     let mut r: Vec<P> = p.exterior().0.iter().map(|c| [c.x, c.y]).collect();
     if r.len() > 1 && r.first() == r.last() {
@@ -122,6 +124,31 @@ pub fn ring_of(p: &geo::Polygon<f64>) -> Vec<P> {
     }
     if crate::geometry::ring_area2(&r) < 0.0 {
         r.reverse();
+    }
+    without_spikes(r)
+}
+
+/// Spikes narrower than this (metres) are removed from rings.
+const SPIKE_WIDTH: f64 = 0.05;
+
+/// A ring with its spikes removed: vertices whose two edges run back along each other (their
+/// triangle's height over its longest side under [`SPIKE_WIDTH`], the neighbours on the same
+/// side of it).
+pub fn without_spikes(mut r: Vec<P>) -> Vec<P> {
+    use crate::geometry::{cross, dist, dot, sub};
+    let mut i = 0;
+    while r.len() > 3 && i < r.len() {
+        let n = r.len();
+        let (a, b, c) = (r[(i + n - 1) % n], r[i], r[(i + 1) % n]);
+        let (u, v) = (sub(a, b), sub(c, b));
+        let base = dist(a, c).max(dist(a, b)).max(dist(b, c));
+        let spike = dot(u, v) > 0.0 && cross(u, v).abs() <= SPIKE_WIDTH * base;
+        if spike || dist(a, b) < 1e-9 {
+            r.remove(i);
+            i = i.saturating_sub(1);
+        } else {
+            i += 1;
+        }
     }
     r
 }
@@ -201,7 +228,7 @@ mod tests {
     use super::*;
 
     fn street(pts: &[P], level: usize) -> Street {
-        Street { polyline: pts.to_vec(), width: 15.0, level }
+        Street::new(pts.to_vec(), 15.0, level)
     }
 
     #[test]
@@ -218,6 +245,18 @@ mod tests {
         assert!(parcels.iter().all(|p| p.use_ == Use::Residential));
         let total: f64 = parcels.iter().map(|p| crate::geometry::ring_area2(&p.polygon) / 2.0).sum();
         assert!((total - 225.0 * 60.0).abs() < 1e-3, "{total}");
+    }
+
+    #[test]
+    fn spikes_are_removed_from_rings() {
+        let r = without_spikes(vec![[0.0, 0.0], [15.0, 0.0], [15.0, 22.0], [15.0, 30.0], [15.0, 23.0], [0.0, 23.0]]);
+        assert_eq!(r, vec![[0.0, 0.0], [15.0, 0.0], [15.0, 22.0], [15.0, 23.0], [0.0, 23.0]]);
+        // A boolean's spike is off by a few millimetres; a real sharp corner is kept.
+        let r =
+            without_spikes(vec![[455.252, 30.23], [455.25, 37.729], [455.254, 7.5], [470.162, 7.5], [470.16, 30.234]]);
+        assert_eq!(r.len(), 4, "{r:?}");
+        let wedge = vec![[0.0, 0.0], [30.0, 0.0], [0.0, 5.0]];
+        assert_eq!(without_spikes(wedge.clone()), wedge);
     }
 
     #[test]

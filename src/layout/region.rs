@@ -2,7 +2,9 @@
 //! major roads) with the street widths, the parcel size and a seed, from TOML (local metres) or
 //! GeoJSON (WGS 84, projected to local metres by [`crate::geometry::site`]).
 
+use super::settings::{self, BlockSize, BlockToml, Fit, FitToml, Weights};
 use super::template::{library, Template, TemplateError};
+use super::zone::{self, Zone, ZoneProblem};
 use crate::geometry::polygon::{Polygon, PolygonError, Ring};
 use crate::geometry::site::{self, Projection, SiteError};
 use crate::geometry::P;
@@ -73,10 +75,28 @@ struct RegionToml {
     origin: Option<[f64; 2]>,
     #[serde(default)]
     templates: Option<TemplatesToml>,
+    #[serde(default)]
+    block: BlockToml,
+    #[serde(default)]
+    fit: FitToml,
+    #[serde(default)]
+    weights: Weights,
+    #[serde(default)]
+    zone: Vec<ZoneToml>,
 }
 
-/// `[templates]`: a directory of the user's template files (relative to the region file), and
-/// whether the built-in ones are used.
+/// `[[zone]]`: land marked for a use.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ZoneToml {
+    polygon: Vec<[f64; 2]>,
+    #[serde(rename = "use")]
+    use_: String,
+}
+
+/// `[templates]`: a directory of the user's template files (relative to the region file),
+/// whether the built-in ones are used, and whether a part is matched against them before it is
+/// cut (`first`, the paper's control loop) or only once it is small enough for a block.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct TemplatesToml {
@@ -84,6 +104,23 @@ struct TemplatesToml {
     dir: Option<PathBuf>,
     #[serde(default = "yes")]
     builtin: bool,
+    #[serde(default = "yes")]
+    first: bool,
+    #[serde(default)]
+    counts: std::collections::BTreeMap<String, CountToml>,
+}
+
+/// `[templates.counts] NAME = { min, max, probability }`: a template's counts and probability for
+/// this region, over its file's.
+#[derive(Clone, Copy, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct CountToml {
+    #[serde(default)]
+    min: Option<usize>,
+    #[serde(default)]
+    max: Option<usize>,
+    #[serde(default)]
+    probability: Option<f64>,
 }
 
 fn yes() -> bool {
@@ -112,6 +149,17 @@ pub struct Region {
     pub projection: Option<Projection>,
     /// The block templates: the built-in library, with a TOML region's `[templates] dir` added.
     pub templates: Vec<Template>,
+    /// Whether every part is matched against the templates before it is cut (the paper's
+    /// control loop) rather than only once it passes the fit test.
+    pub templates_first: bool,
+    /// The block size.
+    pub block: BlockSize,
+    /// The fit thresholds.
+    pub fit: Fit,
+    /// The weights of the streamline scores.
+    pub weights: Weights,
+    /// Zones: land marked for a use, laid out around.
+    pub zones: Vec<Zone>,
 }
 
 impl Region {
@@ -119,16 +167,23 @@ impl Region {
     /// 30 × 18 m parcels, seed 0, the built-in templates — for a site given by another command
     /// (a city's domain).
     pub fn with_defaults(name: &str, polygon: Polygon, roads: Vec<Vec<P>>) -> Region {
+        let parcel = ParcelSize::default();
+        let street_widths = default_widths();
         Region {
             name: name.to_string(),
             polygon,
             roads,
-            street_widths: default_widths(),
+            block: BlockToml::default().resolve(parcel.depth, parcel.width, street_widths[0]),
+            street_widths,
             boundary: Boundary::Street,
-            parcel: ParcelSize::default(),
+            parcel,
             seed: 0,
             projection: None,
             templates: super::template::file::builtin(),
+            templates_first: true,
+            fit: FitToml::default().resolve(),
+            weights: Weights::default(),
+            zones: Vec::new(),
         }
     }
 
@@ -173,6 +228,16 @@ pub enum RegionError {
         path: PathBuf,
         /// Why.
         source: SiteError,
+    },
+    /// A zone was refused.
+    #[error("{path}: {zone}: {problem}")]
+    Zone {
+        /// The file.
+        path: PathBuf,
+        /// The zone (`zone[i]`, or `features[i]` in GeoJSON).
+        zone: String,
+        /// Why.
+        problem: ZoneProblem,
     },
     /// An invalid polygon.
     #[error("{path}: {field}: {source}")]
@@ -243,29 +308,45 @@ pub fn region_from_toml(text: &str, path: &Path, stem: &str) -> Result<Region, R
         };
         RegionError::Polygon { path: path.into(), field, source }
     })?;
+    let zone_err = |(zone, problem)| RegionError::Zone { path: path.into(), zone, problem };
+    let zones = t
+        .zone
+        .iter()
+        .enumerate()
+        .map(|(i, z)| Zone::new(format!("zone[{i}]"), z.polygon.clone(), &z.use_))
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(zone_err)?;
+    zone::check(&polygon, &zones).map_err(zone_err)?;
     let mut roads = Vec::new();
     for (i, r) in t.roads.iter().enumerate() {
         let pieces = site::clip_road(&polygon, r, &format!("roads[{i}]"))
             .map_err(|source| RegionError::Site { path: path.into(), source })?;
         roads.extend(pieces);
     }
-    let (dir, builtin) = match t.templates {
-        Some(d) => (d.dir.map(|d| path.parent().unwrap_or(Path::new("")).join(d)), d.builtin),
-        None => (None, true),
+    let (dir, builtin, first, counts) = match t.templates {
+        Some(d) => (d.dir.map(|d| path.parent().unwrap_or(Path::new("")).join(d)), d.builtin, d.first, d.counts),
+        None => (None, true, true, Default::default()),
     };
-    let templates = library(dir.as_deref(), builtin)?;
+    let street = t.street_widths.get(1).or(t.street_widths.last()).copied().unwrap_or(15.0);
+    let mut templates = library(dir.as_deref(), builtin)?;
+    set_counts(&mut templates, &counts, path)?;
     let projection =
         t.origin.map(Projection::new).transpose().map_err(|source| RegionError::Site { path: path.into(), source })?;
     let region = Region {
         name: t.name.unwrap_or_else(|| stem.to_string()),
         polygon,
         roads,
+        block: t.block.resolve(t.parcel.depth, t.parcel.width, street),
         street_widths: t.street_widths,
         boundary: t.boundary,
         parcel: t.parcel,
         seed: t.seed,
         projection,
         templates,
+        templates_first: first,
+        fit: t.fit.resolve(),
+        weights: t.weights,
+        zones,
     };
     check(region, path)
 }
@@ -300,21 +381,72 @@ pub fn region_from_geojson(text: &str, path: &Path, stem: &str) -> Result<Region
         None => default_widths(),
         Some(v) => serde_json::from_value(v.clone()).map_err(|_| bad("street_widths", v, "a list of numbers"))?,
     };
+    let opt = |key: &str| -> Result<Option<f64>, RegionError> {
+        p.get(key).map(|v| v.as_f64().ok_or_else(|| bad(key, v, "a number"))).transpose()
+    };
+    let templates_first = match p.get("templates_first") {
+        None => true,
+        Some(v) => v.as_bool().ok_or_else(|| bad("templates_first", v, "true or false"))?,
+    };
+    let parcel =
+        ParcelSize { depth: num("parcel_depth", default_depth())?, width: num("parcel_width", default_width())? };
+    let street = street_widths.get(1).or(street_widths.last()).copied().unwrap_or(15.0);
+    let block = BlockToml { width: opt("block_width")?, max_length: opt("block_length")? };
+    let fit = FitToml { threshold: opt("fit_threshold")?, ..FitToml::default() };
+    let zone_err = |(zone, problem)| RegionError::Zone { path: path.into(), zone, problem };
+    let zones = s
+        .zones
+        .iter()
+        .map(|z| Zone::new(format!("features[{}]", z.feature), z.ring.clone(), &z.use_))
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(zone_err)?;
+    zone::check(&s.polygon, &zones).map_err(zone_err)?;
     let region = Region {
         name: p.get("name").and_then(|v| v.as_str()).map_or_else(|| stem.to_string(), str::to_string),
         polygon: s.polygon,
         roads: s.roads,
+        block: block.resolve(parcel.depth, parcel.width, street),
         street_widths,
         boundary,
-        parcel: ParcelSize {
-            depth: num("parcel_depth", default_depth())?,
-            width: num("parcel_width", default_width())?,
-        },
+        parcel,
         seed,
         projection: Some(s.projection),
         templates: super::template::file::builtin(),
+        templates_first,
+        fit: fit.resolve(),
+        weights: Weights::default(),
+        zones,
     };
     check(region, path)
+}
+
+/// Applies `[templates.counts]` to the library; refuses an unknown name, a minimum above the
+/// maximum and a probability that is not positive, naming the field.
+fn set_counts(
+    templates: &mut [Template],
+    counts: &std::collections::BTreeMap<String, CountToml>,
+    path: &Path,
+) -> Result<(), RegionError> {
+    for (name, c) in counts {
+        let field = format!("templates.counts.{name}");
+        let bad =
+            |field: String, value: String, expected| RegionError::Value { path: path.into(), field, value, expected };
+        let Some(t) = templates.iter_mut().find(|t| &t.name == name) else {
+            return Err(bad(field, name.clone(), "the name of a template of the library"));
+        };
+        t.min_uses = c.min.unwrap_or(t.min_uses);
+        t.max_uses = c.max.or(t.max_uses);
+        if let Some(max) = t.max_uses.filter(|&m| m < t.min_uses) {
+            return Err(bad(format!("{field}.min"), format!("{} (max {max})", t.min_uses), "at most the maximum"));
+        }
+        if let Some(p) = c.probability {
+            if !(p.is_finite() && p > 0.0) {
+                return Err(bad(format!("{field}.probability"), p.to_string(), "a positive number"));
+            }
+            t.probability = p;
+        }
+    }
+    Ok(())
 }
 
 fn ring_of(e: &PolygonError) -> Option<Ring> {
@@ -353,6 +485,17 @@ fn check(region: Region, path: &Path) -> Result<Region, RegionError> {
     }
     for (i, &w) in region.street_widths.iter().enumerate() {
         positive(&format!("street_widths[{i}]"), w)?;
+    }
+    for (field, v) in settings::positive_fields(&region.block, &region.fit) {
+        positive(field, v)?;
+    }
+    if let Some((field, v)) = settings::check_weights(&region.weights) {
+        return Err(RegionError::Value {
+            path: path.into(),
+            field: field.into(),
+            value: v.to_string(),
+            expected: "weights of at least 0, one of them positive",
+        });
     }
     let parcels = region.parcel_estimate();
     if parcels > MAX_PARCELS {
@@ -401,5 +544,58 @@ mod tests {
         assert!(matches!(e, RegionError::TooLarge { .. }) && e.to_string().contains("10000.0 km²"), "{e}");
         let e = toml("outer = [[0, 0], [4, 0], [4, 3], [0, 3]]\nstreet_widths = []\n").unwrap_err();
         assert!(e.to_string().contains("street_widths"), "{e}");
+    }
+
+    #[test]
+    fn block_size_fit_and_weights_are_settings() {
+        let square = "outer = [[0, 0], [400, 0], [400, 300], [0, 300]]\nstreet_widths = [20, 12]\n";
+        let r = toml(square).unwrap();
+        // Defaults: a double-loaded block between first-split streets, 14 parcels long.
+        assert_eq!((r.block.width, r.block.max_length), (72.0, 252.0));
+        assert_eq!((r.fit.threshold, r.fit.max_width, r.fit.min_parcels), (0.02, 1.35, 4.0));
+        assert!(r.templates_first && r.weights.as_array() == [1.0; 4]);
+        let set = format!(
+            "{square}[block]\nwidth = 80\nmax_length = 400\n[fit]\nthreshold = 0.01\n[weights]\ncontinuity = 2\n[templates]\nfirst = false\n"
+        );
+        let r = toml(&set).unwrap();
+        assert_eq!((r.block.width, r.block.max_length, r.fit.threshold), (80.0, 400.0, 0.01));
+        assert_eq!((r.weights.continuity, r.weights.divergence, r.templates_first), (2.0, 1.0, false));
+        let e = toml(&format!("{square}[block]\nwidth = -1\n")).unwrap_err();
+        assert!(e.to_string().contains("block.width = -1"), "{e}");
+        let e = toml(&format!("{square}[fit]\nslack = 1\n")).unwrap_err();
+        assert!(e.to_string().contains("slack"), "{e}");
+        let zero = "[weights]\ndivergence = 0\nboundary = 0\nsingularities = 0\ncontinuity = 0\n";
+        let e = toml(&format!("{square}{zero}")).unwrap_err();
+        assert!(e.to_string().contains("weights"), "{e}");
+    }
+
+    #[test]
+    fn zones_are_read_and_refused_with_the_file_and_zone_named() {
+        let square = "outer = [[0, 0], [400, 0], [400, 300], [0, 300]]\n";
+        let park = "[[zone]]\npolygon = [[100, 100], [200, 100], [200, 200], [100, 200]]\nuse = \"park\"\n";
+        let r = toml(&format!("{square}{park}")).unwrap();
+        assert_eq!((r.zones.len(), r.zones[0].use_), (1, zone::ZoneUse::Park));
+        let mall = park.replace("park", "mall");
+        let e = toml(&format!("{square}{park}{mall}")).unwrap_err().to_string();
+        assert_eq!(e, "r.toml: zone[1]: use = \"mall\" is not park, school, commercial or keep");
+        let over = park.replace("[100, 100], [200, 100]", "[150, 150], [250, 150]");
+        let e = toml(&format!("{square}{park}{over}")).unwrap_err().to_string();
+        assert_eq!(e, "r.toml: zone[1]: overlaps zone[0]");
+        let out = park.replace("[200, 100], [200, 200]", "[500, 100], [500, 200]");
+        let e = toml(&format!("{square}{out}")).unwrap_err().to_string();
+        assert!(e.starts_with("r.toml: zone[0]: crosses the region's outline"), "{e}");
+    }
+
+    #[test]
+    fn template_counts_are_set_per_region() {
+        let square = "outer = [[0, 0], [400, 0], [400, 300], [0, 300]]\n";
+        let r = toml(&format!("{square}[templates.counts]\ntownhouses = {{ min = 2, max = 5, probability = 0.5 }}\n"))
+            .unwrap();
+        let t = r.templates.iter().find(|t| t.name == "townhouses").unwrap();
+        assert_eq!((t.min_uses, t.max_uses, t.probability), (2, Some(5), 0.5));
+        let e = toml(&format!("{square}[templates.counts]\nvillas = {{ min = 1 }}\n")).unwrap_err();
+        assert!(e.to_string().contains("templates.counts.villas"), "{e}");
+        let e = toml(&format!("{square}[templates.counts]\nspike = {{ min = 9 }}\n")).unwrap_err();
+        assert!(e.to_string().contains("templates.counts.spike.min = 9 (max 6)"), "{e}");
     }
 }

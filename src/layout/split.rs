@@ -1,16 +1,17 @@
-//! The hierarchical control loop (Yang et al. 2013 §3, §5): a region is cut along the given major
-//! roads, then each part, while it is too large for a block, along its best streamline; the
-//! field is recomputed for every part. Parts that fit a block (or that no streamline splits) are
-//! the blocks' regions, parcelled afterwards.
+//! Streamline-based splitting (Yang et al. 2013 §5): a part's cross field, its streamline
+//! candidates, their scores and the cut along the chosen one; the region's first cut along its
+//! major roads; the fit test a part no template matches is settled by. The control loop that
+//! calls them is [`super::tree`].
 //!
 //! **Scores** (§5, "Quality Score"): four costs per candidate, each min–max normalised over the
-//! candidates to `ĉ ∈ [0, 1]`, combined as `qual = Σ λ_k (1 − ĉ_k)` with every `λ = 1`:
+//! candidates to `ĉ ∈ [0, 1]`, combined as `qual = Σ λ_k (1 − ĉ_k)` with the region's weights
+//! (`[weights]`, the paper's all 1):
 //! * divergence: `∫|∇·f| ds / length^p` with `p = 1.1` (a cost; the paper's `p = 0.9` on the
 //!   signed integral would favour short streamlines for a cost, so `p > 1` keeps its intent);
 //! * distance to the boundary: along the streamline, the distances to the boundary on both sides
-//!   along its normal, each compared with the nearest sum of block widths (a double-loaded block
-//!   `2·depth + street`; where the boundary is not a street, also a single row
-//!   `depth + street/2`), the misfit over the narrowest width,
+//!   along its normal, each compared with the nearest sum of block widths (a double-loaded block,
+//!   `[block] width`, by default `2·depth + street`; where the boundary is not a street, also a
+//!   single row, half that), the misfit over the narrowest width,
 //!   capped at 1, averaged;
 //! * distance to singularities: the smallest distance from the streamline to a singularity
 //!   (near is good: cutting there removes singularities from the parts);
@@ -66,11 +67,20 @@ pub struct SplitOptions {
     /// Parts longer than this (their minimum rotated rectangle's long side, metres) are split
     /// even when narrow enough for a block.
     pub max_block_length: f64,
+    /// Centreline to centreline across a double-loaded block (metres).
+    pub block_width: f64,
+    /// A part is narrow enough for a block up to this many block widths (inscribed width).
+    pub max_width: f64,
+    /// Parts smaller than this many parcels are not cut.
+    pub min_parcels: f64,
+    /// The weights λ of the four scores (divergence, boundary, singularities, continuity).
+    pub weights: [f64; 4],
 }
 
 impl SplitOptions {
     /// The paper's settings for a region: `dε = 0.3 × depth`, triangles of about a third of the
-    /// parcel depth, a step of a quarter of `dε`, blocks at most 14 parcels long.
+    /// parcel depth, a step of a quarter of `dε`; the block size, fit thresholds and score
+    /// weights from the region.
     pub fn for_region(region: &Region, field: FieldMethod, selection: Selection) -> SplitOptions {
         let d = region.parcel.depth;
         let [lo, hi] = region.polygon.bounds();
@@ -85,12 +95,16 @@ impl SplitOptions {
                 max_length: 3.0 * diameter,
             },
             selection,
-            max_block_length: 14.0 * region.parcel.width,
+            max_block_length: region.block.max_length,
+            block_width: region.block.width,
+            max_width: region.fit.max_width,
+            min_parcels: region.fit.min_parcels,
+            weights: region.weights.as_array(),
         }
     }
 }
 
-/// The result of the control loop.
+/// The result of the control loop without templates.
 #[derive(Clone, Debug)]
 pub struct Split {
     /// The parts left when nothing more is cut, in the order they were settled.
@@ -111,7 +125,8 @@ pub enum SplitError {
     Field(#[from] FieldError),
 }
 
-/// Runs the control loop on a region.
+/// Runs the control loop on a region without templates: every part is cut until it passes the
+/// fit test ([`fits_block`]) or no streamline cuts it.
 pub fn split(region: &Region, opts: &SplitOptions, rng: &mut Xoshiro256PlusPlus) -> Result<Split, SplitError> {
     split_with_progress(region, opts, rng, &mut |_| {})
 }
@@ -124,51 +139,72 @@ pub fn split_with_progress(
     rng: &mut Xoshiro256PlusPlus,
     progress: &mut dyn FnMut(f64),
 ) -> Result<Split, SplitError> {
-    let total_area = region.polygon.area();
-    let mut settled = 0.0;
-    let (mut work, mut streets) = major_roads(region);
-    let mut ends: Vec<(P, P)> = streets.iter().flat_map(|s| street_ends(&s.polyline)).collect();
-    let (mut parts, mut total, mut cuts) = (Vec::new(), 0, 0);
-    while let Some((poly, level)) = work.pop() {
-        if fits_block(&poly, region, opts) {
-            settled += poly.area();
-            progress(settled / total_area);
-            parts.push(poly);
-            continue;
-        }
-        // Triangles scale with the part (about 40 across), never finer than `opts.h`.
-        let h = opts.h.max(poly.area().sqrt() / 40.0);
-        // The chosen field first; where none of its streamlines cuts the part (a disc's distance
-        // field is all circles and radii), the other construction.
-        let mut scored = Vec::new();
-        for method in [opts.field, other(opts.field)] {
-            let field = CrossField::new(&poly, &FieldOptions { method, h })?;
-            let cands = candidates(&field, &poly, &opts.trace, rng);
-            total += cands.len();
-            scored = score(&field, &poly, region, &cands, &ends);
-            if !scored.is_empty() {
-                break;
-            }
-        }
-        match choose(&scored, opts.selection, rng) {
-            Some(i) => {
-                let (c, (a, b)) = (&scored[i].0, scored[i].2.clone());
-                let line = simplify(&c.points, 0.05);
-                ends.extend(street_ends(&line));
-                streets.push(Street { polyline: line, width: region.street_width(level + 1), level: level + 1 });
-                cuts += 1;
-                // Right part first on the stack, so the left one is settled first.
-                work.push((b, level + 1));
-                work.push((a, level + 1));
-            }
-            None => {
-                settled += poly.area();
-                progress(settled / total_area);
-                parts.push(poly);
-            }
+    let g = super::tree::grow(region, opts, None, rng, progress)?;
+    let parts = g.leaves.iter().map(|l| g.nodes[l.node].polygon.clone()).collect();
+    Ok(Split { parts, streets: g.streets, candidates: g.candidates, cuts: g.cuts })
+}
+
+/// One candidate's scores, each `1 − ĉ` (1 best), and their weighted sum (its quality).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct CandidateScore {
+    /// Divergence.
+    pub divergence: f64,
+    /// Fit of the distances to the boundary.
+    pub boundary: f64,
+    /// Nearness to a singularity.
+    pub singularities: f64,
+    /// Continuity with earlier street ends.
+    pub continuity: f64,
+    /// `Σ λ_k (1 − ĉ_k)`.
+    pub quality: f64,
+}
+
+/// A part's cut: the chosen streamline (simplified), its quality, the two parts, and every
+/// candidate that cut the part with its scores (the chosen one at `chosen`).
+#[derive(Clone, Debug)]
+pub struct Cut {
+    /// The streamline, the new street's centreline.
+    pub line: Vec<P>,
+    /// Its quality.
+    pub quality: f64,
+    /// The part on its left, then the one on its right.
+    pub parts: (Polygon, Polygon),
+    /// The scores of every candidate that cut the part.
+    pub scores: Vec<CandidateScore>,
+    /// The chosen candidate's index in `scores`.
+    pub chosen: usize,
+    /// The candidates that cut the part, with their qualities and parts.
+    pub scored: Vec<Scored>,
+}
+
+/// The cut of a part along its chosen streamline (the chosen field first; where none of its
+/// streamlines cuts the part — a disc's distance field is all circles and radii — the other
+/// construction), with the number of candidates traced; `None` when no candidate cuts it.
+pub fn cut_part(
+    poly: &Polygon,
+    region: &Region,
+    opts: &SplitOptions,
+    ends: &[(P, P)],
+    rng: &mut Xoshiro256PlusPlus,
+) -> Result<(Option<Cut>, usize), SplitError> {
+    // Triangles scale with the part (about 40 across), never finer than `opts.h`.
+    let h = opts.h.max(poly.area().sqrt() / 40.0);
+    let mut scored = Vec::new();
+    let mut scores = Vec::new();
+    let mut traced = 0;
+    for method in [opts.field, other(opts.field)] {
+        let field = CrossField::new(poly, &FieldOptions { method, h })?;
+        let cands = candidates(&field, poly, &opts.trace, rng);
+        traced += cands.len();
+        (scored, scores) = score(&field, poly, region, opts, &cands, ends);
+        if !scored.is_empty() {
+            break;
         }
     }
-    Ok(Split { parts, streets, candidates: total, cuts })
+    let Some(i) = choose(&scored, opts.selection, rng) else { return Ok((None, traced)) };
+    let (c, quality, parts) = (&scored[i].0, scored[i].1, scored[i].2.clone());
+    let line = simplify(&c.points, 0.05);
+    Ok((Some(Cut { line, quality, parts, scores, chosen: i, scored }), traced))
 }
 
 fn other(m: FieldMethod) -> FieldMethod {
@@ -178,33 +214,39 @@ fn other(m: FieldMethod) -> FieldMethod {
     }
 }
 
-/// The region cut along its major roads (each split at its crossings with earlier ones); roads
-/// that split nothing stay as streets. Returns the parts to work on (with level 0) and the level-0
-/// streets, the boundary street first when the boundary is one.
-fn major_roads(region: &Region) -> (Vec<(Polygon, usize)>, Vec<Street>) {
+/// The region's first parts: the region less its zones, cut along its major roads (each split at
+/// its crossings with earlier ones; the pieces inside zones left out), then the zones, each with
+/// its use as its label. Returns the parts in the order they are worked on, and the level-0
+/// streets: the boundary street first when the boundary is one, the streets along zones, the
+/// major roads.
+pub fn initial_parts(region: &Region) -> (Vec<(Polygon, String)>, Vec<Street>) {
     let w = region.street_width(0);
     let mut streets = Vec::new();
     if region.boundary == super::region::Boundary::Street {
         for ring in region.polygon.rings().take(1) {
             let mut closed = ring.to_vec();
             closed.push(ring[0]);
-            streets.push(Street { polyline: closed, width: w, level: 0 });
+            streets.push(Street::new(closed, w, 0));
         }
     }
-    let mut parts = vec![region.polygon.clone()];
+    streets.extend(super::zone::streets(&region.polygon, &region.zones, w));
+    let mut parts = super::zone::carve(&region.polygon, &region.zones);
     let mut placed: Vec<Vec<P>> = Vec::new();
-    for road in &region.roads {
-        for piece in split_at_crossings(road, &placed) {
+    for road in super::zone::clip_roads(&region.roads, &region.zones) {
+        for piece in split_at_crossings(&road, &placed) {
             if let Some(k) = parts.iter().position(|p| p.contains(midpoint(&piece))) {
                 if let Some((a, b)) = parts[k].cut(&piece, 1e-4) {
                     parts.splice(k..=k, [a, b]);
                 }
             }
         }
-        placed.push(road.clone());
-        streets.push(Street { polyline: road.clone(), width: w, level: 0 });
+        streets.push(Street::new(road.clone(), w, 0));
+        placed.push(road);
     }
-    (parts.into_iter().rev().map(|p| (p, 0)).collect(), streets)
+    let block = super::tree::BLOCK.to_string();
+    let mut out: Vec<(Polygon, String)> = parts.into_iter().map(|p| (p, block.clone())).collect();
+    out.extend(region.zones.iter().map(|z| (z.polygon(), z.use_.label().to_string())));
+    (out, streets)
 }
 
 fn midpoint(line: &[P]) -> P {
@@ -236,21 +278,21 @@ fn split_at_crossings(road: &[P], others: &[Vec<P>]) -> Vec<Vec<P>> {
     pieces
 }
 
-/// Whether a part is a block: narrow enough for two rows of parcels back to back (its inscribed
-/// width at most 1.35 block widths, so that a cut would leave parts narrower than a block) and not longer than the longest block, or smaller than four
-/// parcels.
-fn fits_block(poly: &Polygon, region: &Region, opts: &SplitOptions) -> bool {
+/// Whether a part is a block by the fit test: narrow enough for two rows of parcels back to back
+/// (its inscribed width at most `max_width` block widths, so that a cut would leave parts narrower
+/// than a block) and not longer than the longest block, or smaller than `min_parcels` parcels.
+pub fn fits_block(poly: &Polygon, region: &Region, opts: &SplitOptions) -> bool {
     let parcel = region.parcel.depth * region.parcel.width;
-    if poly.area() < 4.0 * parcel {
+    if poly.area() < opts.min_parcels * parcel {
         return true;
     }
-    let block = 2.0 * region.parcel.depth + region.street_width(1);
     let long = poly.to_geo().minimum_rotated_rect().map_or(f64::INFINITY, |r| {
         let c = &r.exterior().0;
         let (a, b) = (dist([c[0].x, c[0].y], [c[1].x, c[1].y]), dist([c[1].x, c[1].y], [c[2].x, c[2].y]));
         a.max(b)
     });
-    inscribed_width(poly, region.parcel.depth / 3.0) <= 1.35 * block && long <= opts.max_block_length
+    inscribed_width(poly, region.parcel.depth / 3.0) <= opts.max_width * opts.block_width
+        && long <= opts.max_block_length
 }
 
 /// Twice the largest distance from an inside point to the boundary, sampled on a grid of `step`
@@ -274,7 +316,7 @@ pub fn inscribed_width(poly: &Polygon, step: f64) -> f64 {
 }
 
 /// A street's ends with their outward directions.
-fn street_ends(line: &[P]) -> Vec<(P, P)> {
+pub fn street_ends(line: &[P]) -> Vec<(P, P)> {
     if line.len() < 2 || line.first() == line.last() {
         return Vec::new();
     }
@@ -284,7 +326,7 @@ fn street_ends(line: &[P]) -> Vec<(P, P)> {
 }
 
 /// Douglas–Peucker simplification of an open polyline (ends kept).
-fn simplify(line: &[P], tol: f64) -> Vec<P> {
+pub fn simplify(line: &[P], tol: f64) -> Vec<P> {
     use geo::Simplify;
     let ls = geo::LineString::from(line.iter().map(|p| (p[0], p[1])).collect::<Vec<_>>());
     ls.simplify(tol).0.iter().map(|c| [c.x, c.y]).collect()
@@ -293,14 +335,22 @@ fn simplify(line: &[P], tol: f64) -> Vec<P> {
 /// A candidate that cuts the part, its quality, and the two parts.
 pub type Scored = (Candidate, f64, (Polygon, Polygon));
 
-/// Scores the candidates that cut the part into two pieces at least a parcel deep.
-fn score(field: &CrossField, poly: &Polygon, region: &Region, cands: &[Candidate], ends: &[(P, P)]) -> Vec<Scored> {
+/// Scores the candidates that cut the part into two pieces at least a parcel deep: the scored
+/// candidates and their scores, in the same order.
+fn score(
+    field: &CrossField,
+    poly: &Polygon,
+    region: &Region,
+    opts: &SplitOptions,
+    cands: &[Candidate],
+    ends: &[(P, P)],
+) -> (Vec<Scored>, Vec<CandidateScore>) {
     let depth = region.parcel.depth;
     // Between two streets a block is double-loaded; a single row backs onto a boundary without
     // a street.
-    let mut widths = vec![2.0 * depth + region.street_width(1)];
+    let mut widths = vec![opts.block_width];
     if region.boundary == super::region::Boundary::None {
-        widths.push(depth + region.street_width(1) / 2.0);
+        widths.push(opts.block_width / 2.0);
     }
     let boundary = BoundaryIndex::new(poly);
     let [lo, hi] = poly.bounds();
@@ -333,15 +383,18 @@ fn score(field: &CrossField, poly: &Polygon, region: &Region, cands: &[Candidate
     }
     rows.into_iter()
         .map(|(costs, c, parts)| {
-            let q: f64 = (0..4)
+            let g: Vec<f64> = (0..4)
                 .map(|k| {
                     let span = lo_hi[k][1] - lo_hi[k][0];
                     1.0 - if span > 0.0 { (costs[k] - lo_hi[k][0]) / span } else { 0.0 }
                 })
-                .sum();
-            (c, q, parts)
+                .collect();
+            let q: f64 = (0..4).map(|k| opts.weights[k] * g[k]).sum();
+            let s =
+                CandidateScore { divergence: g[0], boundary: g[1], singularities: g[2], continuity: g[3], quality: q };
+            ((c, q, parts), s)
         })
-        .collect()
+        .unzip()
 }
 
 /// The mean misfit of the distances to the boundary on both sides with sums of block widths,

@@ -165,12 +165,8 @@ mod tests {
         )
         .unwrap();
         let streets = vec![
-            Street {
-                polyline: vec![[0.0, 0.0], [300.0, 0.0], [300.0, 150.0], [0.0, 150.0], [0.0, 0.0]],
-                width: 15.0,
-                level: 0,
-            },
-            Street { polyline: vec![[150.0, 0.0], [150.0, 150.0]], width: 15.0, level: 1 },
+            Street::new(vec![[0.0, 0.0], [300.0, 0.0], [300.0, 150.0], [0.0, 150.0], [0.0, 0.0]], 15.0, 0),
+            Street::new(vec![[150.0, 0.0], [150.0, 150.0]], 15.0, 1),
         ];
         let parcels = parcellate(&blocks(&region, &streets), &StreetIndex::new(&streets), 30.0, 18.0);
         (region, streets, parcels)
@@ -197,7 +193,7 @@ mod tests {
         streets.truncate(0);
         parcels.truncate(park + 1);
         assert!(validate(&region, &streets, &parcels).iter().any(|v| matches!(v, Violation::NoStreet { .. })));
-        let into_hole = Street { polyline: vec![[220.0, 50.0], [220.0, 115.0]], width: 15.0, level: 2 };
+        let into_hole = Street::new(vec![[220.0, 50.0], [220.0, 115.0]], 15.0, 2);
         assert!(validate(&region, &[into_hole], &[]).contains(&Violation::StreetInHole { street: 0, hole: 0 }));
     }
 }

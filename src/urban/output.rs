@@ -114,7 +114,7 @@ fn polyline_length(points: &[[f64; 2]]) -> f64 {
 
 /// The layout metrics of a city's streets (see [`CityResult::layout_metrics`]): the domain and the
 /// streets in metres, the major roads and the domain boundary as level-0 streets, parcels from
-/// the built-in templates and the row parceller (as `netspec layout` makes them).
+/// the built-in templates block by block and the row parceller where none is accepted.
 pub fn layout_metrics(
     spec: &CitySpec,
     major: &[[[f64; 2]; 2]],
@@ -130,12 +130,13 @@ pub fn layout_metrics(
     let width = region.street_width(0);
     let mut all: Vec<Street> = major
         .iter()
-        .map(|g| Street { polyline: scale(g), width, level: 0 })
-        .chain(streets.iter().filter(|s| s.points.len() >= 2).map(|s| Street {
-            polyline: scale(&s.points),
-            width,
-            level: s.level as usize,
-        }))
+        .map(|g| Street::new(scale(g), width, 0))
+        .chain(
+            streets
+                .iter()
+                .filter(|s| s.points.len() >= 2)
+                .map(|s| Street::new(scale(&s.points), width, s.level as usize)),
+        )
         .collect();
     let blocks = parcels::blocks(&region.polygon, &all);
     let mut rng = <rand::rngs::Xoshiro256PlusPlus as rand::SeedableRng>::seed_from_u64(region.seed);

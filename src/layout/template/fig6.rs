@@ -44,7 +44,7 @@ pub fn fig6(region: &Region, library: &[Template]) -> Result<Fig6, SplitError> {
     let (mut matched, mut faces, mut mvc, mut full) = (0, 0, 0.0, 0.0);
     for b in bl.iter().filter(|b| b.interiors().is_empty()) {
         let block = Block::new(ring_of(b), &index, region.parcel.depth / 3.0);
-        let warped = candidates(&block, &mut instances, ROUNDS);
+        let warped = candidates(&block, &mut instances, ROUNDS, region.block.max_length, "block");
         let Some(best) = warped.iter().min_by(|a, b| a.warp.energy.total_cmp(&b.warp.energy)) else { continue };
         // The same template, units and corner match, initialised only.
         let corners: Vec<f64> = best.instance.corners.iter().map(|&(i, _)| best.warp.s[i]).collect();

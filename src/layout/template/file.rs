@@ -13,13 +13,25 @@ use std::path::{Path, PathBuf};
 use thiserror::Error;
 
 /// The built-in templates: (file name, text).
-pub const BUILTIN: [(&str, &str); 5] = [
+pub const BUILTIN: [(&str, &str); 13] = [
     ("row.toml", include_str!("../../../models/layout/templates/row.toml")),
     ("double.toml", include_str!("../../../models/layout/templates/double.toml")),
     ("spike.toml", include_str!("../../../models/layout/templates/spike.toml")),
     ("park.toml", include_str!("../../../models/layout/templates/park.toml")),
-    ("square.toml", include_str!("../../../models/layout/templates/square.toml")),
+    ("townhouses.toml", include_str!("../../../models/layout/templates/townhouses.toml")),
+    ("apartments.toml", include_str!("../../../models/layout/templates/apartments.toml")),
+    ("mixed.toml", include_str!("../../../models/layout/templates/mixed.toml")),
+    ("area-townhouses.toml", include_str!("../../../models/layout/templates/area-townhouses.toml")),
+    ("area-apartments.toml", include_str!("../../../models/layout/templates/area-apartments.toml")),
+    ("area-shops.toml", include_str!("../../../models/layout/templates/area-shops.toml")),
+    ("area-park.toml", include_str!("../../../models/layout/templates/area-park.toml")),
+    ("school.toml", include_str!("../../../models/layout/templates/school.toml")),
+    ("commercial.toml", include_str!("../../../models/layout/templates/commercial.toml")),
 ];
+
+/// The labels a template may fill (its `kind`): a part between streets (`block`), an area face of
+/// another template (`area`), or a zone of that use.
+pub const LABELS: [&str; 5] = ["block", "area", "park", "school", "commercial"];
 
 /// How a part of a template may deform (Yang et al. 2013 §4).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -67,13 +79,23 @@ pub enum CornerKind {
     None,
 }
 
-/// A face of a template: a parcel, park, commercial or other piece.
+/// What a face of a template becomes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Fill {
+    /// A parcel of this use (a residential face without street access becomes a park).
+    Use(Use),
+    /// An area face: filled by an area template (`kind = "area"`), or by the row parceller when
+    /// none fits.
+    Area,
+}
+
+/// A face of a template: a parcel, park, commercial, school or other piece, or an area face.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Face {
     /// Its polygon (template metres, counter-clockwise).
     pub polygon: Vec<P>,
-    /// Its use (a residential face without street access becomes a park).
-    pub use_: Use,
+    /// What it becomes.
+    pub fill: Fill,
     /// Its deformation class.
     pub class: Class,
     /// The largest RMS registration distance it may keep (metres); also its weight `1/ε` when
@@ -100,7 +122,8 @@ pub struct Repeat {
 pub struct Template {
     /// Its name (the file stem unless given).
     pub name: String,
-    /// Its region label (`row`, `double`, `spike`, `park`, `area`, …), reported per use.
+    /// The label of the region it fills, one of [`LABELS`]: a template matches a part only when
+    /// the labels agree (the paper's first condition of a match).
     pub kind: String,
     /// Its faces.
     pub faces: Vec<Face>,
@@ -114,14 +137,15 @@ pub struct Template {
     pub repeat: Option<Repeat>,
     /// At most this many uses in a layout.
     pub max_uses: Option<usize>,
-    /// Accepted when its energy is below this (default [`DEFAULT_THRESHOLD`]).
-    pub threshold: f64,
+    /// At least this many uses (met by backtracking where the parts allow; reported otherwise).
+    pub min_uses: usize,
+    /// How common it is (the weight of its choice, with its energy; default 1).
+    pub probability: f64,
+    /// Accepted when its energy is below this (default: the region's `[fit] threshold`).
+    pub threshold: Option<f64>,
     /// The file it came from (`builtin:row.toml` for embedded ones).
     pub source: String,
 }
-
-/// The energy threshold (mean registration distance over the square root of the block's area).
-pub const DEFAULT_THRESHOLD: f64 = 0.02;
 
 /// Why a template file was refused; every variant names the file, and the field where one is at
 /// fault.
@@ -162,6 +186,10 @@ struct FileToml {
     kind: String,
     #[serde(default)]
     max_uses: Option<usize>,
+    #[serde(default)]
+    min_uses: Option<usize>,
+    #[serde(default)]
+    probability: Option<f64>,
     #[serde(default)]
     threshold: Option<f64>,
     #[serde(default)]
@@ -212,7 +240,7 @@ struct CornerToml {
 struct FaceToml {
     polygon: Vec<[f64; 2]>,
     #[serde(rename = "use")]
-    use_: Use,
+    use_: String,
     #[serde(default = "affine")]
     class: String,
     #[serde(default)]
@@ -250,6 +278,12 @@ pub fn parse_template(text: &str, path: &str, stem: &str) -> Result<Template, Te
     };
     if t.face.is_empty() {
         return Err(bad("face".into(), "a template needs at least one face".into()));
+    }
+    if !LABELS.contains(&t.kind.as_str()) {
+        return Err(bad(
+            "kind".into(),
+            format!("\"{}\" is not a label a template fills ({})", t.kind, LABELS.join(", ")),
+        ));
     }
     let mut faces = Vec::new();
     for (i, f) in t.face.iter().enumerate() {
@@ -290,7 +324,21 @@ pub fn parse_template(text: &str, path: &str, stem: &str) -> Result<Template, Te
         if !(f.tolerance.is_finite() && f.tolerance > 0.0) {
             return Err(bad(format!("face[{i}].tolerance"), format!("{} is not a positive number", f.tolerance)));
         }
-        faces.push(Face { polygon, use_: f.use_, class, tolerance: f.tolerance });
+        let fill = match f.use_.as_str() {
+            "area" => Fill::Area,
+            "residential" => Fill::Use(Use::Residential),
+            "park" => Fill::Use(Use::Park),
+            "commercial" => Fill::Use(Use::Commercial),
+            "school" => Fill::Use(Use::School),
+            "other" => Fill::Use(Use::Other),
+            other => {
+                return Err(bad(
+                    format!("face[{i}].use"),
+                    format!("\"{other}\" is not residential, park, commercial, school, other or area"),
+                ))
+            }
+        };
+        faces.push(Face { polygon, fill, class, tolerance: f.tolerance });
     }
     let repeat = match &t.repeat {
         None => None,
@@ -309,9 +357,16 @@ pub fn parse_template(text: &str, path: &str, stem: &str) -> Result<Template, Te
             Some(Repeat { axis, unit: r.unit, min: r.min, max: r.max })
         }
     };
-    let threshold = t.threshold.unwrap_or(DEFAULT_THRESHOLD);
-    if !(threshold.is_finite() && threshold > 0.0) {
+    if let Some(threshold) = t.threshold.filter(|v| !(v.is_finite() && *v > 0.0)) {
         return Err(bad("threshold".into(), format!("{threshold} is not a positive number")));
+    }
+    let probability = t.probability.unwrap_or(1.0);
+    if !(probability.is_finite() && probability > 0.0) {
+        return Err(bad("probability".into(), format!("{probability} is not a positive number")));
+    }
+    let min_uses = t.min_uses.unwrap_or(0);
+    if let Some(max) = t.max_uses.filter(|&m| m < min_uses) {
+        return Err(bad("min_uses".into(), format!("{min_uses} is more than max_uses = {max}")));
     }
     let vertices: Vec<P> = faces.iter().flat_map(|f| f.polygon.iter().copied()).collect();
     let is_vertex = |p: P| vertices.iter().any(|v| (v[0] - p[0]).abs() < 1e-6 && (v[1] - p[1]).abs() < 1e-6);
@@ -337,7 +392,9 @@ pub fn parse_template(text: &str, path: &str, stem: &str) -> Result<Template, Te
         corners: t.corner.into_iter().map(|c| (c.at, c.kind)).collect(),
         repeat,
         max_uses: t.max_uses,
-        threshold,
+        min_uses,
+        probability,
+        threshold: t.threshold,
         source: path.into(),
     };
     let units = template.repeat.map_or(1, |r| r.min);
@@ -383,7 +440,7 @@ mod tests {
     use super::*;
 
     const ROW: &str =
-        "kind = \"row\"\n[[face]]\npolygon = [[0, 0], [18, 0], [18, 30], [0, 30]]\nuse = \"residential\"\n";
+        "kind = \"block\"\n[[face]]\npolygon = [[0, 0], [18, 0], [18, 30], [0, 30]]\nuse = \"residential\"\n";
 
     fn err(text: &str) -> String {
         parse_template(text, "t.toml", "t").unwrap_err().to_string()
@@ -392,17 +449,27 @@ mod tests {
     #[test]
     fn the_builtin_library_parses() {
         let lib = builtin();
-        assert_eq!(lib.len(), 5);
+        assert_eq!(lib.len(), 13);
         assert!(lib.iter().any(|t| !t.streets.is_empty()), "a template with a street");
-        assert!(lib.iter().any(|t| t.faces.len() == 1), "an area template");
-        assert!(lib.iter().any(|t| t.faces.iter().any(|f| f.use_ == Use::Park)), "a private park");
+        assert!(lib.iter().any(|t| t.kind == "area"), "an area template");
+        assert!(lib.iter().any(|t| t.faces.iter().any(|f| f.fill == Fill::Area)), "a template with an area face");
+        assert!(lib.iter().any(|t| t.faces.iter().any(|f| f.fill == Fill::Use(Use::Park))), "a private park");
+        let school = lib.iter().find(|t| t.kind == "school").expect("a school template");
+        assert!(school.faces.len() >= 2 && school.faces.iter().all(|f| f.fill == Fill::Use(Use::School)));
+        assert!(lib.iter().any(|t| t.probability < 1.0), "a less common template");
     }
 
     #[test]
     fn errors_name_the_file_and_field() {
         let t = parse_template(ROW, "t.toml", "t").unwrap();
         assert_eq!((t.name.as_str(), t.faces[0].class), ("t", Class::Affine));
-        assert!(err(&ROW.replace("use = \"residential\"", "use = \"school\"")).contains("use"));
+        assert!(err(&ROW.replace("use = \"residential\"", "use = \"mall\"")).contains("face[0].use"));
+        let e = err(&ROW.replace("kind = \"block\"", "kind = \"row\""));
+        assert!(e.starts_with("t.toml: kind: \"row\" is not a label"), "{e}");
+        let e = err(&format!("max_uses = 1\nmin_uses = 2\n{ROW}"));
+        assert!(e.starts_with("t.toml: min_uses:"), "{e}");
+        let e = err(&format!("probability = 0\n{ROW}"));
+        assert!(e.starts_with("t.toml: probability:"), "{e}");
         let e = err(&format!("{ROW}class = \"melt\"\n"));
         assert_eq!(e, "t.toml: face[0].class: \"melt\" is not rigid, similarity or affine");
         let e = err(&format!("{ROW}class = \"affine\"\nstretch = [[1.2, 0.8], [1, 1]]\n"));
@@ -417,7 +484,7 @@ mod tests {
         assert!(e.starts_with("t.toml: repeat.axis:"), "{e}");
         let e = err(&format!("colour = 3\n{ROW}"));
         assert!(e.contains("colour"), "{e}");
-        assert!(err("kind = \"row\"\n").contains("face"));
+        assert!(err("kind = \"block\"\n").contains("face"));
         let apart = format!("{ROW}[[face]]\npolygon = [[50, 0], [60, 0], [60, 10]]\nuse = \"park\"\n");
         assert_eq!(err(&apart), "t.toml: face: the faces do not form one polygon without holes");
     }

@@ -28,6 +28,8 @@ pub struct Instance {
     pub streets: Vec<Vec<usize>>,
     /// The number of units (1 without repetition).
     pub units: usize,
+    /// Its area (m²).
+    pub area: f64,
 }
 
 /// Why a template cannot be made concrete.
@@ -105,7 +107,9 @@ pub fn instantiate(t: &Template, units: usize, k: f64) -> Result<Instance, Insta
         return Err(InstanceError::FewCorners);
     }
     let sides = sides(t, &verts, &boundary, &corners, k, &shift);
-    Ok(Instance { verts, faces, face_of, boundary, corners, sides, streets, units })
+    let ring: Vec<P> = boundary.iter().map(|&v| verts[v]).collect();
+    let area = crate::geometry::ring_area2(&ring).abs() / 2.0;
+    Ok(Instance { verts, faces, face_of, boundary, corners, sides, streets, units, area })
 }
 
 /// The loop (closed when `closed`) with every vertex lying on one of its edges inserted in order.
@@ -229,7 +233,7 @@ mod tests {
     #[test]
     fn a_repeated_row_is_a_box_with_shared_vertices() {
         let t = parse_template(
-            "kind = \"row\"\n[repeat]\naxis = \"x\"\nunit = [0, 18]\n[[side]]\nat = [9, 0]\nkind = \"street\"\n\
+            "kind = \"block\"\n[repeat]\naxis = \"x\"\nunit = [0, 18]\n[[side]]\nat = [9, 0]\nkind = \"street\"\n\
              [[face]]\npolygon = [[0, 0], [18, 0], [18, 30], [0, 30]]\nuse = \"residential\"\n",
             "t",
             "t",

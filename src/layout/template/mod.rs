@@ -11,6 +11,7 @@
 //!   parcels, streets and counts it makes; [`fig6`]: the paper's Fig. 6 as a ratio.
 
 pub mod arclength;
+pub mod assign;
 pub mod fig6;
 pub mod file;
 pub mod instance;

@@ -8,7 +8,7 @@
 //! registered ideal shape, over the square root of the block's area.
 
 use super::arclength::{side_lengths, Block, Match};
-use super::file::Template;
+use super::file::{Class, Template};
 use super::instance::Instance;
 use super::mvc::{combine, mean_value_coordinates};
 use super::register::{mean_distance, register, rms};
@@ -28,6 +28,9 @@ pub struct Warp {
     pub s: Vec<f64>,
     /// Per face: the mean distance (metres) of its vertices from its registered ideal shape.
     pub face_distance: Vec<f64>,
+    /// Per face: the same distance with the ideal registered by a similarity (rotation,
+    /// translation, uniform scale): §7's per-parcel similarity distortion.
+    pub face_similarity: Vec<f64>,
     /// The mean of `face_distance` (metres).
     pub distance: f64,
     /// `distance / √area`.
@@ -137,8 +140,26 @@ pub fn warp(t: &Template, inst: &Instance, block: &Block, m: &Match, rounds: usi
             mean_distance(&alpha, &src[fi], &dst)
         })
         .collect();
+    let similarity = Class::Similarity { scale: [0.0, f64::INFINITY] };
+    let face_similarity: Vec<f64> = inst
+        .faces
+        .iter()
+        .enumerate()
+        .map(|(fi, f)| {
+            let dst: Vec<P> = f.iter().map(|&v| pos[v]).collect();
+            mean_distance(&register(&src[fi], &dst, similarity), &src[fi], &dst)
+        })
+        .collect();
     let distance = face_distance.iter().sum::<f64>() / face_distance.len().max(1) as f64;
-    Warp { pos, s, face_distance, distance, energy: distance / block.area.sqrt().max(1e-9), within_tolerance }
+    Warp {
+        pos,
+        s,
+        face_distance,
+        face_similarity,
+        distance,
+        energy: distance / block.area.sqrt().max(1e-9),
+        within_tolerance,
+    }
 }
 
 /// The faces of a warp as polygons on the block: boundary edges follow the block's ring between
@@ -205,7 +226,7 @@ mod tests {
     use crate::layout::Street;
 
     fn block(pts: Vec<P>) -> Block {
-        let street = Street { polyline: vec![[-50.0, -7.5], [400.0, -7.5]], width: 15.0, level: 0 };
+        let street = Street::new(vec![[-50.0, -7.5], [400.0, -7.5]], 15.0, 0);
         Block::new(pts, &StreetIndex::new(&[street]), 10.0)
     }
 
