@@ -14,7 +14,7 @@
 
 use super::metrics::parcel_shape;
 use super::parcels::{parcellate as rows, ring_of, StreetIndex};
-use super::tree::How;
+use super::How;
 use super::{Parcel, Use};
 use crate::geometry::P;
 use geo::{Area, BooleanOps, Centroid, MinimumRotatedRect};

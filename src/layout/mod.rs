@@ -62,6 +62,28 @@ pub enum Use {
     Other,
 }
 
+/// The label of a part between streets.
+pub const BLOCK: &str = "block";
+
+/// How a part was split or settled.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum How {
+    /// Cut along the given major roads, and the zones set apart.
+    Given,
+    /// Cut along a streamline.
+    Streamline,
+    /// Settled by a template.
+    Template,
+    /// Parcelled by the row parceller (no template accepted).
+    Rows,
+    /// Parcelled by the straight-skeleton parceller (no template accepted, and the rows leave
+    /// more undesirable parcels).
+    Skeleton,
+    /// A zone no template of its use fills: one parcel of its use.
+    Zone,
+}
+
 /// A parcel.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Parcel {

@@ -125,25 +125,6 @@ pub enum SplitError {
     Field(#[from] FieldError),
 }
 
-/// Runs the control loop on a region without templates: every part is cut until it passes the
-/// fit test ([`fits_block`]) or no streamline cuts it.
-pub fn split(region: &Region, opts: &SplitOptions, rng: &mut Xoshiro256PlusPlus) -> Result<Split, SplitError> {
-    split_with_progress(region, opts, rng, &mut |_| {})
-}
-
-/// [`split`], telling `progress` the share of the region's area settled so far (0 to 1) after
-/// every part.
-pub fn split_with_progress(
-    region: &Region,
-    opts: &SplitOptions,
-    rng: &mut Xoshiro256PlusPlus,
-    progress: &mut dyn FnMut(f64),
-) -> Result<Split, SplitError> {
-    let g = super::tree::grow(region, opts, None, rng, progress)?;
-    let parts = g.leaves.iter().map(|l| g.nodes[l.node].polygon.clone()).collect();
-    Ok(Split { parts, streets: g.streets, candidates: g.candidates, cuts: g.cuts })
-}
-
 /// One candidate's scores, each `1 − ĉ` (1 best), and their weighted sum (its quality).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct CandidateScore {
@@ -243,7 +224,7 @@ pub fn initial_parts(region: &Region) -> (Vec<(Polygon, String)>, Vec<Street>) {
         streets.push(Street::new(road.clone(), w, 0));
         placed.push(road);
     }
-    let block = super::tree::BLOCK.to_string();
+    let block = super::BLOCK.to_string();
     let mut out: Vec<(Polygon, String)> = parts.into_iter().map(|p| (p, block.clone())).collect();
     out.extend(region.zones.iter().map(|z| (z.polygon(), z.use_.label().to_string())));
     (out, streets)

@@ -15,7 +15,7 @@
 
 use super::parcels::{blocks, ring_of, StreetIndex};
 use super::region::Region;
-use super::split::{cut_part, fits_block, initial_parts, street_ends, CandidateScore, SplitError, SplitOptions};
+use super::split::{cut_part, fits_block, initial_parts, street_ends, CandidateScore, Split, SplitError, SplitOptions};
 use super::template::arclength::Block;
 use super::template::select::{Candidate, Matcher};
 use super::Street;
@@ -24,26 +24,25 @@ use geo::Area;
 use rand::rngs::Xoshiro256PlusPlus;
 use serde::{Deserialize, Serialize};
 
-/// The label of a part between streets.
-pub const BLOCK: &str = "block";
+pub use super::{How, BLOCK};
 
-/// How a part was split or settled.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum How {
-    /// Cut along the given major roads, and the zones set apart.
-    Given,
-    /// Cut along a streamline.
-    Streamline,
-    /// Settled by a template.
-    Template,
-    /// Parcelled by the row parceller (no template accepted).
-    Rows,
-    /// Parcelled by the straight-skeleton parceller (no template accepted, and the rows leave
-    /// more undesirable parcels).
-    Skeleton,
-    /// A zone no template of its use fills: one parcel of its use.
-    Zone,
+/// Runs the control loop on a region without templates: every part is cut until it passes the
+/// fit test ([`fits_block`](super::split::fits_block)) or no streamline cuts it.
+pub fn split(region: &Region, opts: &SplitOptions, rng: &mut Xoshiro256PlusPlus) -> Result<Split, SplitError> {
+    split_with_progress(region, opts, rng, &mut |_| {})
+}
+
+/// [`split`], telling `progress` the share of the region's area settled so far (0 to 1) after
+/// every part.
+pub fn split_with_progress(
+    region: &Region,
+    opts: &SplitOptions,
+    rng: &mut Xoshiro256PlusPlus,
+    progress: &mut dyn FnMut(f64),
+) -> Result<Split, SplitError> {
+    let g = grow(region, opts, None, rng, progress)?;
+    let parts = g.leaves.iter().map(|l| g.nodes[l.node].polygon.clone()).collect();
+    Ok(Split { parts, streets: g.streets, candidates: g.candidates, cuts: g.cuts })
 }
 
 /// A node of the tree while it grows.

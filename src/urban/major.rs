@@ -6,7 +6,8 @@ use super::spec::{CitySpec, CitySpecErrorKind, RoadSpec};
 pub use super::spec::{MajorMethod, MajorSpec};
 use crate::geometry::{site, Polygon};
 use crate::layout::region::Region;
-use crate::layout::split::{split, Selection, SplitOptions};
+use crate::layout::split::{Selection, SplitOptions};
+use crate::layout::tree::split;
 use rand::rngs::Xoshiro256PlusPlus;
 use rand::SeedableRng;
 

@@ -2,7 +2,7 @@
 //! vertices shared between faces merged, T-junctions inserted into the edges they lie on, and its
 //! boundary loop, corners and sides found.
 
-use super::file::{CornerKind, SideKind, Template};
+use super::model::{CornerKind, SideKind, Template};
 use crate::geometry::{closest_on_segment, cross, dist, dot, sub, P};
 use std::collections::BTreeMap;
 

@@ -15,6 +15,7 @@ pub mod assign;
 pub mod fig6;
 pub mod file;
 pub mod instance;
+pub mod model;
 pub mod mvc;
 pub mod register;
 pub mod select;
