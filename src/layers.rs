@@ -47,39 +47,43 @@ fn imports() -> BTreeMap<String, BTreeSet<String>> {
     out
 }
 
-#[test]
-fn layers_have_no_cycles() {
-    let deps = imports();
-    // Depth-first search for a back edge; on one, report the cycle.
-    fn visit(
-        m: &str,
-        deps: &BTreeMap<String, BTreeSet<String>>,
-        state: &mut BTreeMap<String, u8>,
-        path: &mut Vec<String>,
-    ) -> Option<Vec<String>> {
+/// A cycle of `deps` (its nodes in order, the first repeated at the end), by a depth-first
+/// search for a back edge.
+fn find_cycle<K: Ord + Clone>(deps: &BTreeMap<K, BTreeSet<K>>) -> Option<Vec<K>> {
+    fn visit<K: Ord + Clone>(
+        m: &K,
+        deps: &BTreeMap<K, BTreeSet<K>>,
+        state: &mut BTreeMap<K, u8>,
+        path: &mut Vec<K>,
+    ) -> Option<Vec<K>> {
         match state.get(m) {
             Some(2) => return None,
             Some(1) => {
                 let start = path.iter().position(|p| p == m).unwrap();
-                return Some(path[start..].iter().cloned().chain([m.to_string()]).collect());
+                return Some(path[start..].iter().cloned().chain([m.clone()]).collect());
             }
             _ => {}
         }
-        state.insert(m.to_string(), 1);
-        path.push(m.to_string());
+        state.insert(m.clone(), 1);
+        path.push(m.clone());
         for d in &deps[m] {
             if let Some(cycle) = visit(d, deps, state, path) {
                 return Some(cycle);
             }
         }
         path.pop();
-        state.insert(m.to_string(), 2);
+        state.insert(m.clone(), 2);
         None
     }
     let mut state = BTreeMap::new();
-    for m in deps.keys() {
-        let cycle = visit(m, &deps, &mut state, &mut Vec::new());
-        assert!(cycle.is_none(), "import cycle between top-level modules: {}", cycle.unwrap().join(" → "));
+    deps.keys().find_map(|m| visit(m, deps, &mut state, &mut Vec::new()))
+}
+
+#[test]
+fn layers_have_no_cycles() {
+    let deps = imports();
+    if let Some(cycle) = find_cycle(&deps) {
+        panic!("import cycle between top-level modules: {}", cycle.join(" → "));
     }
     assert!(deps["render"].is_empty(), "render must be a leaf taking plain data, but imports {:?}", deps["render"]);
     assert!(!deps["design"].contains("formulations"), "design code never imports formulations");
@@ -291,38 +295,9 @@ fn files_of_a_module_have_no_cycles() {
             }
         }
     }
-    // Depth-first search for a back edge.
-    fn visit(
-        m: &ModPath,
-        deps: &BTreeMap<ModPath, BTreeSet<ModPath>>,
-        state: &mut BTreeMap<ModPath, u8>,
-        path: &mut Vec<ModPath>,
-    ) -> Option<Vec<ModPath>> {
-        match state.get(m) {
-            Some(2) => return None,
-            Some(1) => {
-                let start = path.iter().position(|p| p == m).unwrap();
-                return Some(path[start..].iter().cloned().chain([m.clone()]).collect());
-            }
-            _ => {}
-        }
-        state.insert(m.clone(), 1);
-        path.push(m.clone());
-        for d in &deps[m] {
-            if let Some(cycle) = visit(d, deps, state, path) {
-                return Some(cycle);
-            }
-        }
-        path.pop();
-        state.insert(m.clone(), 2);
-        None
-    }
-    let mut state = BTreeMap::new();
-    for m in deps.keys() {
-        if let Some(cycle) = visit(m, &deps, &mut state, &mut Vec::new()) {
-            let names: Vec<String> = cycle.iter().map(|p| p.join("::")).collect();
-            panic!("import cycle between files of one module: {}", names.join(" → "));
-        }
+    if let Some(cycle) = find_cycle(&deps) {
+        let names: Vec<String> = cycle.iter().map(|p| p.join("::")).collect();
+        panic!("import cycle between files of one module: {}", names.join(" → "));
     }
     // The rule sees references it must: a sibling named through a `use` group and by a path.
     assert!(deps[&vec!["compare".to_string(), "plan".into()]].contains(&vec!["compare".to_string(), "record".into()]));
