@@ -125,6 +125,18 @@ pub struct Settings {
     pub weights: Weights,
 }
 
+impl Settings {
+    /// The region's settings of the control loop.
+    fn of(region: &Region) -> Settings {
+        Settings {
+            templates_first: region.templates_first,
+            block: region.block,
+            fit: region.fit,
+            weights: region.weights,
+        }
+    }
+}
+
 /// What the global optimisation did.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct Optimisation {
@@ -346,12 +358,7 @@ pub fn layout_with_progress(
         relayout: None,
         unmet: done.unmet,
         templates: done.templates,
-        settings: Settings {
-            templates_first: region.templates_first,
-            block: region.block,
-            fit: region.fit,
-            weights: region.weights,
-        },
+        settings: Settings::of(region),
         times,
     })
 }
@@ -447,12 +454,7 @@ pub fn relayout_with_progress(
         unmet: p.unmet,
         relayout: Some(part.to_string()),
         templates,
-        settings: Settings {
-            templates_first: region.templates_first,
-            block: region.block,
-            fit: region.fit,
-            weights: region.weights,
-        },
+        settings: Settings::of(region),
         times,
     })
 }
