@@ -792,7 +792,8 @@ pub fn write_outputs(
         if r.network.is_some() {
             let geo = dir.join("network.geojson");
             let level = crate::design::streets::DEFAULT_SOLVE_LEVEL;
-            let text = crate::design::streets::design_geojson(&r.mesh, &r.active_edges, &r.spec.name, level);
+            let text = crate::design::streets::design_geojson(&r.mesh, &r.active_edges, &r.spec.name, level)
+                .map_err(|e| RunError::Render { path: geo.clone(), message: e.to_string() })?;
             write(&geo, text.as_bytes())?;
             on(Event::Wrote { what: "geojson", path: &geo });
         }

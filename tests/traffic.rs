@@ -406,16 +406,14 @@ fn cli_compares_designs_and_solve_writes_geojson() {
         assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     }
     // GeoJSON: the chains' segments are exactly the active edges (in WGS 84, one model unit a
-    // metre from the default origin, as the city writer projects them).
+    // metre from the default origin, through the one writer).
     let res: DesignResult =
         serde_json::from_str(&std::fs::read_to_string(dir.path().join("short/result.json")).unwrap()).unwrap();
     let geo: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.path().join("short/network.geojson")).unwrap()).unwrap();
-    let city: netspec::urban::CitySpec = serde_json::from_value(serde_json::json!({
-        "name": "x", "metres_per_unit": 1.0, "domain": { "outer": [] }, "mesh": { "spacing": 1.0 }, "levels": {},
-    }))
-    .unwrap();
-    let pos: Vec<[f64; 2]> = res.mesh.positions().iter().map(|&q| city.to_wgs84(q)).collect();
+    let proj = netspec::design::streets::GeoAnchor::model_units().projection().unwrap();
+    let writer = netspec::geometry::geojson::GeoJsonWriter::new(&proj);
+    let pos: Vec<[f64; 2]> = res.mesh.positions().iter().map(|&q| writer.lonlat(q).unwrap()).collect();
     let vid = |p: &serde_json::Value| {
         let (x, y) = (p[0].as_f64().unwrap(), p[1].as_f64().unwrap());
         pos.iter().position(|q| (q[0] - x).abs() < 1e-12 && (q[1] - y).abs() < 1e-12).unwrap() as u32

@@ -179,7 +179,10 @@ fn outputs_and_metrics() {
         ([lo[0].min(p[0]), lo[1].min(p[1])], [hi[0].max(p[0]), hi[1].max(p[1])])
     });
     assert!(lo[0].abs() < 1e-12 && lo[1].abs() < 1e-12, "{lo:?}");
-    assert!((hi[0] - 800.0 / 111_320.0).abs() < 1e-9 && (hi[1] - 400.0 / 110_540.0).abs() < 1e-9, "{hi:?}");
+    // Through the one transverse Mercator, degrees to 1e-8 (about a millimetre).
+    let proj = netspec::geometry::site::Projection::new([0.0, 0.0]).unwrap();
+    let [x, y] = proj.to_local(hi).unwrap();
+    assert!((x - 800.0).abs() < 2e-3 && (y - 400.0).abs() < 2e-3, "{hi:?} is ({x}, {y}) m");
     let features = geo["features"].as_array().unwrap();
     let streets: Vec<_> = features.iter().filter(|f| f["properties"]["kind"] == "street").collect();
     // Level 1 (as given) is one multi-line; every other street is one smoothed snake.
@@ -229,19 +232,26 @@ fn collect_points(v: &serde_json::Value, out: &mut Vec<[f64; 2]>) {
     }
 }
 
-/// With `geo_origin`, points are degrees around it; the scale follows the latitude.
+/// With `geo_origin`, points are degrees around it, through the one transverse Mercator: the
+/// origin is the anchor, and a point's degrees lead back to its metres.
 #[test]
 fn wgs84_around_a_given_origin() {
+    use netspec::design::streets::GeoAnchor;
+    use netspec::geometry::geojson::GeoJsonWriter;
     let text = std::fs::read_to_string(fixture())
         .unwrap()
         .replace("metres_per_unit = 100", "metres_per_unit = 100\ngeo_origin = [4.35, 50.85]");
     let spec = CitySpec::from_toml(&text).unwrap();
-    assert_eq!(spec.to_wgs84([0.0, 0.0]), [4.35, 50.85]);
-    let [lon, lat] = spec.to_wgs84([8.0, 4.0]);
-    assert!((lon - 4.35 - 800.0 / (111_320.0 * 50.85f64.to_radians().cos())).abs() < 1e-12, "{lon}");
-    assert!((lat - 50.85 - 400.0 / 110_540.0).abs() < 1e-12, "{lat}");
+    let anchor = GeoAnchor::of_city(&spec);
+    let proj = anchor.projection().unwrap();
+    let w = GeoJsonWriter::new(&proj).scaled(anchor.metres_per_unit);
+    assert_eq!(w.lonlat([0.0, 0.0]).unwrap(), [4.35, 50.85]);
+    let [x, y] = proj.to_local(w.lonlat([8.0, 4.0]).unwrap()).unwrap();
+    assert!((x - 800.0).abs() < 2e-3 && (y - 400.0).abs() < 2e-3, "({x}, {y})");
     let plain = CitySpec::from_toml(&std::fs::read_to_string(fixture()).unwrap()).unwrap();
     assert_eq!(plain.origin_wgs84(), netspec::urban::DEFAULT_GEO_ORIGIN);
+    let bad = text.replace("geo_origin = [4.35, 50.85]", "geo_origin = [4.35, 95]");
+    assert!(CitySpec::from_toml(&bad).unwrap_err().to_string().contains("geo_origin"));
 }
 
 /// Kill the run after one sub-region has finished; the rerun reuses it (its files are not

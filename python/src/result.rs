@@ -188,11 +188,15 @@ impl PyResultObj {
 
     /// The design as GeoJSON (WGS 84, one model unit a metre from the default origin), as
     /// `network.geojson`; None without a design.
-    fn to_geojson(&self) -> Option<String> {
-        self.design.network()?;
+    fn to_geojson(&self) -> PyResult<Option<String>> {
+        if self.design.network().is_none() {
+            return Ok(None);
+        }
         let (mesh, edges) = self.mesh_edges();
         let level = netspec::design::streets::DEFAULT_SOLVE_LEVEL;
-        Some(netspec::design::streets::design_geojson(mesh, edges, &self.problem.spec.name, level))
+        netspec::design::streets::design_geojson(mesh, edges, &self.problem.spec.name, level)
+            .map(Some)
+            .map_err(|e| pyo3::exceptions::PyValueError::new_err(e.to_string()))
     }
 
     /// The picture `network.svg` holds (None without a design or an explanation).

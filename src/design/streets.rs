@@ -1,9 +1,12 @@
 //! A design's streets: the network split into chains between junctions (the paper's snakes,
 //! which `urban::smooth` smooths), and streets as GeoJSON in WGS 84.
 
+use crate::geometry::geojson::GeoJsonWriter;
+use crate::geometry::site::{Projection, SiteError};
 use crate::mesh::geom::dist;
 use crate::mesh::Mesh;
 use serde::{Deserialize, Serialize};
+use serde_json::json;
 use std::collections::BTreeSet;
 
 /// Where a GeoJSON's origin sits when nothing anchors it: `[longitude, latitude]` `[0, 0]`.
@@ -163,10 +166,6 @@ pub struct GeoAnchor {
     pub metres_per_unit: f64,
 }
 
-/// Metres per degree of longitude at the equator and per degree of latitude (the
-/// equirectangular projection of [`GeoAnchor::to_wgs84`]).
-const METRES_PER_DEGREE: [f64; 2] = [111_320.0, 110_540.0];
-
 impl GeoAnchor {
     /// Model units as metres from [`DEFAULT_GEO_ORIGIN`] (a design spec has no
     /// scale).
@@ -174,12 +173,11 @@ impl GeoAnchor {
         GeoAnchor { origin: DEFAULT_GEO_ORIGIN, origin_is_default: true, metres_per_unit: 1.0 }
     }
 
-    /// A model point as WGS 84 `[longitude, latitude]` degrees: scaled by `metres_per_unit` and
-    /// projected equirectangularly around `origin`.
-    pub fn to_wgs84(&self, p: [f64; 2]) -> [f64; 2] {
-        let [lon0, lat0] = self.origin;
-        let (x, y) = (p[0] * self.metres_per_unit, p[1] * self.metres_per_unit);
-        [lon0 + x / (METRES_PER_DEGREE[0] * lat0.to_radians().cos()), lat0 + y / METRES_PER_DEGREE[1]]
+    /// The projection of this anchor: the one transverse Mercator of every netspec file
+    /// ([`Projection`]) centred on `origin`; a model point is `metres_per_unit` metres per unit
+    /// from it ([`GeoJsonWriter::scaled`]).
+    pub fn projection(&self) -> Result<Projection, SiteError> {
+        Projection::new(self.origin)
     }
 }
 
@@ -198,67 +196,48 @@ pub struct GeoRegion {
     pub levels: Vec<String>,
 }
 
-/// Streets as GeoJSON (RFC 7946), always WGS 84 longitude and latitude
-/// ([`GeoAnchor::to_wgs84`]): the sub-regions (none for a single design), level 1 (`major`, the
-/// major roads and the domain boundary, as given) as one multi-line, then every street (a
-/// polyline with its level); the collection's `properties` say which origin and scale were used.
+/// Streets as GeoJSON (RFC 7946), always WGS 84 longitude and latitude through the anchor's
+/// projection ([`GeoAnchor::projection`], written by [`GeoJsonWriter`]): the sub-regions (none
+/// for a single design), level 1 (`major`, the major roads and the domain boundary, as given) as
+/// one multi-line, then every street (a polyline with its level); the collection's `properties`
+/// say which origin and scale were used.
 pub fn streets_geojson(
     name: &str,
     anchor: &GeoAnchor,
     regions: &[GeoRegion],
     major: &[[[f64; 2]; 2]],
     streets: &[Snake],
-) -> String {
-    let proj = |p: [f64; 2]| anchor.to_wgs84(p);
-    let coords = |pts: &[[f64; 2]]| -> serde_json::Value { pts.iter().map(|&p| serde_json::json!(proj(p))).collect() };
-    let mut features = Vec::new();
+) -> Result<String, SiteError> {
+    let proj = anchor.projection()?;
+    let mut w = GeoJsonWriter::new(&proj).scaled(anchor.metres_per_unit);
     for r in regions {
-        let mut ring = r.outer.clone();
-        ring.push(r.outer[0]);
-        let mut rings = vec![coords(&ring)];
-        for h in &r.holes {
-            let mut hr = h.clone();
-            hr.push(h[0]);
-            rings.push(coords(&hr));
-        }
-        features.push(serde_json::json!({
-            "type": "Feature",
-            "geometry": { "type": "Polygon", "coordinates": rings },
-            "properties": { "kind": "sub-region", "index": r.index, "name": r.name, "levels": r.levels },
-        }));
+        let rings = std::iter::once(r.outer.as_slice()).chain(r.holes.iter().map(Vec::as_slice));
+        w.polygon(rings, json!({ "kind": "sub-region", "index": r.index, "name": r.name, "levels": r.levels }))?;
     }
-    let lines: Vec<serde_json::Value> = major.iter().map(|seg| coords(seg)).collect();
-    features.push(serde_json::json!({
-        "type": "Feature",
-        "geometry": { "type": "MultiLineString", "coordinates": lines },
-        "properties": { "kind": "street", "level": 1, "closed": false, "note": "major roads and the domain boundary, as given" },
-    }));
+    w.lines(
+        major.iter().map(|seg| &seg[..]),
+        json!({ "kind": "street", "level": 1, "closed": false, "note": "major roads and the domain boundary, as given" }),
+    )?;
     for s in streets {
-        features.push(serde_json::json!({
-            "type": "Feature",
-            "geometry": { "type": "LineString", "coordinates": coords(&s.points) },
-            "properties": { "kind": "street", "level": s.level, "closed": s.closed },
-        }));
+        w.line(&s.points, json!({ "kind": "street", "level": s.level, "closed": s.closed }))?;
     }
-    let doc = serde_json::json!({
-        "type": "FeatureCollection",
+    Ok(w.to_json(json!({
         "name": name,
         "properties": {
             "crs": "WGS 84 longitude, latitude (RFC 7946)",
+            "projection": "transverse Mercator centred on geo_origin",
             "geo_origin": anchor.origin,
             "geo_origin_is_default": anchor.origin_is_default,
             "metres_per_unit": anchor.metres_per_unit,
         },
-        "features": features,
-    });
-    serde_json::to_string(&doc).expect("GeoJSON serialises") + "\n"
+    })))
 }
 
 /// The GeoJSON of a `solve` design ([`streets_geojson`]): its active edges as streets of
 /// `level`, in chains between junctions and ends, and the mesh boundary as the domain boundary.
 /// A spec has no scale, so coordinates are model units as metres from the default origin
 /// ([`GeoAnchor::model_units`]).
-pub fn design_geojson(mesh: &Mesh, active_edges: &[[u32; 2]], name: &str, level: u8) -> String {
+pub fn design_geojson(mesh: &Mesh, active_edges: &[[u32; 2]], name: &str, level: u8) -> Result<String, SiteError> {
     let edges = active_edges.iter().map(|&[a, b]| StreetEdge { a, b, level }).collect();
     let graph = StreetGraph { positions: mesh.positions().to_vec(), edges };
     let snakes = decompose(&graph);

@@ -4,6 +4,7 @@
 //! the few primitives they lack. Coordinates are metres in a local plane.
 
 pub mod cdt;
+pub mod geojson;
 pub mod index;
 pub mod planar;
 pub mod polygon;

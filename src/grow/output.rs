@@ -6,6 +6,7 @@ use super::graph::Class;
 use super::step::Sim;
 use super::validate::Violation;
 use super::{mm, node_ids, GrowError};
+use crate::geometry::geojson::GeoJsonWriter;
 use crate::geometry::site::Projection;
 use crate::geometry::P;
 use crate::render::grow::{grow_svg, strip_svg, Bands, GrowScene, RoadLine};
@@ -390,50 +391,35 @@ pub fn write_all(
     files.push(write(dir, "network.png", &crate::render::png(&svg)?)?);
     if let Some(origin) = sim.ctx.origin {
         let geo = geojson(sim, &Projection::new(origin)?)?;
-        files.push(write(
-            dir,
-            "network.geojson",
-            (serde_json::to_string(&geo).expect("JSON serialises") + "\n").as_bytes(),
-        )?);
+        files.push(write(dir, "network.geojson", geo.as_bytes())?);
     }
     Ok(files)
 }
 
 /// The network in WGS 84: road and waterway segments (`kind`, `class`, `width`, `step`), water,
 /// cities and settlements; the map's origin `(0, 0)` is the context's `origin`.
-pub fn geojson(sim: &Sim, proj: &Projection) -> Result<Value, GrowError> {
-    let ll = |p: P| -> Result<[f64; 2], GrowError> {
-        let q = proj.to_wgs84(p)?;
-        Ok([(q[0] * 1e8).round() / 1e8, (q[1] * 1e8).round() / 1e8])
-    };
-    let mut features = Vec::new();
+pub fn geojson(sim: &Sim, proj: &Projection) -> Result<String, GrowError> {
+    let mut w = GeoJsonWriter::new(proj);
     for (s, g) in sim.graph.segs.iter().enumerate() {
         let (a, b) = sim.graph.ends(s as u32);
         let kind = if g.class == Class::Water { "waterway" } else { "road" };
-        features.push(json!({"type": "Feature",
-            "properties": {"kind": kind, "class": g.class.name(), "width": g.width, "step": g.born, "traffic": mm(g.load)},
-            "geometry": {"type": "LineString", "coordinates": [ll(a)?, ll(b)?]}}));
+        let props =
+            json!({"kind": kind, "class": g.class.name(), "width": g.width, "step": g.born, "traffic": mm(g.load)});
+        w.line(&[a, b], props)?;
     }
-    for w in &sim.ctx.water {
-        if let Some(poly) = &w.polygon {
-            let mut ring = poly.iter().map(|&p| ll(p)).collect::<Result<Vec<_>, _>>()?;
-            ring.push(ring[0]);
-            features.push(json!({"type": "Feature", "properties": {"kind": "water"},
-                "geometry": {"type": "Polygon", "coordinates": [ring]}}));
+    for wt in &sim.ctx.water {
+        if let Some(poly) = &wt.polygon {
+            w.polygon([poly.as_slice()], json!({"kind": "water"}))?;
         }
-        if let (Some(line), Some(width)) = (&w.river, w.width) {
-            let coords = line.iter().map(|&p| ll(p)).collect::<Result<Vec<_>, _>>()?;
-            features.push(json!({"type": "Feature", "properties": {"kind": "river", "width": width},
-                "geometry": {"type": "LineString", "coordinates": coords}}));
+        if let (Some(line), Some(width)) = (&wt.river, wt.width) {
+            w.line(line, json!({"kind": "river", "width": width}))?;
         }
     }
     for c in &sim.cities {
-        features.push(json!({"type": "Feature", "properties": {"kind": "neighbour-city", "water": c.water},
-            "geometry": {"type": "Point", "coordinates": ll(c.pos)?}}));
+        w.point(c.pos, json!({"kind": "neighbour-city", "water": c.water}))?;
     }
     for s in &sim.blocks.settlements {
-        features.push(json!({"type": "Feature", "properties": {"kind": "settlement", "area": mm(s.area)},
-            "geometry": {"type": "Point", "coordinates": ll(s.center)?}}));
+        w.point(s.center, json!({"kind": "settlement", "area": mm(s.area)}))?;
     }
-    Ok(json!({"type": "FeatureCollection", "features": features}))
+    Ok(w.to_json(Value::Null))
 }

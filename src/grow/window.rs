@@ -16,7 +16,6 @@ use crate::urban::spec::CitySpec;
 use geo::{ChaikinSmoothing, Simplify};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
-use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 /// Metres per city unit of the spec written (the city mesh has one unit between vertices).
@@ -34,30 +33,6 @@ const MIN_CELLS: f64 = 9.0;
 /// (a grown settlement has 40–50 km/km²; a few streets reaching into open land do not make it
 /// built up).
 const MIN_KM_PER_KM2: f64 = 10.0;
-
-/// The levels the city spec runs in every sub-region with grown streets: Fig. 7a's levels 2–4
-/// (collectors on the grid, local roads on the subdivided mesh, cul-de-sacs), water obstacles
-/// added to each.
-const LEVELS: &str = r#"
-[levels.2]
-time_limit = 1000
-coverage = { range = 3 }
-weights = { length = 1, distance = 1e-4, zigzag = "forbid", too_close = "forbid" }
-features = { dead_ends = "forbid" }
-
-[levels.3]
-subdivide = true
-time_limit = 1200
-coverage = { range = 3 }
-weights = { length = 1, distance = 1e-4, zigzag = "forbid", too_close = "forbid" }
-features = { dead_ends = "forbid" }
-
-[levels.4]
-time_limit = 100
-coverage = { range = 2 }
-weights = { length = 1, distance = 1e-4, zigzag = "forbid", too_close = "forbid" }
-features = { dead_ends = "allow" }
-"#;
 
 /// Trade across a region: trips from one point to another (each end at the nearest entrance),
 /// as many as the flow's share of the weights.
@@ -140,13 +115,18 @@ pub fn write(dir: &Path, window: [f64; 4], name: &str, out: &Path) -> Result<Win
     let water: Vec<Vec<P>> = net.water.iter().filter_map(water_polygon).filter(|p| overlaps(p, window)).collect();
     let obstacles = clear_of_roads(&water, &chains, window);
     let (flows, inside) = trade_flows(&route_lines(&net).map_err(bad)?, window);
-    let spec = city_toml(name, window, &chains, &obstacles, &[]);
-    let parsed =
-        CitySpec::from_toml(&spec).map_err(|e| field("window", format!("the window's city spec is unusable: {e}")))?;
+    let city = |empty: &[P]| -> Result<(String, CitySpec), GrowError> {
+        let text = city_toml(&city_spec(name, window, net.origin, &chains, &obstacles, empty), window)
+            .map_err(|m| field("window", m))?;
+        let parsed = CitySpec::from_toml(&text)
+            .map_err(|e| field("window", format!("the window's city spec is unusable: {e}")))?;
+        Ok((text, parsed))
+    };
+    let (_, parsed) = city(&[])?;
     let regions =
         crate::urban::city::regions(&parsed).map_err(|e| field("window", format!("the window's major roads: {e}")))?;
     let empty: Vec<P> = regions.iter().filter(|(r, _)| unbuilt(r, &minor)).map(|(r, _)| r.label_point).collect();
-    let spec = city_toml(name, window, &chains, &obstacles, &empty);
+    let (spec, _) = city(&empty)?;
     std::fs::create_dir_all(out).map_err(|source| GrowError::Io { path: out.to_path_buf(), source })?;
     let trade = TradeFile { window, flows };
     let json = serde_json::to_string_pretty(&trade).expect("trade flows serialise") + "\n";
@@ -366,50 +346,67 @@ fn trade_flows(routes: &[(Vec<P>, f64)], w: [f64; 4]) -> (Vec<TradeFlow>, usize)
     (flows, ending_inside)
 }
 
-/// TOML of an array of points in city units.
-fn points(ps: &[P]) -> String {
-    let u = |x: f64| {
-        let v = (x / METRES_PER_UNIT * 1000.0).round() / 1000.0;
-        format!("{}", v + 0.0)
-    };
-    let inner: Vec<String> = ps.iter().map(|p| format!("[{}, {}]", u(p[0]), u(p[1]))).collect();
-    format!("[{}]", inner.join(", "))
+/// Points in city units, to a thousandth.
+fn units(ps: &[P]) -> Vec<P> {
+    let u = |x: f64| (x / METRES_PER_UNIT * 1000.0).round() / 1000.0 + 0.0;
+    ps.iter().map(|p| [u(p[0]), u(p[1])]).collect()
 }
 
-/// The city spec of a window: domain, major roads, water obstacles on every level, and one
-/// `[[region]]` entry that runs no level per point of `empty` (metres; label points are in city
-/// units already when they come from the spec's own sub-regions).
-fn city_toml(name: &str, w: [f64; 4], roads: &[Vec<P>], obstacles: &[Vec<P>], empty: &[P]) -> String {
+/// The city spec of a window: domain, major roads, water obstacles on every level (Fig. 7a's
+/// levels 2–4, [`crate::urban::spec::fig7a_levels`]), and one `[[region]]` entry that runs no
+/// level per point of `empty` (label points, city units already: they come from the spec's own
+/// sub-regions). The city's units are the map's metres / [`METRES_PER_UNIT`] from the map's
+/// origin, so `geo_origin` is the map's `origin`.
+fn city_spec(
+    name: &str,
+    w: [f64; 4],
+    origin: Option<P>,
+    roads: &[Vec<P>],
+    obstacles: &[Vec<P>],
+    empty: &[P],
+) -> CitySpec {
+    use crate::urban::spec::{CityMeshSpec, DomainSpec, RegionSpec, RoadSpec};
     let [x0, y0, x1, y1] = w;
-    let mut s = String::new();
-    let _ =
-        writeln!(s, "# Written by `netspec grow … --window {x0},{y0},{x1},{y1}`: the grown major roads (smoothed) as");
-    let _ =
-        writeln!(s, "# `[[road]]` entries, the water as obstacles of every level, and the sub-regions without grown");
-    let _ = writeln!(
-        s,
-        "# streets running no level. Coordinates are the grown map's metres / {METRES_PER_UNIT}, so `netspec traffic`"
-    );
-    let _ = writeln!(s, "# draws the same demand for this city and for the grown window.");
-    let _ = writeln!(s, "name = {}", toml::Value::from(name));
-    let _ = writeln!(s, "description = \"window {x0},{y0},{x1},{y1} of a grown network, streets by levels 2–4\"");
-    let _ = writeln!(s, "metres_per_unit = {METRES_PER_UNIT}");
-    let _ = writeln!(s, "domain = {{ outer = {} }}", points(&[[x0, y0], [x1, y0], [x1, y1], [x0, y1]]));
-    let _ = writeln!(s, "mesh = {{ spacing = 1 }}");
-    for (k, r) in roads.iter().enumerate() {
-        let _ = writeln!(s, "\n[[road]]\nname = \"grown major {k}\"\npoints = {}", points(r));
+    let obstacles: Vec<Vec<P>> = obstacles.iter().map(|p| units(p)).collect();
+    CitySpec {
+        name: name.to_string(),
+        description: format!("window {x0},{y0},{x1},{y1} of a grown network, streets by levels 2–4"),
+        metres_per_unit: METRES_PER_UNIT,
+        geo_origin: origin,
+        domain: DomainSpec { outer: units(&[[x0, y0], [x1, y0], [x1, y1], [x0, y1]]) },
+        roads: roads
+            .iter()
+            .enumerate()
+            .map(|(k, r)| RoadSpec { name: format!("grown major {k}"), points: units(r) })
+            .collect(),
+        major: None,
+        mesh: CityMeshSpec { spacing: 1.0 },
+        levels: crate::urban::spec::fig7a_levels(&obstacles),
+        regions: empty
+            .iter()
+            .map(|&at| RegionSpec {
+                at,
+                name: "unbuilt".into(),
+                run_levels: Some(Vec::new()),
+                levels: Default::default(),
+            })
+            .collect(),
+        solver: Default::default(),
+        smoothing: Default::default(),
     }
-    for p in empty {
-        let _ = writeln!(s, "\n[[region]]\nat = [{}, {}]\nname = \"unbuilt\"\nrun_levels = []", p[0], p[1]);
-    }
-    let mut levels = LEVELS.to_string();
-    if !obstacles.is_empty() {
-        let polys: Vec<String> = obstacles.iter().map(|p| points(p)).collect();
-        let user = format!("user = {{ obstacle_polygons = [{}] }}\n", polys.join(", "));
-        levels = levels.replace("\n\n[levels", &format!("\n{user}\n[levels")) + &user;
-    }
-    s.push_str(&levels);
-    s
+}
+
+/// The window's `city.toml`: a comment saying where it comes from, then the spec.
+fn city_toml(spec: &CitySpec, w: [f64; 4]) -> Result<String, String> {
+    let [x0, y0, x1, y1] = w;
+    let text = toml::to_string(spec).map_err(|e| format!("the window's city spec does not serialise: {e}"))?;
+    Ok(format!(
+        "# Written by `netspec grow … --window {x0},{y0},{x1},{y1}`: the grown major roads (smoothed) as\n\
+         # `[[road]]` entries, the water as obstacles of every level, and the sub-regions without grown\n\
+         # streets running no level. Coordinates are the grown map's metres / {METRES_PER_UNIT} from its\n\
+         # origin (`geo_origin`), so `netspec traffic` draws the same demand for this city and for the\n\
+         # grown window.\n\n{text}"
+    ))
 }
 
 #[cfg(test)]

@@ -13,6 +13,7 @@ use super::template::select::{Matcher, PlaceContext};
 use super::tree::{grow, match_leaves, Grown, How, PartTree};
 use super::validate::{validate, Violation};
 use super::{Parcel, Street};
+use crate::geometry::geojson::GeoJsonWriter;
 use crate::geometry::P;
 use crate::render::layout::{histograms_svg, layout_svg, registration_svg, HistogramPanel, LayoutScene, ParcelShape};
 use rand::rngs::Xoshiro256PlusPlus;
@@ -702,10 +703,7 @@ pub fn write_layout(dir: &Path, region: &Region, layout: &Layout) -> Result<(), 
     write("histograms.svg", hist.as_bytes())?;
     write("histograms.png", &crate::render::png(&hist)?)?;
     if let Some(proj) = &region.projection {
-        write(
-            "layout.geojson",
-            (serde_json::to_string(&geojson(proj, layout)?).expect("GeoJSON serialises") + "\n").as_bytes(),
-        )?;
+        write("layout.geojson", geojson(proj, layout)?.as_bytes())?;
     }
     Ok(())
 }
@@ -736,25 +734,14 @@ pub fn scene(region: &Region, layout: &Layout) -> LayoutScene {
     }
 }
 
-fn geojson(proj: &crate::geometry::site::Projection, layout: &Layout) -> Result<serde_json::Value, LayoutError> {
-    let ll = |line: &[P]| -> Result<Vec<[f64; 2]>, LayoutError> {
-        line.iter()
-            .map(|&p| proj.to_wgs84(p).map(|q| [(q[0] * 1e8).round() / 1e8, (q[1] * 1e8).round() / 1e8]))
-            .collect::<Result<_, _>>()
-            .map_err(Into::into)
-    };
-    let mut features = Vec::new();
+/// The streets and parcels in WGS 84 ([`GeoJsonWriter`]).
+fn geojson(proj: &crate::geometry::site::Projection, layout: &Layout) -> Result<String, LayoutError> {
+    let mut w = GeoJsonWriter::new(proj);
     for s in &layout.streets {
-        features.push(serde_json::json!({"type": "Feature",
-            "properties": {"kind": "street", "level": s.level, "width": s.width},
-            "geometry": {"type": "LineString", "coordinates": ll(&s.polyline)?}}));
+        w.line(&s.polyline, serde_json::json!({"kind": "street", "level": s.level, "width": s.width}))?;
     }
     for p in &layout.parcels {
-        let mut ring = ll(&p.polygon)?;
-        ring.push(ring[0]);
-        features.push(serde_json::json!({"type": "Feature",
-            "properties": {"kind": "parcel", "use": p.use_},
-            "geometry": {"type": "Polygon", "coordinates": [ring]}}));
+        w.polygon([p.polygon.as_slice()], serde_json::json!({"kind": "parcel", "use": p.use_}))?;
     }
-    Ok(serde_json::json!({"type": "FeatureCollection", "features": features}))
+    Ok(w.to_json(serde_json::Value::Null))
 }

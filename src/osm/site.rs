@@ -18,12 +18,13 @@ use super::areas::{self, AreaClass};
 use super::read::{self, Extract};
 use super::ways::{self, StreetPiece};
 use super::{OsmError, ATTRIBUTION};
+use crate::geometry::geojson::GeoJsonWriter;
 use crate::geometry::planar::polygon_label_point;
 use crate::geometry::site::{Projection, SiteError};
 use crate::geometry::{dist, polyline_length, Polygon, P};
 use geo::{Area as _, BooleanOps, Simplify};
 use serde::Serialize;
-use serde_json::{json, Value};
+use serde_json::json;
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 
@@ -141,8 +142,8 @@ pub fn run_on(ex: &Extract, req: &SiteRequest) -> Result<SiteSummary, OsmError> 
     });
     let source = req.extract.file_name().map_or_else(String::new, |n| n.to_string_lossy().into_owned());
     let mut files: Vec<(PathBuf, String)> = vec![
-        (req.out.join("site.geojson"), pretty(&site_geojson(&site, &name, &source, req)?)?),
-        (req.out.join("map").join("streets.geojson"), pretty(&map_geojson(&site, &name, &source)?)?),
+        (req.out.join("site.geojson"), site_geojson(&site, &name, &source, req)?),
+        (req.out.join("map").join("streets.geojson"), map_geojson(&site, &name, &source)?),
     ];
     if req.grow {
         files.push((req.out.join("grow.toml"), grow_toml(&site, &name, &source)?));
@@ -173,12 +174,6 @@ pub fn run_on(ex: &Extract, req: &SiteRequest) -> Result<SiteSummary, OsmError> 
         outside_share,
         files: files.into_iter().map(|(p, _)| p).collect(),
     })
-}
-
-fn pretty(v: &Value) -> Result<String, OsmError> {
-    serde_json::to_string_pretty(v)
-        .map(|s| s + "\n")
-        .map_err(|e| OsmError::Write { what: "GeoJSON".into(), message: e.to_string() })
 }
 
 /// The region's outer ring in WGS 84, and how to name it in errors.
@@ -240,12 +235,7 @@ fn outside_share(ring: &[[f64; 2]], extent: [f64; 4]) -> f64 {
 
 /// A point through the written file: to WGS 84, rounded as written, and back.
 fn through_file(proj: &Projection, p: P) -> Result<P, SiteError> {
-    proj.to_local(round_ll(proj.to_wgs84(p)?))
-}
-
-fn round_ll(ll: [f64; 2]) -> [f64; 2] {
-    let k = 10f64.powi(DIGITS);
-    [(ll[0] * k).round() / k, (ll[1] * k).round() / k]
+    proj.to_local(writer(proj).lonlat(p)?)
 }
 
 fn build(ex: &Extract, req: &SiteRequest, ring: &[[f64; 2]]) -> Result<Site, OsmError> {
@@ -383,51 +373,41 @@ fn land_polygon(land: &geo::Polygon<f64>, proj: &Projection) -> Result<Polygon, 
     make(&land.simplify(0.5)).or_else(|_| make(land))
 }
 
-/// WGS 84 positions of local points, rounded as written.
-fn wgs84(proj: &Projection, pts: &[P]) -> Result<Vec<Vec<f64>>, OsmError> {
-    pts.iter().map(|&p| Ok(round_ll(proj.to_wgs84(p)?).to_vec())).collect()
+/// The GeoJSON writer of a site's files: degrees to [`DIGITS`] places.
+fn writer(proj: &Projection) -> GeoJsonWriter<'_> {
+    GeoJsonWriter::new(proj).digits(DIGITS)
 }
 
-fn closed(ring: Vec<Vec<f64>>) -> Vec<Vec<f64>> {
-    let mut r = ring;
-    if let Some(first) = r.first().cloned() {
-        r.push(first);
-    }
-    r
-}
-
-fn polygon_coordinates(proj: &Projection, p: &Polygon) -> Result<Value, OsmError> {
-    let rings = p.rings().map(|r| wgs84(proj, r).map(closed)).collect::<Result<Vec<_>, _>>()?;
-    Ok(json!(rings))
-}
-
-fn site_geojson(site: &Site, name: &str, source: &str, req: &SiteRequest) -> Result<Value, OsmError> {
+fn site_geojson(site: &Site, name: &str, source: &str, req: &SiteRequest) -> Result<String, OsmError> {
     let proj = &site.projection;
     let holes: Vec<&str> = req.holes.iter().map(|c| c.name()).collect();
-    let mut features = vec![json!({"type": "Feature",
-        "properties": {"name": name, "origin": proj.origin(), "source": source, "holes": holes.join(","),
-                       "attribution": ATTRIBUTION},
-        "geometry": {"type": "Polygon", "coordinates": polygon_coordinates(proj, &site.land)?}})];
+    let mut w = writer(proj);
+    w.polygon(
+        site.land.rings(),
+        json!({"name": name, "origin": proj.origin(), "source": source, "holes": holes.join(","),
+               "attribution": ATTRIBUTION}),
+    )?;
     for (line, road) in &site.roads {
-        features.push(json!({"type": "Feature",
-            "properties": {"kind": "road", "highway": road.highway, "name": road.name, "osm_ways": road.ways},
-            "geometry": {"type": "LineString", "coordinates": wgs84(proj, line)?}}));
+        w.line(line, json!({"kind": "road", "highway": road.highway, "name": road.name, "osm_ways": road.ways}))?;
     }
-    Ok(json!({"type": "FeatureCollection", "attribution": ATTRIBUTION, "features": features}))
+    Ok(w.to_json_pretty(json!({"attribution": ATTRIBUTION})))
 }
 
-fn map_geojson(site: &Site, name: &str, source: &str) -> Result<Value, OsmError> {
+fn map_geojson(site: &Site, name: &str, source: &str) -> Result<String, OsmError> {
     let proj = &site.projection;
-    let mut features = vec![json!({"type": "Feature",
-        "properties": {"kind": "region", "name": name, "origin": proj.origin(), "source": source, "attribution": ATTRIBUTION},
-        "geometry": {"type": "Polygon", "coordinates": polygon_coordinates(proj, &site.land)?}})];
+    let mut w = writer(proj);
+    w.polygon(
+        site.land.rings(),
+        json!({"kind": "region", "name": name, "origin": proj.origin(), "source": source, "attribution": ATTRIBUTION}),
+    )?;
     for (line, s) in &site.streets {
-        features.push(json!({"type": "Feature",
-            "properties": {"kind": "street", "highway": s.highway, "level": s.level, "oneway": s.oneway,
-                           "u": s.u, "v": s.v, "osm_way": s.way, "name": s.name},
-            "geometry": {"type": "LineString", "coordinates": wgs84(proj, line)?}}));
+        w.line(
+            line,
+            json!({"kind": "street", "highway": s.highway, "level": s.level, "oneway": s.oneway,
+                   "u": s.u, "v": s.v, "osm_way": s.way, "name": s.name}),
+        )?;
     }
-    Ok(json!({"type": "FeatureCollection", "attribution": ATTRIBUTION, "features": features}))
+    Ok(w.to_json_pretty(json!({"attribution": ATTRIBUTION})))
 }
 
 fn header(kind: &str, name: &str, source: &str) -> String {
@@ -513,7 +493,7 @@ fn grow_toml(site: &Site, name: &str, source: &str) -> Result<String, OsmError> 
     let center = polygon_label_point(site.land.outer(), &holes).unwrap_or(site.land.outer()[0]);
     let file = GrowFile {
         size,
-        origin: round_ll(site.projection.to_wgs84(lo)?),
+        origin: writer(&site.projection).lonlat(lo)?,
         seed: 1,
         steps: GROW_STEPS,
         center: GrowPoint { position: mm(to_map(center)) },

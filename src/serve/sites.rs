@@ -618,26 +618,21 @@ fn latest_traffic(root: &Path, site: &str) -> Option<BTreeMap<String, Value>> {
     Some(out)
 }
 
-/// A network's streets, clipped to the site, as WGS 84 GeoJSON.
+/// A network's streets, clipped to the site, as WGS 84 GeoJSON (degrees to 7 places; a piece
+/// that cannot be projected is left out).
 fn streets_geojson(net: &crate::traffic::RoadNetwork, poly: Option<&Polygon>, proj: &Projection) -> Value {
-    let mut features = Vec::new();
+    let mut w = crate::geometry::geojson::GeoJsonWriter::new(proj).digits(7);
     for e in &net.edges {
         let pieces = match poly {
             Some(p) => p.clip_polyline(&e.shape, crate::stats::BOUNDARY_TOL),
             None => vec![e.shape.clone()],
         };
         for piece in pieces {
-            let ll: Option<Vec<[f64; 2]>> = piece
-                .iter()
-                .map(|&q| proj.to_wgs84(q).ok().map(|p| [(p[0] * 1e7).round() / 1e7, (p[1] * 1e7).round() / 1e7]))
-                .collect();
-            if let Some(ll) = ll {
-                features.push(json!({"type": "Feature", "properties": {"level": e.level},
-                                     "geometry": {"type": "LineString", "coordinates": ll}}));
-            }
+            // A piece off the projection's domain is no street of the picture.
+            let _ = w.line(&piece, json!({"level": e.level}));
         }
     }
-    json!({"type": "FeatureCollection", "features": features})
+    w.into_value(Value::Null)
 }
 
 /// The comparison as CSV: a row per design, the statistics a reader compares first.

@@ -8,7 +8,6 @@
 
 use super::network::RoadNetwork;
 use super::{write, TrafficError};
-use crate::pipeline::DesignResult;
 use serde::{Deserialize, Serialize};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -165,9 +164,4 @@ pub fn write_plain(net: &RoadNetwork, dir: &Path, stem: &str) -> Result<PlainFil
     write(&files.edges, &edges_xml(net))?;
     write(&files.types, &types_xml())?;
     Ok(files)
-}
-
-/// The GeoJSON of a `solve` design ([`crate::design::streets::design_geojson`]).
-pub fn design_geojson(res: &DesignResult, level: u8) -> String {
-    crate::design::streets::design_geojson(&res.mesh, &res.active_edges, &res.spec.name, level)
 }

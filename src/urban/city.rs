@@ -41,6 +41,14 @@ pub enum CityError {
     /// The thread pool could not be created.
     #[error("thread pool: {0}")]
     Threads(String),
+    /// The streets could not be placed on the Earth (`geo_origin` is no WGS 84 position).
+    #[error("{}: {source}", path.display())]
+    GeoJson {
+        /// The file.
+        path: PathBuf,
+        /// Why.
+        source: crate::geometry::site::SiteError,
+    },
 }
 
 fn io_err(path: &Path) -> impl FnOnce(std::io::Error) -> CityError + '_ {

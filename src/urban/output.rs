@@ -202,7 +202,9 @@ pub fn run_city_on(
         std::fs::write(&path, text).map_err(|source| CityError::Io { path, source })
     };
     write("city.json", serde_json::to_string_pretty(&result).expect("results serialise") + "\n")?;
-    write("streets.geojson", geojson(spec, &result.regions, &major, &streets))?;
+    let geo = geojson(spec, &result.regions, &major, &streets)
+        .map_err(|source| CityError::GeoJson { path: out.join("streets.geojson"), source })?;
+    write("streets.geojson", geo)?;
     let svg = city_svg(spec, &result, &major, &streets);
     if let Ok(png) = crate::render::png(&svg) {
         let path = out.join("city.png");
@@ -307,7 +309,12 @@ impl GeoAnchor {
 /// The smoothed streets (and sub-regions) of a city as GeoJSON ([`streets_geojson`] around the
 /// city's anchor, [`GeoAnchor::of_city`]: `geo_origin` or, without one,
 /// [`super::spec::DEFAULT_GEO_ORIGIN`]).
-pub fn geojson(spec: &CitySpec, regions: &[RegionReport], major: &[[[f64; 2]; 2]], snakes: &[Snake]) -> String {
+pub fn geojson(
+    spec: &CitySpec,
+    regions: &[RegionReport],
+    major: &[[[f64; 2]; 2]],
+    snakes: &[Snake],
+) -> Result<String, crate::geometry::site::SiteError> {
     let regions: Vec<GeoRegion> = regions
         .iter()
         .map(|r| GeoRegion {

@@ -27,8 +27,9 @@ pub struct CitySpec {
     /// Metres per model unit (for the street metrics and GeoJSON).
     #[serde(default = "default_scale")]
     pub metres_per_unit: f64,
-    /// Geographic anchor `[longitude, latitude]` (WGS 84 degrees) of the model origin. GeoJSON
-    /// is always WGS 84 (RFC 7946); without an anchor the origin is [`DEFAULT_GEO_ORIGIN`].
+    /// Geographic anchor `[longitude, latitude]` (WGS 84 degrees) of the model origin, the
+    /// centre of the transverse Mercator every netspec file shares. GeoJSON is always WGS 84
+    /// (RFC 7946); without an anchor the origin is [`DEFAULT_GEO_ORIGIN`].
     #[serde(default)]
     pub geo_origin: Option<[f64; 2]>,
     /// The domain polygon.
@@ -61,23 +62,10 @@ fn default_scale() -> f64 {
 
 pub use crate::design::streets::DEFAULT_GEO_ORIGIN;
 
-/// Metres per degree of longitude at the equator and per degree of latitude (the
-/// equirectangular projection of [`CitySpec::to_wgs84`]).
-const METRES_PER_DEGREE: [f64; 2] = [111_320.0, 110_540.0];
-
 impl CitySpec {
     /// The model origin's `[longitude, latitude]`: `geo_origin`, else [`DEFAULT_GEO_ORIGIN`].
     pub fn origin_wgs84(&self) -> [f64; 2] {
         self.geo_origin.unwrap_or(DEFAULT_GEO_ORIGIN)
-    }
-
-    /// A model point as WGS 84 `[longitude, latitude]` degrees: scaled by `metres_per_unit` and
-    /// projected equirectangularly around [`CitySpec::origin_wgs84`] (accurate to well under a
-    /// metre over a few kilometres).
-    pub fn to_wgs84(&self, p: [f64; 2]) -> [f64; 2] {
-        let [lon0, lat0] = self.origin_wgs84();
-        let (x, y) = (p[0] * self.metres_per_unit, p[1] * self.metres_per_unit);
-        [lon0 + x / (METRES_PER_DEGREE[0] * lat0.to_radians().cos()), lat0 + y / METRES_PER_DEGREE[1]]
     }
 }
 
@@ -153,10 +141,10 @@ pub struct RegionSpec {
     /// Its name.
     pub name: String,
     /// Which levels to run here (default: every level of `levels`).
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub run_levels: Option<Vec<u8>>,
     /// Overrides per level, merged into the defaults.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "IndexMap::is_empty")]
     pub levels: IndexMap<String, toml::Table>,
 }
 
@@ -379,6 +367,9 @@ impl CitySpec {
     fn check(&self) -> Result<(), CitySpecErrorKind> {
         if !(self.metres_per_unit > 0.0 && self.metres_per_unit.is_finite()) {
             return Err(field("metres_per_unit", format!("must be a positive number, got {}", self.metres_per_unit)));
+        }
+        if let Some(origin) = self.geo_origin {
+            crate::geometry::site::Projection::new(origin).map_err(|e| field("geo_origin", e.to_string()))?;
         }
         if !(self.mesh.spacing > 0.0 && self.mesh.spacing.is_finite()) {
             return Err(field("mesh.spacing", format!("must be a positive number, got {}", self.mesh.spacing)));
