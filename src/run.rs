@@ -14,7 +14,7 @@ use crate::explain::{conflict_svg, explain, ExplainOptions, Explanation};
 use crate::formulations::Formulation;
 use crate::pipeline::search::{run_search, SearchMethod, SearchResult};
 use crate::pipeline::settings::{resolve, Origin, Settings, SettingsError};
-use crate::pipeline::{self, DesignResult, Method, StartFrom, StartReport, Validity};
+use crate::pipeline::{self, DesignResult, Method, Outcome, StartFrom, StartReport, Validity};
 use crate::render::Caption;
 use crate::solvers::lazy::LpBound;
 use crate::solvers::{Interrupt, PointSink, ProgressSink, SolveOptions, SolverError, SolverKind, Termination};
@@ -272,19 +272,61 @@ impl Design {
         }
     }
 
+    /// The run's outcome: why it stopped, objective, bound, gap, nodes, times.
+    pub fn outcome(&self) -> &Outcome {
+        match self {
+            Design::Milp(r) => &r.solve,
+            Design::Search(r) => &r.solve,
+        }
+    }
+
     /// Why the run stopped.
     pub fn termination(&self) -> &Termination {
-        match self {
-            Design::Milp(r) => &r.solve.termination,
-            Design::Search(r) => &r.solve.termination,
-        }
+        &self.outcome().termination
     }
 
     /// The objective, if any.
     pub fn objective(&self) -> Option<f64> {
+        self.outcome().objective
+    }
+
+    /// The mesh the design is on.
+    pub fn mesh(&self) -> &crate::mesh::Mesh {
         match self {
-            Design::Milp(r) => r.solve.objective,
-            Design::Search(r) => r.solve.objective,
+            Design::Milp(r) => &r.mesh,
+            Design::Search(r) => &r.mesh,
+        }
+    }
+
+    /// Active edges as vertex pairs (existing edges included), in edge-id order.
+    pub fn active_edges(&self) -> &[[u32; 2]] {
+        match self {
+            Design::Milp(r) => &r.active_edges,
+            Design::Search(r) => &r.active_edges,
+        }
+    }
+
+    /// The design's metrics, if there is a design.
+    pub fn metrics(&self) -> Option<&crate::design::Metrics> {
+        match self {
+            Design::Milp(r) => r.metrics.as_ref(),
+            Design::Search(r) => r.metrics.as_ref(),
+        }
+    }
+
+    /// The size of the MILP the design was solved or checked against.
+    pub fn model_stats(&self) -> &crate::milp::ModelStats {
+        match self {
+            Design::Milp(r) => &r.model_stats,
+            Design::Search(r) => &r.model_stats,
+        }
+    }
+
+    /// The spec's name.
+    pub fn spec_name(&self) -> &str {
+        match self {
+            Design::Milp(r) => &r.spec.name,
+            Design::Search(r) => &r.spec.name,
         }
     }
 
@@ -303,9 +345,9 @@ impl Design {
 
     /// The status line `netspec solve` prints: [`milp_status_line`] or [`search_status_line`].
     pub fn status_line(&self) -> String {
-        match self {
-            Design::Milp(r) => milp_status_line(r),
-            Design::Search(r) => search_status_line(r),
+        match self.outcome().is_search() {
+            true => search_line(self.outcome(), self.network().is_some()),
+            false => milp_line(self.outcome(), self.metrics()),
         }
     }
 
@@ -316,18 +358,32 @@ impl Design {
 
     /// Whether the run was stopped by an interrupt.
     pub fn interrupted(&self) -> bool {
-        *self.termination() == Termination::Limit(crate::solvers::LimitKind::Interrupt)
+        self.outcome().interrupted()
+    }
+}
+
+/// A design run is written as its record (`result.json` without `status`).
+impl serde::Serialize for Design {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        match self {
+            Design::Milp(r) => r.serialize(s),
+            Design::Search(r) => r.serialize(s),
+        }
     }
 }
 
 /// Why the solver stopped and whether a design exists: `optimal, design found (47 edges)`,
 /// `limit(time), design found (47 edges, gap 12 %)`, `limit(time), no design`.
 pub fn milp_status_line(r: &DesignResult) -> String {
-    let s = &r.solve;
+    milp_line(&r.solve, r.metrics.as_ref())
+}
+
+/// [`milp_status_line`] from the outcome and the design's metrics.
+fn milp_line(s: &Outcome, metrics: Option<&crate::design::Metrics>) -> String {
     if let (Termination::Infeasible, Some(why)) = (&s.termination, &s.infeasibility) {
         return format!("infeasible (found by netspec before solving): {why}");
     }
-    let design = match &r.metrics {
+    let design = match metrics {
         Some(m) => {
             let gap = match (&s.termination, s.gap) {
                 (Termination::Optimal, _) | (_, None) => String::new(),
@@ -342,8 +398,13 @@ pub fn milp_status_line(r: &DesignResult) -> String {
 
 /// A search's status line: `optimal`, `limit(time)`, or with ` (no design)` when it found none.
 pub fn search_status_line(r: &SearchResult) -> String {
-    let label = r.solve.termination.label();
-    if r.network.is_some() {
+    search_line(&r.solve, r.network.is_some())
+}
+
+/// [`search_status_line`] from the outcome and whether there is a design.
+fn search_line(s: &Outcome, has_design: bool) -> String {
+    let label = s.termination.label();
+    if has_design {
         label
     } else {
         format!("{label} (no design)")
@@ -567,13 +628,15 @@ fn design_into(
     on(Event::Designed(&design));
     if let (Some(path), Design::Milp(r)) = (&run.sol, &design) {
         if let Some(x) = &r.primal_point {
-            let header = format!("{} {}, {}", r.solve.solver, r.solve.solver_version, r.solve.termination.label());
-            crate::io::sol::write(&f.model, x, r.solve.objective, &header, path)?;
+            let s = &r.solve;
+            let header = format!("{} {}, {}", s.solver, s.solver_version, s.termination.label());
+            crate::io::sol::write(&f.model, x, s.objective, &header, path)?;
             on(Event::Wrote { what: "solution", path });
         }
     }
-    let explanation = match (run.explain_seconds(), &design) {
-        (Some(budget), Design::Milp(r)) if r.solve.termination == Termination::Infeasible => {
+    let milp_infeasible = !design.outcome().is_search() && *design.termination() == Termination::Infeasible;
+    let explanation = match run.explain_seconds() {
+        Some(budget) if milp_infeasible => {
             on(Event::Explaining);
             let opts = ExplainOptions {
                 time_budget: budget,
@@ -788,14 +851,13 @@ pub fn write_outputs(
         write(&png_path, &png)?;
         on(Event::Wrote { what: "picture", path: &png_path });
     }
-    if let Design::Milp(r) = design {
-        if r.network.is_some() {
-            let geo = dir.join("network.geojson");
-            let level = crate::design::streets::DEFAULT_SOLVE_LEVEL;
-            let text = crate::design::streets::design_geojson(&r.mesh, &r.active_edges, &r.spec.name, level);
-            write(&geo, text.as_bytes())?;
-            on(Event::Wrote { what: "geojson", path: &geo });
-        }
+    if design.network().is_some() && !design.outcome().is_search() {
+        let geo = dir.join("network.geojson");
+        let level = crate::design::streets::DEFAULT_SOLVE_LEVEL;
+        let text =
+            crate::design::streets::design_geojson(design.mesh(), design.active_edges(), design.spec_name(), level);
+        write(&geo, text.as_bytes())?;
+        on(Event::Wrote { what: "geojson", path: &geo });
     }
     if let Some(g) = design.rooms().and_then(|r| r.block_graph.as_ref()) {
         let dot = dir.join("blocks.dot");
@@ -825,23 +887,14 @@ pub fn picture(p: &Problem, f: &Formulation, design: &Design, explanation: Optio
 fn caption(spec: &Spec, design: &Design) -> Caption {
     let name =
         if spec.description.is_empty() { spec.name.clone() } else { format!("{} — {}", spec.name, spec.description) };
-    match design {
-        Design::Milp(r) => Caption {
-            name,
-            solver: format!("{} {}", r.solve.solver, r.solve.solver_version),
-            status: r.solve.termination.label(),
-            objective: r.solve.objective,
-            gap: r.solve.gap,
-            verdict: design.verdict("no network"),
-        },
-        Design::Search(r) => Caption {
-            name,
-            solver: format!("netspec {} {}", r.solve.solver, r.solve.solver_version),
-            status: r.solve.termination.label(),
-            objective: r.solve.objective,
-            gap: None,
-            verdict: design.verdict("no design"),
-        },
+    let o = design.outcome();
+    Caption {
+        name,
+        solver: o.solver_label(),
+        status: o.termination.label(),
+        objective: o.objective,
+        gap: o.gap,
+        verdict: design.verdict(if o.is_search() { "no design" } else { "no network" }),
     }
 }
 

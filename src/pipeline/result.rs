@@ -2,6 +2,7 @@
 //! through: the validator on the network, the MILP checker on the design as a point of the
 //! formulation.
 
+use super::outcome::Outcome;
 use crate::design::{self, Metrics, Network, Objective, Violation};
 use crate::formulations::expr::FamilyStats;
 use crate::formulations::Formulation;
@@ -10,7 +11,7 @@ use crate::milp::{check_point, CheckReport, ModelStats, Tolerances};
 use crate::rules::paths::PathSets;
 use crate::solvers::lattice::LatticeReport;
 use crate::solvers::split::SplitReport;
-use crate::solvers::{LazyReport, Separator, SolveResult};
+use crate::solvers::{LazyReport, Separator};
 use crate::spec::{Problem, Spec};
 use indexmap::IndexMap;
 use serde::{Deserialize, Serialize};
@@ -80,8 +81,9 @@ pub struct DesignResult {
     pub objective: Option<Objective>,
     /// The independent checks.
     pub validity: Validity,
-    /// The solver's result (the primal point is omitted here; see `--export` for the model).
-    pub solve: SolveResult,
+    /// Why the solver stopped, objective, bound, times (the primal point is omitted here; see
+    /// `--sol`).
+    pub solve: Outcome,
     /// Size of the MILP.
     pub model_stats: ModelStats,
     /// Variables and rows per constraint family.

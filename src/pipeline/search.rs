@@ -6,13 +6,14 @@
 //! `netspec solve --solver heuristic|anneal` writes it as `result.json`, and `netspec compare`
 //! reads it like any other run.
 
+use super::outcome::{Outcome, SearchDetails};
 use super::result::{
     active_edge_pairs, design_point, design_violations, rooms_result, RoomsResult, Validity, DESIGN_SCHEMA_VERSION,
 };
 use crate::design::{Metrics, Network, Objective};
 use crate::formulations::expr::FamilyStats;
 use crate::formulations::Formulation;
-use crate::heuristics::{self, AnnealOptions, Inputs, Options, SearchOutput, SearchStats, Stop, TracePoint};
+use crate::heuristics::{self, AnnealOptions, Inputs, Options, SearchOutput, Stop};
 use crate::mesh::Mesh;
 use crate::milp::ModelStats;
 use crate::rules::paths::PathSets;
@@ -87,42 +88,6 @@ impl std::str::FromStr for Method {
     }
 }
 
-/// The run part of a search's record: what a MILP result's `solve` says, for a search.
-#[derive(Clone, Debug, Serialize, Deserialize)]
-pub struct SearchRun {
-    /// The method's name (`heuristic`, `anneal`), where a MILP result names its backend.
-    pub solver: String,
-    /// The netspec version (the searches are netspec's own code).
-    pub solver_version: String,
-    /// `limit(time)` when the time limit stopped it, `limit(other)` when it ran out of things
-    /// to try, `infeasible` when no design exists for a plain reason (`infeasible_because`);
-    /// never `optimal` (a search proves no bound).
-    pub termination: Termination,
-    /// Why no design exists, with `infeasible`.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub infeasible_because: Option<String>,
-    /// The design's objective, if there is a design.
-    pub objective: Option<f64>,
-    /// Always `None`: a search has no bound.
-    pub dual_bound: Option<f64>,
-    /// Always `None`.
-    pub gap: Option<f64>,
-    /// Always `None`.
-    pub nodes: Option<u64>,
-    /// Seconds the search ran.
-    pub solver_time: Option<f64>,
-    /// Seconds of the whole run (search and checks).
-    pub wall_time: f64,
-    /// The seed.
-    pub seed: u64,
-    /// Seconds until the first valid design, if any.
-    pub first_design_seconds: Option<f64>,
-    /// The best objective over time.
-    pub trace: Vec<TracePoint>,
-    /// Counters.
-    pub stats: SearchStats,
-}
-
 /// Everything about one search run (`result.json`): the fields of
 /// [`crate::pipeline::DesignResult`], with `solve` describing the search.
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -151,8 +116,11 @@ pub struct SearchResult {
     /// every row and bound checked; `objective_agrees`: the search's own objective equals the
     /// one recomputed from the design).
     pub validity: Validity,
-    /// The search.
-    pub solve: SearchRun,
+    /// The search's outcome: `limit(time)` when the time limit stopped it, `limit(other)` when
+    /// it ran out of things to try, `infeasible` when no design exists for a plain reason
+    /// (`infeasible_because`); never `optimal` (a search proves no bound, and has no gap and no
+    /// nodes).
+    pub solve: Outcome,
     /// Size of the MILP the design was checked against.
     pub model_stats: ModelStats,
     /// Its families.
@@ -241,22 +209,19 @@ pub fn record(
         metrics,
         objective,
         validity,
-        solve: SearchRun {
-            solver: method.name().into(),
-            solver_version: env!("CARGO_PKG_VERSION").into(),
+        solve: Outcome::of_search(
+            method.name(),
             termination,
-            infeasible_because: output.infeasible.clone(),
-            objective: output.objective,
-            dual_bound: None,
-            gap: None,
-            nodes: None,
-            solver_time: Some(output.seconds),
-            wall_time: t0.elapsed().as_secs_f64(),
-            seed,
-            first_design_seconds: output.trace.first().map(|t| t.seconds),
-            trace: output.trace,
-            stats: output.stats,
-        },
+            output.objective,
+            (output.seconds, t0.elapsed().as_secs_f64()),
+            SearchDetails {
+                infeasible_because: output.infeasible.clone(),
+                seed,
+                first_design_seconds: output.trace.first().map(|t| t.seconds),
+                trace: output.trace,
+                stats: output.stats,
+            },
+        ),
         network: output.network,
         model_stats: f.model.stats(),
         families: f.families.clone(),
