@@ -12,9 +12,9 @@ use crate::design::picture::network_svg;
 use crate::design::Network;
 use crate::explain::{conflict_svg, explain, ExplainOptions, Explanation};
 use crate::formulations::Formulation;
-use crate::pipeline::search::{run_search, SearchMethod, SearchResult};
+use crate::pipeline::search::{run_search, SearchMethod};
 use crate::pipeline::settings::{resolve, Origin, Settings, SettingsError};
-use crate::pipeline::{self, DesignResult, Method, Outcome, StartFrom, StartReport, Validity};
+use crate::pipeline::{self, DesignResult, Method, StartFrom, StartReport, Validity};
 use crate::render::Caption;
 use crate::solvers::lazy::LpBound;
 use crate::solvers::{Interrupt, PointSink, ProgressSink, SolveOptions, SolverError, SolverKind, Termination};
@@ -246,144 +246,38 @@ pub enum Event<'a> {
     },
 }
 
-/// A checked design run: a MILP solve's result or a search's.
-#[derive(Clone, Debug)]
-pub enum Design {
-    /// A MILP solve.
-    Milp(Box<DesignResult>),
-    /// The heuristic or the stochastic search.
-    Search(Box<SearchResult>),
-}
+/// A checked design run, a MILP solve's or a search's: one record, whose `solve` (its
+/// [`crate::pipeline::Outcome`]) says which.
+pub type Design = DesignResult;
 
-impl Design {
-    /// The design, if one was found.
-    pub fn network(&self) -> Option<&Network> {
-        match self {
-            Design::Milp(r) => r.network.as_ref(),
-            Design::Search(r) => r.network.as_ref(),
-        }
-    }
-
-    /// The independent checks.
-    pub fn validity(&self) -> &Validity {
-        match self {
-            Design::Milp(r) => &r.validity,
-            Design::Search(r) => &r.validity,
-        }
-    }
-
-    /// The run's outcome: why it stopped, objective, bound, gap, nodes, times.
-    pub fn outcome(&self) -> &Outcome {
-        match self {
-            Design::Milp(r) => &r.solve,
-            Design::Search(r) => &r.solve,
-        }
-    }
-
-    /// Why the run stopped.
-    pub fn termination(&self) -> &Termination {
-        &self.outcome().termination
-    }
-
-    /// The objective, if any.
-    pub fn objective(&self) -> Option<f64> {
-        self.outcome().objective
-    }
-
-    /// The mesh the design is on.
-    pub fn mesh(&self) -> &crate::mesh::Mesh {
-        match self {
-            Design::Milp(r) => &r.mesh,
-            Design::Search(r) => &r.mesh,
-        }
-    }
-
-    /// Active edges as vertex pairs (existing edges included), in edge-id order.
-    pub fn active_edges(&self) -> &[[u32; 2]] {
-        match self {
-            Design::Milp(r) => &r.active_edges,
-            Design::Search(r) => &r.active_edges,
-        }
-    }
-
-    /// The design's metrics, if there is a design.
-    pub fn metrics(&self) -> Option<&crate::design::Metrics> {
-        match self {
-            Design::Milp(r) => r.metrics.as_ref(),
-            Design::Search(r) => r.metrics.as_ref(),
-        }
-    }
-
-    /// The size of the MILP the design was solved or checked against.
-    pub fn model_stats(&self) -> &crate::milp::ModelStats {
-        match self {
-            Design::Milp(r) => &r.model_stats,
-            Design::Search(r) => &r.model_stats,
-        }
-    }
-
-    /// The spec's name.
-    pub fn spec_name(&self) -> &str {
-        match self {
-            Design::Milp(r) => &r.spec.name,
-            Design::Search(r) => &r.spec.name,
-        }
-    }
-
-    /// The room part, if the problem tiles rooms.
-    pub fn rooms(&self) -> Option<&pipeline::RoomsResult> {
-        match self {
-            Design::Milp(r) => r.rooms.as_ref(),
-            Design::Search(r) => r.rooms.as_ref(),
-        }
-    }
-
+impl DesignResult {
     /// The validity line: `valid`, `INVALID (n violations)`, or `none` without a design.
     pub fn verdict(&self, none: &str) -> String {
-        verdict_line(self.network().is_some(), self.validity(), none)
+        verdict_line(self.network.is_some(), &self.validity, none)
     }
 
     /// The status line `netspec solve` prints: [`milp_status_line`] or [`search_status_line`].
     pub fn status_line(&self) -> String {
-        match self.outcome().is_search() {
-            true => search_line(self.outcome(), self.network().is_some()),
-            false => milp_line(self.outcome(), self.metrics()),
+        match self.solve.is_search() {
+            true => search_status_line(self),
+            false => milp_status_line(self),
         }
     }
 
     /// Whether a design exists and failed an independent check.
     pub fn is_invalid(&self) -> bool {
-        self.network().is_some() && !self.validity().valid
-    }
-
-    /// Whether the run was stopped by an interrupt.
-    pub fn interrupted(&self) -> bool {
-        self.outcome().interrupted()
-    }
-}
-
-/// A design run is written as its record (`result.json` without `status`).
-impl serde::Serialize for Design {
-    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        match self {
-            Design::Milp(r) => r.serialize(s),
-            Design::Search(r) => r.serialize(s),
-        }
+        self.network.is_some() && !self.validity.valid
     }
 }
 
 /// Why the solver stopped and whether a design exists: `optimal, design found (47 edges)`,
 /// `limit(time), design found (47 edges, gap 12 %)`, `limit(time), no design`.
 pub fn milp_status_line(r: &DesignResult) -> String {
-    milp_line(&r.solve, r.metrics.as_ref())
-}
-
-/// [`milp_status_line`] from the outcome and the design's metrics.
-fn milp_line(s: &Outcome, metrics: Option<&crate::design::Metrics>) -> String {
+    let s = &r.solve;
     if let (Termination::Infeasible, Some(why)) = (&s.termination, &s.infeasibility) {
         return format!("infeasible (found by netspec before solving): {why}");
     }
-    let design = match metrics {
+    let design = match &r.metrics {
         Some(m) => {
             let gap = match (&s.termination, s.gap) {
                 (Termination::Optimal, _) | (_, None) => String::new(),
@@ -397,14 +291,9 @@ fn milp_line(s: &Outcome, metrics: Option<&crate::design::Metrics>) -> String {
 }
 
 /// A search's status line: `optimal`, `limit(time)`, or with ` (no design)` when it found none.
-pub fn search_status_line(r: &SearchResult) -> String {
-    search_line(&r.solve, r.network.is_some())
-}
-
-/// [`search_status_line`] from the outcome and whether there is a design.
-fn search_line(s: &Outcome, has_design: bool) -> String {
-    let label = s.termination.label();
-    if has_design {
+pub fn search_status_line(r: &DesignResult) -> String {
+    let label = r.solve.termination.label();
+    if r.network.is_some() {
         label
     } else {
         format!("{label} (no design)")
@@ -621,14 +510,14 @@ fn design_into(
     on: &mut dyn FnMut(Event),
 ) -> Result<Solved, RunError> {
     let design = match (run.method, out) {
-        (Method::Search(m), _) => Design::Search(Box::new(search(p, f, m, &run.options, on)?)),
-        (Method::Milp(kind), Some(out)) => Design::Milp(Box::new(milp_writing(p, f, kind, run, out, on)?)),
-        (Method::Milp(kind), None) => Design::Milp(Box::new(milp(p, f, kind, run, on)?)),
+        (Method::Search(m), _) => search(p, f, m, &run.options, on)?,
+        (Method::Milp(kind), Some(out)) => milp_writing(p, f, kind, run, out, on)?,
+        (Method::Milp(kind), None) => milp(p, f, kind, run, on)?,
     };
     on(Event::Designed(&design));
-    if let (Some(path), Design::Milp(r)) = (&run.sol, &design) {
-        if let Some(x) = &r.primal_point {
-            let s = &r.solve;
+    if let Some(path) = &run.sol {
+        if let Some(x) = &design.primal_point {
+            let s = &design.solve;
             let header = format!("{} {}, {}", s.solver, s.solver_version, s.termination.label());
             crate::io::sol::write(&f.model, x, s.objective, &header, path)?;
             on(Event::Wrote { what: "solution", path });
@@ -717,7 +606,7 @@ fn search(
     method: SearchMethod,
     o: &SolveOptions,
     on: &mut dyn FnMut(Event),
-) -> Result<SearchResult, RunError> {
+) -> Result<DesignResult, RunError> {
     for (set, name) in
         [(o.rel_gap.is_some(), "gap"), (o.abs_gap.is_some(), "abs_gap"), (o.node_limit.is_some(), "node_limit")]
     {
@@ -817,29 +706,20 @@ pub fn write_outputs(
     };
     std::fs::create_dir_all(dir).map_err(|source| RunError::Write { path: dir.to_path_buf(), source })?;
     let json = dir.join("result.json");
-    let text = match design {
-        Design::Milp(r) => {
-            // result.json: the design result, plus `infeasibility` when the spec was explained.
-            #[derive(serde::Serialize)]
-            struct Written<'a> {
-                #[serde(flatten)]
-                result: &'a DesignResult,
-                status: &'static str,
-                #[serde(skip_serializing_if = "Option::is_none")]
-                infeasibility: Option<&'a Explanation>,
-            }
-            serde_json::to_string_pretty(&Written { result: r, status: running::FINISHED, infeasibility: explanation })
-        }
-        Design::Search(r) => {
-            #[derive(serde::Serialize)]
-            struct Written<'a> {
-                #[serde(flatten)]
-                result: &'a SearchResult,
-                status: &'static str,
-            }
-            serde_json::to_string_pretty(&Written { result: r, status: running::FINISHED })
-        }
+    // result.json: the design result, plus `infeasibility` when the spec was explained.
+    #[derive(serde::Serialize)]
+    struct Written<'a> {
+        #[serde(flatten)]
+        result: &'a DesignResult,
+        status: &'static str,
+        #[serde(skip_serializing_if = "Option::is_none")]
+        infeasibility: Option<&'a Explanation>,
     }
+    let text = serde_json::to_string_pretty(&Written {
+        result: design,
+        status: running::FINISHED,
+        infeasibility: explanation,
+    })
     .expect("results serialise");
     let spec = &p.spec;
     if let Some(svg) = picture(p, f, design, explanation) {
@@ -854,8 +734,7 @@ pub fn write_outputs(
     if design.network().is_some() && !design.outcome().is_search() {
         let geo = dir.join("network.geojson");
         let level = crate::design::streets::DEFAULT_SOLVE_LEVEL;
-        let text =
-            crate::design::streets::design_geojson(design.mesh(), design.active_edges(), design.spec_name(), level);
+        let text = crate::design::streets::design_geojson(&design.mesh, &design.active_edges, &design.spec.name, level);
         write(&geo, text.as_bytes())?;
         on(Event::Wrote { what: "geojson", path: &geo });
     }

@@ -66,8 +66,8 @@ pub(crate) fn empty_record(
 /// `result.json`.
 pub(crate) fn fill_record(mut rec: RunRecord, r: &PyResultObj) -> RunRecord {
     let d = &r.design;
-    let model_stats = d.model_stats();
-    rec.edges = Some(d.mesh().num_edges());
+    let model_stats = &d.model_stats;
+    rec.edges = Some(d.mesh.num_edges());
     rec.vars = Some(model_stats.vars);
     rec.rows = Some(model_stats.rows);
     rec.nonzeros = Some(model_stats.nonzeros);

@@ -108,8 +108,8 @@ impl PyResultObj {
         let d = &self.design;
         let metrics = to_py(py, &d.metrics())?;
         Ok(Some(PyDesign {
-            edges: d.active_edges().iter().map(|&[a, b]| (a, b)).collect(),
-            points: d.mesh().positions().iter().map(|p| (p[0], p[1])).collect(),
+            edges: d.active_edges.iter().map(|&[a, b]| (a, b)).collect(),
+            points: d.mesh.positions().iter().map(|p| (p[0], p[1])).collect(),
             metrics,
         }))
     }
@@ -141,7 +141,7 @@ impl PyResultObj {
         self.design.network()?;
         let d = &self.design;
         let level = netspec::design::streets::DEFAULT_SOLVE_LEVEL;
-        Some(netspec::design::streets::design_geojson(d.mesh(), d.active_edges(), &self.problem.spec.name, level))
+        Some(netspec::design::streets::design_geojson(&d.mesh, &d.active_edges, &self.problem.spec.name, level))
     }
 
     /// The picture `network.svg` holds (None without a design or an explanation).

@@ -3,9 +3,8 @@
 use super::args::SolveArgs;
 use anyhow::Result;
 use indicatif::{ProgressBar, ProgressStyle};
-use netspec::pipeline::search::SearchResult;
 use netspec::pipeline::DesignResult;
-use netspec::run::{Design, Event, ExplainBudget, SolveRequest, StartChoice};
+use netspec::run::{Event, ExplainBudget, SolveRequest, StartChoice};
 use netspec::solvers::{Progress, ProgressSink};
 use netspec::spec::Variant;
 use std::path::PathBuf;
@@ -198,9 +197,9 @@ fn print_event(e: &Event, bar: &ProgressBar) {
         }
         Event::Designed(d) => {
             bar.finish_and_clear();
-            match d {
-                Design::Milp(r) => print_milp(r, &d.verdict("no network")),
-                Design::Search(r) => print_search(r, &d.verdict("no design")),
+            match d.solve.is_search() {
+                true => print_search(d, &d.verdict("no design")),
+                false => print_milp(d, &d.verdict("no network")),
             }
         }
         Event::Explaining => spin(bar, "explaining: which requirements conflict?".into(), String::new()),
@@ -328,7 +327,7 @@ fn print_milp(r: &DesignResult, verdict: &str) {
     }
 }
 
-fn print_search(r: &SearchResult, verdict: &str) {
+fn print_search(r: &DesignResult, verdict: &str) {
     let s = &r.solve;
     let num = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.6}"));
     println!("status     {}", netspec::run::search_status_line(r));

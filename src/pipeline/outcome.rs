@@ -269,3 +269,48 @@ impl<'de> Deserialize<'de> for Outcome {
         })
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::solvers::SolverKind;
+
+    fn search_outcome() -> Outcome {
+        let details = SearchDetails {
+            infeasible_because: None,
+            seed: 3,
+            first_design_seconds: Some(0.5),
+            trace: vec![TracePoint { seconds: 0.5, objective: 12.0 }],
+            stats: SearchStats::default(),
+        };
+        Outcome::of_search("heuristic", Termination::Limit(LimitKind::Time), Some(12.0), (1.0, 1.5), details)
+    }
+
+    #[test]
+    fn a_search_writes_its_own_layout_and_reads_back() {
+        let o = search_outcome();
+        let text = serde_json::to_string(&o).unwrap();
+        assert!(text.starts_with(r#"{"solver":"heuristic","solver_version":"#), "{text}");
+        let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+        assert!(v.get("primal").is_none() && v.get("warnings").is_none());
+        let back: Outcome = serde_json::from_value(v).unwrap();
+        assert_eq!(back, o);
+    }
+
+    #[test]
+    fn a_milp_solve_writes_its_own_layout_and_reads_back() {
+        let mut r = SolveResult::empty(SolverKind::Highs, "1.0".into(), Termination::Optimal);
+        r.objective = Some(4.0);
+        r.dual_bound = Some(4.0);
+        r.finish(Sense::Minimize);
+        let o = Outcome::of_solve(r.clone());
+        let text = serde_json::to_string(&o).unwrap();
+        assert!(text.starts_with(r#"{"termination":{"reason":"optimal"},"primal":null,"#), "{text}");
+        let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+        assert_eq!(v["solver"], "highs");
+        assert_eq!(serde_json::to_value(&r).unwrap(), v, "the backend's layout, point omitted");
+        let back: Outcome = serde_json::from_value(v).unwrap();
+        assert_eq!(back, o);
+        assert_eq!(o.status_line(), r.status_line());
+    }
+}
