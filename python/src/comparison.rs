@@ -3,7 +3,6 @@
 use crate::errors::{err, parse_method, parse_variant, to_py};
 use crate::result::{solve_spec, spec_arg, PyResultObj, SolveArgs};
 use netspec::compare::{Manifest, RunRecord, RunSettings};
-use netspec::run::Design;
 use netspec::solvers::SolverKind;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
