@@ -12,7 +12,7 @@ use crate::design::picture::network_svg;
 use crate::design::Network;
 use crate::explain::{conflict_svg, explain, ExplainOptions, Explanation};
 use crate::formulations::Formulation;
-use crate::pipeline::search::{run_search, SearchMethod, SearchResult};
+use crate::pipeline::search::{run_search, SearchMethod};
 use crate::pipeline::settings::{resolve, Origin, Settings, SettingsError};
 use crate::pipeline::{self, DesignResult, Method, StartFrom, StartReport, Validity};
 use crate::render::Caption;
@@ -246,77 +246,27 @@ pub enum Event<'a> {
     },
 }
 
-/// A checked design run: a MILP solve's result or a search's.
-#[derive(Clone, Debug)]
-pub enum Design {
-    /// A MILP solve.
-    Milp(Box<DesignResult>),
-    /// The heuristic or the stochastic search.
-    Search(Box<SearchResult>),
-}
+/// A checked design run, a MILP solve's or a search's: one record, whose `solve` (its
+/// [`crate::pipeline::Outcome`]) says which.
+pub type Design = DesignResult;
 
-impl Design {
-    /// The design, if one was found.
-    pub fn network(&self) -> Option<&Network> {
-        match self {
-            Design::Milp(r) => r.network.as_ref(),
-            Design::Search(r) => r.network.as_ref(),
-        }
-    }
-
-    /// The independent checks.
-    pub fn validity(&self) -> &Validity {
-        match self {
-            Design::Milp(r) => &r.validity,
-            Design::Search(r) => &r.validity,
-        }
-    }
-
-    /// Why the run stopped.
-    pub fn termination(&self) -> &Termination {
-        match self {
-            Design::Milp(r) => &r.solve.termination,
-            Design::Search(r) => &r.solve.termination,
-        }
-    }
-
-    /// The objective, if any.
-    pub fn objective(&self) -> Option<f64> {
-        match self {
-            Design::Milp(r) => r.solve.objective,
-            Design::Search(r) => r.solve.objective,
-        }
-    }
-
-    /// The room part, if the problem tiles rooms.
-    pub fn rooms(&self) -> Option<&pipeline::RoomsResult> {
-        match self {
-            Design::Milp(r) => r.rooms.as_ref(),
-            Design::Search(r) => r.rooms.as_ref(),
-        }
-    }
-
+impl DesignResult {
     /// The validity line: `valid`, `INVALID (n violations)`, or `none` without a design.
     pub fn verdict(&self, none: &str) -> String {
-        verdict_line(self.network().is_some(), self.validity(), none)
+        verdict_line(self.network.is_some(), &self.validity, none)
     }
 
     /// The status line `netspec solve` prints: [`milp_status_line`] or [`search_status_line`].
     pub fn status_line(&self) -> String {
-        match self {
-            Design::Milp(r) => milp_status_line(r),
-            Design::Search(r) => search_status_line(r),
+        match self.solve.is_search() {
+            true => search_status_line(self),
+            false => milp_status_line(self),
         }
     }
 
     /// Whether a design exists and failed an independent check.
     pub fn is_invalid(&self) -> bool {
-        self.network().is_some() && !self.validity().valid
-    }
-
-    /// Whether the run was stopped by an interrupt.
-    pub fn interrupted(&self) -> bool {
-        *self.termination() == Termination::Limit(crate::solvers::LimitKind::Interrupt)
+        self.network.is_some() && !self.validity.valid
     }
 }
 
@@ -341,7 +291,7 @@ pub fn milp_status_line(r: &DesignResult) -> String {
 }
 
 /// A search's status line: `optimal`, `limit(time)`, or with ` (no design)` when it found none.
-pub fn search_status_line(r: &SearchResult) -> String {
+pub fn search_status_line(r: &DesignResult) -> String {
     let label = r.solve.termination.label();
     if r.network.is_some() {
         label
@@ -560,20 +510,22 @@ fn design_into(
     on: &mut dyn FnMut(Event),
 ) -> Result<Solved, RunError> {
     let design = match (run.method, out) {
-        (Method::Search(m), _) => Design::Search(Box::new(search(p, f, m, &run.options, on)?)),
-        (Method::Milp(kind), Some(out)) => Design::Milp(Box::new(milp_writing(p, f, kind, run, out, on)?)),
-        (Method::Milp(kind), None) => Design::Milp(Box::new(milp(p, f, kind, run, on)?)),
+        (Method::Search(m), _) => search(p, f, m, &run.options, on)?,
+        (Method::Milp(kind), Some(out)) => milp_writing(p, f, kind, run, out, on)?,
+        (Method::Milp(kind), None) => milp(p, f, kind, run, on)?,
     };
     on(Event::Designed(&design));
-    if let (Some(path), Design::Milp(r)) = (&run.sol, &design) {
-        if let Some(x) = &r.primal_point {
-            let header = format!("{} {}, {}", r.solve.solver, r.solve.solver_version, r.solve.termination.label());
-            crate::io::sol::write(&f.model, x, r.solve.objective, &header, path)?;
+    if let Some(path) = &run.sol {
+        if let Some(x) = &design.primal_point {
+            let s = &design.solve;
+            let header = format!("{} {}, {}", s.solver, s.solver_version, s.termination.label());
+            crate::io::sol::write(&f.model, x, s.objective, &header, path)?;
             on(Event::Wrote { what: "solution", path });
         }
     }
-    let explanation = match (run.explain_seconds(), &design) {
-        (Some(budget), Design::Milp(r)) if r.solve.termination == Termination::Infeasible => {
+    let milp_infeasible = !design.outcome().is_search() && *design.termination() == Termination::Infeasible;
+    let explanation = match run.explain_seconds() {
+        Some(budget) if milp_infeasible => {
             on(Event::Explaining);
             let opts = ExplainOptions {
                 time_budget: budget,
@@ -654,7 +606,7 @@ fn search(
     method: SearchMethod,
     o: &SolveOptions,
     on: &mut dyn FnMut(Event),
-) -> Result<SearchResult, RunError> {
+) -> Result<DesignResult, RunError> {
     for (set, name) in
         [(o.rel_gap.is_some(), "gap"), (o.abs_gap.is_some(), "abs_gap"), (o.node_limit.is_some(), "node_limit")]
     {
@@ -754,29 +706,20 @@ pub fn write_outputs(
     };
     std::fs::create_dir_all(dir).map_err(|source| RunError::Write { path: dir.to_path_buf(), source })?;
     let json = dir.join("result.json");
-    let text = match design {
-        Design::Milp(r) => {
-            // result.json: the design result, plus `infeasibility` when the spec was explained.
-            #[derive(serde::Serialize)]
-            struct Written<'a> {
-                #[serde(flatten)]
-                result: &'a DesignResult,
-                status: &'static str,
-                #[serde(skip_serializing_if = "Option::is_none")]
-                infeasibility: Option<&'a Explanation>,
-            }
-            serde_json::to_string_pretty(&Written { result: r, status: running::FINISHED, infeasibility: explanation })
-        }
-        Design::Search(r) => {
-            #[derive(serde::Serialize)]
-            struct Written<'a> {
-                #[serde(flatten)]
-                result: &'a SearchResult,
-                status: &'static str,
-            }
-            serde_json::to_string_pretty(&Written { result: r, status: running::FINISHED })
-        }
+    // result.json: the design result, plus `infeasibility` when the spec was explained.
+    #[derive(serde::Serialize)]
+    struct Written<'a> {
+        #[serde(flatten)]
+        result: &'a DesignResult,
+        status: &'static str,
+        #[serde(skip_serializing_if = "Option::is_none")]
+        infeasibility: Option<&'a Explanation>,
     }
+    let text = serde_json::to_string_pretty(&Written {
+        result: design,
+        status: running::FINISHED,
+        infeasibility: explanation,
+    })
     .expect("results serialise");
     let spec = &p.spec;
     if let Some(svg) = picture(p, f, design, explanation) {
@@ -788,15 +731,13 @@ pub fn write_outputs(
         write(&png_path, &png)?;
         on(Event::Wrote { what: "picture", path: &png_path });
     }
-    if let Design::Milp(r) = design {
-        if r.network.is_some() {
-            let geo = dir.join("network.geojson");
-            let level = crate::design::streets::DEFAULT_SOLVE_LEVEL;
-            let text = crate::design::streets::design_geojson(&r.mesh, &r.active_edges, &r.spec.name, level)
-                .map_err(|e| RunError::Render { path: geo.clone(), message: e.to_string() })?;
-            write(&geo, text.as_bytes())?;
-            on(Event::Wrote { what: "geojson", path: &geo });
-        }
+    if design.network().is_some() && !design.outcome().is_search() {
+        let geo = dir.join("network.geojson");
+        let level = crate::design::streets::DEFAULT_SOLVE_LEVEL;
+        let text = crate::design::streets::design_geojson(&design.mesh, &design.active_edges, &design.spec.name, level)
+            .map_err(|e| RunError::Render { path: geo.clone(), message: e.to_string() })?;
+        write(&geo, text.as_bytes())?;
+        on(Event::Wrote { what: "geojson", path: &geo });
     }
     if let Some(g) = design.rooms().and_then(|r| r.block_graph.as_ref()) {
         let dot = dir.join("blocks.dot");
@@ -826,23 +767,14 @@ pub fn picture(p: &Problem, f: &Formulation, design: &Design, explanation: Optio
 fn caption(spec: &Spec, design: &Design) -> Caption {
     let name =
         if spec.description.is_empty() { spec.name.clone() } else { format!("{} — {}", spec.name, spec.description) };
-    match design {
-        Design::Milp(r) => Caption {
-            name,
-            solver: format!("{} {}", r.solve.solver, r.solve.solver_version),
-            status: r.solve.termination.label(),
-            objective: r.solve.objective,
-            gap: r.solve.gap,
-            verdict: design.verdict("no network"),
-        },
-        Design::Search(r) => Caption {
-            name,
-            solver: format!("netspec {} {}", r.solve.solver, r.solve.solver_version),
-            status: r.solve.termination.label(),
-            objective: r.solve.objective,
-            gap: None,
-            verdict: design.verdict("no design"),
-        },
+    let o = design.outcome();
+    Caption {
+        name,
+        solver: o.solver_label(),
+        status: o.termination.label(),
+        objective: o.objective,
+        gap: o.gap,
+        verdict: design.verdict(if o.is_search() { "no design" } else { "no network" }),
     }
 }
 

@@ -3,7 +3,6 @@
 use crate::errors::{err, parse_method, parse_variant, to_py};
 use crate::result::{solve_spec, spec_arg, PyResultObj, SolveArgs};
 use netspec::compare::{Manifest, RunRecord, RunSettings};
-use netspec::run::Design;
 use netspec::solvers::SolverKind;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -65,23 +64,14 @@ pub(crate) fn empty_record(
 /// The record of one in-process run, with the fields `netspec compare` takes from a run's
 /// `result.json`.
 pub(crate) fn fill_record(mut rec: RunRecord, r: &PyResultObj) -> RunRecord {
-    let (mesh, model_stats, status, version) = match &*r.design {
-        Design::Milp(d) => (&d.mesh, &d.model_stats, d.solve.termination.label(), d.solve.solver_version.clone()),
-        Design::Search(d) => (&d.mesh, &d.model_stats, d.solve.termination.label(), d.solve.solver_version.clone()),
-    };
-    let f = r.solve_fields();
-    rec.edges = Some(mesh.num_edges());
+    let d = &r.design;
+    let model_stats = &d.model_stats;
+    rec.edges = Some(d.mesh.num_edges());
     rec.vars = Some(model_stats.vars);
     rec.rows = Some(model_stats.rows);
     rec.nonzeros = Some(model_stats.nonzeros);
-    rec.status = status;
-    rec.objective = f.objective;
-    rec.dual_bound = f.bound;
-    rec.gap = f.gap;
-    rec.nodes = f.nodes;
-    rec.solver_time = f.solver_time;
-    rec.valid = r.design.validity().valid;
-    rec.solver_version = Some(version);
+    rec.take_outcome(d.outcome());
+    rec.valid = d.validity().valid;
     rec.exit_code = Some(0);
     rec
 }

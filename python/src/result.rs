@@ -41,51 +41,6 @@ pub(crate) struct PyResultObj {
     pub(crate) explanation: Option<Arc<netspec::explain::Explanation>>,
 }
 
-impl PyResultObj {
-    pub(crate) fn mesh_edges(&self) -> (&netspec::mesh::Mesh, &[[u32; 2]]) {
-        match &*self.design {
-            Design::Milp(r) => (&r.mesh, &r.active_edges),
-            Design::Search(r) => (&r.mesh, &r.active_edges),
-        }
-    }
-    pub(crate) fn solve_fields(&self) -> SolveFields {
-        match &*self.design {
-            Design::Milp(r) => {
-                let s = &r.solve;
-                SolveFields {
-                    objective: s.objective,
-                    bound: s.dual_bound,
-                    gap: s.gap,
-                    wall_time: s.wall_time,
-                    solver_time: s.solver_time,
-                    nodes: s.nodes,
-                }
-            }
-            Design::Search(r) => {
-                let s = &r.solve;
-                SolveFields {
-                    objective: s.objective,
-                    bound: None,
-                    gap: None,
-                    wall_time: s.wall_time,
-                    solver_time: s.solver_time,
-                    nodes: None,
-                }
-            }
-        }
-    }
-}
-
-/// What a MILP solve and a search both report.
-pub(crate) struct SolveFields {
-    pub(crate) objective: Option<f64>,
-    pub(crate) bound: Option<f64>,
-    pub(crate) gap: Option<f64>,
-    pub(crate) wall_time: f64,
-    pub(crate) solver_time: Option<f64>,
-    pub(crate) nodes: Option<u64>,
-}
-
 #[pymethods]
 impl PyResultObj {
     /// The status line `netspec solve` prints: `optimal, design found (47 edges)`,
@@ -105,37 +60,37 @@ impl PyResultObj {
     /// The objective.
     #[getter]
     fn objective(&self) -> Option<f64> {
-        self.solve_fields().objective
+        self.design.objective()
     }
 
     /// The proven bound (None for the searches).
     #[getter]
     fn bound(&self) -> Option<f64> {
-        self.solve_fields().bound
+        self.design.outcome().dual_bound
     }
 
     /// The relative gap.
     #[getter]
     fn gap(&self) -> Option<f64> {
-        self.solve_fields().gap
+        self.design.outcome().gap
     }
 
     /// Wall time of the solve, seconds.
     #[getter]
     fn time(&self) -> f64 {
-        self.solve_fields().wall_time
+        self.design.outcome().wall_time
     }
 
     /// The backend's own time, seconds.
     #[getter]
     fn solver_time(&self) -> Option<f64> {
-        self.solve_fields().solver_time
+        self.design.outcome().solver_time
     }
 
     /// Branch-and-bound nodes.
     #[getter]
     fn nodes(&self) -> Option<u64> {
-        self.solve_fields().nodes
+        self.design.outcome().nodes
     }
 
     /// Whether a design exists and passed every independent check.
@@ -150,14 +105,11 @@ impl PyResultObj {
         if self.design.network().is_none() {
             return Ok(None);
         }
-        let (mesh, edges) = self.mesh_edges();
-        let metrics = match &*self.design {
-            Design::Milp(r) => to_py(py, &r.metrics)?,
-            Design::Search(r) => to_py(py, &r.metrics)?,
-        };
+        let d = &self.design;
+        let metrics = to_py(py, &d.metrics())?;
         Ok(Some(PyDesign {
-            edges: edges.iter().map(|&[a, b]| (a, b)).collect(),
-            points: mesh.positions().iter().map(|p| (p[0], p[1])).collect(),
+            edges: d.active_edges.iter().map(|&[a, b]| (a, b)).collect(),
+            points: d.mesh.positions().iter().map(|p| (p[0], p[1])).collect(),
             metrics,
         }))
     }
@@ -171,10 +123,7 @@ impl PyResultObj {
 
     /// `result.json` as a dict.
     fn to_dict(&self, py: Python<'_>) -> PyResult<PyObject> {
-        match &*self.design {
-            Design::Milp(r) => to_py(py, &**r),
-            Design::Search(r) => to_py(py, &**r),
-        }
+        to_py(py, &*self.design)
     }
 
     /// Writes the outputs `netspec solve` writes into the folder: `result.json`,
@@ -192,9 +141,9 @@ impl PyResultObj {
         if self.design.network().is_none() {
             return Ok(None);
         }
-        let (mesh, edges) = self.mesh_edges();
+        let d = &self.design;
         let level = netspec::design::streets::DEFAULT_SOLVE_LEVEL;
-        netspec::design::streets::design_geojson(mesh, edges, &self.problem.spec.name, level)
+        netspec::design::streets::design_geojson(&d.mesh, &d.active_edges, &self.problem.spec.name, level)
             .map(Some)
             .map_err(|e| pyo3::exceptions::PyValueError::new_err(e.to_string()))
     }

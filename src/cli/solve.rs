@@ -3,9 +3,8 @@
 use super::args::SolveArgs;
 use anyhow::Result;
 use indicatif::{ProgressBar, ProgressStyle};
-use netspec::pipeline::search::SearchResult;
 use netspec::pipeline::DesignResult;
-use netspec::run::{Design, Event, ExplainBudget, SolveRequest, StartChoice};
+use netspec::run::{Event, ExplainBudget, SolveRequest, StartChoice};
 use netspec::solvers::{Progress, ProgressSink};
 use netspec::spec::Variant;
 use std::path::PathBuf;
@@ -198,9 +197,9 @@ fn print_event(e: &Event, bar: &ProgressBar) {
         }
         Event::Designed(d) => {
             bar.finish_and_clear();
-            match d {
-                Design::Milp(r) => print_milp(r, &d.verdict("no network")),
-                Design::Search(r) => print_search(r, &d.verdict("no design")),
+            match d.solve.is_search() {
+                true => print_search(d, &d.verdict("no design")),
+                false => print_milp(d, &d.verdict("no network")),
             }
         }
         Event::Explaining => spin(bar, "explaining: which requirements conflict?".into(), String::new()),
@@ -328,11 +327,12 @@ fn print_milp(r: &DesignResult, verdict: &str) {
     }
 }
 
-fn print_search(r: &SearchResult, verdict: &str) {
+fn print_search(r: &DesignResult, verdict: &str) {
     let s = &r.solve;
     let num = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.6}"));
     println!("status     {}", netspec::run::search_status_line(r));
-    if let Some(why) = &s.infeasible_because {
+    let details = s.search.as_ref();
+    if let Some(why) = details.and_then(|d| d.infeasible_because.as_ref()) {
         println!("reason     {why}");
     }
     println!("objective  {}", num(s.objective));
@@ -340,16 +340,15 @@ fn print_search(r: &SearchResult, verdict: &str) {
         "time       {:.2} s search, {:.2} s wall; first design at {}",
         s.solver_time.unwrap_or(0.0),
         s.wall_time,
-        s.first_design_seconds.map_or("-".into(), |t| format!("{t:.3} s"))
+        details.and_then(|d| d.first_design_seconds).map_or("-".into(), |t| format!("{t:.3} s"))
     );
-    let st = &s.stats;
-    if st.passes > 0 {
-        println!("passes     {} ({} operations performed)", st.passes, st.steps);
-    } else {
-        println!(
+    match details.map(|d| &d.stats) {
+        Some(st) if st.passes > 0 => println!("passes     {} ({} operations performed)", st.passes, st.steps),
+        Some(st) => println!(
             "search     {} constructions ({} valid), {} moves tried, {} kept, {} kicks",
             st.constructions, st.constructed, st.moves_tried, st.moves_accepted, st.kicks
-        );
+        ),
+        None => {}
     }
     if let Some(m) = &r.metrics {
         println!(

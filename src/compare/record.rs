@@ -1,7 +1,7 @@
 //! One run's record (`run.json`): what it produced, read from the files its process left
 //! ([`record_from_dir`]), and the settings that produced it ([`RunSettings`]).
 
-use crate::solvers::Termination;
+use crate::pipeline::Outcome;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
@@ -61,6 +61,20 @@ pub struct RunRecord {
     /// `OUT_OF_MEMORY`, `CANCELLED`, `PREEMPTED`, …); such a run is solved again on resume.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub slurm_state: Option<String>,
+}
+
+impl RunRecord {
+    /// Takes the run's outcome: its termination label as `status`, objective, bound, gap,
+    /// nodes, solver time and the solver's version (the wall time stays the process's).
+    pub fn take_outcome(&mut self, o: &Outcome) {
+        self.status = o.termination.label();
+        self.objective = o.objective;
+        self.dual_bound = o.dual_bound;
+        self.gap = o.gap;
+        self.nodes = o.nodes;
+        self.solver_time = o.solver_time;
+        self.solver_version = Some(o.solver_version.clone());
+    }
 }
 
 /// The settings that produced a run: a record is reused only when all of them are the same.
@@ -184,14 +198,8 @@ pub fn record_from_dir(
             r.vars = Some(res.model_stats.vars);
             r.rows = Some(res.model_stats.rows);
             r.nonzeros = Some(res.model_stats.nonzeros);
-            r.status = res.solve.termination.label();
-            r.objective = res.solve.objective;
-            r.dual_bound = res.solve.dual_bound;
-            r.gap = res.solve.gap;
-            r.nodes = res.solve.nodes;
-            r.solver_time = res.solve.solver_time;
+            r.take_outcome(&res.solve);
             r.valid = res.validity.valid;
-            r.solver_version = Some(res.solve.solver_version);
         }
         (None, false) => r.error = Some(failure_cause(dir, exit_code)),
         _ => {}
@@ -216,26 +224,13 @@ fn failure_cause(dir: &Path, exit_code: Option<i32>) -> String {
     }
 }
 
-/// What a run record needs from a `result.json`: the fields a MILP solve's
-/// [`crate::pipeline::DesignResult`] and a search's [`crate::heuristics::run::SearchResult`]
-/// share.
+/// What a run record needs from a `result.json` of a MILP solve or a search.
 #[derive(Deserialize)]
 struct ResultView {
     mesh: crate::mesh::Mesh,
     model_stats: crate::milp::ModelStats,
-    solve: SolveView,
+    solve: Outcome,
     validity: ValidityView,
-}
-
-#[derive(Deserialize)]
-struct SolveView {
-    termination: Termination,
-    objective: Option<f64>,
-    dual_bound: Option<f64>,
-    gap: Option<f64>,
-    nodes: Option<u64>,
-    solver_time: Option<f64>,
-    solver_version: String,
 }
 
 #[derive(Deserialize)]

@@ -2,6 +2,7 @@
 //! through: the validator on the network, the MILP checker on the design as a point of the
 //! formulation.
 
+use super::outcome::Outcome;
 use crate::design::{self, Metrics, Network, Objective, Violation};
 use crate::formulations::expr::FamilyStats;
 use crate::formulations::Formulation;
@@ -10,7 +11,7 @@ use crate::milp::{check_point, CheckReport, ModelStats, Tolerances};
 use crate::rules::paths::PathSets;
 use crate::solvers::lattice::LatticeReport;
 use crate::solvers::split::SplitReport;
-use crate::solvers::{LazyReport, Separator, SolveResult};
+use crate::solvers::{LazyReport, Separator};
 use crate::spec::{Problem, Spec};
 use indexmap::IndexMap;
 use serde::{Deserialize, Serialize};
@@ -51,8 +52,10 @@ pub struct RoomsResult {
     pub chosen: Vec<crate::rules::placements::Placement>,
 }
 
-/// Everything about one design run (`result.json`).
-#[derive(Clone, Debug, Serialize, Deserialize)]
+/// Everything about one design run (`result.json`), a MILP solve's or a search's: the search
+/// has no `lazy`, `split`, `lattice`, `solver_hints` or `start`, and its `result.json` does not
+/// write `design_found`, `lazy` and `start` (see [`DesignResult`]'s `Serialize`).
+#[derive(Clone, Debug, Deserialize)]
 pub struct DesignResult {
     /// Always `netspec.design`.
     pub schema: String,
@@ -80,8 +83,9 @@ pub struct DesignResult {
     pub objective: Option<Objective>,
     /// The independent checks.
     pub validity: Validity,
-    /// The solver's result (the primal point is omitted here; see `--export` for the model).
-    pub solve: SolveResult,
+    /// Why the solver stopped, objective, bound, times (the primal point is omitted here; see
+    /// `--sol`).
+    pub solve: Outcome,
     /// Size of the MILP.
     pub model_stats: ModelStats,
     /// Variables and rows per constraint family.
@@ -95,15 +99,15 @@ pub struct DesignResult {
     pub lazy: Option<LazyReport>,
     /// The two-phase solve, when the objective's two scales called for it
     /// ([`crate::solvers::split`]).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(default)]
     pub split: Option<SplitReport>,
     /// The objective's lattice, when the recipe used it, with the backend's bound before it was
     /// rounded up to the lattice ([`crate::solvers::lattice`]).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(default)]
     pub lattice: Option<LatticeReport>,
     /// The solve strategy's settings handed to the backend (`highs.mip_pscost_minreliable=0`;
     /// [`crate::solvers::Solver::strategy_hints`]), beside the user's own.
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    #[serde(default)]
     pub solver_hints: Vec<String>,
     /// The MIP start handed to the solver (or refused), if one was prepared.
     #[serde(default)]
@@ -115,6 +119,96 @@ pub struct DesignResult {
     /// The solver's point, one value per MILP variable (not in `result.json`; for `--sol`).
     #[serde(skip)]
     pub primal_point: Option<Vec<f64>>,
+}
+
+impl DesignResult {
+    /// The design, if one was found.
+    pub fn network(&self) -> Option<&Network> {
+        self.network.as_ref()
+    }
+
+    /// The independent checks.
+    pub fn validity(&self) -> &Validity {
+        &self.validity
+    }
+
+    /// The run's outcome: why it stopped, objective, bound, gap, nodes, times.
+    pub fn outcome(&self) -> &Outcome {
+        &self.solve
+    }
+
+    /// Why the run stopped.
+    pub fn termination(&self) -> &crate::solvers::Termination {
+        &self.solve.termination
+    }
+
+    /// The objective, if any.
+    pub fn objective(&self) -> Option<f64> {
+        self.solve.objective
+    }
+
+    /// The design's metrics, if there is a design.
+    pub fn metrics(&self) -> Option<&Metrics> {
+        self.metrics.as_ref()
+    }
+
+    /// The room part, if the problem tiles rooms.
+    pub fn rooms(&self) -> Option<&RoomsResult> {
+        self.rooms.as_ref()
+    }
+
+    /// Whether the run was stopped by an interrupt.
+    pub fn interrupted(&self) -> bool {
+        self.solve.interrupted()
+    }
+}
+
+/// `result.json`'s layout: every field in declaration order, a search's without `design_found`,
+/// `lazy` and `start` (which only a MILP solve has), `split`, `lattice` and `solver_hints` only
+/// when set.
+impl Serialize for DesignResult {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeStruct;
+        let milp = !self.solve.is_search();
+        let mut st = s.serialize_struct("DesignResult", 23)?;
+        st.serialize_field("schema", &self.schema)?;
+        st.serialize_field("schema_version", &self.schema_version)?;
+        st.serialize_field("netspec_version", &self.netspec_version)?;
+        st.serialize_field("spec", &self.spec)?;
+        st.serialize_field("mesh", &self.mesh)?;
+        st.serialize_field("sinks", &self.sinks)?;
+        st.serialize_field("active_edges", &self.active_edges)?;
+        st.serialize_field("network", &self.network)?;
+        if milp {
+            st.serialize_field("design_found", &self.design_found)?;
+        }
+        st.serialize_field("metrics", &self.metrics)?;
+        st.serialize_field("objective", &self.objective)?;
+        st.serialize_field("validity", &self.validity)?;
+        st.serialize_field("solve", &self.solve)?;
+        st.serialize_field("model_stats", &self.model_stats)?;
+        st.serialize_field("families", &self.families)?;
+        st.serialize_field("formulation", &self.formulation)?;
+        st.serialize_field("big_m", &self.big_m)?;
+        if milp {
+            st.serialize_field("lazy", &self.lazy)?;
+        }
+        if let Some(split) = &self.split {
+            st.serialize_field("split", split)?;
+        }
+        if let Some(lattice) = &self.lattice {
+            st.serialize_field("lattice", lattice)?;
+        }
+        if !self.solver_hints.is_empty() {
+            st.serialize_field("solver_hints", &self.solver_hints)?;
+        }
+        if milp {
+            st.serialize_field("start", &self.start)?;
+        }
+        st.serialize_field("path_sets", &self.path_sets)?;
+        st.serialize_field("rooms", &self.rooms)?;
+        st.end()
+    }
 }
 
 /// A design as a point of a formulation, with the MILP checker's report on it.

@@ -6,19 +6,15 @@
 //! `netspec solve --solver heuristic|anneal` writes it as `result.json`, and `netspec compare`
 //! reads it like any other run.
 
+use super::outcome::{Outcome, SearchDetails};
 use super::result::{
-    active_edge_pairs, design_point, design_violations, rooms_result, RoomsResult, Validity, DESIGN_SCHEMA_VERSION,
+    active_edge_pairs, design_point, design_violations, rooms_result, DesignResult, Validity, DESIGN_SCHEMA_VERSION,
 };
-use crate::design::{Metrics, Network, Objective};
-use crate::formulations::expr::FamilyStats;
+use crate::design::{Metrics, Objective};
 use crate::formulations::Formulation;
-use crate::heuristics::{self, AnnealOptions, Inputs, Options, SearchOutput, SearchStats, Stop, TracePoint};
-use crate::mesh::Mesh;
-use crate::milp::ModelStats;
-use crate::rules::paths::PathSets;
+use crate::heuristics::{self, AnnealOptions, Inputs, Options, SearchOutput, Stop};
 use crate::solvers::{LimitKind, SolverKind, Termination};
-use crate::spec::{Problem, Spec};
-use indexmap::IndexMap;
+use crate::spec::Problem;
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
 
@@ -87,85 +83,8 @@ impl std::str::FromStr for Method {
     }
 }
 
-/// The run part of a search's record: what a MILP result's `solve` says, for a search.
-#[derive(Clone, Debug, Serialize, Deserialize)]
-pub struct SearchRun {
-    /// The method's name (`heuristic`, `anneal`), where a MILP result names its backend.
-    pub solver: String,
-    /// The netspec version (the searches are netspec's own code).
-    pub solver_version: String,
-    /// `limit(time)` when the time limit stopped it, `limit(other)` when it ran out of things
-    /// to try, `infeasible` when no design exists for a plain reason (`infeasible_because`);
-    /// never `optimal` (a search proves no bound).
-    pub termination: Termination,
-    /// Why no design exists, with `infeasible`.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub infeasible_because: Option<String>,
-    /// The design's objective, if there is a design.
-    pub objective: Option<f64>,
-    /// Always `None`: a search has no bound.
-    pub dual_bound: Option<f64>,
-    /// Always `None`.
-    pub gap: Option<f64>,
-    /// Always `None`.
-    pub nodes: Option<u64>,
-    /// Seconds the search ran.
-    pub solver_time: Option<f64>,
-    /// Seconds of the whole run (search and checks).
-    pub wall_time: f64,
-    /// The seed.
-    pub seed: u64,
-    /// Seconds until the first valid design, if any.
-    pub first_design_seconds: Option<f64>,
-    /// The best objective over time.
-    pub trace: Vec<TracePoint>,
-    /// Counters.
-    pub stats: SearchStats,
-}
-
-/// Everything about one search run (`result.json`): the fields of
-/// [`crate::pipeline::DesignResult`], with `solve` describing the search.
-#[derive(Clone, Debug, Serialize, Deserialize)]
-pub struct SearchResult {
-    /// Always `netspec.design`.
-    pub schema: String,
-    /// [`DESIGN_SCHEMA_VERSION`].
-    pub schema_version: u32,
-    /// The netspec version.
-    pub netspec_version: String,
-    /// The spec, echoed.
-    pub spec: Spec,
-    /// The mesh.
-    pub mesh: Mesh,
-    /// Sink vertex ids.
-    pub sinks: Vec<u32>,
-    /// Active edges as vertex pairs (existing edges included), in edge-id order.
-    pub active_edges: Vec<[u32; 2]>,
-    /// The design, if the search found one.
-    pub network: Option<Network>,
-    /// Its metrics.
-    pub metrics: Option<Metrics>,
-    /// Its objective, term by term.
-    pub objective: Option<Objective>,
-    /// The independent checks (`milp_check`: the design encoded as a point of the formulation,
-    /// every row and bound checked; `objective_agrees`: the search's own objective equals the
-    /// one recomputed from the design).
-    pub validity: Validity,
-    /// The search.
-    pub solve: SearchRun,
-    /// Size of the MILP the design was checked against.
-    pub model_stats: ModelStats,
-    /// Its families.
-    pub families: IndexMap<String, FamilyStats>,
-    /// Its recipe.
-    pub formulation: String,
-    /// Its big-M, if any.
-    pub big_m: Option<f64>,
-    /// Point-to-point path sets, if on.
-    pub path_sets: Option<PathSets>,
-    /// Room tiling, if on.
-    pub rooms: Option<RoomsResult>,
-}
+/// A search's record (`result.json`): a [`DesignResult`] whose `solve` describes the search.
+pub type SearchResult = DesignResult;
 
 /// Runs a search on a built formulation (its path sets and placements are the ones the design
 /// uses) and checks its design like a solver's. The heuristic runs `threads` searches side by
@@ -230,7 +149,7 @@ pub fn record(
         Stop::Exhausted => Termination::Limit(LimitKind::Other),
         Stop::Infeasible => Termination::Infeasible,
     };
-    SearchResult {
+    DesignResult {
         schema: "netspec.design".into(),
         schema_version: DESIGN_SCHEMA_VERSION,
         netspec_version: env!("CARGO_PKG_VERSION").into(),
@@ -238,31 +157,35 @@ pub fn record(
         mesh: p.mesh.clone(),
         sinks: p.mesh.vertices().filter(|v| p.is_sink[v.index()]).map(|v| v.0).collect(),
         active_edges,
+        design_found: output.network.is_some(),
         metrics,
         objective,
         validity,
-        solve: SearchRun {
-            solver: method.name().into(),
-            solver_version: env!("CARGO_PKG_VERSION").into(),
+        solve: Outcome::of_search(
+            method.name(),
             termination,
-            infeasible_because: output.infeasible.clone(),
-            objective: output.objective,
-            dual_bound: None,
-            gap: None,
-            nodes: None,
-            solver_time: Some(output.seconds),
-            wall_time: t0.elapsed().as_secs_f64(),
-            seed,
-            first_design_seconds: output.trace.first().map(|t| t.seconds),
-            trace: output.trace,
-            stats: output.stats,
-        },
+            output.objective,
+            (output.seconds, t0.elapsed().as_secs_f64()),
+            SearchDetails {
+                infeasible_because: output.infeasible.clone(),
+                seed,
+                first_design_seconds: output.trace.first().map(|t| t.seconds),
+                trace: output.trace,
+                stats: output.stats,
+            },
+        ),
         network: output.network,
         model_stats: f.model.stats(),
         families: f.families.clone(),
         formulation: f.recipe.label.clone(),
         big_m: f.big_m,
+        lazy: None,
+        split: None,
+        lattice: None,
+        solver_hints: Vec::new(),
+        start: None,
         path_sets: f.path_sets.clone(),
         rooms,
+        primal_point: None,
     }
 }

@@ -1,6 +1,7 @@
 //! Solving a built formulation: the backend (with the lazily separated rows through its
 //! callback or the solve–cut–resolve loop), the solve strategy, and every answer checked.
 
+use super::outcome::Outcome;
 use super::result::StartReport;
 use super::result::{
     active_edge_pairs, design_violations, rooms_result, DesignResult, Validity, DESIGN_SCHEMA_VERSION,
@@ -13,7 +14,7 @@ use crate::heuristics::{self, Inputs};
 use crate::milp::{check_point, objectives_agree, Model, Tolerances};
 use crate::solvers::lattice::LatticeReport;
 use crate::solvers::split::{solve_split, ObjectiveSplit, PhaseSolve, SplitReport};
-use crate::solvers::{LazyReport, LazyRow, SolveOptions, SolveResult, SolverError, SolverKind};
+use crate::solvers::{LazyReport, LazyRow, SolveOptions, SolverError, SolverKind};
 use crate::spec::Problem;
 
 /// The formulation's point for a repaired version of a disconnected integral point: islands
@@ -99,7 +100,6 @@ pub fn solve_from_with(
         if worse && !infeasible {
             let mut solve = res.solve.clone();
             solve.objective = Some(f.model.objective_value(&x));
-            solve.primal = Some(x);
             solve.finish(f.model.sense);
             let reports = Reports {
                 lazy: res.lazy.clone(),
@@ -107,7 +107,7 @@ pub fn solve_from_with(
                 solver_hints: res.solver_hints.clone(),
                 lattice: res.lattice.clone(),
             };
-            let mut again = checked_result(p, f, solve, reports, &[])?;
+            let mut again = checked_result(p, f, (solve, Some(x)), reports, &[])?;
             again.solve.wall_time = res.solve.wall_time;
             report.returned = true;
             res = again;
@@ -175,7 +175,14 @@ pub fn solve_built_with(
         .objective_lattice
         .filter(|_| strategy.objective_lattice)
         .map(|lattice| LatticeReport { lattice, solver_bound: lattice.settle(&mut result, f.model.sense) });
-    checked_result(p, f, result, Reports { lazy, split, solver_hints, lattice }, &lazy_rows)
+    let primal = result.primal.take();
+    checked_result(
+        p,
+        f,
+        (Outcome::of_solve(result), primal),
+        Reports { lazy, split, solver_hints, lattice },
+        &lazy_rows,
+    )
 }
 
 /// What a solve did besides its result, carried into the design result.
@@ -192,7 +199,7 @@ struct Reports {
 fn checked_result(
     p: &Problem,
     f: &Formulation,
-    mut result: SolveResult,
+    (outcome, primal): (Outcome, Option<Vec<f64>>),
     reports: Reports,
     lazy_rows: &[LazyRow],
 ) -> Result<DesignResult, SolverError> {
@@ -207,7 +214,7 @@ fn checked_result(
     let mut net = None;
     let mut metrics = None;
     let mut objective = None;
-    if let Some(x) = &result.primal {
+    if let Some(x) = &primal {
         let check = if lazy_rows.is_empty() {
             check_point(&f.model, x, &Tolerances::default())
         } else {
@@ -225,7 +232,7 @@ fn checked_result(
         let design_objective = Objective::of(p, &n);
         let surrogate = check.objective;
         validity.objective_recomputed = Some(design_objective.total);
-        validity.objective_agrees = result.objective.map(|o| {
+        validity.objective_agrees = outcome.objective.map(|o| {
             objectives_agree(o, surrogate, 1e-6)
                 && design_objective.total <= surrogate + 1e-6 * surrogate.abs().max(1.0)
         });
@@ -237,7 +244,6 @@ fn checked_result(
         net = Some(n);
     }
     let active_edges = active_edge_pairs(p, net.as_ref());
-    let primal_point = result.primal.take();
     let rooms = rooms_result(p, f, net.as_ref());
     Ok(DesignResult {
         schema: "netspec.design".into(),
@@ -252,7 +258,7 @@ fn checked_result(
         metrics,
         objective,
         validity,
-        solve: result,
+        solve: outcome,
         model_stats: f.model.stats(),
         families: f.families.clone(),
         formulation: f.recipe.label.clone(),
@@ -264,6 +270,6 @@ fn checked_result(
         start: None,
         path_sets: f.path_sets.clone(),
         rooms,
-        primal_point,
+        primal_point: primal,
     })
 }

@@ -321,29 +321,23 @@ fn incumbent_sink(h: Arc<RunHandle>, p: Arc<Problem>) -> IncumbentSink {
 
 /// A design run's summary.
 pub fn summarize(d: &Design) -> Summary {
-    let (status, bound, gap, metrics) = match d {
-        Design::Milp(r) => {
-            let s = &r.solve;
-            let status = match (&s.infeasibility, &r.metrics) {
-                (Some(why), _) => format!("{}: {why}", s.termination),
-                (None, Some(m)) => format!("{}, design found ({} edges)", s.termination, m.edges),
-                (None, None) => format!("{}, no design", s.termination),
-            };
-            (status, s.dual_bound, s.gap, r.metrics.clone())
+    let o = d.outcome();
+    let status = match (&o.infeasibility, d.metrics()) {
+        _ if o.is_search() => {
+            format!("{}, {}", o.termination.label(), if d.network().is_some() { "design found" } else { "no design" })
         }
-        Design::Search(r) => {
-            let found = if r.network.is_some() { "design found" } else { "no design" };
-            (format!("{}, {found}", r.solve.termination.label()), None, None, r.metrics.clone())
-        }
+        (Some(why), _) => format!("{}: {why}", o.termination),
+        (None, Some(m)) => format!("{}, design found ({} edges)", o.termination, m.edges),
+        (None, None) => format!("{}, no design", o.termination),
     };
     Summary {
         status,
-        objective: d.objective(),
-        bound,
-        gap,
+        objective: o.objective,
+        bound: o.dual_bound,
+        gap: o.gap,
         verdict: d.verdict("no design"),
         interrupted: d.interrupted(),
-        metrics,
+        metrics: d.metrics().cloned(),
         conflicts: Vec::new(),
         seconds: 0.0,
     }

@@ -34,7 +34,8 @@ pub use options::{
     MAX_THREADS,
 };
 pub use result::{
-    gap, percent, within_optimality_tolerance, LimitKind, SolveResult, StartCheck, Termination, OPTIMALITY_TOLERANCE,
+    finished, gap, percent, status_line, within_optimality_tolerance, LimitKind, SolveResult, StartCheck, Termination,
+    OPTIMALITY_TOLERANCE,
 };
 
 use crate::milp::{check_point, Model, Tolerances};

@@ -163,39 +163,14 @@ impl SolveResult {
     /// when its dual bound is not within [`OPTIMALITY_TOLERANCE`] of the objective (the solver
     /// stopped on a gap limit, the user's or its own default).
     pub fn finish(&mut self, sense: Sense) {
-        self.gap = match (self.objective, self.dual_bound) {
-            (Some(p), Some(d)) => Some(gap(p, d, sense)),
-            _ => None,
-        };
-        if self.termination == Termination::Optimal {
-            if let (Some(p), Some(d)) = (self.objective, self.dual_bound) {
-                if !within_optimality_tolerance(p, d, sense) {
-                    self.termination = Termination::Limit(LimitKind::Gap);
-                }
-            }
-        }
+        (self.gap, self.termination) = finished(&self.termination, self.objective, self.dual_bound, sense);
     }
 
     /// One line that says apart why the solver stopped and whether it has a solution:
     /// `limit(time), solution found (objective 12.5, gap 3.10 %)`, `limit(time), no solution`,
     /// `infeasible: row `c`: …`.
     pub fn status_line(&self) -> String {
-        let found = match (&self.primal, self.objective) {
-            (Some(_), Some(obj)) | (None, Some(obj)) => {
-                format!(
-                    "solution found (objective {obj}{})",
-                    self.gap.map_or(String::new(), |g| format!(", gap {}", percent(g)))
-                )
-            }
-            (Some(_), None) => "solution found".to_string(),
-            (None, None) => "no solution".to_string(),
-        };
-        match (&self.termination, &self.infeasibility) {
-            (Termination::Infeasible, Some(why)) => format!("infeasible (found by netspec before solving): {why}"),
-            (Termination::Infeasible, None) => "infeasible".into(),
-            (Termination::Optimal, _) => format!("optimal, {found}"),
-            (t, _) => format!("{t}, {found}"),
-        }
+        status_line(&self.termination, self.infeasibility.as_ref(), self.objective, self.gap, self.primal.is_some())
     }
 
     /// Runs the independent checker on the primal point, if any.
@@ -206,6 +181,54 @@ impl SolveResult {
     /// Whether a primal point is present.
     pub fn has_solution(&self) -> bool {
         self.primal.is_some()
+    }
+}
+
+/// The gap from an objective and a bound, and the termination with a solver's "optimal" turned
+/// into [`LimitKind::Gap`] when the bound is not within [`OPTIMALITY_TOLERANCE`] of the objective
+/// (the solver stopped on a gap limit, the user's or its own default).
+pub fn finished(
+    termination: &Termination,
+    objective: Option<f64>,
+    dual_bound: Option<f64>,
+    sense: Sense,
+) -> (Option<f64>, Termination) {
+    let (gap, close) = match (objective, dual_bound) {
+        (Some(p), Some(d)) => (Some(gap(p, d, sense)), within_optimality_tolerance(p, d, sense)),
+        _ => (None, true),
+    };
+    let termination = match termination {
+        Termination::Optimal if !close => Termination::Limit(LimitKind::Gap),
+        t => t.clone(),
+    };
+    (gap, termination)
+}
+
+/// One line that says apart why a solve stopped and whether it has a solution (`has_point`: a
+/// point without an objective): `limit(time), solution found (objective 12.5, gap 3.10 %)`,
+/// `limit(time), no solution`, `infeasible: row `c`: …`.
+pub fn status_line(
+    termination: &Termination,
+    infeasibility: Option<&Infeasibility>,
+    objective: Option<f64>,
+    gap: Option<f64>,
+    has_point: bool,
+) -> String {
+    let found = match (has_point, objective) {
+        (_, Some(obj)) => {
+            format!(
+                "solution found (objective {obj}{})",
+                gap.map_or(String::new(), |g| format!(", gap {}", percent(g)))
+            )
+        }
+        (true, None) => "solution found".to_string(),
+        (false, None) => "no solution".to_string(),
+    };
+    match (termination, infeasibility) {
+        (Termination::Infeasible, Some(why)) => format!("infeasible (found by netspec before solving): {why}"),
+        (Termination::Infeasible, None) => "infeasible".into(),
+        (Termination::Optimal, _) => format!("optimal, {found}"),
+        (t, _) => format!("{t}, {found}"),
     }
 }
 

@@ -663,8 +663,8 @@ fn run_level(
         deadline: None,
     };
     let res: DesignResult = match crate::run::solve_problem(&problem, &nm, &run, &ldir, &mut |_| {}) {
-        Ok(crate::run::Solved { design: Some(crate::run::Design::Milp(r)), .. }) => *r,
-        Ok(_) => unreachable!("a MILP run gives a MILP result"),
+        Ok(crate::run::Solved { design: Some(r), .. }) => r,
+        Ok(_) => unreachable!("a design run gives a design result"),
         Err(e) => return Ok((LevelReport::bare(n, "error", e.to_string()), None)),
     };
     let stats = res.model_stats;
