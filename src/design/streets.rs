@@ -1,7 +1,7 @@
 //! A design's streets: the network split into chains between junctions (the paper's snakes,
 //! which `urban::smooth` smooths), and streets as GeoJSON in WGS 84.
 
-use crate::mesh::geom::dist;
+use crate::geometry::dist;
 use crate::mesh::Mesh;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeSet;

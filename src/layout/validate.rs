@@ -141,6 +141,7 @@ fn fronts(ring: &[P], streets: &[Street]) -> bool {
     })
 }
 
+/// Its own rule for a street crossing a hole, deliberately independent of the parceller's.
 fn crosses(line: &[P], hole: &[P]) -> bool {
     let n = hole.len();
     line.windows(2).any(|w| {
