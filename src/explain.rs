@@ -412,7 +412,7 @@ pub fn describe(p: &Problem, r: Requirement) -> RequirementInfo {
         faces: Vec::new(),
     };
     let faces_in = |poly: &[[f64; 2]]| -> Vec<u32> {
-        mesh.faces().filter(|&f| crate::mesh::point_in_polygon(mesh.face_centroid(f), poly)).map(|f| f.0).collect()
+        mesh.faces().filter(|&f| crate::geometry::ring_contains(poly, mesh.face_centroid(f))).map(|f| f.0).collect()
     };
     match r {
         Requirement::Coverage => {

@@ -2,7 +2,8 @@
 //! [`NetworkScene`], drawn by [`crate::render::network`].
 
 use super::{travel_distances, Network};
-use crate::mesh::{geom, point_in_polygon, EdgeId, FaceId, Mesh};
+use crate::geometry as geom;
+use crate::mesh::{EdgeId, FaceId, Mesh};
 use crate::render::network::{self, ActiveEdge, NetworkScene, Room, RoomType};
 use crate::render::Caption;
 use crate::rules::paths::PathSets;
@@ -52,7 +53,7 @@ fn label_point(mesh: &Mesh, pl: &Placement) -> [f64; 2] {
     });
     let centre = [(lo[0] + hi[0]) / 2.0, (lo[1] + hi[1]) / 2.0];
     let polygon = |f: FaceId| -> Vec<[f64; 2]> { mesh.face_vertices(f).iter().map(|&v| mesh.position(v)).collect() };
-    if pl.faces.iter().any(|&f| point_in_polygon(centre, &polygon(f))) {
+    if pl.faces.iter().any(|&f| geom::ring_contains(&polygon(f), centre)) {
         centre
     } else {
         pl.faces

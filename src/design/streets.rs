@@ -1,9 +1,9 @@
 //! A design's streets: the network split into chains between junctions (the paper's snakes,
 //! which `urban::smooth` smooths), and streets as GeoJSON in WGS 84.
 
+use crate::geometry::dist;
 use crate::geometry::geojson::GeoJsonWriter;
 use crate::geometry::site::{Projection, SiteError};
-use crate::mesh::geom::dist;
 use crate::mesh::Mesh;
 use serde::{Deserialize, Serialize};
 use serde_json::json;

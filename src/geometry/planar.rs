@@ -8,29 +8,17 @@
 //! All outputs are deterministic: vertices are numbered in lexicographic (x, then y) order of
 //! their positions, edges are sorted, and no hash-map iteration order leaks into a result.
 
-use crate::mesh::geom::{closest_on_segment, dist, orient, point_in_polygon, projection_param, signed_area, sub, P};
+use super::{closest_on_segment, dist, projection_param, proper_crossing, ring_contains, signed_area, sub, P};
 use serde::{Deserialize, Serialize};
 use std::collections::{BTreeMap, HashMap};
 
 /// Distance from `p` to the segment `a b`.
 fn seg_dist(p: P, a: P, b: P) -> f64 {
-    dist(p, closest_on_segment(p, a, b))
-}
-/// The crossing point of two segments that cross properly (each strictly separates the other's
-/// endpoints), else `None`.
-fn proper_crossing(a: [P; 2], b: [P; 2]) -> Option<P> {
-    let (d1, d2) = (orient(b[0], b[1], a[0]), orient(b[0], b[1], a[1]));
-    let (d3, d4) = (orient(a[0], a[1], b[0]), orient(a[0], a[1], b[1]));
-    let opposite = |x: f64, y: f64| (x > 0.0 && y < 0.0) || (x < 0.0 && y > 0.0);
-    if !(opposite(d1, d2) && opposite(d3, d4)) {
-        return None;
-    }
-    let t = d1 / (d1 - d2);
-    Some([a[0][0] + t * (a[1][0] - a[0][0]), a[0][1] + t * (a[1][1] - a[0][1])])
+    dist(p, closest_on_segment(p, a, b).0)
 }
 /// Distance between two segments (0 if they cross).
 fn seg_seg_dist(a: [P; 2], b: [P; 2]) -> f64 {
-    if proper_crossing(a, b).is_some() {
+    if proper_crossing(a[0], a[1], b[0], b[1]).is_some() {
         return 0.0;
     }
     let d = [seg_dist(a[0], b[0], b[1]), seg_dist(a[1], b[0], b[1])];
@@ -121,7 +109,7 @@ fn split_segments(segs: &[[P; 2]], tol: f64) -> (Vec<P>, Vec<([u32; 2], Vec<usiz
                     }
                 }
             }
-            if let Some(x) = proper_crossing(a, b).filter(|_| !touched) {
+            if let Some(x) = proper_crossing(a[0], a[1], b[0], b[1]).filter(|_| !touched) {
                 on[i].push(x);
                 on[j].push(x);
             }
@@ -270,50 +258,18 @@ impl PlanarGraph {
         dist(self.positions[u as usize], self.positions[v as usize])
     }
 
-    /// Traces the faces with the rotation system: outgoing half-edges are sorted by angle at
-    /// each vertex and a walk continues from `u → v` with the half-edge just clockwise of
-    /// `v → u`, so every face lies on the left of its walks. Each connected component has one
+    /// Traces the faces with the rotation system ([`face_walks`]), so every face lies on the
+    /// left of its walks. Each connected component has one
     /// outer walk (the one leaving its lowest-left vertex with the largest angle); all other
     /// walks are bounded faces. A component nested inside a bounded face of another component
     /// (by point-in-polygon of its lowest-left vertex) becomes a hole of the smallest such face.
     /// Assumes the graph is planar (e.g. built by [`PlanarGraph::from_segments`]).
     pub fn faces(&self) -> Faces {
-        let (nv, nh) = (self.positions.len(), 2 * self.edges.len());
+        let nv = self.positions.len();
         let org = |h: usize| self.edges[h / 2][h % 2] as usize;
         let pos = |v: usize| self.positions[v];
-        let angle = |h: usize| {
-            let d = sub(pos(org(h ^ 1)), pos(org(h)));
-            d[1].atan2(d[0])
-        };
-        let mut out: Vec<Vec<usize>> = vec![Vec::new(); nv];
-        for h in 0..nh {
-            out[org(h)].push(h);
-        }
-        let mut rot = vec![0usize; nh];
-        for hs in &mut out {
-            hs.sort_by(|&a, &b| angle(a).total_cmp(&angle(b)).then(org(a ^ 1).cmp(&org(b ^ 1))));
-            for (k, &h) in hs.iter().enumerate() {
-                rot[h] = k;
-            }
-        }
-        let next = |h: usize| {
-            let hs = &out[org(h ^ 1)];
-            hs[(rot[h ^ 1] + hs.len() - 1) % hs.len()]
-        };
-        // Walks (cycles of the permutation `next`).
-        let mut walk_of = vec![usize::MAX; nh];
-        let mut walks: Vec<Vec<usize>> = Vec::new();
-        for h0 in 0..nh {
-            if walk_of[h0] == usize::MAX {
-                let (mut h, mut w) = (h0, Vec::new());
-                while walk_of[h] == usize::MAX {
-                    walk_of[h] = walks.len();
-                    w.push(h);
-                    h = next(h);
-                }
-                walks.push(w);
-            }
-        }
+        // Equal angles (overlapping edges, which a planar graph has none of) by far vertex.
+        let FaceWalks { walks, walk_of, around: out } = face_walks(&self.positions, &self.edges, |h| org(h ^ 1) as u32);
         // Connected components (union-find) and their lowest-left vertices and outer walks.
         let mut parent: Vec<usize> = (0..nv).collect();
         fn find(p: &mut [usize], mut v: usize) -> usize {
@@ -365,7 +321,7 @@ impl PlanarGraph {
         for (&r, &v) in &low {
             let p = pos(v);
             let container = (0..faces.len())
-                .filter(|&f| face_comp[f] != r && point_in_polygon(p, &rings[f]))
+                .filter(|&f| face_comp[f] != r && ring_contains(&rings[f], p))
                 .min_by(|&a, &b| outer_area[a].total_cmp(&outer_area[b]).then(a.cmp(&b)));
             let w = outer_walk[&r];
             walk_face[w] = container.map(|f| f as u32);
@@ -394,6 +350,61 @@ impl PlanarGraph {
         }
         Faces { faces, edge_faces }
     }
+}
+
+/// The face walks of a plane straight-line graph, see [`face_walks`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct FaceWalks {
+    /// The walks as half-edge cycles, each from its smallest half-edge, in order of it.
+    pub walks: Vec<Vec<usize>>,
+    /// Per half-edge: its walk.
+    pub walk_of: Vec<usize>,
+    /// Per vertex: its outgoing half-edges in counter-clockwise order of angle.
+    pub around: Vec<Vec<usize>>,
+}
+
+/// Traces the face walks of a plane straight-line graph with its rotation system: half-edge
+/// `2e` runs `edges[e][0] → edges[e][1]` and `2e + 1` back. At each vertex the outgoing
+/// half-edges are sorted by angle (`atan2`), equal angles by `tie` of the half-edge, and a walk
+/// continues from `u → v` with the half-edge just clockwise of `v → u`, so every face lies on
+/// the left of its walks: bounded faces counter-clockwise, each component's outer walk
+/// clockwise. The one face tracer of the crate.
+pub fn face_walks(positions: &[P], edges: &[[u32; 2]], tie: impl Fn(usize) -> u32) -> FaceWalks {
+    let nh = 2 * edges.len();
+    let org = |h: usize| edges[h / 2][h % 2] as usize;
+    let angle = |h: usize| {
+        let d = sub(positions[org(h ^ 1)], positions[org(h)]);
+        d[1].atan2(d[0])
+    };
+    let mut around: Vec<Vec<usize>> = vec![Vec::new(); positions.len()];
+    for h in 0..nh {
+        around[org(h)].push(h);
+    }
+    let mut rot = vec![0usize; nh];
+    for hs in &mut around {
+        hs.sort_by(|&a, &b| angle(a).total_cmp(&angle(b)).then(tie(a).cmp(&tie(b))));
+        for (k, &h) in hs.iter().enumerate() {
+            rot[h] = k;
+        }
+    }
+    let next = |h: usize| {
+        let hs = &around[org(h ^ 1)];
+        hs[(rot[h ^ 1] + hs.len() - 1) % hs.len()]
+    };
+    let mut walk_of = vec![usize::MAX; nh];
+    let mut walks: Vec<Vec<usize>> = Vec::new();
+    for h0 in 0..nh {
+        if walk_of[h0] == usize::MAX {
+            let (mut h, mut w) = (h0, Vec::new());
+            while walk_of[h] == usize::MAX {
+                walk_of[h] = walks.len();
+                w.push(h);
+                h = next(h);
+            }
+            walks.push(w);
+        }
+    }
+    FaceWalks { walks, walk_of, around }
 }
 
 /// Why [`arrangement`] rejected its input.
@@ -602,7 +613,7 @@ pub fn arrangement(domain: &[[f64; 2]], roads: &[Vec<[f64; 2]>], tol: f64) -> Re
     for (e, src) in split {
         let (a, b) = (positions[e[0] as usize], positions[e[1] as usize]);
         let on_boundary = src.iter().any(|&s| s < nb);
-        if on_boundary || point_in_polygon([0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])], &poly) {
+        if on_boundary || ring_contains(&poly, [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])]) {
             let rs: Vec<usize> = src.iter().filter(|&&s| s >= nb).map(|&s| seg_road[s - nb]).collect();
             for &r in &rs {
                 inside_road[r] = true;
@@ -663,8 +674,8 @@ mod tests {
     }
     fn check_labels(a: &Arrangement) {
         for r in &a.regions {
-            assert!(point_in_polygon(r.label_point, &r.outer), "{r:?}");
-            assert!(r.holes.iter().all(|h| !point_in_polygon(r.label_point, h)), "{r:?}");
+            assert!(ring_contains(&r.outer, r.label_point), "{r:?}");
+            assert!(r.holes.iter().all(|h| !ring_contains(h, r.label_point)), "{r:?}");
             assert!(signed_area(&r.outer) > 0.0);
             assert!(r.holes.iter().all(|h| signed_area(h) < 0.0));
         }

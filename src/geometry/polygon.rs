@@ -153,8 +153,7 @@ impl Polygon {
 
     /// The polygon as a `geo` polygon (for booleans, buffers and rotated rectangles).
     pub fn to_geo(&self) -> geo::Polygon<f64> {
-        let ring = |r: &[P]| geo::LineString::from(r.iter().chain(r.first()).map(|p| (p[0], p[1])).collect::<Vec<_>>());
-        geo::Polygon::new(ring(&self.outer), self.holes.iter().map(|h| ring(h)).collect())
+        geo_polygon(&self.outer, &self.holes)
     }
 
     /// Cuts the polygon along a polyline whose two ends lie on the outer ring (within `tol`) and
@@ -416,6 +415,13 @@ fn sweep_pairs(a: &[(P, P)], b: &[(P, P)], mut visit: impl FnMut(usize, usize) -
         }
         active.push(item);
     }
+}
+
+/// A `geo` polygon from an outer ring and holes (not closed; each is closed here, orientations
+/// kept): the one conversion to `geo`.
+pub fn geo_polygon(outer: &[P], holes: &[Vec<P>]) -> geo::Polygon<f64> {
+    let ring = |r: &[P]| geo::LineString::from(r.iter().chain(r.first()).map(|p| (p[0], p[1])).collect::<Vec<_>>());
+    geo::Polygon::new(ring(outer), holes.iter().map(|h| ring(h)).collect())
 }
 
 fn ring_edges(r: &[P]) -> Vec<(P, P)> {

@@ -8,6 +8,7 @@
 
 use super::graph::Graph;
 use super::terrain::Terrain;
+use crate::geometry::planar::face_walks;
 use crate::geometry::{closest_on_segment, dist, ring_area2, ring_contains, P};
 
 /// A bounded face of the road graph.
@@ -59,72 +60,26 @@ impl Blocks {
 /// each side (`usize::MAX` for an unbounded one).
 pub fn faces(graph: &Graph) -> (Vec<Face>, Vec<[usize; 2]>) {
     let ns = graph.segs.len();
-    // Outgoing road half-edges per node, sorted counter-clockwise; half-edge 2s is a→b.
-    let mut around: Vec<Vec<(f64, u32)>> = vec![Vec::new(); graph.nodes.len()];
-    for (s, g) in graph.segs.iter().enumerate() {
-        if !g.class.is_road() {
-            continue;
-        }
-        let (pa, pb) = graph.ends(s as u32);
-        around[g.a as usize].push(((pb[1] - pa[1]).atan2(pb[0] - pa[0]), 2 * s as u32));
-        around[g.b as usize].push(((pa[1] - pb[1]).atan2(pa[0] - pb[0]), 2 * s as u32 + 1));
-    }
-    for a in &mut around {
-        a.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
-    }
-    let head = |h: u32| {
-        let g = &graph.segs[(h / 2) as usize];
-        if h.is_multiple_of(2) {
-            g.b
-        } else {
-            g.a
-        }
-    };
-    let tail = |h: u32| {
-        let g = &graph.segs[(h / 2) as usize];
-        if h.is_multiple_of(2) {
-            g.a
-        } else {
-            g.b
-        }
-    };
+    // The road segments, in id order; half-edge 2k runs a→b along road k.
+    let roads: Vec<usize> = (0..ns).filter(|&s| graph.segs[s].class.is_road()).collect();
+    let edges: Vec<[u32; 2]> = roads.iter().map(|&s| [graph.segs[s].a, graph.segs[s].b]).collect();
+    let positions: Vec<P> = graph.nodes.iter().map(|n| n.pos).collect();
+    let walks = face_walks(&positions, &edges, |h| h as u32).walks;
     let mut face_of = vec![usize::MAX; 2 * ns];
-    let mut seen = vec![false; 2 * ns];
     let mut out = Vec::new();
-    let mut side = vec![[usize::MAX; 2]; ns];
-    for start in 0..2 * ns as u32 {
-        if seen[start as usize] || !graph.segs[(start / 2) as usize].class.is_road() {
-            continue;
-        }
-        let mut ring = Vec::new();
-        let mut halves = Vec::new();
-        let mut h = start;
-        loop {
-            seen[h as usize] = true;
-            halves.push(h);
-            ring.push(graph.nodes[tail(h) as usize].pos);
-            let v = head(h);
-            let list = &around[v as usize];
-            let twin = h ^ 1;
-            let i = list.iter().position(|e| e.1 == twin).expect("the twin leaves the head");
-            h = list[(i + list.len() - 1) % list.len()].1;
-            if h == start || halves.len() > 2 * ns {
-                break;
-            }
-        }
+    for halves in walks {
+        let ring: Vec<P> = halves.iter().map(|&h| positions[edges[h / 2][h % 2] as usize]).collect();
         let area = ring_area2(&ring) / 2.0;
         if area > 1e-6 {
             let id = out.len();
-            let born = halves.iter().map(|&h| graph.segs[(h / 2) as usize].born).max().unwrap_or(0);
+            let born = halves.iter().map(|&h| graph.segs[roads[h / 2]].born).max().unwrap_or(0);
             out.push(Face { ring, area, born, built_up: false });
             for &h in &halves {
-                face_of[h as usize] = id;
+                face_of[2 * roads[h / 2] + h % 2] = id;
             }
         }
     }
-    for (s, sd) in side.iter_mut().enumerate() {
-        *sd = [face_of[2 * s], face_of[2 * s + 1]];
-    }
+    let side = (0..ns).map(|s| [face_of[2 * s], face_of[2 * s + 1]]).collect();
     (out, side)
 }
 

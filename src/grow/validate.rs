@@ -226,6 +226,7 @@ fn references(net: &Network, out: &mut Vec<Violation>) -> Vec<usize> {
     sound
 }
 
+// Deliberately not `crate::geometry`'s orientation and crossing: this checker keeps its own.
 /// `(b − a) × (c − a)`: positive when `c` is left of `a → b`.
 fn orient(a: P, b: P, c: P) -> f64 {
     (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])

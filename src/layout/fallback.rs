@@ -16,6 +16,7 @@ use super::metrics::parcel_shape;
 use super::parcels::{parcellate as rows, ring_of, StreetIndex};
 use super::How;
 use super::{Parcel, Use};
+use crate::geometry::polygon::geo_polygon;
 use crate::geometry::P;
 use geo::{Area, BooleanOps, Centroid, MinimumRotatedRect};
 
@@ -80,7 +81,7 @@ pub fn merge_parks(parcels: Vec<Parcel>) -> Vec<Parcel> {
         out.extend(parks);
         return out;
     }
-    let polys: Vec<geo::Polygon<f64>> = parks.iter().map(|p| to_geo(&p.polygon)).collect();
+    let polys: Vec<geo::Polygon<f64>> = parks.iter().map(|p| geo_polygon(&p.polygon, &[])).collect();
     let union = geo::unary_union(polys.iter());
     if union.0.iter().any(|u| !u.interiors().is_empty()) {
         out.extend(parks);
@@ -128,13 +129,6 @@ fn without_holes(b: &geo::Polygon<f64>, along: bool, cuts: usize) -> Vec<geo::Po
         }
     }
     out
-}
-
-fn to_geo(ring: &[P]) -> geo::Polygon<f64> {
-    geo::Polygon::new(
-        geo::LineString::from(ring.iter().chain(ring.first()).map(|p| (p[0], p[1])).collect::<Vec<_>>()),
-        vec![],
-    )
 }
 
 #[cfg(test)]

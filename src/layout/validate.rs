@@ -9,6 +9,7 @@
 //!   segment midpoint lies inside a hole.
 
 use super::{Parcel, Street, Use};
+use crate::geometry::polygon::geo_polygon;
 use crate::geometry::{closest_on_segment, dist, ring_area2, ring_contains, segment_intersection, Polygon, P};
 use geo::{Area, BooleanOps, Buffer};
 use serde::Serialize;
@@ -66,7 +67,7 @@ impl fmt::Display for Violation {
 /// Every rule the layout breaks (empty when valid).
 pub fn validate(region: &Polygon, streets: &[Street], parcels: &[Parcel]) -> Vec<Violation> {
     let mut out = Vec::new();
-    let polys: Vec<geo::Polygon<f64>> = parcels.iter().map(|p| to_geo(&p.polygon)).collect();
+    let polys: Vec<geo::Polygon<f64>> = parcels.iter().map(|p| geo_polygon(&p.polygon, &[])).collect();
     let sum: f64 = parcels.iter().map(|p| ring_area2(&p.polygon).abs() / 2.0).sum();
     let union = geo::unary_union(polys.iter()).unsigned_area();
     if (sum - union).abs() > 1e-3 * sum.max(1e-9) {
@@ -93,13 +94,6 @@ pub fn validate(region: &Polygon, streets: &[Street], parcels: &[Parcel]) -> Vec
         }
     }
     out
-}
-
-fn to_geo(ring: &[P]) -> geo::Polygon<f64> {
-    geo::Polygon::new(
-        geo::LineString::from(ring.iter().chain(ring.first()).map(|p| (p[0], p[1])).collect::<Vec<_>>()),
-        vec![],
-    )
 }
 
 /// The streets' area inside the region: each centreline buffered by half its width (mitred joins,
@@ -141,6 +135,7 @@ fn fronts(ring: &[P], streets: &[Street]) -> bool {
     })
 }
 
+/// Its own rule for a street crossing a hole, deliberately independent of the parceller's.
 fn crosses(line: &[P], hole: &[P]) -> bool {
     let n = hole.len();
     line.windows(2).any(|w| {

@@ -23,7 +23,7 @@ use super::geometry::{self, Pt, LEN_TOL};
 use super::spec::{Level, NodeId};
 use super::validate::{door, validate};
 use super::{Layout, LevelError};
-use crate::mesh::{point_in_polygon, Mesh, VertexId};
+use crate::mesh::{Mesh, VertexId};
 use crate::spec::{
     Allow, BoundaryRole, CoverageModel, CoverageSpec, FeatureSpec, MeshSpec, Place, SinkSpec, Spec, UserSpec,
 };
@@ -258,7 +258,11 @@ impl Grid {
                 let c = [(xs[i] + xs[i + 1]) / 2.0, (ys[j] + ys[j + 1]) / 2.0];
                 owner[j * nx + i] = (0..blocks.len()).find(|&k| {
                     let b = boxes[k];
-                    c[0] > b[0] && c[0] < b[1] && c[1] > b[2] && c[1] < b[3] && point_in_polygon(c, &blocks[k])
+                    c[0] > b[0]
+                        && c[0] < b[1]
+                        && c[1] > b[2]
+                        && c[1] < b[3]
+                        && crate::geometry::ring_contains(&blocks[k], c)
                 });
             }
         }
@@ -422,7 +426,7 @@ fn rooms(
     let owners = vertex_owners(mesh, face_owner);
     let mut out = Vec::new();
     for (k, poly) in blocks.iter().enumerate() {
-        let c = crate::mesh::geom::centroid(poly);
+        let c = crate::geometry::centroid(poly);
         let best = mesh
             .vertices()
             .filter(|&v| !mesh.is_boundary_vertex(v) && owners[v.index()].len() == 1 && owners[v.index()].contains(&k))

@@ -6,7 +6,7 @@
 pub type Pt = [f64; 2];
 
 /// The plane primitives are the mesh's own.
-pub use crate::mesh::geom::{cross, dot, signed_area, sub};
+pub use crate::geometry::{cross, dot, signed_area, sub};
 
 /// Lengths below this are zero.
 pub const LEN_TOL: f64 = 1e-7;
@@ -54,40 +54,9 @@ pub fn simplify(poly: &[Pt]) -> Vec<Pt> {
     }
 }
 
-/// Whether the closed segments `ab` and `cd` intersect.
-fn segments_intersect(a: Pt, b: Pt, c: Pt, d: Pt) -> bool {
-    let o = |p: Pt, q: Pt, r: Pt| cross(sub(q, p), sub(r, p));
-    let on = |p: Pt, q: Pt, r: Pt| {
-        r[0] >= p[0].min(q[0]) - LEN_TOL
-            && r[0] <= p[0].max(q[0]) + LEN_TOL
-            && r[1] >= p[1].min(q[1]) - LEN_TOL
-            && r[1] <= p[1].max(q[1]) + LEN_TOL
-    };
-    let (d1, d2, d3, d4) = (o(c, d, a), o(c, d, b), o(a, b, c), o(a, b, d));
-    let tol = LEN_TOL * LEN_TOL;
-    if ((d1 > tol && d2 < -tol) || (d1 < -tol && d2 > tol)) && ((d3 > tol && d4 < -tol) || (d3 < -tol && d4 > tol)) {
-        return true;
-    }
-    (d1.abs() <= tol && on(c, d, a))
-        || (d2.abs() <= tol && on(c, d, b))
-        || (d3.abs() <= tol && on(a, b, c))
-        || (d4.abs() <= tol && on(a, b, d))
-}
-
 /// The first pair of non-adjacent edges that meet, if any (edge `i` runs from vertex `i`).
 pub fn self_intersection(poly: &[Pt]) -> Option<(usize, usize)> {
-    let n = poly.len();
-    for i in 0..n {
-        for j in i + 1..n {
-            if j == i + 1 || (i == 0 && j == n - 1) {
-                continue;
-            }
-            if segments_intersect(poly[i], poly[(i + 1) % n], poly[j], poly[(j + 1) % n]) {
-                return Some((i, j));
-            }
-        }
-    }
-    None
+    crate::geometry::first_meeting_sides(poly, LEN_TOL)
 }
 
 /// Whether `p` lies strictly inside the triangle `abc` (counter-clockwise) or on its boundary.

@@ -1,9 +1,9 @@
 //! Mesh generators: regular grids, grids clipped to a polygon, and jittered meshes.
 
 use super::error::MeshError;
-use super::geom;
 use super::halfedge::Mesh;
 use super::ids::VertexId;
+use crate::geometry as geom;
 use std::collections::VecDeque;
 
 /// Most grid cells [`clipped_grid`] will scan.
@@ -140,8 +140,7 @@ fn clipped_grid_impl(
     for j in 0..ny {
         for i in 0..nx {
             let c = [lo[0] + (i as f64 + 0.5) * spacing, lo[1] + (j as f64 + 0.5) * spacing];
-            keep[j * nx + i] =
-                geom::point_in_polygon(c, outer) && !holes.iter().any(|hole| geom::point_in_polygon(c, hole));
+            keep[j * nx + i] = geom::ring_contains(outer, c) && !holes.iter().any(|hole| geom::ring_contains(hole, c));
         }
     }
     remove_diagonal_contacts(&mut keep, nx, ny);
@@ -461,7 +460,7 @@ mod tests {
         assert!(m.num_faces() > 300);
         for f in m.faces() {
             let c = m.face_centroid(f);
-            assert!(geom::point_in_polygon(c, &coast) && !geom::point_in_polygon(c, &lake));
+            assert!(geom::ring_contains(&coast, c) && !geom::ring_contains(&lake, c));
         }
         // Deterministic.
         assert_eq!(clipped_grid(&coast, &[lake], 0.7).unwrap(), m);

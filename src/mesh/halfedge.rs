@@ -1,8 +1,8 @@
 //! The [`Mesh`] type: construction, validation and queries.
 
 use super::error::{DegenerateReason, MeshError};
-use super::geom;
 use super::ids::{EdgeId, FaceId, HalfEdgeId, VertexId};
+use crate::geometry as geom;
 use std::collections::VecDeque;
 use std::f64::consts::TAU;
 

@@ -39,8 +39,6 @@
 
 mod error;
 pub mod generate;
-pub(crate) mod geom;
-pub(crate) use self::geom::point_in_polygon;
 mod halfedge;
 mod ids;
 pub mod obj;

@@ -1,7 +1,7 @@
 //! Tests of construction, validation, JSON and the shared invariant checker.
 
-use super::geom;
 use super::*;
+use crate::geometry as geom;
 use proptest::prelude::*;
 use std::f64::consts::TAU;
 

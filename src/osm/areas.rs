@@ -5,6 +5,7 @@
 
 use super::read::{Extract, Tags};
 use crate::geometry::planar::{polygon_label_point, PlanarGraph};
+use crate::geometry::polygon::geo_polygon;
 use crate::geometry::site::Projection;
 use crate::geometry::{closest_on_segment, cross, dist, sub, P};
 use geo::BooleanOps;
@@ -53,12 +54,6 @@ impl AreaClass {
             None
         }
     }
-}
-
-/// A `geo` polygon from a ring of points.
-pub fn geo_polygon(outer: &[P], holes: &[Vec<P>]) -> geo::Polygon<f64> {
-    let ring = |r: &[P]| geo::LineString::from(r.iter().chain(r.first()).map(|p| (p[0], p[1])).collect::<Vec<_>>());
-    geo::Polygon::new(ring(outer), holes.iter().map(|h| ring(h)).collect())
 }
 
 /// Node-id lists joined end to end into closed rings (either direction); pieces that close no

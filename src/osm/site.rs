@@ -462,7 +462,7 @@ fn grow_toml(site: &Site, name: &str, source: &str) -> Result<String, OsmError> 
     let size = [(hi[0] - lo[0]).ceil(), (hi[1] - lo[1]).ceil()];
     let rect = [0.0, 0.0, size[0], size[1]];
     let to_map = |p: P| [p[0] - lo[0], p[1] - lo[1]];
-    let map = geo::MultiPolygon::new(vec![areas::geo_polygon(
+    let map = geo::MultiPolygon::new(vec![crate::geometry::polygon::geo_polygon(
         &[lo, [lo[0] + size[0], lo[1]], [lo[0] + size[0], lo[1] + size[1]], [lo[0], lo[1] + size[1]]],
         &[],
     )]);
@@ -597,8 +597,8 @@ fn city_toml(site: &Site, name: &str, source: &str) -> Result<String, OsmError> 
 
 #[cfg(test)]
 mod tests {
-    use super::areas::geo_polygon;
     use super::*;
+    use crate::geometry::polygon::geo_polygon;
 
     #[test]
     fn holes_that_split_the_region_are_refused_or_the_largest_kept() {

@@ -293,7 +293,7 @@ impl Spec {
                 return Err(field(format!("user.obstacle_polygons[{i}]"), "a polygon needs at least 3 points"));
             }
             for f in mesh.faces() {
-                if mesh::point_in_polygon(mesh.face_centroid(f), poly) {
+                if crate::geometry::ring_contains(poly, mesh.face_centroid(f)) {
                     is_obstacle_face[f.index()] = true;
                 }
             }

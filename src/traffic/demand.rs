@@ -23,7 +23,7 @@
 use super::export::{edge_id, node_id};
 use super::network::{Region, RoadNetwork};
 use super::parse::SumoNet;
-use crate::mesh::geom;
+use crate::geometry as geom;
 use rand::rngs::Xoshiro256PlusPlus;
 use rand::{RngExt, SeedableRng};
 use serde::{Deserialize, Serialize};
@@ -141,7 +141,7 @@ pub fn generate(region: &Region, s: &DemandSettings) -> Vec<Trip> {
                 (0..10_000).find_map(|_| {
                     let p =
                         [lo[0] + rng.random::<f64>() * (hi[0] - lo[0]), lo[1] + rng.random::<f64>() * (hi[1] - lo[1])];
-                    region.areas.iter().any(|a| geom::point_in_polygon(p, a)).then_some(p)
+                    region.areas.iter().any(|a| geom::ring_contains(a, p)).then_some(p)
                 })
             };
             let (Some(from), Some(to)) = (point(), point()) else { break };
@@ -299,7 +299,7 @@ fn nearest(net: &RoadNetwork, candidates: &[usize], p: [f64; 2]) -> Option<(usiz
         let mut arc = 0.0;
         for w in shape.windows(2) {
             let l = geom::dist(w[0], w[1]);
-            let q = geom::closest_on_segment(p, w[0], w[1]);
+            let q = geom::closest_on_segment(p, w[0], w[1]).0;
             let d = geom::dist(p, q);
             if best.is_none_or(|(bd, _, _)| d < bd) {
                 let f = if total > 0.0 { (arc + geom::dist(w[0], q)) / total } else { 0.0 };

@@ -7,7 +7,7 @@
 //! so every SUMO element traces back to the design.
 
 use super::{read, TrafficError, TrafficErrorKind};
-use crate::mesh::geom;
+use crate::geometry as geom;
 use crate::pipeline::DesignResult;
 use crate::urban::city::saved_roads;
 use crate::urban::output::street_graph;

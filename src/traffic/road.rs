@@ -3,7 +3,7 @@
 //! are [`super::network`] (solve and city outputs) and [`super::streets`] (layout, grow and
 //! GeoJSON streets).
 
-use crate::mesh::geom;
+use crate::geometry as geom;
 use serde::{Deserialize, Serialize};
 
 /// A street network in metres.

@@ -405,7 +405,7 @@ pub fn regions(spec: &CitySpec) -> Result<Vec<(Region, Option<usize>)>, CityErro
 
 /// Whether `p` is inside a sub-region: in its outer ring and in none of its holes.
 pub fn point_in_region(p: [f64; 2], r: &Region) -> bool {
-    mesh::point_in_polygon(p, &r.outer) && !r.holes.iter().any(|h| mesh::point_in_polygon(p, h))
+    crate::geometry::ring_contains(&r.outer, p) && !r.holes.iter().any(|h| crate::geometry::ring_contains(h, p))
 }
 
 /// The directory of one region's files.

@@ -5,8 +5,8 @@ use super::city::{self, CityError, CityRunOptions, RegionReport};
 use super::smooth::{self, Snake, StreetEdge, StreetGraph};
 use super::spec::{CitySpec, SmoothingMethod};
 use crate::design::streets::{streets_geojson, GeoAnchor, GeoRegion};
+use crate::geometry as geom;
 use crate::geometry::planar::{PlanarGraph, Region};
-use crate::mesh::geom;
 use crate::render::city::{CityPicture, RegionShape};
 use crate::stats::yang::{street_metrics, StreetMetrics};
 use indexmap::IndexMap;
@@ -236,7 +236,7 @@ pub fn major_road_segments(regions: &[RegionReport]) -> Vec<[[f64; 2]; 2]> {
 fn nearest_on_segments(p: [f64; 2], segments: &[[[f64; 2]; 2]]) -> Option<[f64; 2]> {
     segments
         .iter()
-        .map(|&[a, b]| geom::closest_on_segment(p, a, b))
+        .map(|&[a, b]| geom::closest_on_segment(p, a, b).0)
         .min_by(|q, r| geom::dist(p, *q).total_cmp(&geom::dist(p, *r)))
 }
 

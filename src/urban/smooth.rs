@@ -23,7 +23,7 @@
 //! End points of snakes never move; they are copied bit for bit into the output.
 use crate::design::streets::{chains, Topology};
 pub use crate::design::streets::{decompose, Snake, StreetEdge, StreetGraph};
-use crate::mesh::geom::{dot, sub, P};
+use crate::geometry::{dot, sub, P};
 use serde::{Deserialize, Serialize};
 
 /// Smoothed snakes plus a summary of the optimisation.
@@ -540,7 +540,7 @@ fn cholesky_solve(a: &mut [f64], n: usize, w: usize, x: &mut [P]) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::mesh::geom::dist;
+    use crate::geometry::dist;
 
     fn edge(a: u32, b: u32, level: u8) -> StreetEdge {
         StreetEdge { a, b, level }

@@ -16,6 +16,7 @@ use super::arclength::{matches, Block};
 use super::file::{Fill, Template};
 use super::instance::{instantiate, Instance};
 use super::warp::{face_polygons, simple_ccw, warp, Warp, ROUNDS};
+use crate::geometry::polygon::geo_polygon;
 use crate::geometry::{closest_on_segment, dist, P};
 use crate::layout::parcels::{parcellate, ring_of, street_buffer, StreetIndex};
 use crate::layout::region::Region;
@@ -295,7 +296,7 @@ pub fn template_parcels(
     let mut out = Vec::new();
     for (fi, ring) in faces.iter().enumerate() {
         let face = &t.faces[c.instance.face_of[fi]];
-        let poly = to_geo(ring);
+        let poly = geo_polygon(ring, &[]);
         let pieces = match &carve {
             Some(cut) => poly.difference(cut).0,
             None => vec![poly],
@@ -355,11 +356,4 @@ fn extend(chain: &[usize], c: &Candidate, streets: &[Street]) -> Vec<P> {
     }
     line.dedup_by(|a, b| dist(*a, *b) < 1e-6);
     line
-}
-
-fn to_geo(ring: &[P]) -> geo::Polygon<f64> {
-    geo::Polygon::new(
-        geo::LineString::from(ring.iter().chain(ring.first()).map(|p| (p[0], p[1])).collect::<Vec<_>>()),
-        vec![],
-    )
 }
