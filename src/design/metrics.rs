@@ -3,13 +3,12 @@
 
 use super::validate::degrees;
 use super::Network;
+use crate::mesh::paths::{dijkstra, Search};
 use crate::mesh::{Mesh, VertexId};
 use crate::rules::{t_configs, too_close_configs, zigzag_configs};
-use crate::spec::OrdF64;
 use crate::spec::{CoverageModel, Problem};
 use serde::{Deserialize, Serialize};
-use std::cmp::Reverse;
-use std::collections::{BinaryHeap, VecDeque};
+use std::collections::VecDeque;
 
 /// Measurements of a decoded network.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -46,28 +45,12 @@ pub struct Metrics {
 /// Network distance from every vertex to its nearest sink along active edges (∞ if none).
 pub fn travel_distances(mesh: &Mesh, net: &Network, is_sink: &[bool]) -> Vec<f64> {
     let mut dist = vec![f64::INFINITY; mesh.num_vertices()];
-    let mut heap = BinaryHeap::new();
-    for v in mesh.vertices().filter(|v| is_sink[v.index()]) {
+    let sinks: Vec<VertexId> = mesh.vertices().filter(|v| is_sink[v.index()]).collect();
+    for v in &sinks {
         dist[v.index()] = 0.0;
-        heap.push(Reverse((OrdF64(0.0), v.0)));
     }
-    while let Some(Reverse((OrdF64(d), v))) = heap.pop() {
-        if d > dist[v as usize] {
-            continue;
-        }
-        for &h in mesh.outgoing(VertexId(v)) {
-            let e = mesh.he_edge(h);
-            if !net.active[e.index()] {
-                continue;
-            }
-            let w = mesh.he_head(h);
-            let nd = d + mesh.edge_length(e);
-            if nd < dist[w.index()] {
-                dist[w.index()] = nd;
-                heap.push(Reverse((OrdF64(nd), w.0)));
-            }
-        }
-    }
+    let usable = |h| net.active[mesh.he_edge(h).index()];
+    dijkstra(mesh, &mut dist, sinks, &Search { usable, tolerance: 0.0, target: None });
     dist
 }
 

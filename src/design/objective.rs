@@ -16,12 +16,11 @@
 
 use super::metrics::travel_distances;
 use super::Network;
+use crate::mesh::paths::{dijkstra, Search};
 use crate::mesh::VertexId;
 use crate::rules::{designed, t_configs, too_close_configs, zigzag_configs};
-use crate::spec::{EdgeRole, OrdF64, Problem, Weight};
+use crate::spec::{EdgeRole, Problem, Weight};
 use serde::{Deserialize, Serialize};
-use std::cmp::Reverse;
-use std::collections::BinaryHeap;
 
 /// The objective of a design, term by term, recomputed from its active edges.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -52,7 +51,7 @@ pub struct Objective {
 pub fn label_distances(p: &Problem, net: &Network) -> Vec<f64> {
     let mesh = &p.mesh;
     let mut h = vec![f64::INFINITY; mesh.num_vertices()];
-    let mut heap = BinaryHeap::new();
+    let mut seeds = Vec::new();
     for v in mesh.vertices() {
         if p.is_sink[v.index()] {
             h[v.index()] = 0.0;
@@ -62,26 +61,11 @@ pub fn label_distances(p: &Problem, net: &Network) -> Vec<f64> {
             mesh.outgoing(v).iter().any(|&g| net.active[mesh.he_edge(g).index()] && p.is_sink[mesh.he_head(g).index()]);
         if next_to_sink {
             h[v.index()] = 0.0;
-            heap.push(Reverse((OrdF64(0.0), v.0)));
+            seeds.push(v);
         }
     }
-    while let Some(Reverse((OrdF64(d), v))) = heap.pop() {
-        if d > h[v as usize] {
-            continue;
-        }
-        for &g in mesh.outgoing(VertexId(v)) {
-            let e = mesh.he_edge(g);
-            let w = mesh.he_head(g);
-            if !net.active[e.index()] || p.is_sink[w.index()] {
-                continue;
-            }
-            let nd = d + mesh.edge_length(e);
-            if nd < h[w.index()] {
-                h[w.index()] = nd;
-                heap.push(Reverse((OrdF64(nd), w.0)));
-            }
-        }
-    }
+    let usable = |g| net.active[mesh.he_edge(g).index()] && !p.is_sink[mesh.he_head(g).index()];
+    dijkstra(mesh, &mut h, seeds, &Search { usable, tolerance: 0.0, target: None });
     h
 }
 

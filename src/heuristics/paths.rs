@@ -7,8 +7,8 @@
 
 use super::rng::Rng;
 use super::state::{Rules, State};
+use crate::mesh::paths::OrdF64;
 use crate::mesh::{EdgeId, HalfEdgeId, VertexId};
-use crate::spec::OrdF64;
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 

@@ -42,6 +42,7 @@ pub mod generate;
 mod halfedge;
 mod ids;
 pub mod obj;
+pub(crate) mod paths;
 mod serde_impl;
 pub mod subdivide;
 #[cfg(test)]

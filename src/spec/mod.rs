@@ -14,7 +14,6 @@ pub use formulation::{
     FormulationSpec, PathForm, RecipeName, Switch, Variant, STRATEGY_KEYS, SWITCHES,
 };
 
-pub(crate) use resolve::OrdF64;
 pub use resolve::{EdgeRole, PointToPoint, Problem, Rooms, Weight, DEFAULT_MAX_CELLS};
 pub use symmetry::{symmetries, Symmetry};
 pub use template::Template;

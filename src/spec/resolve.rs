@@ -2,6 +2,7 @@
 
 use super::Template;
 use super::*;
+use crate::mesh::paths::{dijkstra, Search};
 use crate::mesh::{self, EdgeId, FaceId, Mesh, VertexId};
 
 /// What an edge is in the model (docs/formulation.md §1).
@@ -601,41 +602,16 @@ impl Spec {
 /// Shortest path by length over non-excluded edges (Dijkstra; ties broken by vertex id, so
 /// the route is deterministic).
 pub(crate) fn shortest_path(mesh: &Mesh, roles: &[EdgeRole], a: VertexId, b: VertexId) -> Option<Vec<VertexId>> {
-    use std::cmp::Reverse;
-    use std::collections::BinaryHeap;
-    let n = mesh.num_vertices();
-    let mut dist = vec![f64::INFINITY; n];
-    let mut prev = vec![u32::MAX; n];
-    let mut heap = BinaryHeap::new();
+    let mut dist = vec![f64::INFINITY; mesh.num_vertices()];
     dist[a.index()] = 0.0;
-    heap.push(Reverse((OrdF64(0.0), a.0)));
-    while let Some(Reverse((OrdF64(d), v))) = heap.pop() {
-        if d > dist[v as usize] {
-            continue;
-        }
-        if v == b.0 {
-            break;
-        }
-        for &h in mesh.outgoing(VertexId(v)) {
-            let e = mesh.he_edge(h);
-            if roles[e.index()] == EdgeRole::Excluded {
-                continue;
-            }
-            let w = mesh.he_head(h);
-            let nd = d + mesh.edge_length(e);
-            if nd < dist[w.index()] - 1e-12 {
-                dist[w.index()] = nd;
-                prev[w.index()] = v;
-                heap.push(Reverse((OrdF64(nd), w.0)));
-            }
-        }
-    }
+    let usable = |h| roles[mesh.he_edge(h).index()] != EdgeRole::Excluded;
+    let prev = dijkstra(mesh, &mut dist, [a], &Search { usable, tolerance: 1e-12, target: Some(b) });
     if !dist[b.index()].is_finite() {
         return None;
     }
     let mut path = vec![b];
-    while *path.last().unwrap() != a {
-        path.push(VertexId(prev[path.last().unwrap().index()]));
+    while let Some(&v) = path.last().filter(|&&v| v != a) {
+        path.push(VertexId(prev[v.index()]));
     }
     path.reverse();
     Some(path)
@@ -644,18 +620,3 @@ pub(crate) fn shortest_path(mesh: &Mesh, roles: &[EdgeRole], a: VertexId, b: Ver
 /// The default cap on a mesh's cells (faces): 250,000, a 500 × 500 grid — far above the paper's
 /// examples (the largest has a few thousand), below what makes a model too big for memory.
 pub const DEFAULT_MAX_CELLS: usize = 250_000;
-
-/// A totally ordered f64 for heaps (no NaN ever enters).
-#[derive(Copy, Clone, PartialEq)]
-pub(crate) struct OrdF64(pub f64);
-impl Eq for OrdF64 {}
-impl PartialOrd for OrdF64 {
-    fn partial_cmp(&self, other: &Self) -> Option<std::cmp::Ordering> {
-        Some(self.cmp(other))
-    }
-}
-impl Ord for OrdF64 {
-    fn cmp(&self, other: &Self) -> std::cmp::Ordering {
-        self.0.total_cmp(&other.0)
-    }
-}
