@@ -34,44 +34,14 @@ pub(crate) fn empty_record(
     limit: f64,
     settings: RunSettings,
 ) -> RunRecord {
-    RunRecord {
-        instance: instance.to_string(),
-        solver: label.to_string(),
-        seed,
-        edges: None,
-        vars: None,
-        rows: None,
-        nonzeros: None,
-        status: "failed".into(),
-        objective: None,
-        dual_bound: None,
-        gap: None,
-        nodes: None,
-        solver_time: None,
-        wall_time: 0.0,
-        valid: false,
-        killed: false,
-        solver_version: None,
-        exit_code: None,
-        time_limit: Some(limit),
-        error: None,
-        settings: Some(settings),
-        binary_digest: None,
-        slurm_state: None,
-    }
+    RunRecord { instance: instance.to_string(), settings: Some(settings), ..RunRecord::failed(label, seed, limit) }
 }
 
 /// The record of one in-process run, with the fields `netspec compare` takes from a run's
 /// `result.json`.
 pub(crate) fn fill_record(mut rec: RunRecord, r: &PyResultObj) -> RunRecord {
     let d = &r.design;
-    let model_stats = &d.model_stats;
-    rec.edges = Some(d.mesh.num_edges());
-    rec.vars = Some(model_stats.vars);
-    rec.rows = Some(model_stats.rows);
-    rec.nonzeros = Some(model_stats.nonzeros);
-    rec.take_outcome(d.outcome());
-    rec.valid = d.validity().valid;
+    rec.take_design(d.mesh.num_edges(), &d.model_stats, d.outcome(), d.validity().valid);
     rec.exit_code = Some(0);
     rec
 }

@@ -64,6 +64,46 @@ pub struct RunRecord {
 }
 
 impl RunRecord {
+    /// The record of a run that produced nothing (yet): status `failed`, no model, no outcome.
+    pub fn failed(solver: &str, seed: Option<u64>, limit: f64) -> RunRecord {
+        RunRecord {
+            instance: String::new(),
+            solver: solver.to_string(),
+            seed,
+            edges: None,
+            vars: None,
+            rows: None,
+            nonzeros: None,
+            status: "failed".into(),
+            objective: None,
+            dual_bound: None,
+            gap: None,
+            nodes: None,
+            solver_time: None,
+            wall_time: 0.0,
+            valid: false,
+            killed: false,
+            solver_version: None,
+            exit_code: None,
+            time_limit: Some(limit),
+            error: None,
+            settings: None,
+            binary_digest: None,
+            slurm_state: None,
+        }
+    }
+
+    /// Takes what a design run produced: the mesh's edges, the model's size, its outcome
+    /// ([`RunRecord::take_outcome`]) and the independent validity verdict.
+    pub fn take_design(&mut self, edges: usize, model: &crate::milp::ModelStats, outcome: &Outcome, valid: bool) {
+        self.edges = Some(edges);
+        self.vars = Some(model.vars);
+        self.rows = Some(model.rows);
+        self.nonzeros = Some(model.nonzeros);
+        self.take_outcome(outcome);
+        self.valid = valid;
+    }
+
     /// Takes the run's outcome: its termination label as `status`, objective, bound, gap,
     /// nodes, solver time and the solver's version (the wall time stays the process's).
     pub fn take_outcome(&mut self, o: &Outcome) {
@@ -167,40 +207,10 @@ pub fn record_from_dir(
 ) -> RunRecord {
     let result: Option<ResultView> =
         std::fs::read_to_string(dir.join("result.json")).ok().and_then(|t| serde_json::from_str(&t).ok());
-    let mut r = RunRecord {
-        instance: String::new(),
-        solver: solver.to_string(),
-        seed,
-        edges: None,
-        vars: None,
-        rows: None,
-        nonzeros: None,
-        status: if killed { "killed".into() } else { "failed".into() },
-        objective: None,
-        dual_bound: None,
-        gap: None,
-        nodes: None,
-        solver_time: None,
-        wall_time,
-        valid: false,
-        killed,
-        solver_version: None,
-        exit_code,
-        time_limit: Some(limit),
-        error: None,
-        settings: None,
-        binary_digest: None,
-        slurm_state: None,
-    };
+    let status = if killed { "killed" } else { "failed" }.to_string();
+    let mut r = RunRecord { status, wall_time, killed, exit_code, ..RunRecord::failed(solver, seed, limit) };
     match (result, killed) {
-        (Some(res), false) => {
-            r.edges = Some(res.mesh.num_edges());
-            r.vars = Some(res.model_stats.vars);
-            r.rows = Some(res.model_stats.rows);
-            r.nonzeros = Some(res.model_stats.nonzeros);
-            r.take_outcome(&res.solve);
-            r.valid = res.validity.valid;
-        }
+        (Some(res), false) => r.take_design(res.mesh.num_edges(), &res.model_stats, &res.solve, res.validity.valid),
         (None, false) => r.error = Some(failure_cause(dir, exit_code)),
         _ => {}
     }

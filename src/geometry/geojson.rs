@@ -58,11 +58,12 @@ impl<'a> GeoJsonWriter<'a> {
         Ok(out)
     }
 
+    /// A feature of `value` whose properties are `properties` (an object; anything else, such as
+    /// `Value::Null`, gives none).
     fn push(&mut self, value: GeometryValue, properties: Value) {
         let properties = match properties {
             Value::Object(map) => map,
-            Value::Null => JsonObject::new(),
-            other => JsonObject::from_iter([("value".to_string(), other)]),
+            _ => JsonObject::new(),
         };
         self.features.push(Feature {
             geometry: Some(Geometry::new(value)),
