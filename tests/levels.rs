@@ -1,19 +1,20 @@
 //! Game levels from a connectivity graph (Ma et al. 2014): configuration spaces, the exact
 //! placement model on every backend, the validator, spec errors, the command.
 
+use netspec::geometry::{self, convex};
 use netspec::levels::anneal::{self, AnnealOptions};
 use netspec::levels::cspace::{contact_segments, CSpaces};
 use netspec::levels::exact::{self, ExactOptions, ExactStatus};
 use netspec::levels::spec::{Block, Level};
 use netspec::levels::validate::validate;
-use netspec::levels::{geometry, Layout, Placement};
+use netspec::levels::{Layout, Placement};
 use netspec::solvers::SolverKind;
 use std::process::Command;
 
 const SQUARE: &str = "[[block]]\nname = \"square\"\npolygon = [[0, 0], [1, 0], [1, 1], [0, 1]]\n";
 
 fn block(poly: &[[f64; 2]]) -> Block {
-    Block { name: "b".into(), polygon: poly.to_vec(), parts: geometry::convex_parts(poly), rotation_of: None }
+    Block { name: "b".into(), polygon: poly.to_vec(), parts: convex::convex_parts(poly), rotation_of: None }
 }
 
 /// A level of unit squares: `nodes`, `edges` by index, door width `w`.

@@ -4,15 +4,18 @@
 //! the few primitives they lack. Coordinates are metres in a local plane.
 
 pub mod cdt;
+pub mod convex;
 pub mod geojson;
 pub mod index;
 pub mod planar;
 pub mod polygon;
+pub mod shape;
 pub mod site;
 pub mod skeleton;
 pub mod sparse;
 
 pub use polygon::{Polygon, PolygonError};
+pub use shape::Shape;
 
 /// A point (or vector) in the plane.
 pub type P = [f64; 2];

@@ -13,28 +13,23 @@
 //! land for its use and not a row of lots.
 
 use super::metrics::parcel_shape;
-use super::parcels::{parcellate as rows, ring_of, StreetIndex};
+use super::parcels::{parcellate as rows, StreetIndex};
 use super::How;
 use super::{Parcel, Use};
 use crate::geometry::polygon::geo_polygon;
-use crate::geometry::P;
+use crate::geometry::shape::outer_ring;
+use crate::geometry::{Shape, P};
 use geo::{Area, BooleanOps, Centroid, MinimumRotatedRect};
 
 /// Holes cut through at most this deep (one cut per hole).
 const MAX_CUTS: usize = 4;
 
 /// The fallback's parcels of one block (each with `part` set) and how they were made.
-pub fn parcel_block(
-    b: &geo::Polygon<f64>,
-    index: &StreetIndex,
-    depth: f64,
-    width: f64,
-    part: &str,
-) -> (Vec<Parcel>, How) {
+pub fn parcel_block(b: &Shape, index: &StreetIndex, depth: f64, width: f64, part: &str) -> (Vec<Parcel>, How) {
     let (mut best, mut how) = whole(b, index, depth, width);
-    if !b.interiors().is_empty() {
+    if b.has_holes() {
         for along in [true, false] {
-            let pieces = without_holes(b, along, MAX_CUTS);
+            let pieces: Vec<Shape> = without_holes(b.geo(), along, MAX_CUTS).into_iter().map(Shape::from_geo).collect();
             if pieces.len() < 2 {
                 continue;
             }
@@ -56,7 +51,7 @@ pub fn parcel_block(
 }
 
 /// The row parceller's or the skeleton parceller's parcels of a block, parks merged.
-fn whole(b: &geo::Polygon<f64>, index: &StreetIndex, depth: f64, width: f64) -> (Vec<Parcel>, How) {
+fn whole(b: &Shape, index: &StreetIndex, depth: f64, width: f64) -> (Vec<Parcel>, How) {
     let by_rows = merge_parks(rows(std::slice::from_ref(b), index, depth, width));
     let r = undesirable(&by_rows);
     if r == 0 {
@@ -87,7 +82,7 @@ pub fn merge_parks(parcels: Vec<Parcel>) -> Vec<Parcel> {
         out.extend(parks);
         return out;
     }
-    out.extend(union.0.iter().map(|u| Parcel { part: parks[0].part.clone(), ..Parcel::new(ring_of(u), Use::Park) }));
+    out.extend(union.0.iter().map(|u| Parcel { part: parks[0].part.clone(), ..Parcel::new(outer_ring(u), Use::Park) }));
     out
 }
 
@@ -171,7 +166,7 @@ mod tests {
 
     #[test]
     fn the_fallback_keeps_rows_where_they_are_fine() {
-        let b = geo::Polygon::new(square(0.0, 0.0, 60.0), vec![]);
+        let b = Shape::from_geo(geo::Polygon::new(square(0.0, 0.0, 60.0), vec![]));
         let index = StreetIndex::new(&[Street::new(vec![[-10.0, -7.5], [70.0, -7.5]], 15.0, 0)]);
         let (parcels, how) = parcel_block(&b, &index, 30.0, 18.0, "0.1");
         assert_eq!(how, How::Rows);

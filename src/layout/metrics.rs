@@ -21,8 +21,10 @@
 //! * histograms (§7's panel): parcel areas (20 bins up to twice the median area), corner
 //!   deviations (1.5° bins) and registration distances (0.25 m bins), the last bin open.
 
-use super::parcels::{ring_of, street_area};
+use super::parcels::street_area;
 use super::{Parcel, Street, Use};
+use crate::geometry::shape::outer_ring;
+use crate::geometry::Shape;
 use crate::geometry::{ring_area2, Polygon, P};
 use crate::stats::yang::{block_perimeter, street_length, street_nodes};
 use geo::{Area, MinimumRotatedRect, Simplify};
@@ -154,7 +156,7 @@ impl ParcelShape {
 pub fn parcel_shape(ring: &[P]) -> ParcelShape {
     let closed: Vec<(f64, f64)> = ring.iter().chain(ring.first()).map(|p| (p[0], p[1])).collect();
     let poly = geo::Polygon::new(geo::LineString::from(closed), vec![]);
-    let simple = ring_of(&poly.simplify(0.5));
+    let simple = outer_ring(&poly.simplify(0.5));
     let n = simple.len();
     let (mut sum, mut corners) = (0.0, 0);
     for i in 0..n {
@@ -173,7 +175,7 @@ pub fn parcel_shape(ring: &[P]) -> ParcelShape {
 }
 
 /// The metrics of a layout: its region, streets, blocks and parcels.
-pub fn metrics(region: &Polygon, streets: &[Street], blocks: &[geo::Polygon<f64>], parcels: &[Parcel]) -> Metrics {
+pub fn metrics(region: &Polygon, streets: &[Street], blocks: &[Shape], parcels: &[Parcel]) -> Metrics {
     let area = region.area();
     let km2 = area / 1e6;
     let pct = |a: f64| 100.0 * a / area;
@@ -189,10 +191,7 @@ pub fn metrics(region: &Polygon, streets: &[Street], blocks: &[geo::Polygon<f64>
     let perimeters: Vec<f64> = blocks
         .iter()
         .map(|b| {
-            let rings: Vec<Vec<P>> = std::iter::once(b.exterior())
-                .chain(b.interiors())
-                .map(|l| l.0.iter().map(|c| [c.x, c.y]).collect())
-                .collect();
+            let rings = b.rings();
             block_perimeter(&rings.iter().map(Vec::as_slice).collect::<Vec<_>>())
         })
         .collect();

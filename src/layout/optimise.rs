@@ -188,7 +188,7 @@ fn resample(line: &[P], spacing: f64) -> Vec<P> {
 
 /// Per vertex, the target `v̄` of strip fitting, if any block gives one.
 fn shape_targets(region: &Region, streets: &[Street], mesh: &Mesh) -> Vec<Option<P>> {
-    let fits: Vec<Option<Strip>> = blocks(&region.polygon, streets).iter().map(Strip::fit).collect();
+    let fits: Vec<Option<Strip>> = blocks(&region.polygon, streets).iter().map(|b| Strip::fit(b.geo())).collect();
     let mut segments = Vec::new();
     let mut owner = Vec::new();
     for (b, strip) in fits.iter().enumerate() {
@@ -278,7 +278,7 @@ impl Strip {
         if block.unsigned_area() < 0.75 * rect.unsigned_area() {
             return None;
         }
-        let ring = super::parcels::ring_of(block);
+        let ring = crate::geometry::shape::outer_ring(block);
         let n = ring.len();
         if n < 4 {
             return None;

@@ -13,7 +13,8 @@
 
 use super::{Parcel, Street, Use};
 use crate::geometry::index::SegmentIndex;
-use crate::geometry::{dot, Polygon, P};
+use crate::geometry::shape::outer_ring;
+use crate::geometry::{dot, Polygon, Shape, P};
 use geo::{Area, BooleanOps, Buffer, MinimumRotatedRect};
 
 /// How far a parcel edge may be from a street's side and still front it (metres).
@@ -24,14 +25,14 @@ const ROW_DEPTH_FACTOR: f64 = 1.6;
 
 /// The area the streets cover inside the region: the union of their buffers (half their width
 /// on each side), clipped to the region.
-pub fn street_area(region: &Polygon, streets: &[Street]) -> geo::MultiPolygon<f64> {
+pub(crate) fn street_area(region: &Polygon, streets: &[Street]) -> geo::MultiPolygon<f64> {
     let buffers: Vec<geo::MultiPolygon<f64>> = streets.iter().map(street_buffer).collect();
     let union = geo::unary_union(buffers.iter());
     region.to_geo().intersection(&union)
 }
 
 /// A street's area: its centreline buffered by half its width (mitred joins, butt ends).
-pub fn street_buffer(s: &Street) -> geo::MultiPolygon<f64> {
+pub(crate) fn street_buffer(s: &Street) -> geo::MultiPolygon<f64> {
     let line = geo::LineString::from(s.polyline.iter().map(|p| (p[0], p[1])).collect::<Vec<_>>());
     let style = geo::algorithm::buffer::BufferStyle::new(s.width / 2.0)
         .line_join(geo::algorithm::buffer::LineJoin::Miter(4.0))
@@ -40,14 +41,14 @@ pub fn street_buffer(s: &Street) -> geo::MultiPolygon<f64> {
 }
 
 /// The blocks: the region minus the street area, largest first (ties by position).
-pub fn blocks(region: &Polygon, streets: &[Street]) -> Vec<geo::Polygon<f64>> {
+pub fn blocks(region: &Polygon, streets: &[Street]) -> Vec<Shape> {
     let mut out = region.to_geo().difference(&street_area(region, streets)).0;
     out.retain(|b| b.unsigned_area() > 1e-6);
     out.sort_by(|a, b| {
         let key = |p: &geo::Polygon<f64>| (-(p.unsigned_area() * 1e3).round(), first_xy(p));
         key(a).partial_cmp(&key(b)).unwrap_or(std::cmp::Ordering::Equal)
     });
-    out
+    Shape::from_geo_multi(geo::MultiPolygon(out))
 }
 
 fn first_xy(p: &geo::Polygon<f64>) -> (i64, i64) {
@@ -93,11 +94,11 @@ impl StreetIndex {
 }
 
 /// Parcels of every block, in block order; within a block in cutting order.
-pub fn parcellate(blocks: &[geo::Polygon<f64>], streets: &StreetIndex, depth: f64, width: f64) -> Vec<Parcel> {
+pub fn parcellate(blocks: &[Shape], streets: &StreetIndex, depth: f64, width: f64) -> Vec<Parcel> {
     let mut out = Vec::new();
     for b in blocks {
-        for piece in rows_and_parcels(b, depth, width) {
-            let ring = ring_of(&piece);
+        for piece in rows_and_parcels(b.geo(), depth, width) {
+            let ring = outer_ring(&piece);
             if ring.len() < 3 || piece.unsigned_area() < 1e-3 * depth * width {
                 continue;
             }
@@ -112,45 +113,6 @@ pub fn parcellate(blocks: &[geo::Polygon<f64>], streets: &StreetIndex, depth: f6
         }
     }
     out
-}
-
-/// The outer ring of a geo polygon, counter-clockwise, not closed, without spikes (a vertex
-/// where the ring turns back on itself along a zero-width sliver, as a boolean leaves where a
-/// cut ends exactly on an edge).
-pub fn ring_of(p: &geo::Polygon<f64>) -> Vec<P> {
-    let mut r: Vec<P> = p.exterior().0.iter().map(|c| [c.x, c.y]).collect();
-    if r.len() > 1 && r.first() == r.last() {
-        r.pop();
-    }
-    if crate::geometry::ring_area2(&r) < 0.0 {
-        r.reverse();
-    }
-    without_spikes(r)
-}
-
-/// Spikes narrower than this (metres) are removed from rings.
-const SPIKE_WIDTH: f64 = 0.05;
-
-/// A ring with its spikes removed: vertices whose two edges run back along each other (their
-/// triangle's height over its longest side under [`SPIKE_WIDTH`], the neighbours on the same
-/// side of it).
-pub fn without_spikes(mut r: Vec<P>) -> Vec<P> {
-    use crate::geometry::{cross, dist, dot, sub};
-    let mut i = 0;
-    while r.len() > 3 && i < r.len() {
-        let n = r.len();
-        let (a, b, c) = (r[(i + n - 1) % n], r[i], r[(i + 1) % n]);
-        let (u, v) = (sub(a, b), sub(c, b));
-        let base = dist(a, c).max(dist(a, b)).max(dist(b, c));
-        let spike = dot(u, v) > 0.0 && cross(u, v).abs() <= SPIKE_WIDTH * base;
-        if spike || dist(a, b) < 1e-9 {
-            r.remove(i);
-            i = i.saturating_sub(1);
-        } else {
-            i += 1;
-        }
-    }
-    r
 }
 
 fn rows_and_parcels(block: &geo::Polygon<f64>, depth: f64, width: f64) -> Vec<geo::Polygon<f64>> {
@@ -238,25 +200,13 @@ mod tests {
         let streets = [street(&[[-10.0, 0.0], [235.0, 0.0]], 0), street(&[[-10.0, 75.0], [235.0, 75.0]], 0)];
         let blocks = blocks(&region, &streets);
         assert_eq!(blocks.len(), 1);
-        assert!((blocks[0].unsigned_area() - 225.0 * 60.0).abs() < 1e-6);
+        assert!((blocks[0].area() - 225.0 * 60.0).abs() < 1e-6);
         let parcels = parcellate(&blocks, &StreetIndex::new(&streets), 30.0, 18.0);
         // 60 m deep → two rows of 30 m; 225 m long → 12 or 13 parcels a row of about 18 m.
         assert_eq!(parcels.len(), 2 * 13);
         assert!(parcels.iter().all(|p| p.use_ == Use::Residential));
         let total: f64 = parcels.iter().map(|p| crate::geometry::ring_area2(&p.polygon) / 2.0).sum();
         assert!((total - 225.0 * 60.0).abs() < 1e-3, "{total}");
-    }
-
-    #[test]
-    fn spikes_are_removed_from_rings() {
-        let r = without_spikes(vec![[0.0, 0.0], [15.0, 0.0], [15.0, 22.0], [15.0, 30.0], [15.0, 23.0], [0.0, 23.0]]);
-        assert_eq!(r, vec![[0.0, 0.0], [15.0, 0.0], [15.0, 22.0], [15.0, 23.0], [0.0, 23.0]]);
-        // A boolean's spike is off by a few millimetres; a real sharp corner is kept.
-        let r =
-            without_spikes(vec![[455.252, 30.23], [455.25, 37.729], [455.254, 7.5], [470.162, 7.5], [470.16, 30.234]]);
-        assert_eq!(r.len(), 4, "{r:?}");
-        let wedge = vec![[0.0, 0.0], [30.0, 0.0], [0.0, 5.0]];
-        assert_eq!(without_spikes(wedge.clone()), wedge);
     }
 
     #[test]

@@ -14,7 +14,7 @@ use super::tree::{grow, match_leaves, Grown, How, PartTree};
 use super::validate::{validate, Violation};
 use super::{Parcel, Street};
 use crate::geometry::geojson::GeoJsonWriter;
-use crate::geometry::P;
+use crate::geometry::{Shape, P};
 use crate::render::layout::{histograms_svg, layout_svg, registration_svg, HistogramPanel, LayoutScene, ParcelShape};
 use rand::rngs::Xoshiro256PlusPlus;
 use rand::SeedableRng;
@@ -582,10 +582,8 @@ fn parcel_leaves(
                 per_leaf[k].0 = match super::zone::ZoneUse::from_label(&node.label) {
                     Some(z) => {
                         node.how = How::Zone;
-                        let whole = |b: &geo::Polygon<f64>| Parcel {
-                            part: node.id.clone(),
-                            ..Parcel::new(super::parcels::ring_of(b), z.parcel_use())
-                        };
+                        let whole =
+                            |b: &Shape| Parcel { part: node.id.clone(), ..Parcel::new(b.ring(), z.parcel_use()) };
                         leaf.blocks.iter().map(whole).collect()
                     }
                     None => {
@@ -619,16 +617,15 @@ fn nested(ch: &Choice, lib: &[super::template::Template]) -> Vec<String> {
 }
 
 /// The fallback's parcels of one block where no template is accepted ([`super::fallback`]).
-fn fallback(b: &geo::Polygon<f64>, index: &StreetIndex, region: &Region, part: &str) -> (Vec<Parcel>, How) {
+fn fallback(b: &Shape, index: &StreetIndex, region: &Region, part: &str) -> (Vec<Parcel>, How) {
     super::fallback::parcel_block(b, index, region.parcel.depth, region.parcel.width, part)
 }
 
 /// Leaves with the largest block first (ties by the block's first vertex).
 fn block_key(l: &super::tree::Leaf) -> (f64, i64, i64) {
-    use geo::Area;
     l.blocks.first().map_or((0.0, 0, 0), |b| {
-        let c = b.exterior().0.first().map_or((0, 0), |c| ((c.x * 1e3).round() as i64, (c.y * 1e3).round() as i64));
-        (-(b.unsigned_area() * 1e3).round(), c.0, c.1)
+        let c = b.rings()[0].first().map_or((0, 0), |c| ((c[0] * 1e3).round() as i64, (c[1] * 1e3).round() as i64));
+        (-(b.area() * 1e3).round(), c.0, c.1)
     })
 }
 

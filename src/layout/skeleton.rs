@@ -7,20 +7,21 @@
 //! within reach is a park, a piece under a quarter of a parcel's area "other", as in the row
 //! parceller.
 
-use super::parcels::{ring_of, StreetIndex};
+use super::parcels::StreetIndex;
 use super::template::instance::{turn, CORNER_TURN};
 use super::{Parcel, Use};
+use crate::geometry::shape::outer_ring;
 use crate::geometry::skeleton::faces;
-use crate::geometry::{add, dist, norm, scale, sub, P};
+use crate::geometry::{add, dist, norm, scale, sub, Shape, P};
 use geo::{Area, BooleanOps, Simplify};
 
 /// The parcels of a block without holes by its straight skeleton; `None` when the skeleton
 /// cannot be built (the caller keeps the row parceller's).
-pub fn parcellate(block: &geo::Polygon<f64>, streets: &StreetIndex, depth: f64, width: f64) -> Option<Vec<Parcel>> {
-    if !block.interiors().is_empty() {
+pub fn parcellate(block: &Shape, streets: &StreetIndex, depth: f64, width: f64) -> Option<Vec<Parcel>> {
+    if block.has_holes() {
         return None;
     }
-    let ring = ring_of(&block.simplify(0.5));
+    let ring = outer_ring(&block.geo().simplify(0.5));
     let n = ring.len();
     let faces = faces(&ring)?;
     let parcel_area = depth * width;
@@ -30,7 +31,7 @@ pub fn parcellate(block: &geo::Polygon<f64>, streets: &StreetIndex, depth: f64, 
         let line: Vec<P> = side.iter().map(|&e| ring[e]).chain(side.last().map(|&e| ring[(e + 1) % n])).collect();
         for piece in cut_across(&strip, &line, width) {
             let area = piece.unsigned_area();
-            let r = ring_of(&piece);
+            let r = outer_ring(&piece);
             if r.len() < 3 || area < 1e-3 * parcel_area {
                 continue;
             }
@@ -116,11 +117,8 @@ mod tests {
     use super::*;
     use crate::layout::Street;
 
-    fn poly(pts: &[P]) -> geo::Polygon<f64> {
-        geo::Polygon::new(
-            geo::LineString::from(pts.iter().chain(pts.first()).map(|p| (p[0], p[1])).collect::<Vec<_>>()),
-            vec![],
-        )
+    fn poly(pts: &[P]) -> Shape {
+        Shape::new(pts, &[])
     }
 
     #[test]

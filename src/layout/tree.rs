@@ -13,14 +13,13 @@
 //! (a streamline's quality with every candidate's scores, a template's energy); `layout.json`
 //! writes it as `parts`, and `--relayout` lays a part of it out again.
 
-use super::parcels::{blocks, ring_of, StreetIndex};
+use super::parcels::{blocks, StreetIndex};
 use super::region::Region;
 use super::split::{cut_part, fits_block, initial_parts, street_ends, CandidateScore, Split, SplitError, SplitOptions};
 use super::template::arclength::Block;
 use super::template::select::{Candidate, Matcher};
 use super::Street;
-use crate::geometry::{Polygon, P};
-use geo::Area;
+use crate::geometry::{Polygon, Shape, P};
 use rand::rngs::Xoshiro256PlusPlus;
 use serde::{Deserialize, Serialize};
 
@@ -98,7 +97,7 @@ pub struct Leaf {
     /// The node.
     pub node: usize,
     /// Its blocks.
-    pub blocks: Vec<geo::Polygon<f64>>,
+    pub blocks: Vec<Shape>,
     /// The largest block, when templates may match it.
     pub block: Option<Block>,
     /// The templates accepted on it, lowest energy first.
@@ -316,9 +315,9 @@ pub fn leaf_of(node: &Node, n: usize, streets: &[Street], region: &Region, match
     let poly = &node.polygon;
     let near = streets_near(poly, streets);
     let bl = blocks(poly, &near);
-    let block = bl.first().filter(|b| b.interiors().is_empty() && b.unsigned_area() > 0.0).map(|b| {
+    let block = bl.first().filter(|b| !b.has_holes() && b.area() > 0.0).map(|b| {
         let index = StreetIndex::new(&near);
-        Block::new(ring_of(b), &index, region.parcel.depth / 3.0)
+        Block::new(b.ring(), &index, region.parcel.depth / 3.0)
     });
     let options = match (&block, matcher) {
         (Some(b), Some(m)) => m.acceptable(b, &node.label),

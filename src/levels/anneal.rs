@@ -23,10 +23,11 @@
 
 use super::construct::{Placer, Slot};
 use super::cspace::{clip_out, intersect, CSpaces, Segment};
-use super::geometry::{self, norm, sub, Pt, AREA_TOL};
 use super::spec::{shortest_cycle, BlockId, Level, NodeId};
 use super::validate::validate;
 use super::{Layout, Placement};
+use crate::geometry::convex::{self, length, AREA_TOL};
+use crate::geometry::{self, sub, P};
 use crate::solvers::Interrupt;
 use rand::rngs::Xoshiro256PlusPlus;
 use rand::{RngExt, SeedableRng};
@@ -221,7 +222,7 @@ impl Shapes {
     fn new(level: &Level) -> Shapes {
         let mean_area =
             level.blocks.iter().map(|b| geometry::signed_area(&b.polygon)).sum::<f64>() / level.blocks.len() as f64;
-        let extent = level.blocks.iter().flat_map(|b| b.polygon.iter().map(|&p| norm(p))).fold(0.0, f64::max);
+        let extent = level.blocks.iter().flat_map(|b| b.polygon.iter().map(|&p| length(p))).fold(0.0, f64::max);
         // The paper's σ: a hundred times the average block area. Two layouts differ when their
         // centred block centres move by more than a tenth of that area in all (squared).
         Shapes { sigma: 100.0 * mean_area, threshold: 0.1 * mean_area, extent }
@@ -253,24 +254,24 @@ struct Search<'a> {
 }
 
 impl Search<'_> {
-    fn overlap(&self, a: (BlockId, Pt), b: (BlockId, Pt)) -> f64 {
-        if geometry::boxes_apart(self.placer.placed_box(a), self.placer.placed_box(b)) {
+    fn overlap(&self, a: (BlockId, P), b: (BlockId, P)) -> f64 {
+        if convex::boxes_apart(self.placer.placed_box(a), self.placer.placed_box(b)) {
             return 0.0;
         }
-        geometry::overlap_area(&self.placer.placed_tris(a), &self.placer.placed_tris(b))
+        convex::overlap_area(&self.placer.placed_tris(a), &self.placer.placed_tris(b))
     }
 
     /// The area of a placed block inside obstacles (each overlap above [`AREA_TOL`]).
-    fn obstacle_area(&self, a: (BlockId, Pt)) -> f64 {
+    fn obstacle_area(&self, a: (BlockId, P)) -> f64 {
         let bx = self.placer.placed_box(a);
         let mut tris = None;
         let mut area = 0.0;
         for (ot, ob) in &self.placer.obstacles {
-            if geometry::boxes_apart(bx, *ob) {
+            if convex::boxes_apart(bx, *ob) {
                 continue;
             }
             let ta = tris.get_or_insert_with(|| self.placer.placed_tris(a));
-            let x = geometry::overlap_area(ta, ot);
+            let x = convex::overlap_area(ta, ot);
             if x > AREA_TOL {
                 area += x;
             }
@@ -278,14 +279,14 @@ impl Search<'_> {
         area
     }
 
-    fn centre(&self, a: (BlockId, Pt)) -> Pt {
+    fn centre(&self, a: (BlockId, P)) -> P {
         self.placer.centre_of(a)
     }
 
     /// Node `i`'s share of the energy terms: overlap area with every placed block near the
     /// chain and every obstacle, squared centre distance to every placed neighbour not in
     /// door contact.
-    fn node_terms(&self, s: &[Slot], i: usize, at: (BlockId, Pt)) -> (f64, f64) {
+    fn node_terms(&self, s: &[Slot], i: usize, at: (BlockId, P)) -> (f64, f64) {
         let mut area = self.obstacle_area(at);
         for &j in &self.local {
             if let (true, Some(b)) = (j != i, s[j]) {
@@ -332,11 +333,11 @@ impl Search<'_> {
 
     /// A position for node `i` as block `b`: a random point of the intersection of its placed
     /// neighbours' configuration spaces (a maximal non-empty one when all of them do not meet).
-    fn sample(&mut self, s: &[Slot], i: usize, b: BlockId) -> Option<Pt> {
+    fn sample(&mut self, s: &[Slot], i: usize, b: BlockId) -> Option<P> {
         if let Some(p) = self.level.nodes[i].position {
             return Some(p);
         }
-        let mut nbs: Vec<(BlockId, Pt)> = self.adj[i].iter().filter_map(|n| s[n.0 as usize]).collect();
+        let mut nbs: Vec<(BlockId, P)> = self.adj[i].iter().filter_map(|n| s[n.0 as usize]).collect();
         if nbs.is_empty() {
             return Some(self.clear_start(b));
         }
@@ -345,7 +346,7 @@ impl Search<'_> {
             let j = ((self.rng.random::<f64>() * (k + 1) as f64) as usize).min(k);
             nbs.swap(k, j);
         }
-        let space = |(nb, p): (BlockId, Pt)| -> Vec<Segment> {
+        let space = |(nb, p): (BlockId, P)| -> Vec<Segment> {
             self.cs
                 .segments(nb, b)
                 .iter()
@@ -371,7 +372,7 @@ impl Search<'_> {
     }
 
     fn distinct(&self, x: &[Slot], y: &[Slot]) -> bool {
-        let placed: Vec<(BlockId, Pt, BlockId, Pt)> = x
+        let placed: Vec<(BlockId, P, BlockId, P)> = x
             .iter()
             .zip(y)
             .filter_map(|(a, b)| Some((a.as_ref()?.0, a.as_ref()?.1, b.as_ref()?.0, b.as_ref()?.1)))
@@ -436,7 +437,7 @@ impl Search<'_> {
     /// nodes at most one contact step per node from its placed neighbours.
     fn set_local(&mut self, s: &[Slot], chain: &[NodeId]) {
         let members: BTreeSet<usize> = chain.iter().map(|n| n.0 as usize).collect();
-        let anchors: Vec<Pt> = chain
+        let anchors: Vec<P> = chain
             .iter()
             .flat_map(|n| self.adj[n.0 as usize].iter())
             .filter_map(|m| s[m.0 as usize])
@@ -449,7 +450,7 @@ impl Search<'_> {
                 members.contains(j)
                     || s[*j].is_some_and(|a| {
                         let c = self.centre(a);
-                        anchors.is_empty() || anchors.iter().any(|&p| norm(sub(c, p)) <= radius)
+                        anchors.is_empty() || anchors.iter().any(|&p| length(sub(c, p)) <= radius)
                     })
             })
             .collect();
@@ -466,7 +467,7 @@ impl Search<'_> {
             if s[i].is_some() {
                 continue;
             }
-            let mut best: Option<((BlockId, Pt), f64)> = None;
+            let mut best: Option<((BlockId, P), f64)> = None;
             for _ in 0..10 {
                 let b = self.pick(&self.level.nodes[i].blocks.clone());
                 let p = self.sample(s, i, b).unwrap_or_else(|| self.far(s, b));
@@ -480,7 +481,7 @@ impl Search<'_> {
     }
 
     /// The origin, or beside the obstacles when block `b` would overlap one there.
-    fn clear_start(&self, b: BlockId) -> Pt {
+    fn clear_start(&self, b: BlockId) -> P {
         if self.obstacle_area((b, [0.0, 0.0])) <= AREA_TOL {
             return [0.0, 0.0];
         }
@@ -490,7 +491,7 @@ impl Search<'_> {
 
     /// A move's new position: a sample clear of every obstacle (a few tries; none when every
     /// try lands in one, and the move is rejected).
-    fn sample_clear(&mut self, s: &[Slot], i: usize, b: BlockId) -> Option<Pt> {
+    fn sample_clear(&mut self, s: &[Slot], i: usize, b: BlockId) -> Option<P> {
         for _ in 0..4 {
             let p = self.sample(s, i, b)?;
             if self.placer.obstacles.is_empty() || self.obstacle_area((b, p)) <= AREA_TOL {
@@ -501,7 +502,7 @@ impl Search<'_> {
     }
 
     /// A position beside everything placed (for a node whose neighbours give no contact).
-    fn far(&self, s: &[Slot], b: BlockId) -> Pt {
+    fn far(&self, s: &[Slot], b: BlockId) -> P {
         let right = s.iter().flatten().map(|(k, p)| self.placer.boxes[k.0 as usize][1] + p[0]).fold(0.0, f64::max);
         [right - self.placer.boxes[b.0 as usize][0] + 1.0, 0.0]
     }

@@ -19,10 +19,11 @@
 //! least 1 that the forced room vertices already satisfy, so the IP finds the shortest network
 //! through all rooms; a smaller range makes the network sweep the rooms.
 
-use super::geometry::{self, Pt, LEN_TOL};
 use super::spec::{Level, NodeId};
 use super::validate::{door, validate};
 use super::{Layout, LevelError};
+use crate::geometry::convex::{self, LEN_TOL};
+use crate::geometry::{self, P};
 use crate::mesh::{Mesh, VertexId};
 use crate::spec::{
     Allow, BoundaryRole, CoverageModel, CoverageSpec, FeatureSpec, MeshSpec, Place, SinkSpec, Spec, UserSpec,
@@ -58,7 +59,7 @@ pub struct Door {
     /// The two nodes.
     pub nodes: [String; 2],
     /// The door's two ends.
-    pub span: [Pt; 2],
+    pub span: [P; 2],
 }
 
 /// A layout exported for the network IP.
@@ -69,7 +70,7 @@ pub struct Bridge {
     /// The spec; its mesh is [`MESH_FILE`], beside it.
     pub spec: Spec,
     /// The placed polygon of every node, in node order.
-    pub blocks: Vec<Vec<Pt>>,
+    pub blocks: Vec<Vec<P>>,
     /// Every graph edge's door, in edge order.
     pub doors: Vec<Door>,
     /// The forced vertex of every node's room, in node order (the entrance's is the sink).
@@ -168,10 +169,10 @@ pub fn write(dir: &Path, b: &Bridge) -> Result<Vec<PathBuf>, LevelError> {
 }
 
 /// The placed polygons, each with axis-parallel walls only.
-fn placed(level: &Level, layout: &Layout) -> Result<Vec<Vec<Pt>>, LevelError> {
+fn placed(level: &Level, layout: &Layout) -> Result<Vec<Vec<P>>, LevelError> {
     let mut out = Vec::new();
     for p in &layout.nodes {
-        let poly = geometry::translate(&level.blocks[p.block.0 as usize].polygon, p.position);
+        let poly = convex::translate(&level.blocks[p.block.0 as usize].polygon, p.position);
         let slanted = (0..poly.len()).any(|i| {
             let d = geometry::sub(poly[(i + 1) % poly.len()], poly[i]);
             d[0].abs() > LEN_TOL && d[1].abs() > LEN_TOL
@@ -189,7 +190,7 @@ fn placed(level: &Level, layout: &Layout) -> Result<Vec<Vec<Pt>>, LevelError> {
 }
 
 /// Every graph edge's door (the layout must pass the validator).
-fn doors(level: &Level, layout: &Layout) -> Result<Vec<[Pt; 2]>, LevelError> {
+fn doors(level: &Level, layout: &Layout) -> Result<Vec<[P; 2]>, LevelError> {
     let v = validate(level, layout);
     if !v.is_valid() {
         return Err(LevelError::Rejected(format!("the layout to export is invalid: {}", v.problems().join("; "))));
@@ -239,9 +240,9 @@ struct Grid {
 }
 
 impl Grid {
-    fn new(blocks: &[Vec<Pt>], doors: &[[Pt; 2]], spacing: f64) -> Result<Grid, LevelError> {
+    fn new(blocks: &[Vec<P>], doors: &[[P; 2]], spacing: f64) -> Result<Grid, LevelError> {
         let mids = doors.iter().map(|d| geometry::scale(geometry::add(d[0], d[1]), 0.5));
-        let pts: Vec<Pt> = blocks.iter().flatten().copied().chain(mids).collect();
+        let pts: Vec<P> = blocks.iter().flatten().copied().chain(mids).collect();
         let xs = lines(pts.iter().map(|p| p[0]).collect(), spacing);
         let ys = lines(pts.iter().map(|p| p[1]).collect(), spacing);
         let (nx, ny) = (xs.len() - 1, ys.len() - 1);
@@ -251,7 +252,7 @@ impl Grid {
                 format!("{spacing} gives a grid of {nx} × {ny} cells (at most {MAX_CELLS}); choose a larger one"),
             ));
         }
-        let boxes: Vec<[f64; 4]> = blocks.iter().map(|b| geometry::bounding_box(b)).collect();
+        let boxes: Vec<[f64; 4]> = blocks.iter().map(|b| convex::bounding_box(b)).collect();
         let mut owner = vec![None; nx * ny];
         for j in 0..ny {
             for i in 0..nx {
@@ -372,7 +373,7 @@ struct Walls {
 }
 
 impl Walls {
-    fn new(mesh: &Mesh, face_owner: &[usize], level: &Level, doors: &[[Pt; 2]]) -> Walls {
+    fn new(mesh: &Mesh, face_owner: &[usize], level: &Level, doors: &[[P; 2]]) -> Walls {
         let owners = vertex_owners(mesh, face_owner);
         let mut vertices = Vec::new();
         for v in mesh.vertices() {
@@ -403,11 +404,11 @@ impl Walls {
 }
 
 /// Whether `p` lies on segment `s` (within [`MERGE_TOL`]).
-pub fn on_segment(p: Pt, s: &[Pt; 2]) -> bool {
+pub fn on_segment(p: P, s: &[P; 2]) -> bool {
     let d = geometry::sub(s[1], s[0]);
-    let len = geometry::norm(d);
+    let len = convex::length(d);
     if len < LEN_TOL {
-        return geometry::norm(geometry::sub(p, s[0])) <= MERGE_TOL;
+        return convex::length(geometry::sub(p, s[0])) <= MERGE_TOL;
     }
     let t = geometry::dot(geometry::sub(p, s[0]), d) / len;
     let off = geometry::cross(d, geometry::sub(p, s[0])).abs() / len;
@@ -418,7 +419,7 @@ pub fn on_segment(p: Pt, s: &[Pt; 2]) -> bool {
 /// nearest the block's centroid (the smallest id on a tie).
 fn rooms(
     level: &Level,
-    blocks: &[Vec<Pt>],
+    blocks: &[Vec<P>],
     mesh: &Mesh,
     face_owner: &[usize],
     spacing: f64,
@@ -430,7 +431,7 @@ fn rooms(
         let best = mesh
             .vertices()
             .filter(|&v| !mesh.is_boundary_vertex(v) && owners[v.index()].len() == 1 && owners[v.index()].contains(&k))
-            .map(|v| (geometry::norm(geometry::sub(mesh.position(v), c)), v))
+            .map(|v| (convex::length(geometry::sub(mesh.position(v), c)), v))
             .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
         match best {
             Some((_, v)) => out.push(v),
@@ -455,7 +456,7 @@ fn implied_coverage(mesh: &Mesh, rooms: &[VertexId], obstacles: &[VertexId]) -> 
     let blocked: BTreeSet<VertexId> = obstacles.iter().copied().collect();
     let nearest = |v: VertexId| {
         let p = mesh.position(v);
-        rooms.iter().map(|&r| geometry::norm(geometry::sub(mesh.position(r), p))).fold(f64::INFINITY, f64::min)
+        rooms.iter().map(|&r| convex::length(geometry::sub(mesh.position(r), p))).fold(f64::INFINITY, f64::min)
     };
     mesh.vertices().filter(|v| !blocked.contains(v)).map(nearest).fold(1.0, f64::max)
 }

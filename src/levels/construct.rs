@@ -9,15 +9,16 @@
 //! (what lets a long cycle come back to close).
 
 use super::cspace::{clip_out, intersect, CSpaces, Segment};
-use super::geometry::{self, bounding_box, boxes_apart, norm, sub, Facet, Pt, AREA_TOL, LEN_TOL};
 use super::spec::{BlockId, Level, NodeId};
 use super::validate::shared_wall;
+use crate::geometry::convex::{self, bounding_box, boxes_apart, length, Facet, AREA_TOL, LEN_TOL};
+use crate::geometry::{self, sub, P};
 use rand::rngs::Xoshiro256PlusPlus;
 use rand::RngExt;
 use std::collections::VecDeque;
 
 /// A node's block and position, if placed.
-pub type Slot = Option<(BlockId, Pt)>;
+pub type Slot = Option<(BlockId, P)>;
 
 /// The fixed data of exact placement.
 pub struct Placer<'a> {
@@ -25,12 +26,12 @@ pub struct Placer<'a> {
     cs: &'a CSpaces,
     adj: Vec<Vec<NodeId>>,
     /// Per block: triangles.
-    tris: Vec<Vec<[Pt; 3]>>,
+    tris: Vec<Vec<[P; 3]>>,
     /// Per block: `[xmin, xmax, ymin, ymax]`.
     pub boxes: Vec<[f64; 4]>,
-    centre: Vec<Pt>,
+    centre: Vec<P>,
     /// Obstacles: triangles and box (absolute coordinates).
-    pub obstacles: Vec<(Vec<[Pt; 3]>, [f64; 4])>,
+    pub obstacles: Vec<(Vec<[P; 3]>, [f64; 4])>,
     /// The longest distance between the centres of two blocks in door contact.
     step: f64,
     /// The largest block dimension (the crowding test's margin).
@@ -40,13 +41,13 @@ pub struct Placer<'a> {
 }
 
 /// The centre a block is measured by: the mean of its vertices.
-fn block_centre(poly: &[Pt]) -> Pt {
+fn block_centre(poly: &[P]) -> P {
     let n = poly.len() as f64;
     poly.iter().fold([0.0, 0.0], |a, p| [a[0] + p[0] / n, a[1] + p[1] / n])
 }
 
 /// A placement, how straight on it continues, and its sort key (outside the pace, crowding).
-type Candidate = ((BlockId, Pt), f64, (bool, usize, u64));
+type Candidate = ((BlockId, P), f64, (bool, usize, u64));
 
 /// Targets this many hops away or closer draw a placement towards them (the cycles about to
 /// close: a grid's next row above the last, not beside it).
@@ -55,7 +56,7 @@ const NEAR_HOPS: u32 = 3;
 /// Per-node search state of the depth-first placement.
 struct Frame {
     node: usize,
-    candidates: Vec<(BlockId, Pt)>,
+    candidates: Vec<(BlockId, P)>,
     targets: Vec<(usize, u32)>,
     next: usize,
 }
@@ -64,11 +65,11 @@ impl<'a> Placer<'a> {
     /// Precomputes shapes, hop distances and the longest contact step.
     pub fn new(level: &'a Level, cs: &'a CSpaces) -> Placer<'a> {
         let adj = level.adjacency(&level.all_edges());
-        let tris = level.blocks.iter().map(|b| geometry::triangulate(&b.polygon)).collect();
+        let tris = level.blocks.iter().map(|b| convex::triangulate(&b.polygon)).collect();
         let boxes: Vec<[f64; 4]> = level.blocks.iter().map(|b| bounding_box(&b.polygon)).collect();
-        let centre: Vec<Pt> = level.blocks.iter().map(|b| block_centre(&b.polygon)).collect();
+        let centre: Vec<P> = level.blocks.iter().map(|b| block_centre(&b.polygon)).collect();
         let obstacles =
-            level.obstacles.iter().map(|o| (geometry::triangulate(&o.polygon), bounding_box(&o.polygon))).collect();
+            level.obstacles.iter().map(|o| (convex::triangulate(&o.polygon), bounding_box(&o.polygon))).collect();
         let n = level.blocks.len() as u32;
         let mut step: f64 = 0.0;
         for a in 0..n {
@@ -76,7 +77,7 @@ impl<'a> Placer<'a> {
                 for g in cs.segments(BlockId(a), BlockId(b)) {
                     for p in [g.a, g.b] {
                         let d = sub(geometry::add(centre[b as usize], p), centre[a as usize]);
-                        step = step.max(norm(d));
+                        step = step.max(length(d));
                     }
                 }
             }
@@ -100,26 +101,26 @@ impl<'a> Placer<'a> {
     }
 
     /// The box of block `a.0` placed at `a.1`.
-    pub fn placed_box(&self, a: (BlockId, Pt)) -> [f64; 4] {
+    pub fn placed_box(&self, a: (BlockId, P)) -> [f64; 4] {
         let b = self.boxes[a.0 .0 as usize];
         [b[0] + a.1[0], b[1] + a.1[0], b[2] + a.1[1], b[3] + a.1[1]]
     }
 
     /// The triangles of block `a.0` placed at `a.1`.
-    pub fn placed_tris(&self, a: (BlockId, Pt)) -> Vec<[Pt; 3]> {
+    pub fn placed_tris(&self, a: (BlockId, P)) -> Vec<[P; 3]> {
         self.tris[a.0 .0 as usize].iter().map(|t| t.map(|p| geometry::add(p, a.1))).collect()
     }
 
     /// The centre of block `a.0` placed at `a.1`.
-    pub fn centre_of(&self, a: (BlockId, Pt)) -> Pt {
+    pub fn centre_of(&self, a: (BlockId, P)) -> P {
         geometry::add(self.centre[a.0 .0 as usize], a.1)
     }
 
     /// Whether two placed blocks share a wall at least a door wide.
-    pub fn in_contact(&self, a: (BlockId, Pt), b: (BlockId, Pt)) -> bool {
-        let pa = geometry::translate(&self.level.blocks[a.0 .0 as usize].polygon, a.1);
-        let pb = geometry::translate(&self.level.blocks[b.0 .0 as usize].polygon, b.1);
-        shared_wall(&pa, &pb).is_some_and(|w| norm(sub(w[1], w[0])) >= self.level.door_width - LEN_TOL)
+    pub fn in_contact(&self, a: (BlockId, P), b: (BlockId, P)) -> bool {
+        let pa = convex::translate(&self.level.blocks[a.0 .0 as usize].polygon, a.1);
+        let pb = convex::translate(&self.level.blocks[b.0 .0 as usize].polygon, b.1);
+        shared_wall(&pa, &pb).is_some_and(|w| length(sub(w[1], w[0])) >= self.level.door_width - LEN_TOL)
     }
 
     /// The positions of node `i` as block `b` touching every placed neighbour by a door and
@@ -190,23 +191,23 @@ impl<'a> Placer<'a> {
     /// Whether node `i` as `at` meets the validator's tests against everything placed:
     /// no overlap above [`AREA_TOL`] with a block or an obstacle, a door to every placed
     /// neighbour.
-    pub fn fits(&self, s: &[Slot], i: usize, at: (BlockId, Pt)) -> bool {
+    pub fn fits(&self, s: &[Slot], i: usize, at: (BlockId, P)) -> bool {
         let bx = self.placed_box(at);
-        let mut tris: Option<Vec<[Pt; 3]>> = None;
+        let mut tris: Option<Vec<[P; 3]>> = None;
         for (j, sj) in s.iter().enumerate() {
             let Some(o) = *sj else { continue };
             if j == i || boxes_apart(bx, self.placed_box(o)) {
                 continue;
             }
             let t = tris.get_or_insert_with(|| self.placed_tris(at));
-            if geometry::overlap_area(t, &self.placed_tris(o)) > AREA_TOL {
+            if convex::overlap_area(t, &self.placed_tris(o)) > AREA_TOL {
                 return false;
             }
         }
         for (ot, ob) in &self.obstacles {
             if !boxes_apart(bx, *ob) {
                 let t = tris.get_or_insert_with(|| self.placed_tris(at));
-                if geometry::overlap_area(t, ot) > AREA_TOL {
+                if convex::overlap_area(t, ot) > AREA_TOL {
                     return false;
                 }
             }
@@ -244,20 +245,20 @@ impl<'a> Placer<'a> {
     /// Whether a placement at `at` stays within reach of its targets: centres at most hop
     /// distance × the longest contact step apart (a necessary condition for the nodes between
     /// them to close the gap).
-    fn within_reach(&self, targets: &[(usize, u32)], s: &[Slot], at: (BlockId, Pt)) -> bool {
+    fn within_reach(&self, targets: &[(usize, u32)], s: &[Slot], at: (BlockId, P)) -> bool {
         let c = self.centre_of(at);
         targets
             .iter()
-            .all(|&(j, d)| s[j].is_none_or(|o| norm(sub(c, self.centre_of(o))) <= f64::from(d) * self.step + LEN_TOL))
+            .all(|&(j, d)| s[j].is_none_or(|o| length(sub(c, self.centre_of(o))) <= f64::from(d) * self.step + LEN_TOL))
     }
 
     /// Whether a placement at `at` keeps its targets within the pace a walk can surely keep
     /// (hop distance × [`Placer::pace`] plus two steps): not necessary for a layout, so only a
     /// preference — it turns a long cycle back in time to close.
-    fn within_pace(&self, targets: &[(usize, u32)], s: &[Slot], at: (BlockId, Pt)) -> bool {
+    fn within_pace(&self, targets: &[(usize, u32)], s: &[Slot], at: (BlockId, P)) -> bool {
         let c = self.centre_of(at);
         targets.iter().all(|&(j, d)| {
-            s[j].is_none_or(|o| norm(sub(c, self.centre_of(o))) <= f64::from(d) * self.pace + 2.0 * self.step)
+            s[j].is_none_or(|o| length(sub(c, self.centre_of(o))) <= f64::from(d) * self.pace + 2.0 * self.step)
         })
     }
 
@@ -281,11 +282,11 @@ impl<'a> Placer<'a> {
         i: usize,
         targets: &[(usize, u32)],
         rng: &mut Xoshiro256PlusPlus,
-    ) -> Vec<(BlockId, Pt)> {
+    ) -> Vec<(BlockId, P)> {
         if let Some(p) = self.level.nodes[i].position {
             return self.level.nodes[i].blocks.iter().map(|&b| (b, p)).collect();
         }
-        let placed_nbs: Vec<(BlockId, Pt)> = self.adj[i].iter().filter_map(|n| s[n.0 as usize]).collect();
+        let placed_nbs: Vec<(BlockId, P)> = self.adj[i].iter().filter_map(|n| s[n.0 as usize]).collect();
         let mut out: Vec<Candidate> = Vec::new();
         for &b in &self.level.nodes[i].blocks {
             let segs = match self.space(s, i, b) {
@@ -304,7 +305,7 @@ impl<'a> Placer<'a> {
                     }
                 }
                 for p in pts {
-                    if out.iter().any(|(q, _, _)| q.0 == b && norm(sub(q.1, p)) < LEN_TOL) {
+                    if out.iter().any(|(q, _, _)| q.0 == b && length(sub(q.1, p)) < LEN_TOL) {
                         continue;
                     }
                     let at = (b, p);
@@ -331,7 +332,7 @@ impl<'a> Placer<'a> {
 
     /// How many placed blocks other than node `i`'s neighbours and its near targets come within
     /// a block's extent of the placement (boxes grown by the largest block dimension).
-    fn crowding(&self, s: &[Slot], i: usize, at: (BlockId, Pt), targets: &[(usize, u32)]) -> usize {
+    fn crowding(&self, s: &[Slot], i: usize, at: (BlockId, P), targets: &[(usize, u32)]) -> usize {
         let b = self.placed_box(at);
         let m = self.margin;
         let grown = [b[0] - m, b[1] + m, b[2] - m, b[3] + m];
@@ -348,12 +349,12 @@ impl<'a> Placer<'a> {
 
     /// How far the placement is from the targets a few hops away (the sum of centre distances
     /// over hops, in millionths): nearer is better, 0 when there is none.
-    fn pull(&self, s: &[Slot], at: (BlockId, Pt), targets: &[(usize, u32)]) -> u64 {
+    fn pull(&self, s: &[Slot], at: (BlockId, P), targets: &[(usize, u32)]) -> u64 {
         let c = self.centre_of(at);
         let sum: f64 = targets
             .iter()
             .filter(|t| t.1 <= NEAR_HOPS)
-            .filter_map(|&(j, d)| s[j].map(|o| norm(sub(c, self.centre_of(o))) / f64::from(d)))
+            .filter_map(|&(j, d)| s[j].map(|o| length(sub(c, self.centre_of(o))) / f64::from(d)))
             .sum();
         (sum * 1e6).round() as u64
     }
@@ -361,7 +362,7 @@ impl<'a> Placer<'a> {
     /// How straight on a placement continues: the cosine between its step from the placed
     /// neighbour it attaches to and that neighbour's own step from its placed neighbour
     /// (1 straight on, 0 when there is no earlier step), plus a bonus for centres on a line.
-    fn straightness(&self, s: &[Slot], i: usize, at: (BlockId, Pt)) -> f64 {
+    fn straightness(&self, s: &[Slot], i: usize, at: (BlockId, P)) -> f64 {
         let c = self.centre_of(at);
         let mut best: f64 = 0.0;
         for n in &self.adj[i] {
@@ -376,7 +377,7 @@ impl<'a> Placer<'a> {
                 }
                 if let Some(q) = s[m.0 as usize] {
                     let d0 = sub(cp, self.centre_of(q));
-                    let l = norm(d0) * norm(d1);
+                    let l = length(d0) * length(d1);
                     if l > LEN_TOL {
                         cos = cos.max(geometry::dot(d0, d1) / l);
                     }
@@ -388,7 +389,7 @@ impl<'a> Placer<'a> {
     }
 
     /// A position for block `b` right of everything placed (a node with no placed neighbour).
-    fn free_start(&self, s: &[Slot], b: BlockId) -> Pt {
+    fn free_start(&self, s: &[Slot], b: BlockId) -> P {
         if s.iter().all(|x| x.is_none()) && self.obstacles.is_empty() {
             return [0.0, 0.0];
         }
@@ -463,7 +464,7 @@ impl<'a> Placer<'a> {
 
 /// The point of segment `g` whose coordinate `axis` is `v`, if the segment crosses it (a
 /// segment along the axis has none unless it is a single point).
-fn point_on_axis(g: &Segment, axis: usize, v: f64) -> Option<Pt> {
+fn point_on_axis(g: &Segment, axis: usize, v: f64) -> Option<P> {
     let d = g.b[axis] - g.a[axis];
     if d.abs() < LEN_TOL {
         return None;

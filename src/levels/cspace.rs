@@ -4,23 +4,24 @@
 //! range over which `B`'s edge slides along `A`'s with an overlap of at least `w`, minus the
 //! open stretches where some convex part of `B` enters some convex part of `A`.
 
-use super::geometry::{self, dot, norm, scale, sub, Facet, Pt, LEN_TOL};
 use super::spec::{Block, BlockId, Level};
+use crate::geometry::convex::{self, length, Facet, LEN_TOL};
+use crate::geometry::{self, dot, scale, sub, P};
 use serde::Serialize;
 
 /// One segment of a configuration space: translations `a + t (b − a)`, `t ∈ [0, 1]`.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct Segment {
     /// One end.
-    pub a: Pt,
+    pub a: P,
     /// The other end (equal to `a` for a single position).
-    pub b: Pt,
+    pub b: P,
 }
 
 impl Segment {
     /// Its length.
     pub fn len(&self) -> f64 {
-        norm(sub(self.b, self.a))
+        length(sub(self.b, self.a))
     }
 
     /// Whether it is a single point.
@@ -29,16 +30,16 @@ impl Segment {
     }
 
     /// The point at parameter `t`.
-    pub fn at(&self, t: f64) -> Pt {
+    pub fn at(&self, t: f64) -> P {
         geometry::add(self.a, scale(sub(self.b, self.a), t))
     }
 
     /// The parameter of the point of the segment nearest `p`, and the distance to it.
-    pub fn project(&self, p: Pt) -> (f64, f64) {
+    pub fn project(&self, p: P) -> (f64, f64) {
         let d = sub(self.b, self.a);
         let l2 = dot(d, d);
         let t = if l2 < LEN_TOL * LEN_TOL { 0.0 } else { (dot(sub(p, self.a), d) / l2).clamp(0.0, 1.0) };
-        (t, norm(sub(p, self.at(t))))
+        (t, length(sub(p, self.at(t))))
     }
 }
 
@@ -48,14 +49,14 @@ impl Segment {
 pub fn overlap_facets(a: &Block, b: &Block) -> Vec<Vec<Facet>> {
     a.parts
         .iter()
-        .flat_map(|pa| b.parts.iter().map(move |pb| geometry::facets(&geometry::minkowski_difference(pa, pb))))
+        .flat_map(|pa| b.parts.iter().map(move |pb| convex::facets(&convex::minkowski_difference(pa, pb))))
         .collect()
 }
 
 /// The open parameter interval of the line `p0 + u d` inside the convex region
 /// `{n · p < h}` of every facet, if it is longer than [`LEN_TOL`] (a line along a facet,
 /// within the tolerance, only touches).
-fn inside_interval(p0: Pt, d: Pt, facets: &[Facet]) -> Option<(f64, f64)> {
+fn inside_interval(p0: P, d: P, facets: &[Facet]) -> Option<(f64, f64)> {
     let (mut lo, mut hi) = (f64::NEG_INFINITY, f64::INFINITY);
     for f in facets {
         let (c, s) = (f.h - dot(f.n, p0), dot(f.n, d));
@@ -102,12 +103,12 @@ pub fn contact_segments(a: &Block, b: &Block, w: f64) -> Vec<Segment> {
     let mut out: Vec<Segment> = Vec::new();
     for i in 0..pa.len() {
         let (a0, a1) = (pa[i], pa[(i + 1) % pa.len()]);
-        let la = norm(sub(a1, a0));
+        let la = length(sub(a1, a0));
         let d = scale(sub(a1, a0), 1.0 / la);
         let n = [d[1], -d[0]];
         for j in 0..pb.len() {
             let (b0, b1) = (pb[j], pb[(j + 1) % pb.len()]);
-            let lb = norm(sub(b1, b0));
+            let lb = length(sub(b1, b0));
             let e = scale(sub(b1, b0), 1.0 / lb);
             // Antiparallel edges only: B's edge runs against A's.
             if dot(d, e) > -1.0 + 1e-9 || la < w - LEN_TOL || lb < w - LEN_TOL {
@@ -126,8 +127,8 @@ pub fn contact_segments(a: &Block, b: &Block, w: f64) -> Vec<Segment> {
             for (lo, hi) in subtract(u0, u1, holes) {
                 let s = Segment { a: geometry::add(p0, scale(d, lo)), b: geometry::add(p0, scale(d, hi)) };
                 let dup = out.iter().any(|t| {
-                    (norm(sub(t.a, s.a)) < LEN_TOL && norm(sub(t.b, s.b)) < LEN_TOL)
-                        || (norm(sub(t.a, s.b)) < LEN_TOL && norm(sub(t.b, s.a)) < LEN_TOL)
+                    (length(sub(t.a, s.a)) < LEN_TOL && length(sub(t.b, s.b)) < LEN_TOL)
+                        || (length(sub(t.a, s.b)) < LEN_TOL && length(sub(t.b, s.a)) < LEN_TOL)
                 });
                 if !dup {
                     out.push(s);
@@ -184,7 +185,7 @@ impl CSpaces {
                     o.parts
                         .iter()
                         .flat_map(|po| {
-                            b.parts.iter().map(move |pb| geometry::facets(&geometry::minkowski_difference(po, pb)))
+                            b.parts.iter().map(move |pb| convex::facets(&convex::minkowski_difference(po, pb)))
                         })
                         .collect()
                 })
@@ -235,9 +236,9 @@ fn intersect_one(s: &Segment, t: &Segment) -> Option<Segment> {
     if t.is_empty() {
         return (s.project(t.a).1 < LEN_TOL).then_some(*t);
     }
-    if denom.abs() < 1e-12 * norm(r) * norm(q) {
+    if denom.abs() < 1e-12 * length(r) * length(q) {
         // Parallel: collinear overlap, if any.
-        if geometry::cross(w, r).abs() > LEN_TOL * norm(r) {
+        if geometry::cross(w, r).abs() > LEN_TOL * length(r) {
             return None;
         }
         let l2 = dot(r, r);
@@ -247,7 +248,7 @@ fn intersect_one(s: &Segment, t: &Segment) -> Option<Segment> {
     }
     let u = geometry::cross(w, q) / denom;
     let v = geometry::cross(w, r) / denom;
-    let (eu, ev) = (LEN_TOL / norm(r), LEN_TOL / norm(q));
+    let (eu, ev) = (LEN_TOL / length(r), LEN_TOL / length(q));
     (u >= -eu && u <= 1.0 + eu && v >= -ev && v <= 1.0 + ev).then(|| {
         let p = s.at(u.clamp(0.0, 1.0));
         Segment { a: p, b: p }
@@ -258,11 +259,11 @@ fn intersect_one(s: &Segment, t: &Segment) -> Option<Segment> {
 mod tests {
     use super::*;
 
-    fn block(poly: &[Pt]) -> Block {
-        Block { name: "b".into(), polygon: poly.to_vec(), parts: geometry::convex_parts(poly), rotation_of: None }
+    fn block(poly: &[P]) -> Block {
+        Block { name: "b".into(), polygon: poly.to_vec(), parts: convex::convex_parts(poly), rotation_of: None }
     }
 
-    const SQ: [Pt; 4] = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+    const SQ: [P; 4] = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
 
     #[test]
     fn subtract_leaves_closed_pieces() {
@@ -276,7 +277,7 @@ mod tests {
         let t = Segment { a: [1.0, -1.0], b: [1.0, 1.0] };
         let r = intersect(&[s], &[t]);
         assert_eq!(r.len(), 1);
-        assert!(norm(sub(r[0].a, [1.0, 0.0])) < 1e-12 && r[0].is_empty());
+        assert!(length(sub(r[0].a, [1.0, 0.0])) < 1e-12 && r[0].is_empty());
         let u = Segment { a: [1.5, 0.0], b: [3.0, 0.0] };
         let r = intersect(&[s], &[u]);
         assert!((r[0].len() - 0.5).abs() < 1e-12);

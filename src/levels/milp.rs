@@ -18,9 +18,9 @@
 //! disjunction against the obstacle's fixed parts, big-M from the node's own position box.
 
 use super::cspace::{CSpaces, Segment};
-use super::geometry::{dot, Pt};
 use super::spec::{BlockId, EdgeId, Level, NodeId, Objective};
 use super::{Layout, Placement};
+use crate::geometry::{dot, P};
 use crate::milp::{Model, Sense, VarId};
 use serde::Serialize;
 use std::collections::BTreeSet;
@@ -36,7 +36,7 @@ pub struct Part {
     /// Nodes already laid out, ascending, each a node of `nodes` with its block and position
     /// held constant: partners of the other nodes' doors and blocks they must not overlap
     /// (an incremental layout's earlier steps). Empty for a whole level.
-    pub placed: Vec<(NodeId, BlockId, Pt)>,
+    pub placed: Vec<(NodeId, BlockId, P)>,
 }
 
 impl Part {
@@ -63,12 +63,12 @@ impl Part {
     }
 
     /// The placement of node `n` if it is placed.
-    pub fn placement(&self, n: NodeId) -> Option<(BlockId, Pt)> {
+    pub fn placement(&self, n: NodeId) -> Option<(BlockId, P)> {
         self.placed.binary_search_by_key(&n, |p| p.0).ok().map(|k| (self.placed[k].1, self.placed[k].2))
     }
 
     /// Where node `n` must be: its placement's position, else its fixed position in the level.
-    fn anchor(&self, level: &Level, n: NodeId) -> Option<Pt> {
+    fn anchor(&self, level: &Level, n: NodeId) -> Option<P> {
         self.placement(n).map(|p| p.1).or(level.nodes[n.0 as usize].position)
     }
 }
@@ -96,7 +96,7 @@ struct ContactVar {
 struct ObstacleGroup {
     i: usize,
     k: BlockId,
-    facets: Vec<(Pt, f64, VarId)>,
+    facets: Vec<(P, f64, VarId)>,
 }
 
 struct SepGroup {
@@ -104,7 +104,7 @@ struct SepGroup {
     j: usize,
     ka: BlockId,
     kb: BlockId,
-    facets: Vec<(Pt, f64, VarId)>,
+    facets: Vec<(P, f64, VarId)>,
 }
 
 /// The built model and the map from its variables back to a layout.
@@ -127,8 +127,8 @@ pub struct LevelModel {
 /// Position bounds per node of the part: `[xlo, xhi, ylo, yhi]`, and the pinned root if no
 /// node is fixed or placed (hop distance from each anchor × the longest contact offset).
 pub fn bounds(level: &Level, cs: &CSpaces, part: &Part) -> Vec<[f64; 4]> {
-    let fixed: Vec<(NodeId, Pt)> = part.nodes.iter().filter_map(|&n| part.anchor(level, n).map(|p| (n, p))).collect();
-    let anchors: Vec<(NodeId, Pt)> = if fixed.is_empty() { vec![(part.nodes[0], [0.0, 0.0])] } else { fixed };
+    let fixed: Vec<(NodeId, P)> = part.nodes.iter().filter_map(|&n| part.anchor(level, n).map(|p| (n, p))).collect();
+    let anchors: Vec<(NodeId, P)> = if fixed.is_empty() { vec![(part.nodes[0], [0.0, 0.0])] } else { fixed };
     let mut b: Vec<[f64; 4]> =
         vec![[f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY]; part.nodes.len()];
     for (root, at) in anchors {
@@ -243,8 +243,8 @@ pub fn build(level: &Level, cs: &CSpaces, part: &Part) -> LevelModel {
             }
             // Range of p_j − p_i over the bounds.
             let (dxl, dxh, dyl, dyh) = (b[j][0] - b[i][1], b[j][1] - b[i][0], b[j][2] - b[i][3], b[j][3] - b[i][2]);
-            let lo = |n: Pt| n[0] * if n[0] > 0.0 { dxl } else { dxh } + n[1] * if n[1] > 0.0 { dyl } else { dyh };
-            let hi = |n: Pt| n[0] * if n[0] > 0.0 { dxh } else { dxl } + n[1] * if n[1] > 0.0 { dyh } else { dyl };
+            let lo = |n: P| n[0] * if n[0] > 0.0 { dxl } else { dxh } + n[1] * if n[1] > 0.0 { dyl } else { dyh };
+            let hi = |n: P| n[0] * if n[0] > 0.0 { dxh } else { dxl } + n[1] * if n[1] > 0.0 { dyh } else { dyl };
             for &(ka, za) in &choice[i] {
                 for &(kb, zb) in &choice[j] {
                     for (q, fs) in cs.facets(ka, kb).iter().enumerate() {
@@ -316,10 +316,10 @@ fn obstacle_rows(
 ) -> Vec<ObstacleGroup> {
     let mut out = Vec::new();
     for (i, zs) in choice.iter().enumerate() {
-        let lo = |n: Pt| {
+        let lo = |n: P| {
             n[0] * if n[0] > 0.0 { b[i][0] } else { b[i][1] } + n[1] * if n[1] > 0.0 { b[i][2] } else { b[i][3] }
         };
-        let hi = |n: Pt| {
+        let hi = |n: P| {
             n[0] * if n[0] > 0.0 { b[i][1] } else { b[i][0] } + n[1] * if n[1] > 0.0 { b[i][3] } else { b[i][2] }
         };
         for &(k, z) in zs {
@@ -429,7 +429,7 @@ impl LevelModel {
     /// Minimises `−d · p_i` over the part's nodes (placed ones are constants): the free
     /// nodes pushed as far as they go in direction `d` (an incremental step grown away from
     /// what is placed). Left as it is when the model already minimises the bounding box.
-    pub fn push_towards(&mut self, d: Pt) {
+    pub fn push_towards(&mut self, d: P) {
         if self.bbox.is_some() {
             return;
         }
@@ -454,7 +454,7 @@ impl LevelModel {
             let p = &layout.nodes[n.0 as usize];
             (p.block, [p.position[0] + shift[0], p.position[1] + shift[1]])
         };
-        let at: Vec<(BlockId, Pt)> = self.nodes.iter().map(|&n| place(n)).collect();
+        let at: Vec<(BlockId, P)> = self.nodes.iter().map(|&n| place(n)).collect();
         for (k, &(bk, p)) in at.iter().enumerate() {
             x[self.pos[k].0.index()] = p[0];
             x[self.pos[k].1.index()] = p[1];
@@ -496,8 +496,10 @@ impl LevelModel {
             }
         }
         if let Some(v) = self.bbox {
-            let placed: Vec<Vec<Pt>> =
-                at.iter().map(|&(bk, p)| super::geometry::translate(&level.blocks[bk.0 as usize].polygon, p)).collect();
+            let placed: Vec<Vec<P>> = at
+                .iter()
+                .map(|&(bk, p)| crate::geometry::convex::translate(&level.blocks[bk.0 as usize].polygon, p))
+                .collect();
             let all = placed.iter().flatten();
             x[v[0].index()] = all.clone().map(|p| p[0]).fold(f64::INFINITY, f64::min);
             x[v[1].index()] = all.clone().map(|p| p[0]).fold(f64::NEG_INFINITY, f64::max);
@@ -509,7 +511,7 @@ impl LevelModel {
 
     /// The translation that moves a free layout onto the model's pinned anchor (none when
     /// some node is fixed: the layout must already respect it).
-    fn anchor_shift(&self, level: &Level, layout: &Layout) -> Pt {
+    fn anchor_shift(&self, level: &Level, layout: &Layout) -> P {
         if self.pinned || self.nodes.iter().any(|n| level.nodes[n.0 as usize].position.is_some()) {
             return [0.0, 0.0];
         }

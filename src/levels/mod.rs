@@ -14,15 +14,14 @@ pub mod construct;
 pub mod cspace;
 pub mod exact;
 pub mod generate;
-pub mod geometry;
 pub mod milp;
 pub mod output;
 pub mod seeds;
 pub mod spec;
 pub mod validate;
 
+use crate::geometry::P;
 use crate::solvers::{Interrupt, SolverError, SolverKind};
-use geometry::Pt;
 use serde::Serialize;
 use spec::{BlockId, Level, NodeId};
 use std::path::PathBuf;
@@ -94,12 +93,12 @@ pub struct Placement {
     #[serde(skip)]
     pub block: BlockId,
     /// The translation applied to the block's polygon.
-    pub position: Pt,
+    pub position: P,
 }
 
 impl Placement {
     /// Node `n` as block `block` at `position`.
-    pub fn new(level: &Level, n: NodeId, block: BlockId, position: Pt) -> Placement {
+    pub fn new(level: &Level, n: NodeId, block: BlockId, position: P) -> Placement {
         Placement {
             node: level.node_name(n).to_string(),
             block_name: level.blocks[block.0 as usize].name.clone(),

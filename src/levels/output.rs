@@ -3,10 +3,10 @@
 //! over seeds, when asked for) and a picture of every layout
 //! (`layout-K.svg` and `.png`: blocks, doors, the graph over them).
 
-use super::geometry;
 use super::spec::{Level, NodeId};
 use super::validate::{door, validate};
 use super::{Layout, LevelError, LevelOutcome};
+use crate::geometry::convex;
 use crate::render::{self, level::LevelBlock, level::LevelScene};
 use std::path::{Path, PathBuf};
 
@@ -26,7 +26,7 @@ pub fn scene(level: &Level, layout: &Layout, caption: String) -> LevelScene {
         .nodes
         .iter()
         .map(|p| {
-            let polygon = geometry::translate(&level.blocks[p.block.0 as usize].polygon, p.position);
+            let polygon = convex::translate(&level.blocks[p.block.0 as usize].polygon, p.position);
             let n = polygon.len() as f64;
             let centre = polygon.iter().fold([0.0, 0.0], |a, q| [a[0] + q[0] / n, a[1] + q[1] / n]);
             let block = &level.blocks[p.block.0 as usize];

@@ -1,8 +1,9 @@
 //! The level spec: blocks (polygons), a door width, the connectivity graph's nodes and edges.
 //! Read from TOML, checked, and resolved to ids.
 
-use super::geometry::{self, Pt};
 use super::LevelError;
+use crate::geometry::convex;
+use crate::geometry::{self, P};
 use rustworkx_core::petgraph::graph::{NodeIndex, UnGraph};
 use serde::{Deserialize, Serialize};
 use std::collections::{BTreeMap, BTreeSet, VecDeque};
@@ -59,7 +60,7 @@ pub struct LevelSpec {
 #[serde(deny_unknown_fields)]
 pub struct ObstacleSpec {
     /// Vertices, counter-clockwise.
-    pub polygon: Vec<Pt>,
+    pub polygon: Vec<P>,
 }
 
 /// One block shape.
@@ -69,7 +70,7 @@ pub struct BlockSpec {
     /// Unique name.
     pub name: String,
     /// Vertices, counter-clockwise.
-    pub polygon: Vec<Pt>,
+    pub polygon: Vec<P>,
     /// Rotations (degrees, counter-clockwise about the origin, multiples of 90) that become
     /// variant blocks named `name@angle`, allowed wherever the block is.
     #[serde(default)]
@@ -85,7 +86,7 @@ pub struct NodeSpec {
     /// Allowed blocks (every block when omitted).
     pub blocks: Option<Vec<String>>,
     /// A fixed position (the block's own coordinates are translated by it).
-    pub position: Option<Pt>,
+    pub position: Option<P>,
 }
 
 /// One graph edge.
@@ -102,9 +103,9 @@ pub struct Block {
     /// Its name.
     pub name: String,
     /// Vertices, counter-clockwise, without collinear repeats.
-    pub polygon: Vec<Pt>,
+    pub polygon: Vec<P>,
     /// Convex parts covering it.
-    pub parts: Vec<Vec<Pt>>,
+    pub parts: Vec<Vec<P>>,
     /// The block it is a rotation of, and the angle in degrees (`None` for a block as given).
     pub rotation_of: Option<(BlockId, i64)>,
 }
@@ -113,9 +114,9 @@ pub struct Block {
 #[derive(Clone, Debug)]
 pub struct Obstacle {
     /// Vertices, counter-clockwise, without collinear repeats (absolute coordinates).
-    pub polygon: Vec<Pt>,
+    pub polygon: Vec<P>,
     /// Convex parts covering it.
-    pub parts: Vec<Vec<Pt>>,
+    pub parts: Vec<Vec<P>>,
 }
 
 /// A checked node.
@@ -126,7 +127,7 @@ pub struct Node {
     /// Allowed blocks, in block order.
     pub blocks: Vec<BlockId>,
     /// Fixed position, if any.
-    pub position: Option<Pt>,
+    pub position: Option<P>,
 }
 
 /// A checked level: ids resolved, polygons simple and counter-clockwise, graph connected.
@@ -165,7 +166,7 @@ impl LevelSpec {
         let blocks = self.blocks()?;
         let longest =
             blocks.iter().flat_map(|b| (0..b.polygon.len()).map(|i| edge_len(&b.polygon, i))).fold(0.0, f64::max);
-        if w > longest + geometry::LEN_TOL {
+        if w > longest + convex::LEN_TOL {
             return Err(field("door_width", format!("{w} is wider than every wall (the longest is {longest})")));
         }
         let by_name: BTreeMap<&str, BlockId> =
@@ -183,7 +184,7 @@ impl LevelSpec {
         let mut out = Vec::new();
         for (i, o) in self.obstacle.iter().enumerate() {
             let polygon = checked_polygon(&format!("obstacle[{i}].polygon"), &o.polygon)?;
-            let parts = geometry::convex_parts(&polygon);
+            let parts = convex::convex_parts(&polygon);
             out.push(Obstacle { polygon, parts });
         }
         Ok(out)
@@ -204,15 +205,15 @@ impl LevelSpec {
             let poly = checked_polygon(&format!("{at}.polygon"), &b.polygon)?;
             let base = BlockId(out.len() as u32);
             let angles = rotations(&format!("{at}.rotations"), &b.rotations)?;
-            let parts = geometry::convex_parts(&poly);
+            let parts = convex::convex_parts(&poly);
             out.push(Block { name: b.name.clone(), polygon: poly.clone(), parts, rotation_of: None });
             for a in angles {
                 let name = format!("{}@{a}", b.name);
                 if !seen_variant.insert(name.clone()) {
                     return Err(field(format!("{at}.rotations"), format!("variant name {name:?} is taken")));
                 }
-                let polygon: Vec<Pt> = poly.iter().map(|&p| rotate(p, a)).collect();
-                let parts = geometry::convex_parts(&polygon);
+                let polygon: Vec<P> = poly.iter().map(|&p| rotate(p, a)).collect();
+                let parts = convex::convex_parts(&polygon);
                 out.push(Block { name, polygon, parts, rotation_of: Some((base, a)) });
             }
         }
@@ -287,15 +288,15 @@ impl LevelSpec {
 
 /// A polygon checked where read: finite, at least three non-collinear vertices, simple,
 /// counter-clockwise; returned without collinear repeats.
-fn checked_polygon(at: &str, polygon: &[Pt]) -> Result<Vec<Pt>, LevelError> {
+fn checked_polygon(at: &str, polygon: &[P]) -> Result<Vec<P>, LevelError> {
     if polygon.iter().flatten().any(|v| !v.is_finite()) {
         return Err(field(at, "coordinates must be finite"));
     }
-    let poly = geometry::simplify(polygon);
+    let poly = convex::simplify(polygon);
     if poly.len() < 3 {
         return Err(field(at, "needs at least three non-collinear vertices"));
     }
-    if let Some((e, f)) = geometry::self_intersection(&poly) {
+    if let Some((e, f)) = convex::self_intersection(&poly) {
         return Err(field(at, format!("self-intersecting: edges {e} and {f} meet")));
     }
     if geometry::signed_area(&poly) <= 0.0 {
@@ -324,7 +325,7 @@ fn rotations(at: &str, angles: &[i64]) -> Result<Vec<i64>, LevelError> {
 }
 
 /// `p` rotated counter-clockwise about the origin by a multiple of 90 degrees (exact).
-pub fn rotate(p: Pt, degrees: i64) -> Pt {
+pub fn rotate(p: P, degrees: i64) -> P {
     match degrees.rem_euclid(360) {
         90 => [-p[1], p[0]],
         180 => [-p[0], -p[1]],
@@ -334,8 +335,8 @@ pub fn rotate(p: Pt, degrees: i64) -> Pt {
 }
 
 /// Length of edge `i` (from vertex `i`).
-pub fn edge_len(poly: &[Pt], i: usize) -> f64 {
-    geometry::norm(geometry::sub(poly[(i + 1) % poly.len()], poly[i]))
+pub fn edge_len(poly: &[P], i: usize) -> f64 {
+    convex::length(geometry::sub(poly[(i + 1) % poly.len()], poly[i]))
 }
 
 impl Level {
@@ -419,12 +420,12 @@ impl Level {
         if self.obstacles.is_empty() {
             return Ok(());
         }
-        let tris: Vec<Vec<[Pt; 3]>> = self.obstacles.iter().map(|o| geometry::triangulate(&o.polygon)).collect();
+        let tris: Vec<Vec<[P; 3]>> = self.obstacles.iter().map(|o| convex::triangulate(&o.polygon)).collect();
         for n in &self.nodes {
             let Some(p) = n.position else { continue };
             let first_hit = |b: &BlockId| {
-                let placed = geometry::triangulate(&geometry::translate(&self.blocks[b.0 as usize].polygon, p));
-                tris.iter().position(|t| geometry::overlap_area(&placed, t) > geometry::AREA_TOL)
+                let placed = convex::triangulate(&convex::translate(&self.blocks[b.0 as usize].polygon, p));
+                tris.iter().position(|t| convex::overlap_area(&placed, t) > convex::AREA_TOL)
             };
             let hits: Vec<Option<usize>> = n.blocks.iter().map(first_hit).collect();
             if let Some(Some(k)) = hits.iter().all(Option::is_some).then(|| hits[0]) {

@@ -3,9 +3,10 @@
 //! [`AREA_TOL`]) and every graph edge is a wall the two blocks share over at least the door
 //! width, and no block overlaps an obstacle.
 
-use super::geometry::{self, dot, norm, scale, sub, Pt, AREA_TOL, LEN_TOL};
 use super::spec::{EdgeId, Level, NodeId};
 use super::Layout;
+use crate::geometry::convex::{self, length, AREA_TOL, LEN_TOL};
+use crate::geometry::{self, dot, scale, sub, P};
 use serde::Serialize;
 
 /// The validator's findings on one layout.
@@ -19,7 +20,7 @@ pub struct Validation {
     pub missing_doors: Vec<(String, String, f64)>,
     /// The door of every graph edge: the shared wall's two ends (empty where there is none).
     #[serde(skip)]
-    pub walls: Vec<Option<[Pt; 2]>>,
+    pub walls: Vec<Option<[P; 2]>>,
 }
 
 impl Validation {
@@ -38,16 +39,16 @@ impl Validation {
 }
 
 /// The longest wall piece two placed polygons share, as its two ends.
-pub fn shared_wall(p: &[Pt], q: &[Pt]) -> Option<[Pt; 2]> {
-    let mut best: Option<([Pt; 2], f64)> = None;
+pub fn shared_wall(p: &[P], q: &[P]) -> Option<[P; 2]> {
+    let mut best: Option<([P; 2], f64)> = None;
     for i in 0..p.len() {
         let (a0, a1) = (p[i], p[(i + 1) % p.len()]);
-        let la = norm(sub(a1, a0));
+        let la = length(sub(a1, a0));
         let d = scale(sub(a1, a0), 1.0 / la);
         for j in 0..q.len() {
             let (b0, b1) = (q[j], q[(j + 1) % q.len()]);
             // On the same line, running the other way.
-            let on_line = |x: Pt| geometry::cross(d, sub(x, a0)).abs() < LEN_TOL;
+            let on_line = |x: P| geometry::cross(d, sub(x, a0)).abs() < LEN_TOL;
             if !(on_line(b0) && on_line(b1)) || dot(d, sub(b1, b0)) >= 0.0 {
                 continue;
             }
@@ -62,8 +63,8 @@ pub fn shared_wall(p: &[Pt], q: &[Pt]) -> Option<[Pt; 2]> {
 
 /// The pairs `(i, j)`, `i < j`, whose bounding boxes overlap with positive area (others
 /// cannot overlap): a sweep over the boxes sorted by their left edge, in ascending pair order.
-fn box_pairs(polys: &[Vec<Pt>]) -> Vec<(usize, usize)> {
-    let boxes: Vec<[f64; 4]> = polys.iter().map(|p| geometry::bounding_box(p)).collect();
+fn box_pairs(polys: &[Vec<P>]) -> Vec<(usize, usize)> {
+    let boxes: Vec<[f64; 4]> = polys.iter().map(|p| convex::bounding_box(p)).collect();
     let mut order: Vec<usize> = (0..boxes.len()).collect();
     order.sort_by(|&a, &b| boxes[a][0].total_cmp(&boxes[b][0]).then(a.cmp(&b)));
     let mut pairs = Vec::new();
@@ -83,16 +84,13 @@ fn box_pairs(polys: &[Vec<Pt>]) -> Vec<(usize, usize)> {
 
 /// Checks a layout of `level` (every node placed).
 pub fn validate(level: &Level, layout: &Layout) -> Validation {
-    let placed: Vec<Vec<Pt>> = layout
-        .nodes
-        .iter()
-        .map(|n| geometry::translate(&level.blocks[n.block.0 as usize].polygon, n.position))
-        .collect();
-    let tris: Vec<Vec<[Pt; 3]>> = placed.iter().map(|p| geometry::triangulate(p)).collect();
+    let placed: Vec<Vec<P>> =
+        layout.nodes.iter().map(|n| convex::translate(&level.blocks[n.block.0 as usize].polygon, n.position)).collect();
+    let tris: Vec<Vec<[P; 3]>> = placed.iter().map(|p| convex::triangulate(p)).collect();
     let mut v = Validation::default();
     for (i, j) in box_pairs(&placed) {
         {
-            let area = geometry::overlap_area(&tris[i], &tris[j]);
+            let area = convex::overlap_area(&tris[i], &tris[j]);
             if area > AREA_TOL {
                 v.overlaps.push((
                     level.node_name(NodeId(i as u32)).into(),
@@ -103,9 +101,9 @@ pub fn validate(level: &Level, layout: &Layout) -> Validation {
         }
     }
     for (k, o) in level.obstacles.iter().enumerate() {
-        let tri = geometry::triangulate(&o.polygon);
+        let tri = convex::triangulate(&o.polygon);
         for (i, t) in tris.iter().enumerate() {
-            let area = geometry::overlap_area(t, &tri);
+            let area = convex::overlap_area(t, &tri);
             if area > AREA_TOL {
                 v.obstacle_overlaps.push((level.node_name(NodeId(i as u32)).into(), k, area));
             }
@@ -114,7 +112,7 @@ pub fn validate(level: &Level, layout: &Layout) -> Validation {
     for e in level.all_edges() {
         let (a, b) = level.edges[e.0 as usize];
         let wall = shared_wall(&placed[a.0 as usize], &placed[b.0 as usize]);
-        let len = wall.map_or(0.0, |w| norm(sub(w[1], w[0])));
+        let len = wall.map_or(0.0, |w| length(sub(w[1], w[0])));
         if len < level.door_width - LEN_TOL {
             v.missing_doors.push((level.node_name(a).into(), level.node_name(b).into(), len));
         }
@@ -124,9 +122,9 @@ pub fn validate(level: &Level, layout: &Layout) -> Validation {
 }
 
 /// The door of edge `e`: a door-wide piece centred on the shared wall.
-pub fn door(level: &Level, v: &Validation, e: EdgeId) -> Option<[Pt; 2]> {
+pub fn door(level: &Level, v: &Validation, e: EdgeId) -> Option<[P; 2]> {
     let w = v.walls.get(e.0 as usize).copied().flatten()?;
-    let len = norm(sub(w[1], w[0]));
+    let len = length(sub(w[1], w[0]));
     if len < LEN_TOL {
         return None;
     }

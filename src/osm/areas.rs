@@ -109,7 +109,7 @@ fn project(ex: &Extract, ids: &[i64], proj: &Projection) -> Option<Vec<P>> {
 /// (outer rings less inner rings) and, for water, the sea beside the coastline (found on the
 /// region grown by a few metres). Returns the polygons and how many areas were skipped because
 /// the extract lacks some of their nodes.
-pub fn areas(
+pub(crate) fn areas(
     ex: &Extract,
     classes: &BTreeSet<AreaClass>,
     proj: &Projection,
@@ -165,7 +165,7 @@ pub fn areas(
 /// The sea inside `region`: the parts of the region that the coastline (land on its left) leaves
 /// on its water side. Each face of the region cut by the coastline is sea when the nearest
 /// coastline segment has the face's label point on its right.
-pub fn sea(ex: &Extract, proj: &Projection, region: &geo::Polygon<f64>) -> geo::MultiPolygon<f64> {
+pub(crate) fn sea(ex: &Extract, proj: &Projection, region: &geo::Polygon<f64>) -> geo::MultiPolygon<f64> {
     let coast: Vec<Vec<i64>> =
         ex.ways.iter().filter(|w| w.tag("natural") == Some("coastline")).map(|w| w.refs.clone()).collect();
     let outer: Vec<P> = region.exterior().coords().map(|c| [c.x, c.y]).collect();

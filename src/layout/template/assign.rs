@@ -359,10 +359,7 @@ pub fn choice_parcels(
             }
             None => {
                 let ring = area_ring(ch, fi);
-                let poly = geo::Polygon::new(
-                    geo::LineString::from(ring.iter().chain(ring.first()).map(|p| (p[0], p[1])).collect::<Vec<_>>()),
-                    vec![],
-                );
+                let poly = crate::geometry::Shape::new(&ring, &[]);
                 let (depth, width) = ctx.parcel;
                 parcels.extend(
                     crate::layout::parcels::parcellate(&[poly], index, depth, width)

@@ -9,7 +9,7 @@ use super::file::Template;
 use super::select::{candidates, Instances};
 use super::warp::{warp, ROUNDS};
 use crate::layout::field::FieldMethod;
-use crate::layout::parcels::{blocks, ring_of, StreetIndex};
+use crate::layout::parcels::{blocks, StreetIndex};
 use crate::layout::region::Region;
 use crate::layout::split::{Selection, SplitError, SplitOptions};
 use crate::layout::tree::split;
@@ -43,8 +43,8 @@ pub fn fig6(region: &Region, library: &[Template]) -> Result<Fig6, SplitError> {
     let index = StreetIndex::new(&s.streets);
     let mut instances = Instances::new(library, region.parcel.depth);
     let (mut matched, mut faces, mut mvc, mut full) = (0, 0, 0.0, 0.0);
-    for b in bl.iter().filter(|b| b.interiors().is_empty()) {
-        let block = Block::new(ring_of(b), &index, region.parcel.depth / 3.0);
+    for b in bl.iter().filter(|b| !b.has_holes()) {
+        let block = Block::new(b.ring(), &index, region.parcel.depth / 3.0);
         let warped = candidates(&block, &mut instances, ROUNDS, region.block.max_length, "block");
         let Some(best) = warped.iter().min_by(|a, b| a.warp.energy.total_cmp(&b.warp.energy)) else { continue };
         // The same template, units and corner match, initialised only.

@@ -17,8 +17,9 @@ use super::file::{Fill, Template};
 use super::instance::{instantiate, Instance};
 use super::warp::{face_polygons, simple_ccw, warp, Warp, ROUNDS};
 use crate::geometry::polygon::geo_polygon;
-use crate::geometry::{closest_on_segment, dist, P};
-use crate::layout::parcels::{parcellate, ring_of, street_buffer, StreetIndex};
+use crate::geometry::shape::outer_ring;
+use crate::geometry::{closest_on_segment, dist, Shape, P};
+use crate::layout::parcels::{parcellate, street_buffer, StreetIndex};
 use crate::layout::region::Region;
 use crate::layout::split::Selection;
 use crate::layout::{Parcel, Street, Use};
@@ -177,7 +178,7 @@ impl<'a> Matcher<'a> {
 /// Parcels every block: templates first, the row parceller where none is accepted (the blocks of
 /// another method's streets, parcelled as `netspec layout` parcels a block).
 pub fn parcellate_with_templates(
-    blocks: &[geo::Polygon<f64>],
+    blocks: &[Shape],
     streets: &[Street],
     region: &Region,
     library: &[Template],
@@ -191,8 +192,8 @@ pub fn parcellate_with_templates(
     let mut out = TemplateParcels::default();
     for b in blocks {
         let mut placed = false;
-        if b.interiors().is_empty() {
-            let block = Block::new(ring_of(b), &index, depth / 3.0);
+        if !b.has_holes() {
+            let block = Block::new(b.ring(), &index, depth / 3.0);
             let cands = matcher.acceptable(&block, "block");
             if let Some(c) = choose_greedy(cands, library, &out.uses, selection, rng) {
                 let (parcels, new_streets) = template_parcels(&block, &c, &library[c.template], &ctx, &index, "");
@@ -302,7 +303,7 @@ pub fn template_parcels(
             None => vec![poly],
         };
         for piece in pieces {
-            let ring = ring_of(&piece);
+            let ring = outer_ring(&piece);
             let area = piece.unsigned_area();
             if ring.len() < 3 || area < 1e-3 * ctx.parcel_area {
                 continue;

@@ -11,12 +11,12 @@
 
 use super::super::anneal;
 use super::super::cspace::CSpaces;
-use super::super::geometry::Pt;
 use super::super::milp::{self, LevelModel, Part};
 use super::super::spec::{BlockId, EdgeId, Level, NodeId};
 use super::super::{Layout, Placement};
 use super::{checked, conflict, solve_gap, solve_once, Answer, Clock, ExactOptions, ExactReport, LevelError};
 use crate::explain::Verdict;
+use crate::geometry::P;
 use serde::Serialize;
 use std::collections::{BTreeSet, VecDeque};
 
@@ -144,7 +144,7 @@ fn extent(level: &Level, b: BlockId) -> [f64; 4] {
 
 /// The model part of one step: the step's nodes, the placed nodes joined to them by an edge,
 /// and the placed nodes whose blocks the step's blocks could reach (by the position bounds).
-pub fn step_part(level: &Level, cs: &CSpaces, free: &[NodeId], placed: &[Option<(BlockId, Pt)>]) -> Part {
+pub fn step_part(level: &Level, cs: &CSpaces, free: &[NodeId], placed: &[Option<(BlockId, P)>]) -> Part {
     let in_free: BTreeSet<NodeId> = free.iter().copied().collect();
     let touches = |e: &(NodeId, NodeId)| in_free.contains(&e.0) || in_free.contains(&e.1);
     let mut nodes: BTreeSet<NodeId> = in_free.clone();
@@ -206,8 +206,8 @@ pub fn step_part(level: &Level, cs: &CSpaces, free: &[NodeId], placed: &[Option<
 /// The direction a step grows in: from the centre of everything placed to the centre of the
 /// placed nodes the step's nodes have doors to (none when nothing is placed or the two
 /// coincide).
-fn outward(level: &Level, part: &Part, step: &[NodeId], placed: &[Option<(BlockId, Pt)>]) -> Option<Pt> {
-    let centre = |ps: &mut dyn Iterator<Item = Pt>| {
+fn outward(level: &Level, part: &Part, step: &[NodeId], placed: &[Option<(BlockId, P)>]) -> Option<P> {
+    let centre = |ps: &mut dyn Iterator<Item = P>| {
         let (mut sum, mut k) = ([0.0, 0.0], 0.0);
         for p in ps {
             sum = [sum[0] + p[0], sum[1] + p[1]];
@@ -244,7 +244,7 @@ pub fn solve(
     let k = piece(level);
     let mut plan = steps(level, k);
     let mut st = Stats { steps: plan.len(), ..Stats::default() };
-    let mut placed: Vec<Option<(BlockId, Pt)>> = vec![None; level.nodes.len()];
+    let mut placed: Vec<Option<(BlockId, P)>> = vec![None; level.nodes.len()];
     let mut solved: Vec<Option<Solved>> = Vec::new();
     let mut retries = vec![0usize; plan.len()];
     let mut i = 0;
@@ -342,7 +342,7 @@ fn solve_step(o: &ExactOptions, clock: &Clock, s: Solved) -> Result<(Answer, Lev
 }
 
 /// The step's nodes as the point places them.
-fn place(level: &Level, lm: &LevelModel, x: &[f64], step: &[NodeId], placed: &mut [Option<(BlockId, Pt)>]) {
+fn place(level: &Level, lm: &LevelModel, x: &[f64], step: &[NodeId], placed: &mut [Option<(BlockId, P)>]) {
     let layout = lm.decode(level, x);
     let mine: BTreeSet<NodeId> = step.iter().copied().collect();
     for p in layout.nodes {
@@ -353,14 +353,14 @@ fn place(level: &Level, lm: &LevelModel, x: &[f64], step: &[NodeId], placed: &mu
     }
 }
 
-fn unplace(step: &[NodeId], placed: &mut [Option<(BlockId, Pt)>]) {
+fn unplace(step: &[NodeId], placed: &mut [Option<(BlockId, P)>]) {
     for n in step {
         placed[n.0 as usize] = None;
     }
 }
 
 /// The whole layout from the placements.
-fn assemble(level: &Level, placed: &[Option<(BlockId, Pt)>]) -> Layout {
+fn assemble(level: &Level, placed: &[Option<(BlockId, P)>]) -> Layout {
     let nodes = placed
         .iter()
         .enumerate()
@@ -380,7 +380,7 @@ fn finish(
     o: &ExactOptions,
     clock: &Clock,
     plan: &[Vec<NodeId>],
-    placed: &mut [Option<(BlockId, Pt)>],
+    placed: &mut [Option<(BlockId, P)>],
     solved: &mut [Option<Solved>],
     st: &mut Stats,
     rep: &mut ExactReport,

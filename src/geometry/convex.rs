@@ -1,41 +1,32 @@
-//! Plane geometry for level blocks: simple polygons, their triangulation and convex parts,
-//! convex hulls, Minkowski differences and overlap areas. Everything is `f64` with explicit
-//! tolerances.
+//! Small simple polygons and their convex parts, kept fast for the level annealer's inner
+//! loops: ear-clipping triangulation (blocks have tens of vertices; the meshes of the urban
+//! methods use spade's constrained Delaunay triangulation in [`super::cdt`]), Hertel–Mehlhorn
+//! convex parts, convex hulls, Minkowski differences, convex clipping and overlap areas.
+//! Everything is `f64` with explicit tolerances.
 
-/// A point (or a vector) in the plane.
-pub type Pt = [f64; 2];
-
-/// The plane primitives are the mesh's own.
-pub use crate::geometry::{cross, dot, signed_area, sub};
+use super::{add, cross, dot, scale, signed_area, sub, P};
 
 /// Lengths below this are zero.
 pub const LEN_TOL: f64 = 1e-7;
 /// Areas above this are an overlap (the validator's threshold).
 pub const AREA_TOL: f64 = 1e-9;
 
-/// `a + b`.
-pub fn add(a: Pt, b: Pt) -> Pt {
-    [a[0] + b[0], a[1] + b[1]]
-}
-
-/// `s · a`.
-pub fn scale(a: Pt, s: f64) -> Pt {
-    [a[0] * s, a[1] * s]
-}
-
-/// Euclidean length.
-pub fn norm(a: Pt) -> f64 {
+/// The Euclidean length as `√(a·a)`: cheaper than [`super::norm`] (which guards against
+/// overflow, as coordinates here never need), and what the level code measures with; the two may
+/// differ in the last bit.
+#[inline]
+pub fn length(a: P) -> f64 {
     dot(a, a).sqrt()
 }
 
 /// The polygon translated by `p`.
-pub fn translate(poly: &[Pt], p: Pt) -> Vec<Pt> {
+pub fn translate(poly: &[P], p: P) -> Vec<P> {
     poly.iter().map(|&q| add(q, p)).collect()
 }
 
 /// The polygon without repeated and collinear consecutive vertices.
-pub fn simplify(poly: &[Pt]) -> Vec<Pt> {
-    let mut v: Vec<Pt> = poly.to_vec();
+pub fn simplify(poly: &[P]) -> Vec<P> {
+    let mut v: Vec<P> = poly.to_vec();
     loop {
         let n = v.len();
         if n < 3 {
@@ -43,7 +34,7 @@ pub fn simplify(poly: &[Pt]) -> Vec<Pt> {
         }
         let drop = (0..n).find(|&i| {
             let (a, b, c) = (v[(i + n - 1) % n], v[i], v[(i + 1) % n]);
-            norm(sub(b, a)) < LEN_TOL || cross(sub(b, a), sub(c, b)).abs() < LEN_TOL * norm(sub(c, a)).max(1.0)
+            length(sub(b, a)) < LEN_TOL || cross(sub(b, a), sub(c, b)).abs() < LEN_TOL * length(sub(c, a)).max(1.0)
         });
         match drop {
             Some(i) => {
@@ -55,18 +46,18 @@ pub fn simplify(poly: &[Pt]) -> Vec<Pt> {
 }
 
 /// The first pair of non-adjacent edges that meet, if any (edge `i` runs from vertex `i`).
-pub fn self_intersection(poly: &[Pt]) -> Option<(usize, usize)> {
+pub fn self_intersection(poly: &[P]) -> Option<(usize, usize)> {
     crate::geometry::first_meeting_sides(poly, LEN_TOL)
 }
 
 /// Whether `p` lies strictly inside the triangle `abc` (counter-clockwise) or on its boundary.
-fn in_triangle(p: Pt, a: Pt, b: Pt, c: Pt) -> bool {
+fn in_triangle(p: P, a: P, b: P, c: P) -> bool {
     let e = -LEN_TOL * LEN_TOL;
     cross(sub(b, a), sub(p, a)) >= e && cross(sub(c, b), sub(p, b)) >= e && cross(sub(a, c), sub(p, c)) >= e
 }
 
 /// Ear-clipping triangulation of a simple counter-clockwise polygon.
-pub fn triangulate(poly: &[Pt]) -> Vec<[Pt; 3]> {
+pub fn triangulate(poly: &[P]) -> Vec<[P; 3]> {
     let mut idx: Vec<usize> = (0..poly.len()).collect();
     let mut out = Vec::new();
     while idx.len() > 3 {
@@ -92,20 +83,20 @@ pub fn triangulate(poly: &[Pt]) -> Vec<[Pt; 3]> {
 }
 
 /// Whether a counter-clockwise polygon is convex (collinear vertices allowed).
-pub fn is_convex(poly: &[Pt]) -> bool {
+pub fn is_convex(poly: &[P]) -> bool {
     let n = poly.len();
     (0..n).all(|i| cross(sub(poly[(i + 1) % n], poly[i]), sub(poly[(i + 2) % n], poly[(i + 1) % n])) >= -LEN_TOL)
 }
 
 /// The two polygons glued along an edge they share in opposite directions, if they share one.
-fn glue(p: &[Pt], q: &[Pt]) -> Option<Vec<Pt>> {
-    let same = |a: Pt, b: Pt| norm(sub(a, b)) < LEN_TOL;
+fn glue(p: &[P], q: &[P]) -> Option<Vec<P>> {
+    let same = |a: P, b: P| length(sub(a, b)) < LEN_TOL;
     for i in 0..p.len() {
         let (u, v) = (p[i], p[(i + 1) % p.len()]);
         for j in 0..q.len() {
             if same(q[j], v) && same(q[(j + 1) % q.len()], u) {
                 // p from v round to u, then q from u round to v, the shared ends once.
-                let mut out: Vec<Pt> = (0..p.len()).map(|k| p[(i + 1 + k) % p.len()]).collect();
+                let mut out: Vec<P> = (0..p.len()).map(|k| p[(i + 1 + k) % p.len()]).collect();
                 out.extend((1..q.len() - 1).map(|k| q[(j + 1 + k) % q.len()]));
                 return Some(out);
             }
@@ -116,11 +107,11 @@ fn glue(p: &[Pt], q: &[Pt]) -> Option<Vec<Pt>> {
 
 /// Convex parts of a simple counter-clockwise polygon (Hertel–Mehlhorn: triangles merged while
 /// the union stays convex). A convex polygon is its own single part.
-pub fn convex_parts(poly: &[Pt]) -> Vec<Vec<Pt>> {
+pub fn convex_parts(poly: &[P]) -> Vec<Vec<P>> {
     if is_convex(poly) {
         return vec![poly.to_vec()];
     }
-    let mut parts: Vec<Vec<Pt>> = triangulate(poly).into_iter().map(|t| t.to_vec()).collect();
+    let mut parts: Vec<Vec<P>> = triangulate(poly).into_iter().map(|t| t.to_vec()).collect();
     'outer: loop {
         for i in 0..parts.len() {
             for j in i + 1..parts.len() {
@@ -138,14 +129,14 @@ pub fn convex_parts(poly: &[Pt]) -> Vec<Vec<Pt>> {
 }
 
 /// The convex hull, counter-clockwise, without collinear points (Andrew's monotone chain).
-pub fn convex_hull(points: &[Pt]) -> Vec<Pt> {
+pub fn convex_hull(points: &[P]) -> Vec<P> {
     let mut pts = points.to_vec();
     pts.sort_by(|a, b| a[0].total_cmp(&b[0]).then(a[1].total_cmp(&b[1])));
-    pts.dedup_by(|a, b| norm(sub(*a, *b)) < LEN_TOL);
+    pts.dedup_by(|a, b| length(sub(*a, *b)) < LEN_TOL);
     if pts.len() < 3 {
         return pts;
     }
-    let mut lower: Vec<Pt> = Vec::new();
+    let mut lower: Vec<P> = Vec::new();
     for &p in &pts {
         while lower.len() >= 2
             && cross(sub(lower[lower.len() - 1], lower[lower.len() - 2]), sub(p, lower[lower.len() - 1]))
@@ -155,7 +146,7 @@ pub fn convex_hull(points: &[Pt]) -> Vec<Pt> {
         }
         lower.push(p);
     }
-    let mut upper: Vec<Pt> = Vec::new();
+    let mut upper: Vec<P> = Vec::new();
     for &p in pts.iter().rev() {
         while upper.len() >= 2
             && cross(sub(upper[upper.len() - 1], upper[upper.len() - 2]), sub(p, upper[upper.len() - 1]))
@@ -172,7 +163,7 @@ pub fn convex_hull(points: &[Pt]) -> Vec<Pt> {
 }
 
 /// `[xmin, xmax, ymin, ymax]` of a polygon.
-pub fn bounding_box(poly: &[Pt]) -> [f64; 4] {
+pub fn bounding_box(poly: &[P]) -> [f64; 4] {
     poly.iter().fold([f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY], |b, p| {
         [b[0].min(p[0]), b[1].max(p[0]), b[2].min(p[1]), b[3].max(p[1])]
     })
@@ -187,18 +178,18 @@ pub fn boxes_apart(a: [f64; 4], b: [f64; 4]) -> bool {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Facet {
     /// Unit outward normal.
-    pub n: Pt,
+    pub n: P,
     /// Offset.
     pub h: f64,
 }
 
 /// The facets of a convex counter-clockwise polygon.
-pub fn facets(convex: &[Pt]) -> Vec<Facet> {
+pub fn facets(convex: &[P]) -> Vec<Facet> {
     let k = convex.len();
     (0..k)
         .map(|i| {
             let d = sub(convex[(i + 1) % k], convex[i]);
-            let n = scale([d[1], -d[0]], 1.0 / norm(d));
+            let n = scale([d[1], -d[0]], 1.0 / length(d));
             Facet { n, h: dot(n, convex[i]) }
         })
         .collect()
@@ -206,14 +197,14 @@ pub fn facets(convex: &[Pt]) -> Vec<Facet> {
 
 /// The Minkowski difference `A ⊕ (−B)` of two convex polygons: the translations `p` of `B`
 /// for which `B + p` meets `A`.
-pub fn minkowski_difference(a: &[Pt], b: &[Pt]) -> Vec<Pt> {
-    let pts: Vec<Pt> = a.iter().flat_map(|&p| b.iter().map(move |&q| sub(p, q))).collect();
+pub fn minkowski_difference(a: &[P], b: &[P]) -> Vec<P> {
+    let pts: Vec<P> = a.iter().flat_map(|&p| b.iter().map(move |&q| sub(p, q))).collect();
     convex_hull(&pts)
 }
 
 /// The part of a convex polygon on the inner side of the line through `a`, `b` (left of `a→b`).
-fn clip(poly: &[Pt], a: Pt, b: Pt) -> Vec<Pt> {
-    let side = |p: Pt| cross(sub(b, a), sub(p, a));
+fn clip(poly: &[P], a: P, b: P) -> Vec<P> {
+    let side = |p: P| cross(sub(b, a), sub(p, a));
     let mut out = Vec::new();
     for i in 0..poly.len() {
         let (p, q) = (poly[i], poly[(i + 1) % poly.len()]);
@@ -230,7 +221,7 @@ fn clip(poly: &[Pt], a: Pt, b: Pt) -> Vec<Pt> {
 }
 
 /// The area of the intersection of two convex counter-clockwise polygons.
-pub fn convex_overlap_area(a: &[Pt], b: &[Pt]) -> f64 {
+pub fn convex_overlap_area(a: &[P], b: &[P]) -> f64 {
     let mut poly = a.to_vec();
     for i in 0..b.len() {
         if poly.len() < 3 {
@@ -246,7 +237,7 @@ pub fn convex_overlap_area(a: &[Pt], b: &[Pt]) -> f64 {
 }
 
 /// The area of the intersection of two simple polygons given as triangulations.
-pub fn overlap_area(a: &[[Pt; 3]], b: &[[Pt; 3]]) -> f64 {
+pub fn overlap_area(a: &[[P; 3]], b: &[[P; 3]]) -> f64 {
     a.iter().flat_map(|s| b.iter().map(move |t| convex_overlap_area(s, t))).sum()
 }
 
@@ -254,7 +245,7 @@ pub fn overlap_area(a: &[[Pt; 3]], b: &[[Pt; 3]]) -> f64 {
 mod tests {
     use super::*;
 
-    const L: [Pt; 6] = [[0.0, 0.0], [2.0, 0.0], [2.0, 1.0], [1.0, 1.0], [1.0, 2.0], [0.0, 2.0]];
+    const L: [P; 6] = [[0.0, 0.0], [2.0, 0.0], [2.0, 1.0], [1.0, 1.0], [1.0, 2.0], [0.0, 2.0]];
 
     #[test]
     fn l_shape_parts_cover_its_area() {
