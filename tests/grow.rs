@@ -236,6 +236,7 @@ fn run_to(dir: &Path, context: &Path, seed: Option<u64>) -> Vec<u8> {
         every: Some(5),
         all_streets: false,
         gallery: None,
+        interrupt: None,
     };
     let summary = grow::run(&req, &mut |_, _| {}).unwrap();
     assert!(summary.violations.is_empty() && summary.snapshot_violations.is_empty(), "{:?}", summary.violations);
@@ -287,6 +288,7 @@ fn bad_contexts_name_the_field() {
             every: None,
             all_streets: false,
             gallery: None,
+            interrupt: None,
         };
         let e = grow::run(&req, &mut |_, _| {}).unwrap_err();
         let msg = e.to_string();
@@ -591,6 +593,7 @@ fn bad_roads_and_nuclei_name_the_field_and_nothing_is_grown() {
             every: None,
             all_streets: false,
             gallery: None,
+            interrupt: None,
         };
         let e = grow::run(&req, &mut |_, _| {}).unwrap_err();
         let msg = e.to_string();
@@ -733,6 +736,7 @@ fn pictures_hide_stubs_and_come_in_strips() {
         every: Some(2),
         all_streets: false,
         gallery: Some(3),
+        interrupt: None,
     };
     grow::run(&req, &mut |_, _| {}).unwrap();
     let text = |f: &str| std::fs::read_to_string(tmp.path().join(f)).unwrap();
