@@ -1,9 +1,10 @@
 //! `netspec._netspec`: the Python extension module of netspec, wrapped by the package in
 //! `python/netspec/`. Each function calls the library entry point the command line calls
-//! (`netspec solve` → [`netspec::run::solve_loaded`], `compare`, `level`, `city`,
-//! `solve-file`, `site`, `stats`, `layout`, `field`, `grow`, `traffic`), with the solve's wait outside the GIL: other Python threads run meanwhile, a
-//! Ctrl-C stops the backend and keeps its best design, and progress reaches a Python callback on
-//! the calling thread.
+//! (`netspec solve` → [`netspec::run::solve_loaded`], `compare`, `level`, `city`, `solve-file`,
+//! `site`, `stats`, `layout`, `field`, `grow`, `traffic`), with the long waits outside the GIL:
+//! other Python threads run meanwhile, a Ctrl-C stops the backend (or a layout's variations, a
+//! growth's steps) and keeps what it has, and progress reaches a Python callback on the calling
+//! thread.
 
 mod blocking;
 mod comparison;
