@@ -60,6 +60,7 @@ fn sites(c: &mut Criterion) {
         every: None,
         all_streets: false,
         gallery: None,
+        interrupt: None,
     };
     netspec::grow::run(&grow, &mut |_, _| {}).unwrap();
     let region = SiteRegion::load(&onchan.join("site.geojson")).unwrap();

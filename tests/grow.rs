@@ -236,6 +236,7 @@ fn run_to(dir: &Path, context: &Path, seed: Option<u64>) -> Vec<u8> {
         every: Some(5),
         all_streets: false,
         gallery: None,
+        interrupt: None,
     };
     let summary = grow::run(&req, &mut |_, _| {}).unwrap();
     assert!(summary.violations.is_empty() && summary.snapshot_violations.is_empty(), "{:?}", summary.violations);
@@ -287,6 +288,7 @@ fn bad_contexts_name_the_field() {
             every: None,
             all_streets: false,
             gallery: None,
+            interrupt: None,
         };
         let e = grow::run(&req, &mut |_, _| {}).unwrap_err();
         let msg = e.to_string();
@@ -591,6 +593,7 @@ fn bad_roads_and_nuclei_name_the_field_and_nothing_is_grown() {
             every: None,
             all_streets: false,
             gallery: None,
+            interrupt: None,
         };
         let e = grow::run(&req, &mut |_, _| {}).unwrap_err();
         let msg = e.to_string();
@@ -733,6 +736,7 @@ fn pictures_hide_stubs_and_come_in_strips() {
         every: Some(2),
         all_streets: false,
         gallery: Some(3),
+        interrupt: None,
     };
     grow::run(&req, &mut |_, _| {}).unwrap();
     let text = |f: &str| std::fs::read_to_string(tmp.path().join(f)).unwrap();
@@ -740,4 +744,36 @@ fn pictures_hide_stubs_and_come_in_strips() {
     assert_eq!(text("steps.svg").matches("class=\"city\"").count(), 3 * cities, "steps 0, 2 and 4");
     assert_eq!(text("gallery.svg").matches("class=\"city\"").count(), 3 * cities, "three seeds");
     assert!(tmp.path().join("gallery.png").exists() && tmp.path().join("steps.png").exists());
+}
+
+/// A grown directory is only windowed (refused without a window); a triggered interrupt ends
+/// the steps at once and the network so far is still checked and written.
+#[test]
+fn the_source_of_a_request_and_an_interrupt() {
+    let tmp = tempfile::tempdir().unwrap();
+    let req = GrowRequest {
+        context: model("small-lake.toml"),
+        out: tmp.path().join("grown"),
+        seed: None,
+        steps: Some(5),
+        every: None,
+        all_streets: false,
+        gallery: None,
+        interrupt: None,
+    };
+    assert_eq!(req.source(None).unwrap(), grow::Source::Context);
+    assert_eq!(req.window_name(), "grown");
+    let dir = GrowRequest { context: tmp.path().to_path_buf(), ..req.clone() };
+    assert_eq!(dir.source(Some([0.0, 0.0, 1.0, 1.0])).unwrap(), grow::Source::Grown(tmp.path().to_path_buf()));
+    let e = dir.source(None).unwrap_err().to_string();
+    assert!(e.ends_with("is a directory: give a context file to grow, or --window to window a grown network"), "{e}");
+
+    let interrupt = netspec::solvers::Interrupt::new();
+    interrupt.trigger();
+    let mut heard = Vec::new();
+    let s = grow::run(&GrowRequest { interrupt: Some(interrupt), ..req }, &mut |k, n| heard.push((k, n))).unwrap();
+    assert_eq!((s.last.step, heard), (0, vec![(0, 5)]));
+    let net: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(tmp.path().join("grown/network.json")).unwrap()).unwrap();
+    assert_eq!(net["violations"], serde_json::json!([]));
 }

@@ -278,3 +278,44 @@ fn a_part_is_laid_out_again_with_the_rest_kept() {
     assert_eq!(o.status.code(), Some(1), "{err}");
     assert!(err.contains("layout.json") && err.contains("no part 0.9.9"), "{err}");
 }
+
+/// A request out of range is refused before any work, naming the flag; a triggered interrupt
+/// makes the first layout only.
+#[test]
+fn requests_are_checked_and_an_interrupt_stops_the_variations() {
+    use netspec::layout::run::{run, LayoutError, LayoutRequest};
+    let req = LayoutRequest {
+        region: model("fig7.toml"),
+        field: FieldMethod::Distance,
+        selection: Selection::Best,
+        seed: None,
+        variations: 3,
+        optimise: 0,
+        out: None,
+        relayout: None,
+        interrupt: None,
+    };
+    assert_eq!(req.validate(), Ok(()));
+    for (bad, text) in [
+        (LayoutRequest { variations: 0, ..req.clone() }, "--variations must be 1 to 1000, got 0"),
+        (LayoutRequest { optimise: 101, ..req.clone() }, "--optimise must be 0 to 100, got 101"),
+        (
+            LayoutRequest { relayout: Some(("layout.json".into(), "0".into())), ..req.clone() },
+            "--variations cannot be used with a relayout",
+        ),
+        (LayoutRequest { region: "no-such-region.toml".into(), variations: 0, ..req.clone() }, "--variations"),
+    ] {
+        let e = run(&bad, &mut |_, _| {}).unwrap_err();
+        assert!(matches!(e, LayoutError::Setting(_)), "{e}");
+        assert!(e.to_string().starts_with(text), "{e}");
+    }
+    let e = netspec::layout::run::field_command(&model("fig7.toml"), FieldMethod::Distance, Some(0.0), Path::new("x"))
+        .unwrap_err();
+    assert_eq!(e.to_string(), "--h must be a positive number of metres, got 0");
+
+    let interrupt = netspec::solvers::Interrupt::new();
+    interrupt.trigger();
+    let made = run(&LayoutRequest { interrupt: Some(interrupt), ..req.clone() }, &mut |_, _| {}).unwrap();
+    assert_eq!(made.len(), 1);
+    assert_eq!(run(&req, &mut |_, _| {}).unwrap().len(), 3);
+}

@@ -555,3 +555,18 @@ fn a_grown_window_meets_trade_and_its_loads_are_ranked() {
     // Trade follows the loaded major roads: the busier road ranks above the minor streets.
     assert!(p.spearman_trade.is_some_and(|rho| rho > 0.5), "{p:?}");
 }
+
+/// The designs' labels: the given ones first, the rest their directory names (a `result.json`'s
+/// parent's), repeats made distinct.
+#[test]
+fn labels_are_given_or_the_directory_names_and_distinct() {
+    let dir = tempfile::tempdir().unwrap();
+    let result = dir.path().join("solved/result.json");
+    std::fs::create_dir_all(result.parent().unwrap()).unwrap();
+    std::fs::write(&result, "{}").unwrap();
+    let designs: Vec<PathBuf> = vec!["a/x".into(), "b/x".into(), result, "c/y".into()];
+    let labels = netspec::traffic::run::labels(&designs, &["first".to_string()]);
+    assert_eq!(labels, ["first", "x", "solved", "y"]);
+    let labels = netspec::traffic::run::labels(&designs, &[]);
+    assert_eq!(labels, ["x", "x-1", "solved", "y"]);
+}

@@ -2,7 +2,8 @@
 interchangeable MILP backends (HiGHS, CBC, SCIP, microlp).
 
 The library's own API: read a spec, build its MILP, solve it on any compiled backend, check
-the answer independently, compare backends. See docs/python.md.
+the answer independently, compare backends; and the urban methods (levels, cities, real sites,
+layouts, fields, grown networks, traffic, street statistics). See docs/python.md.
 """
 
 from __future__ import annotations
@@ -22,6 +23,9 @@ from ._netspec import (
     city,
     compare,
     csv_columns,
+    field,
+    grow,
+    layout,
     level,
     read_model,
     read_spec,
@@ -30,6 +34,7 @@ from ._netspec import (
     solve,
     solvers,
     stats,
+    traffic,
     version,
 )
 
@@ -46,6 +51,9 @@ __all__ = [
     "city",
     "compare",
     "csv_columns",
+    "field",
+    "grow",
+    "layout",
     "level",
     "read_model",
     "read_spec",
@@ -56,6 +64,7 @@ __all__ = [
     "solvers",
     "stats",
     "stats_frame",
+    "traffic",
     "version",
 ]
 

@@ -208,4 +208,50 @@ def stats(
     window: tuple[float, float, float, float] | Sequence[float] | None = None,
     out: _Path | None = None,
 ) -> list[dict[str, Any]]: ...
+def layout(
+    region: _Path,
+    out: _Path | None = None,
+    seed: int | None = None,
+    variations: int = 1,
+    field: str = "distance",
+    mode: str = "best",
+    optimise: int = 0,
+    from_layout: _Path | None = None,
+    relayout: str | None = None,
+    on_progress: Callable[[int, float], object] | None = None,
+) -> list[dict[str, Any]]: ...
+def field(
+    region: _Path,
+    out: _Path,
+    method: str = "distance",
+    h: float | None = None,
+) -> dict[str, Any]: ...
+def grow(
+    context: _Path,
+    out: _Path,
+    seed: int | None = None,
+    steps: int | None = None,
+    every: int | None = None,
+    all_streets: bool = False,
+    gallery: int | None = None,
+    window: tuple[float, float, float, float] | Sequence[float] | None = None,
+    on_progress: Callable[[int, int], object] | None = None,
+) -> dict[str, Any]: ...
+def traffic(
+    designs: Sequence[_Path],
+    out: _Path = "out/traffic",
+    labels: Sequence[str] | None = None,
+    duration: float = 3600.0,
+    through_rate: float = 300.0,
+    local_rate: float = 600.0,
+    seed: int = 1,
+    metres_per_unit: float | None = None,
+    level: int | None = None,
+    window: tuple[float, float, float, float] | Sequence[float] | None = None,
+    region: _Path | None = None,
+    trade: _Path | None = None,
+    trade_rate: float = 300.0,
+    sumo_home: _Path | None = None,
+    time_limit: float | None = None,
+) -> dict[str, Any]: ...
 def version() -> str: ...

@@ -48,18 +48,42 @@ pub(crate) fn run_blocking<T: Send>(
     on_progress: Option<PyObject>,
     work: impl FnOnce(Interrupt, Option<ProgressSink>) -> T + Send,
 ) -> PyResult<T> {
-    /// What the waiting thread hears from the solving one.
-    enum Heard {
-        Progress(Progress),
+    run_blocking_with(
+        py,
+        on_progress,
+        |py, cb, p: Progress| {
+            let report = PyProgress { elapsed: p.elapsed, incumbent: p.primal, bound: p.dual, nodes: p.nodes };
+            cb.call1(py, (report,)).map(drop)
+        },
+        move |interrupt, report| work(interrupt, report.map(|r| ProgressSink(Arc::new(move |p| r(p))))),
+    )
+}
+
+/// A report sender handed to the work: called on the working thread, delivered on the calling one.
+pub(crate) type Report<P> = Arc<dyn Fn(P) + Send + Sync>;
+
+/// [`run_blocking`] with reports of any kind `P`, each handed to `on_progress` by `deliver`
+/// (on the calling thread, with the GIL). The work gets the run's interrupt and, when there is
+/// a callback, a sender of reports.
+pub(crate) fn run_blocking_with<T: Send, P: Send + 'static>(
+    py: Python<'_>,
+    on_progress: Option<PyObject>,
+    deliver: impl Fn(Python<'_>, &PyObject, P) -> PyResult<()> + Send,
+    work: impl FnOnce(Interrupt, Option<Report<P>>) -> T + Send,
+) -> PyResult<T> {
+    /// What the waiting thread hears from the working one.
+    enum Heard<P> {
+        Progress(P),
         Done,
     }
     let interrupt = Interrupt::new();
-    let (tx, rx) = mpsc::channel::<Heard>();
+    let (tx, rx) = mpsc::channel::<Heard<P>>();
     let sink = on_progress.as_ref().map(|_| {
         let tx = tx.clone();
-        ProgressSink(Arc::new(move |p: Progress| {
+        let report: Report<P> = Arc::new(move |p: P| {
             let _ = tx.send(Heard::Progress(p));
-        }))
+        });
+        report
     });
     let stop = interrupt.clone();
     let (out, raised) = py.allow_threads(move || {
@@ -75,7 +99,7 @@ pub(crate) fn run_blocking<T: Send>(
                 // Blocks until a report, the end, or the next look for a signal. (A worker that
                 // panicked drops its sender: disconnected is the end too.)
                 let mut reports = Vec::new();
-                let mut hear = |h: Result<Heard, ()>| match h {
+                let mut hear = |h: Result<Heard<P>, ()>| match h {
                     Ok(Heard::Progress(p)) => reports.push(p),
                     Ok(Heard::Done) | Err(()) => finished = true,
                 };
@@ -91,9 +115,7 @@ pub(crate) fn run_blocking<T: Send>(
                 Python::with_gil(|py| {
                     if let Some(cb) = &on_progress {
                         for p in reports {
-                            let report =
-                                PyProgress { elapsed: p.elapsed, incumbent: p.primal, bound: p.dual, nodes: p.nodes };
-                            if let Err(e) = cb.call1(py, (report,)) {
+                            if let Err(e) = deliver(py, cb, p) {
                                 raised.get_or_insert(e);
                                 interrupt.trigger();
                             }
@@ -115,6 +137,6 @@ pub(crate) fn run_blocking<T: Send>(
     match (out, raised) {
         (_, Some(e)) => Err(e),
         (Ok(v), None) => Ok(v),
-        (Err(_), None) => Err(PyRuntimeError::new_err("the solve panicked")),
+        (Err(_), None) => Err(PyRuntimeError::new_err("the run panicked")),
     }
 }

@@ -102,3 +102,27 @@ pub(crate) fn parse_variant(formulation: Option<&str>) -> PyResult<Option<Varian
 pub(crate) fn parse_kind(solver: &str) -> PyResult<SolverKind> {
     solver.parse::<SolverKind>().map_err(|e| PyValueError::new_err(format!("solver: {e}")))
 }
+
+/// A library error with its causes, each not already in the message before it (as the command
+/// line prints them), as a `NetspecError`.
+pub(crate) fn err_chain(e: &(dyn std::error::Error + 'static)) -> PyErr {
+    let mut message = e.to_string();
+    let mut shown = message.clone();
+    let mut cause = e.source();
+    while let Some(c) = cause {
+        let text = c.to_string();
+        if !shown.contains(&text) {
+            message.push_str(": ");
+            message.push_str(&text);
+        }
+        shown = text;
+        cause = c.source();
+    }
+    NetspecError::new_err(message)
+}
+
+/// A refused setting, named by the command line's flag (`--time-limit`), as a `ValueError`
+/// naming the keyword argument (`time_limit`).
+pub(crate) fn setting_error(s: &netspec::pipeline::settings::SettingsError) -> PyErr {
+    PyValueError::new_err(format!("{}: {}", s.place.trim_start_matches("--").replace('-', "_"), s.reason))
+}

@@ -1,13 +1,15 @@
 //! `netspec._netspec`: the Python extension module of netspec, wrapped by the package in
 //! `python/netspec/`. Each function calls the library entry point the command line calls
-//! (`netspec solve` → [`netspec::run::solve_loaded`], `compare`, `level`, `city`,
-//! `solve-file`), with the solve's wait outside the GIL: other Python threads run meanwhile, a
-//! Ctrl-C stops the backend and keeps its best design, and progress reaches a Python callback on
-//! the calling thread.
+//! (`netspec solve` → [`netspec::run::solve_loaded`], `compare`, `level`, `city`, `solve-file`,
+//! `site`, `stats`, `layout`, `field`, `grow`, `traffic`), with the long waits outside the GIL:
+//! other Python threads run meanwhile, a Ctrl-C stops the backend (or a layout's variations, a
+//! growth's steps) and keeps what it has, and progress reaches a Python callback on the calling
+//! thread.
 
 mod blocking;
 mod comparison;
 mod errors;
+mod methods;
 mod model;
 mod result;
 mod sites;
@@ -52,6 +54,10 @@ fn _netspec(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(urban::city, m)?)?;
     m.add_function(wrap_pyfunction!(sites::site, m)?)?;
     m.add_function(wrap_pyfunction!(sites::stats, m)?)?;
+    m.add_function(wrap_pyfunction!(methods::layout, m)?)?;
+    m.add_function(wrap_pyfunction!(methods::field, m)?)?;
+    m.add_function(wrap_pyfunction!(methods::grow, m)?)?;
+    m.add_function(wrap_pyfunction!(methods::traffic, m)?)?;
     m.add_function(wrap_pyfunction!(version, m)?)?;
     Ok(())
 }

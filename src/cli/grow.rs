@@ -57,6 +57,7 @@ impl GrowArgs {
             every: self.every,
             all_streets: self.all_streets,
             gallery: self.gallery,
+            interrupt: None,
         };
         run(&req, self.window)
     }
@@ -64,22 +65,17 @@ impl GrowArgs {
 
 /// Grows (unless the context is a grown output directory) and writes the window's files.
 fn run(req: &GrowRequest, window: Option<[f64; 4]>) -> Result<ExitCode> {
-    let grown = if req.context.is_dir() {
-        anyhow::ensure!(
-            window.is_some(),
-            "{} is a directory: give a context file to grow, or --window to window a grown network",
-            req.context.display()
-        );
-        req.context.clone()
-    } else {
-        if !grow_map(req)? {
-            return Ok(ExitCode::from(EXIT_INVALID));
+    let grown = match req.source(window)? {
+        grow::Source::Grown(dir) => dir,
+        grow::Source::Context => {
+            if !grow_map(req)? {
+                return Ok(ExitCode::from(EXIT_INVALID));
+            }
+            req.out.clone()
         }
-        req.out.clone()
     };
     if let Some(w) = window {
-        let name = req.out.file_name().map_or_else(|| "window".to_string(), |n| n.to_string_lossy().into_owned());
-        let s = grow::window::write(&grown, w, &name, &req.out)?;
+        let s = grow::window::write(&grown, w, &req.window_name(), &req.out)?;
         println!(
             "window {},{},{},{}: {} major roads ({:.2} km), {} sub-regions ({} unbuilt, no level), water bodies as obstacles: {}, {} trade flows ({} routes end inside)",
             w[0], w[1], w[2], w[3], s.roads, s.road_m / 1000.0, s.regions, s.empty_regions, s.obstacles, s.flows, s.routes_ending_inside

@@ -58,6 +58,7 @@ impl From<LayoutArgs> for LayoutRequest {
             optimise: a.optimise as usize,
             out: a.out,
             relayout: a.from.zip(a.relayout),
+            interrupt: None,
         }
     }
 }
@@ -88,9 +89,6 @@ pub struct FieldArgs {
 impl FieldArgs {
     /// Writes the field.
     pub fn run(self) -> Result<ExitCode> {
-        if let Some(h) = self.h.filter(|h| !(h.is_finite() && *h > 0.0)) {
-            anyhow::bail!("--h must be a positive number of metres, got {h}");
-        }
         field(&self.region, self.method, self.h, &self.out)
     }
 }

@@ -75,6 +75,12 @@ pub enum GrowError {
     /// The WGS 84 projection failed.
     #[error(transparent)]
     Site(#[from] crate::geometry::site::SiteError),
+    /// The context is a directory (a grown network) and no window of it was asked for.
+    #[error("{} is a directory: give a context file to grow, or --window to window a grown network", path.display())]
+    NotAContext {
+        /// The directory.
+        path: PathBuf,
+    },
 }
 
 impl GrowError {
@@ -115,10 +121,40 @@ pub struct GrowRequest {
     /// Writes `gallery.svg`/`.png`: the initial networks of this many seeds from the run's seed
     /// on (Fig. 10a).
     pub gallery: Option<u32>,
+    /// A request to stop early: once triggered, no further step is run; the network grown so
+    /// far is checked and written as at the end.
+    pub interrupt: Option<crate::solvers::Interrupt>,
+}
+
+/// What a `netspec grow` request's context is.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Source {
+    /// A context file: grow it.
+    Context,
+    /// A grown output directory: only window it.
+    Grown(PathBuf),
+}
+
+impl GrowRequest {
+    /// Whether the context is a file to grow or a grown output directory to window; a
+    /// directory without a `window` is refused ([`GrowError::NotAContext`]).
+    pub fn source(&self, window: Option<[f64; 4]>) -> Result<Source, GrowError> {
+        match (self.context.is_dir(), window) {
+            (false, _) => Ok(Source::Context),
+            (true, Some(_)) => Ok(Source::Grown(self.context.clone())),
+            (true, None) => Err(GrowError::NotAContext { path: self.context.clone() }),
+        }
+    }
+
+    /// The name the window's city spec is given: the output directory's name (`window` if it
+    /// has none).
+    pub fn window_name(&self) -> String {
+        self.out.file_name().map_or_else(|| "window".to_string(), |n| n.to_string_lossy().into_owned())
+    }
 }
 
 /// What a run did.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct GrowSummary {
     /// The seed used.
     pub seed: u64,
@@ -167,7 +203,8 @@ fn write_gallery(ctx: &context::Context, seed: u64, n: u32, req: &GrowRequest) -
 /// Runs `netspec grow`: reads the context, builds the initial network, runs the steps (calling
 /// `progress(step, steps)` after each), checks the network at every snapshot and at the end
 /// ([`validate`]), and writes the outputs into the request's directory. Violations are not an
-/// error: they are written to `network.json` and returned in the summary.
+/// error: they are written to `network.json` and returned in the summary. A triggered
+/// interrupt ends the steps early (the summary's `last.step` says how far it grew).
 pub fn run(req: &GrowRequest, progress: &mut dyn FnMut(u32, u32)) -> Result<GrowSummary, GrowError> {
     let ctx = context::Context::load(&req.context)?;
     let seed = req.seed.unwrap_or(ctx.seed);
@@ -196,6 +233,9 @@ pub fn run(req: &GrowRequest, progress: &mut dyn FnMut(u32, u32)) -> Result<Grow
     progress(0, steps);
     let t1 = Instant::now();
     for k in 1..=steps {
+        if req.interrupt.as_ref().is_some_and(crate::solvers::Interrupt::is_triggered) {
+            break;
+        }
         sim.step();
         if every.is_some_and(|e| k % e == 0) {
             snapshot(&sim, &mut files)?;

@@ -77,7 +77,7 @@ impl TradeFile {
 }
 
 /// What [`write`] made.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct WindowSummary {
     /// Major chains in the window (the city's `[[road]]` entries).
     pub roads: usize,

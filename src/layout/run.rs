@@ -16,6 +16,8 @@ use super::{Parcel, Street};
 use crate::geometry::geojson::GeoJsonWriter;
 use crate::geometry::{Shape, P};
 use crate::render::layout::{histograms_svg, layout_svg, registration_svg, HistogramPanel, LayoutScene, ParcelShape};
+use crate::solvers::Interrupt;
+use crate::spec::SettingsError;
 use rand::rngs::Xoshiro256PlusPlus;
 use rand::SeedableRng;
 use serde::Serialize;
@@ -201,6 +203,9 @@ pub enum LayoutError {
     /// The layout to relay out was refused.
     #[error(transparent)]
     Relayout(#[from] super::relayout::RelayoutError),
+    /// A setting of the request was refused (named as the command line's flag).
+    #[error(transparent)]
+    Setting(#[from] SettingsError),
 }
 
 /// What `netspec layout` is asked for.
@@ -222,15 +227,60 @@ pub struct LayoutRequest {
     pub out: Option<PathBuf>,
     /// `--from LAYOUT.json --relayout PART`: lay that part of that layout out again, the rest kept.
     pub relayout: Option<(PathBuf, String)>,
+    /// A request to stop early: once triggered, no further variation is started (the ones made
+    /// are written and returned; the first is always made).
+    pub interrupt: Option<Interrupt>,
 }
 
-/// Reads the region, makes the layouts and writes them (with `run.json`: the seconds per stage),
-/// telling `progress` which variation runs (from 0) and the share of its region settled.
+/// Most layouts one request makes.
+pub const MAX_VARIATIONS: usize = 1000;
+
+/// Most iterations of the global optimisation.
+pub const MAX_OPTIMISE: usize = 100;
+
+impl LayoutRequest {
+    /// Refuses settings out of range, each named as the command line's flag: `variations` in
+    /// 1..=[`MAX_VARIATIONS`], `optimise` at most [`MAX_OPTIMISE`], and a relayout with either
+    /// (it makes one layout, not optimised).
+    pub fn validate(&self) -> Result<(), SettingsError> {
+        let refuse = |place: &str, reason: String| Err(SettingsError { place: place.into(), reason });
+        if !(1..=MAX_VARIATIONS).contains(&self.variations) {
+            return refuse("--variations", format!("must be 1 to {MAX_VARIATIONS}, got {}", self.variations));
+        }
+        if self.optimise > MAX_OPTIMISE {
+            return refuse("--optimise", format!("must be 0 to {MAX_OPTIMISE}, got {}", self.optimise));
+        }
+        if self.relayout.is_some() && (self.variations > 1 || self.optimise > 0) {
+            let place = if self.variations > 1 { "--variations" } else { "--optimise" };
+            return refuse(place, "cannot be used with a relayout".into());
+        }
+        Ok(())
+    }
+}
+
+/// Refuses a triangle size of the field that is not a positive number of metres.
+pub fn check_field_h(h: Option<f64>) -> Result<(), SettingsError> {
+    match h.filter(|h| !(h.is_finite() && *h > 0.0)) {
+        Some(h) => {
+            Err(SettingsError { place: "--h".into(), reason: format!("must be a positive number of metres, got {h}") })
+        }
+        None => Ok(()),
+    }
+}
+
+/// Checks the request ([`LayoutRequest::validate`]), reads the region, makes the layouts and
+/// writes them (with `run.json`: the seconds per stage), telling `progress` which variation runs
+/// (from 0) and the share of its region settled. A triggered interrupt stops before the next
+/// variation.
 pub fn run(req: &LayoutRequest, progress: &mut dyn FnMut(usize, f64)) -> Result<Vec<Layout>, LayoutError> {
+    req.validate()?;
     let region = super::region::read_region(&req.region)?;
     let seed = req.seed.unwrap_or(region.seed);
     let mut out = Vec::new();
     for k in 0..req.variations.max(1) {
+        if k > 0 && req.interrupt.as_ref().is_some_and(Interrupt::is_triggered) {
+            break;
+        }
         let selection = if k == 0 { req.selection } else { Selection::Random };
         let opts = LayoutOptions { field: req.field, selection, seed: seed + k as u64, optimise: req.optimise };
         let l = match &req.relayout {
@@ -251,13 +301,15 @@ pub fn run(req: &LayoutRequest, progress: &mut dyn FnMut(usize, f64)) -> Result<
 }
 
 /// `netspec field`: the region's cross field, written as `field.json`, `field.svg` and `field.png`
-/// with a few of its streamline candidates drawn over it.
+/// with a few of its streamline candidates drawn over it. `h` is the triangle size in metres
+/// (default: the layout's), refused unless positive ([`check_field_h`]).
 pub fn field_command(
     region: &Path,
     method: FieldMethod,
     h: Option<f64>,
     out: &Path,
 ) -> Result<super::field::CrossField, LayoutError> {
+    check_field_h(h)?;
     let region = super::region::read_region(region)?;
     let opts = SplitOptions::for_region(&region, method, Selection::Best);
     let field =

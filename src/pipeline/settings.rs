@@ -45,15 +45,7 @@ impl Origin {
     }
 }
 
-/// A setting refused before any solve: where it came from and why.
-#[derive(Clone, Debug, PartialEq, thiserror::Error)]
-#[error("{place} {reason}")]
-pub struct SettingsError {
-    /// The flag, or the file and field (`fig2b.toml: solver.gap`).
-    pub place: String,
-    /// What is wrong with it.
-    pub reason: String,
-}
+pub use crate::spec::SettingsError;
 
 /// Solve settings from one origin, each optional.
 #[derive(Clone, Debug, Default, PartialEq)]

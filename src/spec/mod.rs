@@ -638,3 +638,14 @@ impl Spec {
         Ok(())
     }
 }
+
+/// A setting refused before any run (a solve's, a layout's, a traffic run's): where it came from
+/// and why.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("{place} {reason}")]
+pub struct SettingsError {
+    /// The flag, or the file and field (`fig2b.toml: solver.gap`).
+    pub place: String,
+    /// What is wrong with it.
+    pub reason: String,
+}

@@ -14,6 +14,9 @@
 //!    95th percentile), route length, waiting time, and how much of the through traffic runs on
 //!    local streets; traffic volume per street for the pictures ([`picture`], drawn by
 //!    `render::traffic`).
+//!
+//! [`run`] is `netspec traffic`: several designs under the same demand, their files and a
+//! comparison.
 
 pub mod demand;
 pub mod export;
@@ -22,6 +25,7 @@ pub mod parse;
 pub mod picture;
 pub mod report;
 pub mod road;
+pub mod run;
 pub mod streets;
 pub mod sumo;
 
