@@ -12,6 +12,7 @@ from typing import Any, Iterable, Mapping, Sequence
 
 from ._netspec import (
     Design,
+    Drawn,
     Model,
     ModelResult,
     NetspecError,
@@ -40,6 +41,7 @@ from ._netspec import (
 
 __all__ = [
     "Design",
+    "Drawn",
     "Model",
     "ModelResult",
     "NetspecError",

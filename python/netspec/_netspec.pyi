@@ -20,6 +20,11 @@ class Progress:
     nodes: int
 
 @final
+class Drawn(dict[str, Any]):
+    @property
+    def svg(self) -> str: ...
+    def _repr_svg_(self) -> str: ...
+
 class Spec:
     @staticmethod
     def from_toml(text: str, base: _Path | None = None) -> Spec: ...
@@ -219,7 +224,7 @@ def layout(
     from_layout: _Path | None = None,
     relayout: str | None = None,
     on_progress: Callable[[int, float], object] | None = None,
-) -> list[dict[str, Any]]: ...
+) -> list[Drawn]: ...
 def field(
     region: _Path,
     out: _Path,

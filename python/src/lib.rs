@@ -8,6 +8,7 @@
 
 mod blocking;
 mod comparison;
+mod drawn;
 mod errors;
 mod methods;
 mod model;
@@ -42,6 +43,7 @@ fn _netspec(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyResultObj>()?;
     m.add_class::<PyDesign>()?;
     m.add_class::<PyProgress>()?;
+    m.add_class::<drawn::Drawn>()?;
     m.add_function(wrap_pyfunction!(spec::read_spec, m)?)?;
     m.add_function(wrap_pyfunction!(model::read_model, m)?)?;
     m.add_function(wrap_pyfunction!(model::check, m)?)?;

@@ -2,6 +2,7 @@
 //! functions, each calling the library entry point the command calls.
 
 use crate::blocking::run_blocking_with;
+use crate::drawn::drawn;
 use crate::errors::{err_chain, new_spec_error, setting_error, to_py};
 use netspec::grow::{GrowError, GrowRequest, Source};
 use netspec::layout::field::FieldMethod;
@@ -72,6 +73,7 @@ pub(crate) fn layout(
             return Err(PyValueError::new_err("from_layout: give the layout.json to relayout a part of"))
         }
     };
+    let region_path = region.clone();
     let mut req =
         LayoutRequest { region, field, selection, seed, variations, optimise, out, relayout, interrupt: None };
     req.validate().map_err(|s| setting_error(&s))?;
@@ -89,7 +91,14 @@ pub(crate) fn layout(
         },
     )?
     .map_err(layout_error)?;
-    layouts.iter().map(|l| to_py(py, l)).collect()
+    let region = netspec::layout::region::read_region(&region_path).map_err(|e| err_chain(&e))?;
+    layouts
+        .iter()
+        .map(|l| {
+            let svg = netspec::render::layout::layout_svg(&netspec::layout::run::scene(&region, l));
+            drawn(py, to_py(py, l)?, svg)
+        })
+        .collect()
 }
 
 /// The cross field of a region, as `netspec field` makes it: writes `field.json`, `field.svg`
@@ -169,7 +178,12 @@ pub(crate) fn grow(
     let d = pyo3::types::PyDict::new(py);
     d.set_item("summary", summary.as_ref().map(|s| to_py(py, s)).transpose()?)?;
     d.set_item("window", windowed.as_ref().map(|w| to_py(py, w)).transpose()?)?;
-    Ok(d.into_any().unbind())
+    // The network as `network.svg` draws it (written by a grow; a windowed directory has its own).
+    let grown_dir = if summary.is_some() { &req.out } else { &req.context };
+    match std::fs::read_to_string(grown_dir.join("network.svg")) {
+        Ok(svg) => drawn(py, d.into_any().unbind(), svg),
+        Err(_) => Ok(d.into_any().unbind()),
+    }
 }
 
 /// Evaluates designs in SUMO under the same demand, as `netspec traffic` does: `netspec city`,

@@ -53,6 +53,10 @@ def test_layout_returns_each_variation_as_written(tmp_path: Path) -> None:
     assert len(first["streets"]) > 10 and first["origin"] is not None
     for f in ["layout.svg", "layout.png", "layout.geojson", "run.json", "variation-2/histograms.png"]:
         assert (tmp_path / f).is_file(), f
+    # Each draws itself in a notebook: the picture `layout.svg` holds.
+    assert isinstance(first, netspec.Drawn) and isinstance(first, dict)
+    assert first._repr_svg_() == first.svg == (tmp_path / "layout.svg").read_text()
+    assert second.svg == (tmp_path / "variation-2" / "layout.svg").read_text() != first.svg
     # Progress of both variations, each settling its whole area.
     assert {k for k, _ in heard} == {0, 1}
     assert max(f for k, f in heard if k == 1) == pytest.approx(1.0)
@@ -129,6 +133,7 @@ def test_grow_then_window(tmp_path: Path) -> None:
         assert Path(f).is_file(), f
     assert (out / "step-003.svg").is_file() and (out / "series.csv").is_file()
     assert len((out / "series.csv").read_text().splitlines()) == 1 + 4
+    assert isinstance(g, netspec.Drawn) and g._repr_svg_() == (out / "network.svg").read_text()
 
     # The window of the grown network: only windowed, nothing grown.
     w = netspec.grow(out, tmp_path / "win", window=WINDOW)
