@@ -12,6 +12,7 @@
 //! - [`search`]: the heuristic and the stochastic search as solver choices, checked the same way;
 //! - [`settings`]: one path from the command line, a spec and a city spec to solve options.
 
+pub mod lns;
 pub mod outcome;
 pub mod result;
 pub mod search;

@@ -101,6 +101,10 @@ pub struct DesignResult {
     /// ([`crate::solvers::split`]).
     #[serde(default)]
     pub split: Option<SplitReport>,
+    /// The large-neighbourhood search before the full MILP, when the strategy ran it
+    /// ([`crate::pipeline::lns`]).
+    #[serde(default)]
+    pub lns: Option<super::lns::LnsReport>,
     /// The objective's lattice, when the recipe used it, with the backend's bound before it was
     /// rounded up to the lattice ([`crate::solvers::lattice`]).
     #[serde(default)]
@@ -195,6 +199,9 @@ impl Serialize for DesignResult {
         }
         if let Some(split) = &self.split {
             st.serialize_field("split", split)?;
+        }
+        if let Some(lns) = &self.lns {
+            st.serialize_field("lns", lns)?;
         }
         if let Some(lattice) = &self.lattice {
             st.serialize_field("lattice", lattice)?;

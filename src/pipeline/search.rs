@@ -181,6 +181,7 @@ pub fn record(
         big_m: f.big_m,
         lazy: None,
         split: None,
+        lns: None,
         lattice: None,
         solver_hints: Vec::new(),
         start: None,

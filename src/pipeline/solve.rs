@@ -104,6 +104,7 @@ pub fn solve_from_with(
             let reports = Reports {
                 lazy: res.lazy.clone(),
                 split: res.split.clone(),
+                lns: res.lns.clone(),
                 solver_hints: res.solver_hints.clone(),
                 lattice: res.lattice.clone(),
             };
@@ -154,6 +155,22 @@ pub fn solve_built_with(
             None => (solver.solve(m, o)?, Vec::new(), None),
         })
     };
+    // The large-neighbourhood search improves the start for the full MILP, under one time limit.
+    let mut after_lns;
+    let mut lns = None;
+    let options = match (&options.mip_start, options.time_limit) {
+        (Some(x0), Some(limit)) if strategy.lns && limit.is_finite() => {
+            let t0 = std::time::Instant::now();
+            let (x, report) =
+                super::lns::improve(p, &f.model, &f.vars.edge, x0, options, super::lns::LNS_SHARE * limit, &mut solve);
+            lns = Some(report);
+            after_lns = options.clone();
+            after_lns.mip_start = Some(x);
+            after_lns.time_limit = Some((limit - t0.elapsed().as_secs_f64()).max(0.0));
+            &after_lns
+        }
+        _ => options,
+    };
     let split = options
         .mip_start
         .as_ref()
@@ -171,6 +188,11 @@ pub fn solve_built_with(
         }
     };
     lazy_rows.extend(left_out);
+    // The search's windows were backend solves of this run: its times count.
+    if let Some(l) = &lns {
+        result.wall_time += l.seconds;
+        result.solver_time = result.solver_time.map(|t| t + l.seconds);
+    }
     let lattice = f
         .objective_lattice
         .filter(|_| strategy.objective_lattice)
@@ -180,7 +202,7 @@ pub fn solve_built_with(
         p,
         f,
         (Outcome::of_solve(result), primal),
-        Reports { lazy, split, solver_hints, lattice },
+        Reports { lazy, split, lns, solver_hints, lattice },
         &lazy_rows,
     )
 }
@@ -189,6 +211,7 @@ pub fn solve_built_with(
 struct Reports {
     lazy: Option<LazyReport>,
     split: Option<SplitReport>,
+    lns: Option<super::lns::LnsReport>,
     solver_hints: Vec<String>,
     lattice: Option<LatticeReport>,
 }
@@ -203,7 +226,7 @@ fn checked_result(
     reports: Reports,
     lazy_rows: &[LazyRow],
 ) -> Result<DesignResult, SolverError> {
-    let Reports { lazy, split, solver_hints, lattice } = reports;
+    let Reports { lazy, split, lns, solver_hints, lattice } = reports;
     let mut validity = Validity {
         valid: false,
         design_violations: Vec::new(),
@@ -265,6 +288,7 @@ fn checked_result(
         big_m: f.big_m,
         lazy,
         split,
+        lns,
         lattice,
         solver_hints,
         start: None,

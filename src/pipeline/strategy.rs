@@ -21,6 +21,9 @@ pub struct Strategy {
     pub solver_tuning: bool,
     /// The backend's parallel tree search when the solve has two threads or more.
     pub parallel_search: bool,
+    /// A large-neighbourhood search from the start before the full MILP
+    /// ([`crate::pipeline::lns`]); off unless a spec turns it on.
+    pub lns: bool,
 }
 
 impl Strategy {
@@ -28,7 +31,7 @@ impl Strategy {
     /// `tight`, which stay the models and the solves they always were.
     pub fn default_for(recipe: RecipeName) -> Strategy {
         let on = recipe == RecipeName::Strong;
-        Strategy { split_objective: on, objective_lattice: on, solver_tuning: on, parallel_search: on }
+        Strategy { split_objective: on, objective_lattice: on, solver_tuning: on, parallel_search: on, lns: false }
     }
 
     /// The strategy of a solve: the recipe's defaults with the spec's `[solver]` switches over them.
@@ -39,6 +42,7 @@ impl Strategy {
             objective_lattice: solver.objective_lattice.unwrap_or(d.objective_lattice),
             solver_tuning: solver.solver_tuning.unwrap_or(d.solver_tuning),
             parallel_search: solver.parallel_search.unwrap_or(d.parallel_search),
+            lns: solver.lns.unwrap_or(d.lns),
         }
     }
 
@@ -126,7 +130,13 @@ mod tests {
     fn strategy_defaults_follow_the_recipe_and_the_spec_overrides_them() {
         assert_eq!(
             Strategy::default_for(RecipeName::Strong),
-            Strategy { split_objective: true, objective_lattice: true, solver_tuning: true, parallel_search: true }
+            Strategy {
+                split_objective: true,
+                objective_lattice: true,
+                solver_tuning: true,
+                parallel_search: true,
+                lns: false
+            }
         );
         for name in [RecipeName::Paper, RecipeName::Tight] {
             let s = Strategy::default_for(name);

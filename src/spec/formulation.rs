@@ -191,7 +191,7 @@ pub const SWITCHES: &[&Switch] = &[
 ];
 
 /// The keys of `[solver]` that set the solve strategy (they change no row of the model).
-pub const STRATEGY_KEYS: &[&str] = &["split_objective", "objective_lattice", "solver_tuning", "parallel_search"];
+pub const STRATEGY_KEYS: &[&str] = &["split_objective", "objective_lattice", "solver_tuning", "parallel_search", "lns"];
 
 /// The part keys of `[formulation]` besides the switches.
 const PART_KEYS: &[&str] = &["recipe", "connectivity", "distance", "coverage", "dead_ends", "paths", "big_m"];
@@ -439,6 +439,7 @@ impl Variant {
                 "split_objective" => &mut solver.split_objective,
                 "objective_lattice" => &mut solver.objective_lattice,
                 "solver_tuning" => &mut solver.solver_tuning,
+                "lns" => &mut solver.lns,
                 _ => &mut solver.parallel_search,
             };
             *slot = Some(*on);

@@ -587,7 +587,8 @@ fn run_level(
 ) -> Result<(LevelReport, Option<RegionRoads>), CityError> {
     // The level's time limit bounds all of its work, from here: input, model, start, solve, outputs.
     let started = Instant::now();
-    let input = level_input(&city.name, name, n, level, prev);
+    let mut input = level_input(&city.name, name, n, level, prev);
+    input.spec.solver.lns = city.solver.lns;
     let time_limit = opts.time_limit.or(level.time_limit);
     let solve_opts = SolveOptions {
         time_limit,

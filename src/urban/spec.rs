@@ -167,6 +167,9 @@ pub struct CitySolverSpec {
     /// Seed.
     #[serde(default)]
     pub seed: Option<u64>,
+    /// Every level's solve starts with a large-neighbourhood search (`[solver] lns` of a spec).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lns: Option<bool>,
 }
 
 fn two_threads() -> u32 {
@@ -178,7 +181,7 @@ fn one_thread() -> u32 {
 
 impl Default for CitySolverSpec {
     fn default() -> Self {
-        CitySolverSpec { name: None, threads: 2, threads_per_solve: 1, gap: None, seed: None }
+        CitySolverSpec { name: None, threads: 2, threads_per_solve: 1, gap: None, seed: None, lns: None }
     }
 }
 
