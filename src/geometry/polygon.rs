@@ -249,45 +249,47 @@ impl Polygon {
 
     /// The outer edge nearest `p`: (edge, parameter, distance).
     fn locate_on_outer(&self, p: P) -> (usize, f64, f64) {
-        let n = self.outer.len();
-        (0..n)
-            .map(|e| {
-                let (q, t) = closest_on_segment(p, self.outer[e], self.outer[(e + 1) % n]);
-                (e, t, dist(p, q))
-            })
-            .min_by(|x, y| x.2.total_cmp(&y.2))
-            .unwrap_or((0, 0.0, f64::INFINITY))
+        locate(&self.outer, p)
     }
 
     /// The outer ring's vertices strictly between two positions, walking counter-clockwise.
     fn ring_walk(&self, from: (usize, f64), to: (usize, f64)) -> Vec<P> {
-        let n = self.outer.len();
-        let mut out = Vec::new();
-        if from.0 == to.0 && from.1 < to.1 {
-            return out;
+        ring_arc(&self.outer, from, to)
+    }
+
+    /// Cuts the polygon along two polylines, each from the outer ring to hole `hole` (their ends
+    /// within `tol` of the rings, their insides clear of the boundary), into the two parts
+    /// between them, neither holding that hole; each part's boundary follows the hole between
+    /// the two lines' ends. Other holes go with the part that holds them. `None` when an end is
+    /// off its ring or a part is not a valid polygon.
+    pub fn cut_round_hole(&self, hole: usize, a: &[P], b: &[P], tol: f64) -> Option<(Polygon, Polygon)> {
+        let ring = self.holes.get(hole)?;
+        let (ha, hb) = (locate(ring, *a.last()?), locate(ring, *b.last()?));
+        if ha.2 > tol || hb.2 > tol {
+            return None;
         }
-        let mut e = (from.0 + 1) % n;
-        let mut first = true;
-        loop {
-            // Vertex e starts edge e; stop once edge `to.0` is reached (its start vertex included).
-            out.push(self.outer[e]);
-            if e == to.0 && !(first && from.0 == to.0 && from.1 < to.1) {
-                break;
-            }
-            first = false;
-            e = (e + 1) % n;
-            if out.len() > n {
-                break;
-            }
-        }
-        // A position at the very start of its edge coincides with the vertex pushed last.
-        if to.1 <= 0.0 {
-            out.pop();
-        }
-        if from.1 >= 1.0 && !out.is_empty() {
-            out.remove(0);
-        }
-        out
+        let filled = Polygon {
+            outer: self.outer.clone(),
+            holes: self.holes.iter().enumerate().filter(|(i, _)| *i != hole).map(|(_, h)| h.clone()).collect(),
+        };
+        // Along the hole one way, then the other: each line is `a`, the arc, `b` reversed, and of
+        // the two parts it cuts, the one without the hole is a part of the answer.
+        let forward = ring_arc(ring, (ha.0, ha.1), (hb.0, hb.1));
+        let backward = ring_arc(ring, (hb.0, hb.1), (ha.0, ha.1));
+        let part = |arc: &[P], rest: &[P], rest_ends: (P, P)| -> Option<Polygon> {
+            let mut line = a.to_vec();
+            line.extend_from_slice(arc);
+            line.extend(b.iter().rev());
+            let (l, r) = filled.cut(&line, tol)?;
+            // A point of the hole's ring off this line lies inside the part that holds the hole.
+            let inside = rest.get(rest.len() / 2).copied().unwrap_or(super::lerp(rest_ends.0, rest_ends.1, 0.5));
+            Some(if ring_contains(&l.outer, inside) { r } else { l })
+        };
+        let ends = (*a.last()?, *b.last()?);
+        let one = part(&forward, &backward, ends)?;
+        let back: Vec<P> = backward.iter().rev().copied().collect();
+        let two = part(&back, &forward, ends)?;
+        Some((one, two))
     }
 
     fn check_holes(&self) -> Result<(), PolygonError> {
@@ -456,6 +458,50 @@ fn crossing(a: &[(P, P)], b: &[(P, P)], skip: impl Fn(usize, usize) -> bool) -> 
     found
 }
 
+/// The edge of `ring` nearest `p`: (edge, parameter, distance).
+fn locate(ring: &[P], p: P) -> (usize, f64, f64) {
+    let n = ring.len();
+    (0..n)
+        .map(|e| {
+            let (q, t) = closest_on_segment(p, ring[e], ring[(e + 1) % n]);
+            (e, t, dist(p, q))
+        })
+        .min_by(|x, y| x.2.total_cmp(&y.2))
+        .unwrap_or((0, 0.0, f64::INFINITY))
+}
+
+/// The vertices of `ring` strictly between two positions (edge, parameter), walking forward
+/// (in the ring's vertex order).
+fn ring_arc(ring: &[P], from: (usize, f64), to: (usize, f64)) -> Vec<P> {
+    let n = ring.len();
+    let mut out = Vec::new();
+    if from.0 == to.0 && from.1 < to.1 {
+        return out;
+    }
+    let mut e = (from.0 + 1) % n;
+    let mut first = true;
+    loop {
+        // Vertex e starts edge e; stop once edge `to.0` is reached (its start vertex included).
+        out.push(ring[e]);
+        if e == to.0 && !(first && from.0 == to.0 && from.1 < to.1) {
+            break;
+        }
+        first = false;
+        e = (e + 1) % n;
+        if out.len() > n {
+            break;
+        }
+    }
+    // A position at the very start of its edge coincides with the vertex pushed last.
+    if to.1 <= 0.0 {
+        out.pop();
+    }
+    if from.1 >= 1.0 && !out.is_empty() {
+        out.remove(0);
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -508,6 +554,26 @@ mod tests {
             .cut(&[[2.0, 0.0], [3.0, 1.0], [4.0, 0.0]], 1e-9)
             .is_some_and(|(x, y)| (x.area() - 1.0).abs() < 1e-9 || (y.area() - 1.0).abs() < 1e-9));
         assert!(p.cut(&[[5.0, 0.0], [5.0, 5.0]], 1e-9).is_none(), "an end inside");
+    }
+
+    #[test]
+    fn two_lines_to_a_hole_split_the_land_round_it() {
+        let p = Polygon::new(square(0.0, 0.0, 10.0), vec![square(4.0, 4.0, 2.0), square(8.0, 1.0, 1.0)]).unwrap();
+        let (a, b) = ([[5.0, 0.0], [5.0, 2.0], [5.0, 4.0]], [[5.0, 10.0], [5.0, 6.0]]);
+        let (x, y) = p.cut_round_hole(0, &a, &b, 1e-9).unwrap();
+        let (left, right) = if x.contains([1.0, 5.0]) { (x, y) } else { (y, x) };
+        // Each side keeps half the square less half the hole; the small hole goes right.
+        assert_eq!((left.area(), left.holes().len()), (48.0, 0));
+        assert_eq!((right.area(), right.holes().len()), (47.0, 1));
+        assert!(!left.contains([5.5, 5.0]) && !right.contains([4.5, 5.0]) && right.contains([9.5, 5.0]));
+        // Both lines to the same hole edge: a sliver between them and the rest.
+        let (c, d) = ([[4.5, 0.0], [4.5, 4.0]], [[5.5, 0.0], [5.5, 4.0]]);
+        let (x, y) = p.cut_round_hole(0, &c, &d, 1e-9).unwrap();
+        let mut areas = [x.area(), y.area()];
+        areas.sort_by(f64::total_cmp);
+        assert_eq!(areas, [4.0, 91.0]);
+        assert!(p.cut_round_hole(0, &[[5.0, 0.0], [5.0, 3.0]], &b, 1e-9).is_none(), "an end off the hole");
+        assert!(p.cut_round_hole(2, &a, &b, 1e-9).is_none(), "no such hole");
     }
 
     #[test]

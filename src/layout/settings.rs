@@ -27,6 +27,9 @@ pub struct Fit {
     pub max_width: f64,
     /// … or when it is smaller than this many parcels.
     pub min_parcels: f64,
+    /// A part round a hole that no streamline crosses is cut by two streamlines from its outer
+    /// ring to the hole (§5's split along several streamlines) instead of being settled whole.
+    pub round_holes: bool,
 }
 
 /// The weights λ of the four streamline scores (the paper's are all 1).
@@ -98,6 +101,9 @@ pub struct FitToml {
     /// Overrides [`Fit::min_parcels`].
     #[serde(default)]
     pub min_parcels: Option<f64>,
+    /// Overrides [`Fit::round_holes`] (off by default).
+    #[serde(default)]
+    pub round_holes: Option<bool>,
 }
 
 impl BlockToml {
@@ -117,6 +123,7 @@ impl FitToml {
             threshold: self.threshold.unwrap_or(DEFAULT_THRESHOLD),
             max_width: self.max_width.unwrap_or(DEFAULT_MAX_WIDTH),
             min_parcels: self.min_parcels.unwrap_or(DEFAULT_MIN_PARCELS),
+            round_holes: self.round_holes.unwrap_or(false),
         }
     }
 }

@@ -23,7 +23,7 @@
 
 use super::field::{CrossField, FieldError, FieldMethod, FieldOptions};
 use super::region::Region;
-use super::streamline::{candidates, BoundaryIndex, Candidate, TraceOptions};
+use super::streamline::{candidates, BoundaryHit, BoundaryIndex, Candidate, TraceOptions};
 use super::Street;
 use crate::geometry::{dist, dot, norm, scale, segment_intersection, sub, Polygon, P};
 use geo::MinimumRotatedRect;
@@ -75,6 +75,8 @@ pub struct SplitOptions {
     pub min_parcels: f64,
     /// The weights λ of the four scores (divergence, boundary, singularities, continuity).
     pub weights: [f64; 4],
+    /// Whether a part round a hole that no streamline crosses is cut by two to the hole.
+    pub round_holes: bool,
 }
 
 impl SplitOptions {
@@ -100,6 +102,7 @@ impl SplitOptions {
             max_width: region.fit.max_width,
             min_parcels: region.fit.min_parcels,
             weights: region.weights.as_array(),
+            round_holes: region.fit.round_holes,
         }
     }
 }
@@ -140,12 +143,13 @@ pub struct CandidateScore {
     pub quality: f64,
 }
 
-/// A part's cut: the chosen streamline (simplified), its quality, the two parts, and every
+/// A part's cut: the chosen streamlines (simplified), its quality, the two parts, and every
 /// candidate that cut the part with its scores (the chosen one at `chosen`).
 #[derive(Clone, Debug)]
 pub struct Cut {
-    /// The streamline, the new street's centreline.
-    pub line: Vec<P>,
+    /// The streamlines, the new streets' centrelines: one across the part, or two from its outer
+    /// ring to a hole (§5: a split may follow several streamlines).
+    pub lines: Vec<Vec<P>>,
     /// Its quality.
     pub quality: f64,
     /// The part on its left, then the one on its right.
@@ -173,19 +177,30 @@ pub fn cut_part(
     let mut scored = Vec::new();
     let mut scores = Vec::new();
     let mut traced = 0;
+    let mut fields = Vec::new();
     for method in [opts.field, other(opts.field)] {
         let field = CrossField::new(poly, &FieldOptions { method, h })?;
         let cands = candidates(&field, poly, &opts.trace, rng);
         traced += cands.len();
-        (scored, scores) = score(&field, poly, region, opts, &cands, ends);
+        (scored, scores) = score(&field, poly, region, opts, &cands, ends, Through::Across);
         if !scored.is_empty() {
             break;
         }
+        fields.push((field, cands));
+    }
+    // No streamline crosses a part round a hole: two to the hole cut it, when the region asks.
+    if scored.is_empty() && opts.round_holes && !poly.holes().is_empty() {
+        for (field, cands) in &fields {
+            (scored, scores) = score(field, poly, region, opts, cands, ends, Through::Hole);
+            if !scored.is_empty() {
+                break;
+            }
+        }
     }
     let Some(i) = choose(&scored, opts.selection, rng) else { return Ok((None, traced)) };
-    let (c, quality, parts) = (&scored[i].0, scored[i].1, scored[i].2.clone());
-    let line = simplify(&c.points, 0.05);
-    Ok((Some(Cut { line, quality, parts, scores, chosen: i, scored }), traced))
+    let (cs, quality, parts) = (&scored[i].0, scored[i].1, scored[i].2.clone());
+    let lines = cs.iter().map(|c| simplify(&c.points, 0.05)).collect();
+    Ok((Some(Cut { lines, quality, parts, scores, chosen: i, scored }), traced))
 }
 
 fn other(m: FieldMethod) -> FieldMethod {
@@ -313,11 +328,26 @@ pub fn simplify(line: &[P], tol: f64) -> Vec<P> {
     ls.simplify(tol).0.iter().map(|c| [c.x, c.y]).collect()
 }
 
-/// A candidate that cuts the part, its quality, and the two parts.
-pub type Scored = (Candidate, f64, (Polygon, Polygon));
+/// A candidate cut — one streamline, or two to the same hole, each from the outer ring — its
+/// quality, and the two parts.
+pub type Scored = (Vec<Candidate>, f64, Parts);
 
-/// Scores the candidates that cut the part into two pieces at least a parcel deep: the scored
-/// candidates and their scores, in the same order.
+/// The two parts of a cut.
+pub type Parts = (Polygon, Polygon);
+
+/// Which cuts [`score`] considers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Through {
+    /// Single streamlines from the outer ring to the outer ring.
+    Across,
+    /// Pairs of streamlines from the outer ring to the same hole.
+    Hole,
+}
+
+/// Scores the candidate cuts that leave two pieces at least a parcel deep — single streamlines
+/// across the part, or pairs of streamlines from the outer ring to one hole (a pair's costs are
+/// the means of its two streamlines') — returning the scored cuts and their scores, in the same
+/// order.
 fn score(
     field: &CrossField,
     poly: &Polygon,
@@ -325,8 +355,10 @@ fn score(
     opts: &SplitOptions,
     cands: &[Candidate],
     ends: &[(P, P)],
+    through: Through,
 ) -> (Vec<Scored>, Vec<CandidateScore>) {
     let depth = region.parcel.depth;
+    let min_area = depth * region.parcel.width;
     // Between two streets a block is double-loaded; a single row backs onto a boundary without
     // a street.
     let mut widths = vec![opts.block_width];
@@ -336,25 +368,46 @@ fn score(
     let boundary = BoundaryIndex::new(poly);
     let [lo, hi] = poly.bounds();
     let reach = 2.0 * dist(lo, hi);
-    let mut rows: Vec<([f64; 4], Candidate, (Polygon, Polygon))> = Vec::new();
-    for c in cands {
-        if c.ends[0].ring != 0 || c.ends[1].ring != 0 {
-            continue;
-        }
-        let Some(parts) = poly.cut(&c.points, 1e-6) else { continue };
-        if parts.0.area() < depth * region.parcel.width || parts.1.area() < depth * region.parcel.width {
-            continue;
-        }
+    let costs = |c: &Candidate| -> Option<[f64; 4]> {
         let (db, median_gap) = boundary_fit(c, &boundary, &widths, reach);
         // Each side must hold at least a row of parcels and half a street.
         if median_gap < 0.9 * (depth + region.street_width(1) / 2.0) {
-            continue;
+            return None;
         }
         let div = c.divergence / c.length.max(1e-9).powf(1.1);
         let ds = field.singularities().iter().map(|s| polyline_distance(s.at, &c.points)).fold(f64::INFINITY, f64::min);
         let ds = if ds.is_finite() { ds } else { 0.0 };
         let ct = 1.0 - 0.5 * c.ends.iter().filter(|e| continues(e.at, e.direction, ends)).count() as f64;
-        rows.push(([div, db, ds, ct], c.clone(), parts));
+        Some([div, db, ds, ct])
+    };
+    let big_enough = |parts: &(Polygon, Polygon)| parts.0.area() >= min_area && parts.1.area() >= min_area;
+    let mut rows: Vec<([f64; 4], Vec<Candidate>, Parts)> = Vec::new();
+    for c in cands.iter().filter(|_| through == Through::Across) {
+        if c.ends[0].ring != 0 || c.ends[1].ring != 0 {
+            continue;
+        }
+        let Some(parts) = poly.cut(&c.points, 1e-6).filter(big_enough) else { continue };
+        let Some(k) = costs(c) else { continue };
+        rows.push((k, vec![c.clone()], parts));
+    }
+    let to_holes: Vec<(Candidate, [f64; 4])> = cands
+        .iter()
+        .filter(|_| through == Through::Hole)
+        .filter_map(outer_to_hole)
+        .filter_map(|c| costs(&c).map(|k| (c, k)))
+        .collect();
+    for (i, (a, ka)) in to_holes.iter().enumerate() {
+        for (b, kb) in &to_holes[i + 1..] {
+            let hole = a.ends[1].ring;
+            if b.ends[1].ring != hole || dist(a.ends[1].at, b.ends[1].at) < depth {
+                continue;
+            }
+            let Some(parts) = poly.cut_round_hole(hole - 1, &a.points, &b.points, 1e-6).filter(big_enough) else {
+                continue;
+            };
+            let k: [f64; 4] = std::array::from_fn(|m| (ka[m] + kb[m]) / 2.0);
+            rows.push((k, vec![a.clone(), b.clone()], parts));
+        }
     }
     let mut lo_hi = [[f64::INFINITY, f64::NEG_INFINITY]; 4];
     for (costs, ..) in &rows {
@@ -363,7 +416,7 @@ fn score(
         }
     }
     rows.into_iter()
-        .map(|(costs, c, parts)| {
+        .map(|(costs, cs, parts)| {
             let g: Vec<f64> = (0..4)
                 .map(|k| {
                     let span = lo_hi[k][1] - lo_hi[k][0];
@@ -373,9 +426,26 @@ fn score(
             let q: f64 = (0..4).map(|k| opts.weights[k] * g[k]).sum();
             let s =
                 CandidateScore { divergence: g[0], boundary: g[1], singularities: g[2], continuity: g[3], quality: q };
-            ((c, q, parts), s)
+            ((cs, q, parts), s)
         })
         .unzip()
+}
+
+/// A candidate from the outer ring to a hole, turned to run from the outer ring; `None` for any
+/// other.
+fn outer_to_hole(c: &Candidate) -> Option<Candidate> {
+    match (c.ends[0].ring, c.ends[1].ring) {
+        (0, h) if h > 0 => Some(c.clone()),
+        (h, 0) if h > 0 => {
+            let mut r = c.clone();
+            r.points.reverse();
+            let [x, y] = c.ends;
+            let back = |e: BoundaryHit| BoundaryHit { direction: scale(e.direction, -1.0), ..e };
+            r.ends = [back(y), back(x)];
+            Some(r)
+        }
+        _ => None,
+    }
 }
 
 /// The mean misfit of the distances to the boundary on both sides with sums of block widths,

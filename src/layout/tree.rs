@@ -208,9 +208,16 @@ fn grow_from(
             continue;
         };
         let level = g.nodes[n].level + 1;
-        ends.extend(street_ends(&cut.line));
         let id = g.nodes[n].id.clone();
-        g.streets.push(Street { polyline: cut.line.clone(), width: region.street_width(level), level, part: id });
+        for line in &cut.lines {
+            ends.extend(street_ends(line));
+            g.streets.push(Street {
+                polyline: line.clone(),
+                width: region.street_width(level),
+                level,
+                part: id.clone(),
+            });
+        }
         g.cuts += 1;
         let node = &mut g.nodes[n];
         node.how = How::Streamline;
@@ -452,5 +459,45 @@ mod tests {
         assert_eq!(tree.children.len(), 2);
         assert!(tree.score.is_some() && tree.chosen.is_some_and(|c| c < tree.candidates.len()));
         assert!(g.streets.iter().any(|s| s.part == "0" && s.level == 1), "the cut names its part");
+    }
+
+    fn ring(round_holes: bool) -> Grown {
+        // Land 75 m wide round a round lake: the streamlines across it end on the lake, and the
+        // ones along it close on themselves, so no single streamline cuts it.
+        let circle = |r: f64| -> String {
+            let pts: Vec<String> = (0..32)
+                .map(|k| {
+                    let a = k as f64 * std::f64::consts::TAU / 32.0;
+                    format!("[{:.3}, {:.3}]", r * a.cos(), r * a.sin())
+                })
+                .collect();
+            format!("[{}]", pts.join(", "))
+        };
+        let text = format!(
+            "outer = {}\nholes = [{}]\n[templates]\nfirst = false\n[fit]\nround_holes = {round_holes}\n",
+            circle(165.0),
+            circle(90.0)
+        );
+        let region = region_from_toml(&text, Path::new("t.toml"), "t").unwrap();
+        let opts = SplitOptions::for_region(&region, FieldMethod::Distance, Selection::Best);
+        let mut rng = Xoshiro256PlusPlus::seed_from_u64(0);
+        grow(&region, &opts, None, &mut rng, &mut |_| {}).unwrap()
+    }
+
+    #[test]
+    fn two_streamlines_to_a_hole_cut_the_land_round_it_when_asked() {
+        let whole = ring(false);
+        assert_eq!((whole.cuts, whole.leaves.len()), (0, 1), "no streamline crosses the ring");
+        assert_eq!(whole.nodes[0].polygon.holes().len(), 1);
+        let cut = ring(true);
+        assert!(cut.cuts >= 1, "{} cuts", cut.cuts);
+        let first: Vec<&Street> = cut.streets.iter().filter(|s| s.part == "0").collect();
+        assert_eq!(first.len(), 2, "the root is cut by two streets");
+        let lake = &whole.nodes[0].polygon.holes()[0];
+        let on_lake = |p: P| crate::geometry::Polygon::new(lake.clone(), vec![]).unwrap().boundary_distance(p) < 1e-3;
+        assert!(first.iter().all(|s| on_lake(s.polyline[0]) || on_lake(*s.polyline.last().unwrap())));
+        assert!(cut.leaves.iter().all(|l| cut.nodes[l.node].polygon.holes().is_empty()));
+        let area: f64 = cut.leaves.iter().map(|l| cut.nodes[l.node].polygon.area()).sum();
+        assert!((area - whole.nodes[0].polygon.area()).abs() < 1.0, "the leaves tile the ring: {area}");
     }
 }
