@@ -135,6 +135,8 @@ struct FaceToml {
     scale: Option<[f64; 2]>,
     #[serde(default)]
     stretch: Option<[[f64; 2]; 2]>,
+    #[serde(default)]
+    area: Option<[f64; 2]>,
     #[serde(default = "three")]
     tolerance: f64,
 }
@@ -189,23 +191,35 @@ pub fn parse_template(text: &str, path: &str, stem: &str) -> Result<Template, Te
         if a2 < 0.0 {
             polygon.reverse();
         }
-        let class = match (f.class.as_str(), f.scale, f.stretch) {
-            ("rigid", None, None) => Class::Rigid,
-            ("similarity", s, None) => {
+        let class = match (f.class.as_str(), f.scale, f.stretch, f.area) {
+            ("rigid", None, None, None) => Class::Rigid,
+            ("similarity", s, None, None) => {
                 Class::Similarity { scale: positive_range(format!("face[{i}].scale"), s.unwrap_or([0.0001, 1e4]))? }
             }
-            ("affine", None, None) => Class::Affine,
-            ("affine", None, Some([x, y])) => Class::Stretch {
+            ("affine", None, None, None) => Class::Affine,
+            ("affine", None, Some([x, y]), None) => Class::Stretch {
                 x: positive_range(format!("face[{i}].stretch[0]"), x)?,
                 y: positive_range(format!("face[{i}].stretch[1]"), y)?,
             },
-            ("rigid" | "similarity" | "affine", Some(_), _) => {
+            ("affine", None, None, Some(a)) => {
+                Class::AreaAffine { area: positive_range(format!("face[{i}].area"), a)? }
+            }
+            ("rigid" | "similarity" | "affine", Some(_), _, _) => {
                 return Err(bad(format!("face[{i}].scale"), "only a similarity has a scale range".into()))
             }
-            ("rigid" | "similarity", _, Some(_)) => {
+            ("rigid" | "similarity", _, Some(_), _) => {
                 return Err(bad(format!("face[{i}].stretch"), "only an affine class has stretch ranges".into()))
             }
-            (other, _, _) => {
+            ("rigid" | "similarity", _, _, Some(_)) => {
+                return Err(bad(format!("face[{i}].area"), "only an affine class has an area range".into()))
+            }
+            ("affine", _, Some(_), Some(_)) => {
+                return Err(bad(
+                    format!("face[{i}].area"),
+                    "an affine face takes stretch ranges or an area range, not both".into(),
+                ))
+            }
+            (other, _, _, _) => {
                 return Err(bad(format!("face[{i}].class"), format!("\"{other}\" is not rigid, similarity or affine")))
             }
         };
@@ -375,5 +389,21 @@ mod tests {
         assert!(err("kind = \"block\"\n").contains("face"));
         let apart = format!("{ROW}[[face]]\npolygon = [[50, 0], [60, 0], [60, 10]]\nuse = \"park\"\n");
         assert_eq!(err(&apart), "t.toml: face: the faces do not form one polygon without holes");
+    }
+
+    #[test]
+    fn an_affine_face_takes_an_area_range() {
+        let t = parse_template(&format!("{ROW}class = \"affine\"\narea = [0.8, 1.25]\n"), "t.toml", "t").unwrap();
+        assert_eq!(t.faces[0].class, Class::AreaAffine { area: [0.8, 1.25] });
+        let e = err(&format!("{ROW}class = \"affine\"\nstretch = [[0.8, 1.25], [0.8, 1.25]]\narea = [0.8, 1.25]\n"));
+        assert_eq!(e, "t.toml: face[0].area: an affine face takes stretch ranges or an area range, not both");
+        let e = err(&format!("{ROW}class = \"similarity\"\narea = [0.8, 1.25]\n"));
+        assert_eq!(e, "t.toml: face[0].area: only an affine class has an area range");
+        let e = err(&format!("{ROW}class = \"rigid\"\narea = [0.8, 1.25]\n"));
+        assert_eq!(e, "t.toml: face[0].area: only an affine class has an area range");
+        let e = err(&format!("{ROW}area = [1.25, 0.8]\n"));
+        assert_eq!(e, "t.toml: face[0].area: [1.25, 0.8] is not a range of positive numbers, low first");
+        let e = err(&format!("{ROW}area = [0, 1]\n"));
+        assert_eq!(e, "t.toml: face[0].area: [0, 1] is not a range of positive numbers, low first");
     }
 }

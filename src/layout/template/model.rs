@@ -25,6 +25,12 @@ pub enum Class {
     },
     /// Any affine map.
     Affine,
+    /// An affine map whose determinant, the ratio of areas, lies within `[lo, hi]` (the paper's
+    /// affine map with area-distortion constraints; reflections excluded).
+    AreaAffine {
+        /// The area ratio range.
+        area: [f64; 2],
+    },
 }
 
 /// What a template's boundary side may meet.
