@@ -57,6 +57,26 @@ pub enum Sense {
     Maximize,
 }
 
+impl Sense {
+    /// Whether objective `a` is better than `reference` by more than `rel · max(|reference|, 1)`.
+    pub fn improves(self, a: f64, reference: f64, rel: f64) -> bool {
+        let tol = rel * reference.abs().max(1.0);
+        match self {
+            Sense::Minimize => a < reference - tol,
+            Sense::Maximize => a > reference + tol,
+        }
+    }
+
+    /// Whether objective `a` is worse than `reference` by more than `rel · max(|reference|, 1)`.
+    pub fn falls_short(self, a: f64, reference: f64, rel: f64) -> bool {
+        let tol = rel * reference.abs().max(1.0);
+        match self {
+            Sense::Minimize => a > reference + tol,
+            Sense::Maximize => a < reference - tol,
+        }
+    }
+}
+
 /// The kind of a row, derived from its two sides.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]

@@ -6,7 +6,7 @@
 //! more, one stopped by its limit without gain shrinks it. The best design then starts the full
 //! MILP for the rest of the time, and is checked with it.
 
-use crate::milp::{Model, Sense};
+use crate::milp::Model;
 use crate::solvers::split::PhaseSolve;
 use crate::solvers::{LogTarget, SolveOptions, SolverError, Termination};
 use crate::spec::Problem;
@@ -96,10 +96,6 @@ pub fn improve(
         objective: start_objective,
         trace: Vec::new(),
     };
-    let better = |a: f64, b: f64| match model.sense {
-        Sense::Minimize => a < b - 1e-6 * b.abs().max(1.0),
-        Sense::Maximize => a > b + 1e-6 * b.abs().max(1.0),
-    };
     let edges = p.mesh.num_edges() as f64;
     let mut size = FIRST_WINDOW.min(edges / 4.0).max(1.0);
     let nv = p.mesh.num_vertices();
@@ -127,7 +123,7 @@ pub fn improve(
         let Ok((r, _, _)) = solve(&m, &o) else { continue };
         let proven = r.termination == Termination::Optimal;
         match (r.primal, r.objective) {
-            (Some(y), Some(obj)) if better(obj, report.objective) => {
+            (Some(y), Some(obj)) if model.sense.improves(obj, report.objective, 1e-6) => {
                 x = y;
                 report.objective = obj;
                 report.improvements += 1;

@@ -92,10 +92,7 @@ pub fn solve_from_with(
         let infeasible = res.solve.termination == crate::solvers::Termination::Infeasible;
         let worse = match res.objective.as_ref().filter(|_| res.validity.valid) {
             None => true,
-            Some(o) => match f.model.sense {
-                crate::milp::Sense::Minimize => o.total > start_obj + 1e-9 * start_obj.abs().max(1.0),
-                crate::milp::Sense::Maximize => o.total < start_obj - 1e-9 * start_obj.abs().max(1.0),
-            },
+            Some(o) => f.model.sense.falls_short(o.total, start_obj, 1e-9),
         };
         if worse && !infeasible {
             let mut solve = res.solve.clone();
@@ -156,21 +153,21 @@ pub fn solve_built_with(
         })
     };
     // The large-neighbourhood search improves the start for the full MILP, under one time limit.
-    let mut after_lns;
     let mut lns = None;
-    let options = match (&options.mip_start, options.time_limit) {
+    let options: std::borrow::Cow<SolveOptions> = match (&options.mip_start, options.time_limit) {
         (Some(x0), Some(limit)) if strategy.lns && limit.is_finite() => {
             let t0 = std::time::Instant::now();
             let (x, report) =
                 super::lns::improve(p, &f.model, &f.vars.edge, x0, options, super::lns::LNS_SHARE * limit, &mut solve);
             lns = Some(report);
-            after_lns = options.clone();
-            after_lns.mip_start = Some(x);
-            after_lns.time_limit = Some((limit - t0.elapsed().as_secs_f64()).max(0.0));
-            &after_lns
+            let mut rest = options.clone();
+            rest.mip_start = Some(x);
+            rest.time_limit = Some((limit - t0.elapsed().as_secs_f64()).max(0.0));
+            std::borrow::Cow::Owned(rest)
         }
-        _ => options,
+        _ => std::borrow::Cow::Borrowed(options),
     };
+    let options = options.as_ref();
     let split = options
         .mip_start
         .as_ref()
