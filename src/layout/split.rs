@@ -382,31 +382,29 @@ fn score(
     };
     let big_enough = |parts: &(Polygon, Polygon)| parts.0.area() >= min_area && parts.1.area() >= min_area;
     let mut rows: Vec<([f64; 4], Vec<Candidate>, Parts)> = Vec::new();
-    for c in cands.iter().filter(|_| through == Through::Across) {
-        if c.ends[0].ring != 0 || c.ends[1].ring != 0 {
-            continue;
-        }
-        let Some(parts) = poly.cut(&c.points, 1e-6).filter(big_enough) else { continue };
-        let Some(k) = costs(c) else { continue };
-        rows.push((k, vec![c.clone()], parts));
-    }
-    let to_holes: Vec<(Candidate, [f64; 4])> = cands
-        .iter()
-        .filter(|_| through == Through::Hole)
-        .filter_map(outer_to_hole)
-        .filter_map(|c| costs(&c).map(|k| (c, k)))
-        .collect();
-    for (i, (a, ka)) in to_holes.iter().enumerate() {
-        for (b, kb) in &to_holes[i + 1..] {
-            let hole = a.ends[1].ring;
-            if b.ends[1].ring != hole || dist(a.ends[1].at, b.ends[1].at) < depth {
-                continue;
+    match through {
+        Through::Across => {
+            for c in cands.iter().filter(|c| c.ends[0].ring == 0 && c.ends[1].ring == 0) {
+                let Some(parts) = poly.cut(&c.points, 1e-6).filter(big_enough) else { continue };
+                let Some(k) = costs(c) else { continue };
+                rows.push((k, vec![c.clone()], parts));
             }
-            let Some(parts) = poly.cut_round_hole(hole - 1, &a.points, &b.points, 1e-6).filter(big_enough) else {
-                continue;
-            };
-            let k: [f64; 4] = std::array::from_fn(|m| (ka[m] + kb[m]) / 2.0);
-            rows.push((k, vec![a.clone(), b.clone()], parts));
+        }
+        Through::Hole => {
+            let to_holes: Vec<(Candidate, [f64; 4])> =
+                cands.iter().filter_map(outer_to_hole).filter_map(|c| costs(&c).map(|k| (c, k))).collect();
+            for (i, (a, ka)) in to_holes.iter().enumerate() {
+                for (b, kb) in &to_holes[i + 1..] {
+                    let hole = a.ends[1].ring;
+                    if b.ends[1].ring != hole || dist(a.ends[1].at, b.ends[1].at) < depth {
+                        continue;
+                    }
+                    let cut = poly.cut_round_hole(hole - 1, &a.points, &b.points, 1e-6);
+                    let Some(parts) = cut.filter(big_enough) else { continue };
+                    let k: [f64; 4] = std::array::from_fn(|m| (ka[m] + kb[m]) / 2.0);
+                    rows.push((k, vec![a.clone(), b.clone()], parts));
+                }
+            }
         }
     }
     let mut lo_hi = [[f64::INFINITY, f64::NEG_INFINITY]; 4];

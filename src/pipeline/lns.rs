@@ -99,18 +99,21 @@ pub fn improve(
     let edges = p.mesh.num_edges() as f64;
     let mut size = FIRST_WINDOW.min(edges / 4.0).max(1.0);
     let nv = p.mesh.num_vertices();
+    // One copy of the model; each window only resets the edge variables' bounds.
+    let mut m = model.clone();
     while nv > 0 && options.interrupt.as_ref().is_none_or(|i| !i.is_triggered()) {
         let left = budget - t0.elapsed().as_secs_f64();
         if left <= 0.1 {
             break;
         }
         let free = window(p, crate::mesh::VertexId(rng.random_range(0..nv) as u32), size as usize);
-        let mut m = model.clone();
+        // Every edge variable gets its window's bounds: the model's own when free, else fixed.
         for (e, var) in edge_vars.iter().enumerate() {
-            if let (Some(var), false) = (var, free[e]) {
-                let v = m.var_mut(*var);
+            if let Some(var) = var {
+                let own = model.var(*var);
                 let at = x[var.index()].round();
-                (v.lb, v.ub) = (at, at);
+                let v = m.var_mut(*var);
+                (v.lb, v.ub) = if free[e] { (own.lb, own.ub) } else { (at, at) };
             }
         }
         let o = SolveOptions {
