@@ -140,13 +140,18 @@ fn crosses(line: &[P], hole: &[P]) -> bool {
     let n = hole.len();
     line.windows(2).any(|w| {
         let mid = [(w[0][0] + w[1][0]) / 2.0, (w[0][1] + w[1][1]) / 2.0];
+        // A street may end on the hole's ring: within a millimetre of its end is a touch.
+        let margin = TOUCH / dist(w[0], w[1]).max(TOUCH);
         ring_contains(hole, mid)
             || (0..n).any(|k| {
                 segment_intersection(w[0], w[1], hole[k], hole[(k + 1) % n])
-                    .is_some_and(|(s, t)| s > 1e-9 && s < 1.0 - 1e-9 && t > 1e-9 && t < 1.0 - 1e-9)
+                    .is_some_and(|(s, t)| s > margin && s < 1.0 - margin && t > 1e-9 && t < 1.0 - 1e-9)
             })
     })
 }
+
+/// How far past a hole's ring a street's end may reach (metres): the outputs' precision.
+const TOUCH: f64 = 1e-3;
 
 #[cfg(test)]
 mod tests {
@@ -190,5 +195,11 @@ mod tests {
         assert!(validate(&region, &streets, &parcels).iter().any(|v| matches!(v, Violation::NoStreet { .. })));
         let into_hole = Street::new(vec![[220.0, 50.0], [220.0, 115.0]], 15.0, 2);
         assert!(validate(&region, &[into_hole], &[]).contains(&Violation::StreetInHole { street: 0, hole: 0 }));
+        // A street ending on the hole's ring, half a millimetre past it, touches it; two past, it enters.
+        let to_hole = |y: f64| Street::new(vec![[220.0, 50.0], [220.0, y]], 15.0, 2);
+        assert!(!validate(&region, &[to_hole(100.0005)], &[])
+            .iter()
+            .any(|v| matches!(v, Violation::StreetInHole { .. })));
+        assert!(validate(&region, &[to_hole(100.002)], &[]).contains(&Violation::StreetInHole { street: 0, hole: 0 }));
     }
 }
