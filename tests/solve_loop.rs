@@ -543,7 +543,8 @@ fn interrupted_city_keeps_finished_regions() {
 
 /// The `lns` strategy switch (`--formulation strong:lns=on`): Fig. 2c's heuristic start (184) is
 /// improved by windows solved from it before the full MILP, which starts from the best; the
-/// search is reported in `result.json`, and the design is checked and valid.
+/// search is reported in `result.json`, and the design is checked and valid. Unset, the switch
+/// is on for `strong` models from `pipeline::strategy::LNS_FROM_NONZEROS` nonzeros.
 #[test]
 fn lns_improves_the_start_before_the_milp() {
     let out = tempfile::tempdir().unwrap();
@@ -565,16 +566,24 @@ fn lns_improves_the_start_before_the_milp() {
     assert_eq!(lns["trace"].as_array().unwrap().len() as u64, lns["improvements"].as_u64().unwrap());
     assert!(r["objective"]["total"].as_f64().unwrap() <= best + 1e-6, "the MILP starts from the search's best");
     assert_eq!(r["validity"]["valid"], true);
-    // Off by default: no search, nothing reported.
-    let plain = tempfile::tempdir().unwrap();
-    let run = netspec()
-        .args(["solve", "models/fig2c.toml", "--solver", "highs", "--time-limit", "1", "--threads", "1", "--out"])
-        .arg(plain.path())
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .unwrap();
-    assert!(run.status.success());
-    let r: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(plain.path().join("result.json")).unwrap()).unwrap();
-    assert!(r.get("lns").is_none());
+    // By default only from `LNS_FROM_NONZEROS` (Fig. 2c: 33,957 nonzeros; Fig. 1b's level 4:
+    // 63,896), and `lns=off` turns it off there.
+    let searched = |spec: &str, formulation: &str| {
+        let out = tempfile::tempdir().unwrap();
+        let run = netspec()
+            .args(["solve", spec, "--solver", "highs", "--formulation", formulation])
+            .args(["--time-limit", "1", "--threads", "1", "--out"])
+            .arg(out.path())
+            .current_dir(env!("CARGO_MANIFEST_DIR"))
+            .output()
+            .unwrap();
+        assert!(run.status.success(), "{spec}: {}", String::from_utf8_lossy(&run.stderr));
+        let r: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.path().join("result.json")).unwrap()).unwrap();
+        assert_eq!(r["validity"]["valid"], true, "{spec}");
+        r.get("lns").is_some()
+    };
+    assert!(!searched("models/fig2c.toml", "strong"));
+    assert!(searched("models/streets/fig1b/L4/spec.json", "strong"));
+    assert!(!searched("models/streets/fig1b/L4/spec.json", "strong:lns=off"));
 }

@@ -22,21 +22,37 @@ pub struct Strategy {
     /// The backend's parallel tree search when the solve has two threads or more.
     pub parallel_search: bool,
     /// A large-neighbourhood search from the start before the full MILP
-    /// ([`crate::pipeline::lns`]); off unless a spec turns it on.
+    /// ([`crate::pipeline::lns`]); by default on `strong` models of at least
+    /// [`LNS_FROM_NONZEROS`] nonzeros.
     pub lns: bool,
 }
 
+/// The model size (nonzeros) from which `strong` starts with a large-neighbourhood search unless
+/// the spec says otherwise. On Table 1's open rows of this size or more the search returns a
+/// better design at the paper's limit on most rows, below it on a few (docs/benchmarks.md,
+/// "Large-neighbourhood search"); on fig7b's city the level-3 model (105k nonzeros) leaves its
+/// start with it at 20 s, the level-2 model (26k) does better without it.
+pub const LNS_FROM_NONZEROS: usize = 60_000;
+
 impl Strategy {
-    /// What was measured best for a recipe: everything for `strong`; nothing for `paper` and
-    /// `tight`, which stay the models and the solves they always were.
-    pub fn default_for(recipe: RecipeName) -> Strategy {
+    /// What was measured best for a recipe's model of `nonzeros` nonzeros: everything for
+    /// `strong` (the search from [`LNS_FROM_NONZEROS`]); nothing for `paper` and `tight`, which
+    /// stay the models and the solves they always were.
+    pub fn default_for(recipe: RecipeName, nonzeros: usize) -> Strategy {
         let on = recipe == RecipeName::Strong;
-        Strategy { split_objective: on, objective_lattice: on, solver_tuning: on, parallel_search: on, lns: false }
+        Strategy {
+            split_objective: on,
+            objective_lattice: on,
+            solver_tuning: on,
+            parallel_search: on,
+            lns: on && nonzeros >= LNS_FROM_NONZEROS,
+        }
     }
 
-    /// The strategy of a solve: the recipe's defaults with the spec's `[solver]` switches over them.
-    pub fn of(recipe: RecipeName, solver: &SolverSpec) -> Strategy {
-        let d = Strategy::default_for(recipe);
+    /// The strategy of a solve of a model of `nonzeros` nonzeros: the recipe's defaults with the
+    /// spec's `[solver]` switches over them.
+    pub fn of(recipe: RecipeName, solver: &SolverSpec, nonzeros: usize) -> Strategy {
+        let d = Strategy::default_for(recipe, nonzeros);
         Strategy {
             split_objective: solver.split_objective.unwrap_or(d.split_objective),
             objective_lattice: solver.objective_lattice.unwrap_or(d.objective_lattice),
@@ -48,7 +64,7 @@ impl Strategy {
 
     /// The strategy of a problem's solve under formulation `f`.
     pub fn for_problem(p: &crate::spec::Problem, f: &Formulation) -> Strategy {
-        Strategy::of(f.recipe.name, &p.spec.solver)
+        Strategy::of(f.recipe.name, &p.spec.solver, f.model.num_nonzeros())
     }
 
     /// What this strategy asks of the backend's own settings for `f`, solved with `threads`.
@@ -129,7 +145,7 @@ mod tests {
     #[test]
     fn strategy_defaults_follow_the_recipe_and_the_spec_overrides_them() {
         assert_eq!(
-            Strategy::default_for(RecipeName::Strong),
+            Strategy::default_for(RecipeName::Strong, LNS_FROM_NONZEROS - 1),
             Strategy {
                 split_objective: true,
                 objective_lattice: true,
@@ -138,15 +154,24 @@ mod tests {
                 lns: false
             }
         );
+        assert!(Strategy::default_for(RecipeName::Strong, LNS_FROM_NONZEROS).lns);
         for name in [RecipeName::Paper, RecipeName::Tight] {
-            let s = Strategy::default_for(name);
-            assert!(!s.split_objective && !s.objective_lattice && !s.solver_tuning && !s.parallel_search, "{name}");
+            let s = Strategy::default_for(name, LNS_FROM_NONZEROS);
+            assert!(
+                !s.split_objective && !s.objective_lattice && !s.solver_tuning && !s.parallel_search && !s.lns,
+                "{name}"
+            );
         }
         let spec = SolverSpec { solver_tuning: Some(false), split_objective: Some(false), ..Default::default() };
-        let s = Strategy::of(RecipeName::Strong, &spec);
+        let s = Strategy::of(RecipeName::Strong, &spec, 0);
         assert!(!s.solver_tuning && !s.split_objective && s.objective_lattice && s.parallel_search);
         let spec = SolverSpec { parallel_search: Some(true), ..Default::default() };
-        assert!(Strategy::of(RecipeName::Paper, &spec).parallel_search);
+        assert!(Strategy::of(RecipeName::Paper, &spec, 0).parallel_search);
+        // The search both ways round its size.
+        let off = SolverSpec { lns: Some(false), ..Default::default() };
+        assert!(!Strategy::of(RecipeName::Strong, &off, LNS_FROM_NONZEROS).lns);
+        let on = SolverSpec { lns: Some(true), ..Default::default() };
+        assert!(Strategy::of(RecipeName::Strong, &on, 10).lns);
     }
 
     /// HiGHS's hints, each from its part of the strategy (the parallel search only from two

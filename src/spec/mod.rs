@@ -495,7 +495,9 @@ pub struct SolverSpec {
     /// The backend's parallel tree search when the solve has two threads or more.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub parallel_search: Option<bool>,
-    /// A large-neighbourhood search from the start before the full MILP (`pipeline::lns`).
+    /// A large-neighbourhood search from the start before the full MILP (`pipeline::lns`);
+    /// unset, `strong` searches on models of `pipeline::strategy::LNS_FROM_NONZEROS` nonzeros
+    /// or more.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub lns: Option<bool>,
 }

@@ -167,7 +167,9 @@ pub struct CitySolverSpec {
     /// Seed.
     #[serde(default)]
     pub seed: Option<u64>,
-    /// Every level's solve starts with a large-neighbourhood search (`[solver] lns` of a spec).
+    /// Every level's solve starts with a large-neighbourhood search, or none does (`[solver] lns`
+    /// of a spec); unset, each level's model decides by its size
+    /// (`pipeline::strategy::LNS_FROM_NONZEROS`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub lns: Option<bool>,
 }

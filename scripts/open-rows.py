@@ -1,0 +1,276 @@
+#!/usr/bin/env python3
+"""Writes the study of Table 1's open rows in docs/benchmarks.md (between its `open-rows`
+markers) from docs/table1/results.json (the paper-limit records of every backend) and
+docs/table1/open-rows.json (each open row's root LP and its `lns` solve).
+
+Usage (from anywhere; paths are the repository's):
+  scripts/open-rows.py
+      Write the section of docs/benchmarks.md.
+  scripts/open-rows.py --check
+      Regenerate it and compare with the committed page; exit 1 when they differ.
+  scripts/open-rows.py --import-lns DIR [DIR ...]
+      Record `netspec solve SPEC --solver highs --threads 2 --time-limit LIMIT
+      --formulation strong:lns=on --out DIR` runs: DIR's name is the row, its result.json the
+      run (a run of another row replaces nothing else).
+  scripts/open-rows.py --import-root FILE [FILE ...]
+      Record `netspec solve SPEC --solver highs --threads 2 --relax > FILE` runs: FILE's name
+      without its extension is the row, its `LP bound` line the root LP.
+
+A row is open when no column of docs/table1/results.json proves it (optimal, or a gap of at
+most 1e-4). Standard library only.
+"""
+import difflib, json, os, re, sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+RESULTS = "docs/table1/results.json"
+STUDY = "docs/table1/open-rows.json"
+PAGE = "docs/benchmarks.md"
+BEGIN, END = "<!-- open-rows: begin (scripts/open-rows.py) -->", "<!-- open-rows: end -->"
+PROVEN_GAP = 1e-4  # src/compare.rs PROVEN_GAP
+COLUMN = "highs/strong"  # the column the study is about
+LNS_COMMAND = ("netspec solve SPEC --solver highs --threads 2 --time-limit LIMIT "
+               "--formulation strong:lns=on")
+ROOT_COMMAND = "netspec solve SPEC --solver highs --threads 2 --relax --time-limit 60"
+# Objectives closer than this (relative, at least 1) count as equal.
+TOL = 1e-6
+
+
+def path(p):
+    return os.path.join(ROOT, p)
+
+
+def fmt(v):
+    """An objective or bound as the tables show it."""
+    if v is None:
+        return "none"
+    return f"{v:.6g}" if v != int(v) else f"{int(v)}"
+
+
+def pct(v):
+    return f"{100 * v:.1f} %"
+
+
+def same(a, b):
+    return abs(a - b) <= TOL * max(1.0, abs(a), abs(b))
+
+
+def proven(r):
+    gap = r.get("gap")
+    return r["status"] == "optimal" or (r["valid"] and gap is not None and gap <= PROVEN_GAP)
+
+
+def load_study():
+    p = path(STUDY)
+    if not os.path.exists(p):
+        return {"lns": {"command": LNS_COMMAND, "rows": {}}, "root": {"command": ROOT_COMMAND, "rows": {}}}
+    return json.load(open(p))
+
+
+def dump_study(study):
+    """Compact: a row per line, rows in name order."""
+    j = lambda v: json.dumps(v, ensure_ascii=False, separators=(", ", ": "))
+    lines = ["{"]
+    for i, part in enumerate(("lns", "root")):
+        s = study[part]
+        rows = sorted(s["rows"].items())
+        lines.append(f'"{part}": {{"command": {j(s["command"])}, "rows": {{')
+        lines += [f"  {j(k)}: {j(v)}" + ("," if n < len(rows) - 1 else "") for n, (k, v) in enumerate(rows)]
+        lines.append("}}" + ("," if i == 0 else ""))
+    lines.append("}")
+    open(path(STUDY), "w").write("\n".join(lines) + "\n")
+    print(f"wrote {STUDY}")
+
+
+def import_lns(dirs):
+    study = load_study()
+    for d in dirs:
+        r = json.load(open(os.path.join(d, "result.json")))
+        s, lns = r["solve"], r.get("lns") or {}
+        name = os.path.basename(os.path.normpath(d))
+        study["lns"]["rows"][name] = {
+            "start": r["start"]["objective"],
+            "design": r["objective"]["total"] if r.get("design_found") is True else None,
+            "bound": s.get("dual_bound"),
+            "valid": bool((r.get("validity") or {}).get("valid")),
+            "windows": lns.get("windows", 0),
+            "improving": lns.get("improvements", 0),
+            "search_seconds": round(lns.get("seconds", 0.0), 1),
+            "wall_seconds": round(s["wall_time"], 1),
+            "proven": s["termination"]["reason"] == "optimal" or (s.get("gap") is not None and s["gap"] <= PROVEN_GAP),
+            "solver_version": s.get("solver_version"),
+        }
+    dump_study(study)
+
+
+ROOT_LINE = re.compile(r"LP bound\s+(\S+) as written, (\S+) after (\d+) cut rounds \((\d+) rows\), ([0-9.]+) s")
+
+
+def import_root(files):
+    study = load_study()
+    for f in files:
+        m = ROOT_LINE.search(open(f).read())
+        if not m:
+            sys.exit(f"{f}: no `LP bound … as written, … after … cut rounds` line")
+        name = os.path.splitext(os.path.basename(f))[0]
+        study["root"]["rows"][name] = {"as_written": float(m[1]), "after_cuts": float(m[2]), "rounds": int(m[3]),
+                                       "rows": int(m[4]), "seconds": float(m[5])}
+    dump_study(study)
+
+
+def open_rows(res):
+    """The open rows, in the manifest's order, each with its records by column."""
+    by = {}
+    for r in res["records"]:
+        by.setdefault(r["instance"], {})[r["solver"]] = r
+    names = [m["name"] for m in res["settings"]["manifest"]["row"]]
+    return [(n, by[n]) for n in names if n in by and not any(proven(r) for r in by[n].values())]
+
+
+def proven_rows(res):
+    """The rows some column proves, in the manifest's order, each with its records by column."""
+    by = {}
+    for r in res["records"]:
+        by.setdefault(r["instance"], {})[r["solver"]] = r
+    names = [m["name"] for m in res["settings"]["manifest"]["row"]]
+    return [(n, by[n]) for n in names if n in by and any(proven(r) for r in by[n].values())]
+
+
+def render(res, study):
+    rows = open_rows(res)
+    lns, root = study["lns"]["rows"], study["root"]["rows"]
+    out = [BEGIN, ""]
+    # --- Where each open row's gap sits.
+    out += [
+        f"**Where the gap sits.** The {len(rows)} rows no backend proves at the paper's limits, each with",
+        f"its root LP (`{ROOT_COMMAND}`: as written → after the recipe's cut rounds, their",
+        f"time), the {COLUMN} run of the records, and the best design and bound any run knows — every",
+        "column of the records and the `lns` solve below. The gap of the highs/strong run,",
+        "(design − bound) / design, splits into the part above the best known design and the part",
+        "below it:",
+        "",
+        "| row | limit (s) | nonzeros | root LP (s) | highs/strong: design / bound | best design (by) | best bound (by) | gap above best design | gap below it |",
+        "|---|---|---|---|---|---|---|---|---|",
+    ]
+    split = {"design": 0, "bound": 0}
+    for name, recs in rows:
+        h = recs[COLUMN]
+        designs = [(r["design_objective"], c) for c, r in recs.items() if r["valid"] and r.get("design_objective") is not None]
+        l = lns.get(name)
+        if l and l["valid"] and l["design"] is not None:
+            designs.append((l["design"], "lns"))
+        bounds = [(r["dual_bound"], c) for c, r in recs.items() if r.get("dual_bound") is not None and not r.get("killed")]
+        best_d = min(designs, key=lambda x: x[0]) if designs else None
+        best_b = max(bounds, key=lambda x: x[0]) if bounds else None
+        by = lambda best, xs: ", ".join(sorted({c for v, c in xs if same(v, best[0])}))
+        rt = root.get(name)
+        rcell = f"{fmt(round(rt['as_written'], 2))} → {fmt(round(rt['after_cuts'], 2))} ({rt['seconds']:.1f})" if rt else "—"
+        d, b = h.get("design_objective") if h["valid"] else None, h.get("dual_bound")
+        if d is not None and b is not None and best_d:
+            above, below = (d - best_d[0]) / d, (best_d[0] - b) / d
+            split["design" if above > below else "bound"] += 1
+            parts = f"{pct(above)} | {pct(below)}"
+        else:
+            parts = "— | —"
+        out.append(
+            f"| {name} | {fmt(h['time_limit'])} | {h['nonzeros']:,} | {rcell} | {fmt(d)} / {fmt(b)} | "
+            f"{fmt(best_d[0]) + ' (' + by(best_d, designs) + ')' if best_d else 'none'} | "
+            f"{fmt(best_b[0]) + ' (' + by(best_b, bounds) + ')' if best_b else 'none'} | {parts} |")
+    out += ["", f"The larger part is the bound's on {split['bound']} rows (what is left to gain there is in the bound) "
+            f"and the design's on {split['design']}.", ""]
+    # --- lns against the plain MILP.
+    measured = [(n, recs[COLUMN], lns[n]) for n, recs in rows if n in lns]
+    measured.sort(key=lambda x: x[1]["nonzeros"])
+    out += [
+        f"**`lns` on the open rows** (`{LNS_COMMAND}`, the row's spec and",
+        "limit), beside the plain run of the records, by model size; *start returned* marks the plain",
+        "runs that end with the heuristic's start unimproved:",
+        "",
+        "| row | limit (s) | nonzeros | plain: design / bound | `lns`: start / design / bound | windows (improving) | design |",
+        "|---|---|---|---|---|---|---|",
+    ]
+    count = {"better": [], "same": [], "worse": []}
+    for name, h, l in measured:
+        pd = h.get("design_objective") if h["valid"] else None
+        ld = l["design"] if l["valid"] else None
+        if pd is None or ld is None:
+            verdict = "better" if ld is not None and pd is None else "same" if ld == pd else "worse"
+        else:
+            verdict = "same" if same(pd, ld) else "better" if ld < pd else "worse"
+        count[verdict].append((name, h["nonzeros"]))
+        start = h.get("start_objective")
+        mark = ", start returned" if pd is not None and start is not None and same(pd, start) else ""
+        out.append(
+            f"| {name} | {fmt(h['time_limit'])} | {h['nonzeros']:,} | {fmt(pd)} / {fmt(h.get('dual_bound'))}{mark} | "
+            f"{fmt(l['start'])} / {fmt(ld)} / {fmt(l['bound'])} | {l['windows']} ({l['improving']}) | {verdict} |")
+    big = lambda xs, k: sum(1 for _, nz in xs if nz >= k)
+    out += [
+        "",
+        f"Of {len(measured)} open rows measured, `lns` returns a better design on {len(count['better'])}, the same on "
+        f"{len(count['same'])} and a worse one on {len(count['worse'])}; from 60,000 nonzeros "
+        f"(the size from which `strong` searches unless told not to) {big(count['better'], 60000)} better, "
+        f"{big(count['same'], 60000)} the same, {big(count['worse'], 60000)} worse.",
+        "",
+    ]
+    # --- Proven rows of that size: does the search cost their proofs?
+    done = []
+    for name, recs in proven_rows(res):
+        h = recs[COLUMN]
+        if name in lns and proven(h):
+            done.append((name, h, lns[name]))
+    if done:
+        out += [
+            "Rows the records prove, solved the same way (from 60,000 nonzeros `strong` searches on them by default):",
+            "",
+            "| row | limit (s) | nonzeros | plain: design, proven in (s) | `lns`: design / bound, time (s) | windows (improving) |",
+            "|---|---|---|---|---|---|",
+        ]
+        for name, h, l in sorted(done, key=lambda x: x[1]["nonzeros"]):
+            status = "proven in" if l["proven"] else "not proven,"
+            out.append(
+                f"| {name} | {fmt(h['time_limit'])} | {h['nonzeros']:,} | {fmt(h['design_objective'])}, {h['wall_time']:.1f} | "
+                f"{fmt(l['design'])} / {fmt(l['bound'])}, {status} {l['wall_seconds']:.1f} | {l['windows']} ({l['improving']}) |")
+        out.append("")
+    out.append(END)
+    return "\n".join(out)
+
+
+def page_with(section):
+    text = open(path(PAGE)).read()
+    if BEGIN not in text or END not in text:
+        sys.exit(f"{PAGE}: no `{BEGIN}` … `{END}` markers")
+    head, rest = text.split(BEGIN, 1)
+    _, tail = rest.split(END, 1)
+    return head + section + tail
+
+
+def main():
+    args = sys.argv[1:]
+    if "-h" in args or "--help" in args:
+        print(__doc__)
+        return 0
+    if args[:1] == ["--import-lns"] and len(args) > 1:
+        import_lns(args[1:])
+        return 0
+    if args[:1] == ["--import-root"] and len(args) > 1:
+        import_root(args[1:])
+        return 0
+    if args not in ([], ["--check"]):
+        sys.exit(f"unknown arguments: {' '.join(args)}\n\n{__doc__}")
+    res = json.load(open(path(RESULTS)))
+    fresh = page_with(render(res, load_study()))
+    if args == ["--check"]:
+        old = open(path(PAGE)).read()
+        if old != fresh:
+            diff = difflib.unified_diff(old.splitlines(), fresh.splitlines(), PAGE, PAGE + " (regenerated)", n=0, lineterm="")
+            print(f"{PAGE}'s open-rows section is out of date with {STUDY} (regenerate: scripts/open-rows.py)",
+                  *list(diff)[:14], sep="\n", file=sys.stderr)
+            return 1
+        print(f"ok: {PAGE}'s open-rows section matches {STUDY}")
+        return 0
+    open(path(PAGE), "w").write(fresh)
+    print(f"wrote {PAGE}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
