@@ -19,14 +19,18 @@ Usage (from anywhere; paths are the repository's):
 A row is open when no column of docs/table1/results.json proves it (optimal, or a gap of at
 most 1e-4). Standard library only.
 """
-import difflib, json, os, re, sys
+import difflib, importlib.util, json, os, re, sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+# Table 1's report script: what counts as proven is its (src/compare.rs solved()).
+_spec = importlib.util.spec_from_file_location("table1_report", os.path.join(ROOT, "scripts", "table1-report.py"))
+table1 = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(table1)
+proven = table1.proven
 RESULTS = "docs/table1/results.json"
 STUDY = "docs/table1/open-rows.json"
 PAGE = "docs/benchmarks.md"
 BEGIN, END = "<!-- open-rows: begin (scripts/open-rows.py) -->", "<!-- open-rows: end -->"
-PROVEN_GAP = 1e-4  # src/compare.rs PROVEN_GAP
 COLUMN = "highs/strong"  # the column the study is about
 LNS_COMMAND = ("netspec solve SPEC --solver highs --threads 2 --time-limit LIMIT "
                "--formulation strong:lns=on")
@@ -52,11 +56,6 @@ def pct(v):
 
 def same(a, b):
     return abs(a - b) <= TOL * max(1.0, abs(a), abs(b))
-
-
-def proven(r):
-    gap = r.get("gap")
-    return r["status"] == "optimal" or (r["valid"] and gap is not None and gap <= PROVEN_GAP)
 
 
 def load_study():
@@ -96,7 +95,7 @@ def import_lns(dirs):
             "improving": lns.get("improvements", 0),
             "search_seconds": round(lns.get("seconds", 0.0), 1),
             "wall_seconds": round(s["wall_time"], 1),
-            "proven": s["termination"]["reason"] == "optimal" or (s.get("gap") is not None and s["gap"] <= PROVEN_GAP),
+            "proven": s["termination"]["reason"] == "optimal" or (s.get("gap") is not None and s["gap"] <= table1.PROVEN_GAP),
             "solver_version": s.get("solver_version"),
         }
     dump_study(study)
@@ -117,26 +116,18 @@ def import_root(files):
     dump_study(study)
 
 
-def open_rows(res):
-    """The open rows, in the manifest's order, each with its records by column."""
+def rows_by(res, proven_by_some):
+    """The rows some column proves (or none does), in the manifest's order, each with its
+    records by column."""
     by = {}
     for r in res["records"]:
         by.setdefault(r["instance"], {})[r["solver"]] = r
     names = [m["name"] for m in res["settings"]["manifest"]["row"]]
-    return [(n, by[n]) for n in names if n in by and not any(proven(r) for r in by[n].values())]
-
-
-def proven_rows(res):
-    """The rows some column proves, in the manifest's order, each with its records by column."""
-    by = {}
-    for r in res["records"]:
-        by.setdefault(r["instance"], {})[r["solver"]] = r
-    names = [m["name"] for m in res["settings"]["manifest"]["row"]]
-    return [(n, by[n]) for n in names if n in by and any(proven(r) for r in by[n].values())]
+    return [(n, by[n]) for n in names if n in by and any(proven(r) for r in by[n].values()) == proven_by_some]
 
 
 def render(res, study):
-    rows = open_rows(res)
+    rows = rows_by(res, False)
     lns, root = study["lns"]["rows"], study["root"]["rows"]
     out = [BEGIN, ""]
     # --- Where each open row's gap sits.
@@ -213,7 +204,7 @@ def render(res, study):
     ]
     # --- Proven rows of that size: does the search cost their proofs?
     done = []
-    for name, recs in proven_rows(res):
+    for name, recs in rows_by(res, True):
         h = recs[COLUMN]
         if name in lns and proven(h):
             done.append((name, h, lns[name]))

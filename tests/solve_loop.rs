@@ -547,17 +547,20 @@ fn interrupted_city_keeps_finished_regions() {
 /// is on for `strong` models from `pipeline::strategy::LNS_FROM_NONZEROS` nonzeros.
 #[test]
 fn lns_improves_the_start_before_the_milp() {
-    let out = tempfile::tempdir().unwrap();
-    let run = netspec()
-        .args(["solve", "models/fig2c.toml", "--solver", "highs", "--formulation", "strong:lns=on"])
-        .args(["--time-limit", "4", "--threads", "1", "--out"])
-        .arg(out.path())
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .unwrap();
-    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
-    let r: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.path().join("result.json")).unwrap()).unwrap();
+    // `netspec solve SPEC` with HiGHS on one thread: its result.json, the run having succeeded.
+    let solved = |spec: &str, formulation: &str, limit: &str| -> serde_json::Value {
+        let out = tempfile::tempdir().unwrap();
+        let run = netspec()
+            .args(["solve", spec, "--solver", "highs", "--formulation", formulation])
+            .args(["--time-limit", limit, "--threads", "1", "--out"])
+            .arg(out.path())
+            .current_dir(env!("CARGO_MANIFEST_DIR"))
+            .output()
+            .unwrap();
+        assert!(run.status.success(), "{spec}: {}", String::from_utf8_lossy(&run.stderr));
+        serde_json::from_str(&std::fs::read_to_string(out.path().join("result.json")).unwrap()).unwrap()
+    };
+    let r = solved("models/fig2c.toml", "strong:lns=on", "4");
     let lns = &r["lns"];
     let (start, best) = (lns["start_objective"].as_f64().unwrap(), lns["objective"].as_f64().unwrap());
     assert_eq!(start, r["start"]["objective"].as_f64().unwrap());
@@ -569,17 +572,7 @@ fn lns_improves_the_start_before_the_milp() {
     // By default only from `LNS_FROM_NONZEROS` (Fig. 2c: 33,957 nonzeros; Fig. 1b's level 4:
     // 63,896), and `lns=off` turns it off there.
     let searched = |spec: &str, formulation: &str| {
-        let out = tempfile::tempdir().unwrap();
-        let run = netspec()
-            .args(["solve", spec, "--solver", "highs", "--formulation", formulation])
-            .args(["--time-limit", "1", "--threads", "1", "--out"])
-            .arg(out.path())
-            .current_dir(env!("CARGO_MANIFEST_DIR"))
-            .output()
-            .unwrap();
-        assert!(run.status.success(), "{spec}: {}", String::from_utf8_lossy(&run.stderr));
-        let r: serde_json::Value =
-            serde_json::from_str(&std::fs::read_to_string(out.path().join("result.json")).unwrap()).unwrap();
+        let r = solved(spec, formulation, "1");
         assert_eq!(r["validity"]["valid"], true, "{spec}");
         r.get("lns").is_some()
     };
