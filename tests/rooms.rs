@@ -549,3 +549,52 @@ templates = [ { name = "b", shape = "L 3x2", max = 2 } ]
     assert!(matches!(r.solve.termination, Termination::Optimal | Termination::Infeasible), "{}", r.solve.status_line());
     assert!(r.network.is_none() || r.validity.valid, "{:?}", r.validity);
 }
+
+/// The tilings' rows of docs/formulation.md §8.11, `roomlen` (`room_length`) and `roomreach_f…`
+/// (`room_reach`): on a game level and a floor plan the strong recipe's root LP rises above its
+/// value without them, and both prove the same optimum with a valid design; the other recipes
+/// do not write them.
+#[test]
+fn room_rows_lift_the_relaxation_and_keep_the_optimum() {
+    use netspec::formulations::{build_with, Formulation, Recipe};
+    use netspec::spec::{switch, RecipeName};
+    let highs = SolverKind::Highs.instance().unwrap();
+    let one_thread = SolveOptions { threads: Some(1), ..SolveOptions::default() };
+    let lp = |f: &Formulation| {
+        netspec::solvers::lazy::lp_bound(highs.as_ref(), &f.model, None, &one_thread).unwrap().plain.unwrap()
+    };
+    for (mode, dead_ends) in [("mode = \"game\"\nlevel = \"branching\"", "allow"), ("mode = \"floorplan\"", "forbid")] {
+        let p = problem(&format!(
+            "name = \"length\"\nboundary = \"wall\"\nformulation = \"strong\"\n[mesh]\ngrid = {{ width = 6, height = 6 }}\n[sinks]\nvertices = [3]\n[features]\ndead_ends = \"{dead_ends}\"\n[rooms]\n{mode}\ntemplates = [{{ name = \"room\", shape = \"rect 2x2\" }}, {{ name = \"hall\", shape = \"rect 3x2\" }}]\n"
+        ));
+        let with = pipeline::build(&p);
+        let without = build_with(&p, &with.recipe.with(&switch::ROOM_LENGTH, false).with(&switch::ROOM_REACH, false));
+        let rows = |f: &Formulation| {
+            let named = |prefix: &str| f.model.rows().filter(|r| r.name.starts_with(prefix)).count();
+            (named("roomlen"), named("roomreach_f"))
+        };
+        // One length row; on the floor plan a reach row per face (36).
+        let reach = if mode.contains("floorplan") { 36 } else { 0 };
+        assert_eq!((rows(&with), rows(&without)), ((1, reach), (0, 0)), "{mode}");
+        for name in [RecipeName::Paper, RecipeName::Tight] {
+            assert_eq!(rows(&build_with(&p, &Recipe::named(name))), (0, 0), "{mode}: {name}");
+        }
+        let (b_with, b_without) = (lp(&with), lp(&without));
+        assert!(b_with > 1.1 * b_without, "{mode}: LP bound with {b_with}, without {b_without}");
+        let mut optima = Vec::new();
+        for f in [&with, &without] {
+            let r = pipeline::solve_built(
+                &p,
+                f,
+                SolverKind::Highs,
+                &SolveOptions { time_limit: Some(60.0), ..Default::default() },
+            )
+            .unwrap();
+            assert_eq!(r.solve.termination, Termination::Optimal, "{mode}: {}", f.recipe.label);
+            assert!(r.validity.valid, "{mode}: {:?}", r.validity.design_violations);
+            optima.push(r.solve.objective.unwrap());
+        }
+        assert!(objectives_agree(optima[0], optima[1], 1e-6), "{mode}: {optima:?}");
+        assert!(b_with <= optima[0] + 1e-6, "{mode}: bound {b_with} above the optimum {}", optima[0]);
+    }
+}

@@ -179,6 +179,18 @@ pub mod switch {
         about: "on a problem with four symmetries or more, connectivity from the distance flow alone (no cutsets)",
         on_in: &[RecipeName::Strong],
     };
+    /// On tilings, one row: the network is at least as long as the chosen rooms' rows need.
+    pub const ROOM_LENGTH: Switch = Switch {
+        key: "room_length",
+        about: "on tilings, one row: the network is at least as long as the chosen rooms' own rows need together",
+        on_in: &[RecipeName::Strong],
+    };
+    /// On floor plans, a row per face: a corridor near it, whichever room covers it.
+    pub const ROOM_REACH: Switch = Switch {
+        key: "room_reach",
+        about: "on floor plans, a row per face: whichever room covers it, a corridor runs along that room's boundary near the face",
+        on_in: &[RecipeName::Strong],
+    };
 }
 
 /// Every recipe switch, in the order labels list them.
@@ -188,6 +200,8 @@ pub const SWITCHES: &[&Switch] = &[
     &switch::OUT_ARCS,
     &switch::DIRECTED_CUTSETS,
     &switch::SYMMETRIC_FLOW,
+    &switch::ROOM_LENGTH,
+    &switch::ROOM_REACH,
 ];
 
 /// The keys of `[solver]` that set the solve strategy (they change no row of the model).

@@ -8,7 +8,7 @@ use crate::formulations::family::{Ctx, Family};
 use crate::mesh::{EdgeId, VertexId};
 use crate::milp::VarId;
 use crate::rules::placements::{Placement, PlacementReport};
-use crate::spec::{Allow, CoverageForm, LevelType, Problem, RoomMode, Rooms as RoomsSpec};
+use crate::spec::{switch, Allow, CoverageForm, LevelType, Problem, RoomMode, Rooms as RoomsSpec};
 
 /// Whether a traversed block has at least two active inner edges in every valid design: dead-ends
 /// are forbidden, every inner edge has an end off the block's boundary (true of rectangles at
@@ -74,6 +74,8 @@ impl Family for Rooms {
         let report = c.placements.expect("the entry checked");
         let mut vars = Vec::with_capacity(report.placements.len());
         let mut covering: Vec<Vec<VarId>> = vec![Vec::new(); mesh.num_faces()];
+        // The per-room rows summed over the chosen rooms (`room_length`, §8.11).
+        let mut length = Expr::new();
         for (k, pl) in report.placements.iter().enumerate() {
             let r = c.em.model.add_binary(format!("R_t{}_{k}", pl.template), 0.0);
             vars.push(r);
@@ -100,6 +102,7 @@ impl Family for Rooms {
                         ex.add_value(c.edge_value(*e), -1.0);
                     }
                     c.em.le(format!("room18_{k}"), &ex, 0.0);
+                    length.add(r, -1.0);
                 }
                 RoomMode::Game => {
                     // (19) R − Σ_inner E_i ≤ 0: a block is traversed; strengthened to 2R where
@@ -111,6 +114,7 @@ impl Family for Rooms {
                         ex.add_value(c.edge_value(*e), -1.0);
                     }
                     c.em.le(format!("room19_{k}"), &ex, 0.0);
+                    length.add(r, -need);
                     // (20) |bnd|·R − Σ_bnd (1 − E_j) ≤ 0: nothing runs along a block's boundary.
                     let n = pl.boundary_edges.len() as f64;
                     let mut ex = Expr::new();
@@ -121,6 +125,12 @@ impl Family for Rooms {
                     c.em.le(format!("room20_{k}"), &ex, 0.0);
                 }
             }
+        }
+        if c.recipe.on(&switch::ROOM_LENGTH) {
+            room_length(c, rooms.mode, length);
+        }
+        if c.recipe.on(&switch::ROOM_REACH) && rooms.mode == RoomMode::Floorplan {
+            room_reach(c, report);
         }
         // (16) exact cover of every non-obstacle face.
         for f in mesh.faces() {
@@ -174,6 +184,68 @@ impl Family for Rooms {
 
     fn decode(&self, _p: &Problem, x: &[f64], net: &mut Network) {
         net.rooms = self.vars.iter().enumerate().filter(|(_, v)| x[v.index()] > 0.5).map(|(k, _)| k).collect();
+    }
+}
+
+/// The rooms' rows summed over the chosen rooms, one row for the whole tiling (`roomlen`; the
+/// `room_length` switch, docs/formulation.md §8.11): `Σ_e m_e·E_e ≥ Σ_R need(R)·R`, where `row` comes in holding
+/// `−Σ_R need(R)·R`.
+///
+/// - Game levels: chosen blocks share no inner edge (an inner edge has a block's faces on both
+///   sides, and the blocks are face-disjoint), so the active edges number at least the chosen
+///   blocks' (19) right-hand sides: `m_e = 1`.
+/// - Floor plans: an active edge is a boundary edge of at most as many chosen rooms as it has
+///   non-obstacle faces, so `m_e` is that count (1 or 2) and each chosen room needs one (18).
+///
+/// Each placement's own row is met by the edges any overlapping placement uses too; this one is
+/// not: a relaxation that spreads the tiling over many overlapping placements needs as many
+/// edges as a whole tiling of the fewest rooms.
+fn room_length(c: &mut Ctx, mode: RoomMode, mut row: Expr) {
+    let p = c.p;
+    let mesh = &p.mesh;
+    for e in mesh.edges() {
+        let m = match mode {
+            RoomMode::Game => 1.0,
+            RoomMode::Floorplan => {
+                mesh.edge_faces(e).iter().flatten().filter(|f| !p.is_obstacle_face[f.index()]).count() as f64
+            }
+        };
+        if m > 0.0 {
+            row.add_value(c.edge_value(e), m);
+        }
+    }
+    c.em.ge("roomlen".to_string(), &row, 0.0);
+}
+
+/// On floor plans, every face's room, whichever it is, touches a corridor near the face
+/// (`roomreach_f…`; the `room_reach` switch, docs/formulation.md §8.11): `Σ_{e∈N(f)} E_e ≥ 1`,
+/// where `N(f)` is the union of the boundary edges of the placements covering `f`. The chosen
+/// room covering `f` is one of them, and (18) needs one of its boundary edges. (Game levels have
+/// the same row with inner edges; it left the root LP of the Table 1 levels where `roomlen` puts
+/// it, and is not written.)
+fn room_reach(c: &mut Ctx, report: &PlacementReport) {
+    let p = c.p;
+    let mut near: Vec<Vec<EdgeId>> = vec![Vec::new(); p.mesh.num_faces()];
+    for pl in &report.placements {
+        for f in &pl.faces {
+            near[f.index()].extend_from_slice(&pl.boundary_edges);
+        }
+    }
+    for f in p.mesh.faces() {
+        let edges = &mut near[f.index()];
+        if p.is_obstacle_face[f.index()] || edges.is_empty() {
+            continue;
+        }
+        edges.sort_unstable();
+        edges.dedup();
+        let mut ex = Expr::new();
+        for &e in edges.iter() {
+            ex.add_value(c.edge_value(e), 1.0);
+        }
+        // Every edge fixed: the rooms' own rows decide.
+        if !ex.is_constant() {
+            c.em.ge(format!("roomreach_f{}", f.0), &ex, 1.0);
+        }
     }
 }
 
