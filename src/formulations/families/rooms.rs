@@ -188,8 +188,8 @@ impl Family for Rooms {
 }
 
 /// The rooms' rows summed over the chosen rooms, one row for the whole tiling (`roomlen`; the
-/// `room_length` switch, docs/formulation.md §8.11): `Σ_e m_e·E_e ≥ Σ_R need(R)·R`, where `row` comes in holding
-/// `−Σ_R need(R)·R`.
+/// `room_length` switch, docs/formulation.md §8.11): `Σ_e m_e·E_e ≥ Σ_R need(R)·R`, where
+/// `row` comes in holding `−Σ_R need(R)·R`.
 ///
 /// - Game levels: chosen blocks share no inner edge (an inner edge has a block's faces on both
 ///   sides, and the blocks are face-disjoint), so the active edges number at least the chosen
