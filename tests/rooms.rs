@@ -550,10 +550,10 @@ templates = [ { name = "b", shape = "L 3x2", max = 2 } ]
     assert!(r.network.is_none() || r.validity.valid, "{:?}", r.validity);
 }
 
-/// The tilings' rows of docs/formulation.md §8.11, `roomlen` (`room_length`) and `roomreach_f…`
-/// (`room_reach`): on a game level and a floor plan the strong recipe's root LP rises above its
-/// value without them, and both prove the same optimum with a valid design; the other recipes
-/// do not write them.
+/// The tilings' rows of docs/formulation.md §8.11, `roomlen` (`room_length`, on in `strong`) and
+/// `roomreach_f…` (`room_reach`, on in no recipe): on a game level and a floor plan the strong
+/// recipe's root LP with both rises above its value with neither, and both prove the same
+/// optimum with a valid design; `paper` and `tight` write neither.
 #[test]
 fn room_rows_lift_the_relaxation_and_keep_the_optimum() {
     use netspec::formulations::{build_with, Formulation, Recipe};
@@ -567,8 +567,10 @@ fn room_rows_lift_the_relaxation_and_keep_the_optimum() {
         let p = problem(&format!(
             "name = \"length\"\nboundary = \"wall\"\nformulation = \"strong\"\n[mesh]\ngrid = {{ width = 6, height = 6 }}\n[sinks]\nvertices = [3]\n[features]\ndead_ends = \"{dead_ends}\"\n[rooms]\n{mode}\ntemplates = [{{ name = \"room\", shape = \"rect 2x2\" }}, {{ name = \"hall\", shape = \"rect 3x2\" }}]\n"
         ));
-        let with = pipeline::build(&p);
-        let without = build_with(&p, &with.recipe.with(&switch::ROOM_LENGTH, false).with(&switch::ROOM_REACH, false));
+        let strong = pipeline::build(&p);
+        assert!(strong.recipe.on(&switch::ROOM_LENGTH) && !strong.recipe.on(&switch::ROOM_REACH));
+        let with = build_with(&p, &strong.recipe.with(&switch::ROOM_REACH, true));
+        let without = build_with(&p, &strong.recipe.with(&switch::ROOM_LENGTH, false));
         let rows = |f: &Formulation| {
             let named = |prefix: &str| f.model.rows().filter(|r| r.name.starts_with(prefix)).count();
             (named("roomlen"), named("roomreach_f"))

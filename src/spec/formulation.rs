@@ -185,11 +185,13 @@ pub mod switch {
         about: "on tilings, one row: the network is at least as long as the chosen rooms' own rows need together",
         on_in: &[RecipeName::Strong],
     };
-    /// On floor plans, a row per face: a corridor near it, whichever room covers it.
+    /// On floor plans, a row per face: a corridor near it, whichever room covers it. On in no
+    /// recipe: it lifts the root LP of the Table 1 floor plans, and the MILP at their time
+    /// limits ends worse with it (docs/benchmarks.md).
     pub const ROOM_REACH: Switch = Switch {
         key: "room_reach",
         about: "on floor plans, a row per face: whichever room covers it, a corridor runs along that room's boundary near the face",
-        on_in: &[RecipeName::Strong],
+        on_in: &[],
     };
 }
 
