@@ -14,9 +14,10 @@ Usage (from anywhere; paths are the repository's):
       digest no longer matches its spec file: that row's results are for an older spec.
   scripts/table1-report.py --import DIR[,DIR...] [--shared-machine]
       Put the runs of `netspec compare --out DIR` outputs (DIR/runs/*/run.json and each run's
-      result.json) into docs/table1/results.json: a record with the same row and column
-      replaces the old one, a new column is added after the others (its command taken from
-      DIR/results.json). --shared-machine marks the imported runs as having shared the
+      result.json) into docs/table1/results.json: a run goes to the column of its backend and
+      formulation (a column's `solver` and `formulation`), a record with the same row and
+      column replaces the old one, a new column is added after the others (its command taken
+      from DIR/results.json). --shared-machine marks the imported runs as having shared the
       machine with another run. Then rerun this script to write the page and the charts.
 
 docs/table1/results.json is what `netspec compare --merge` reads (`settings` with `manifest`
@@ -171,6 +172,9 @@ def import_runs(dirs, shared):
     s["manifest"]["row"] = load_manifest()
     names = [r["name"] for r in s["manifest"]["row"]]
     by = {(r["instance"], r["solver"]): r for r in res["records"]}
+    # A run belongs to the column of the backend and formulation it ran: the strong columns run
+    # `strong:lns=off`, which compare labels `…/strong:lns=off`.
+    column_of = {f'{c["solver"]}/{c["formulation"]}': c["label"] for c in s["columns"]}
     for d in dirs:
         runs = sorted(glob.glob(os.path.join(d, "runs", "*", "run.json")))
         if not runs:
@@ -185,9 +189,7 @@ def import_runs(dirs, shared):
                 sys.exit(f"{p}: row {rec['instance']!r} is not in {MANIFEST}")
             if rec["status"] == "interrupted":
                 sys.exit(f"{p}: an interrupted run (resume the comparison first)")
-            # The strong columns measure the MILP alone: their runs are `strong:lns=off`, which
-            # compare labels `…/strong:lns=off`.
-            label = rec["solver"] = rec["solver"].removesuffix(":lns=off")
+            label = rec["solver"] = column_of.get(rec["solver"], rec["solver"])
             if label not in [c["label"] for c in s["columns"]]:
                 st = rec["settings"] or {}
                 s["columns"].append({"label": label, "solver": label.split("/")[0],
