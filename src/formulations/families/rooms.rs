@@ -233,16 +233,14 @@ fn room_reach(c: &mut Ctx, report: &PlacementReport) {
     }
     for f in p.mesh.faces() {
         let edges = &mut near[f.index()];
-        if p.is_obstacle_face[f.index()] || edges.is_empty() {
-            continue;
-        }
         edges.sort_unstable();
         edges.dedup();
         let mut ex = Expr::new();
         for &e in edges.iter() {
             ex.add_value(c.edge_value(e), 1.0);
         }
-        // Every edge fixed: the rooms' own rows decide.
+        // No placement covers `f` (an obstacle face), or every edge near it is fixed: the
+        // rooms' own rows decide.
         if !ex.is_constant() {
             c.em.ge(format!("roomreach_f{}", f.0), &ex, 1.0);
         }
