@@ -15,11 +15,19 @@ Usage (from anywhere; paths are the repository's):
   scripts/open-rows.py --import-root FILE [FILE ...]
       Record `netspec solve SPEC --solver highs --threads 2 --relax > FILE` runs: FILE's name
       without its extension is the row, its `LP bound` line the root LP.
+  scripts/open-rows.py --import-long DIR [DIR ...]
+      Record `netspec solve SPEC --solver highs --threads 2 --time-limit 1200 --formulation
+      strong --out DIR` runs (the longer run: the default recipe, its search included): DIR's
+      name is the row.
+  scripts/open-rows.py --run-long --netspec BIN [--rows A,B,...] [--out DIR]
+      Run the longer run on every open row (or the named ones) that has none recorded yet, one
+      at a time, into DIR/ROW (default out/open-rows-long), recording each and rewriting the
+      section as it ends: an interrupted sequence resumes where it stopped.
 
 A row is open when no column of docs/table1/results.json proves it (optimal, or a gap of at
 most 1e-4). Standard library only.
 """
-import difflib, importlib.util, json, os, re, sys
+import difflib, importlib.util, json, os, re, subprocess, sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 # Table 1's report script: what counts as proven is its (src/compare.rs solved()).
@@ -35,6 +43,10 @@ COLUMN = "highs/strong"  # the column the study is about
 LNS_COMMAND = ("netspec solve SPEC --solver highs --threads 2 --time-limit LIMIT "
                "--formulation strong:lns=on")
 ROOT_COMMAND = "netspec solve SPEC --solver highs --threads 2 --relax --time-limit 60"
+LONG_LIMIT = 1200
+LONG_LABEL = f"{LONG_LIMIT // 60} min"
+LONG_COMMAND = f"netspec solve SPEC --solver highs --threads 2 --time-limit {LONG_LIMIT} --formulation strong"
+PARTS = (("lns", LNS_COMMAND), ("root", ROOT_COMMAND), ("long", LONG_COMMAND))
 # Objectives closer than this (relative, at least 1) count as equal.
 TOL = 1e-6
 
@@ -59,46 +71,82 @@ def same(a, b):
 
 
 def load_study():
+    """The study's records, with an empty part for each part not recorded yet."""
     p = path(STUDY)
-    if not os.path.exists(p):
-        return {"lns": {"command": LNS_COMMAND, "rows": {}}, "root": {"command": ROOT_COMMAND, "rows": {}}}
-    return json.load(open(p))
+    study = json.load(open(p)) if os.path.exists(p) else {}
+    for part, command in PARTS:
+        study.setdefault(part, {"command": command, "rows": {}})
+    return study
 
 
 def dump_study(study):
     """Compact: a row per line, rows in name order."""
     j = lambda v: json.dumps(v, ensure_ascii=False, separators=(", ", ": "))
     lines = ["{"]
-    for i, part in enumerate(("lns", "root")):
+    parts = [part for part, _ in PARTS if study[part]["rows"]]
+    for i, part in enumerate(parts):
         s = study[part]
         rows = sorted(s["rows"].items())
         lines.append(f'"{part}": {{"command": {j(s["command"])}, "rows": {{')
         lines += [f"  {j(k)}: {j(v)}" + ("," if n < len(rows) - 1 else "") for n, (k, v) in enumerate(rows)]
-        lines.append("}}" + ("," if i == 0 else ""))
+        lines.append("}}" + ("," if i < len(parts) - 1 else ""))
     lines.append("}")
     open(path(STUDY), "w").write("\n".join(lines) + "\n")
     print(f"wrote {STUDY}")
 
 
-def import_lns(dirs):
+def run_record(d):
+    """The study's record of a `netspec solve … --out DIR` run."""
+    r = json.load(open(os.path.join(d, "result.json")))
+    s, lns = r["solve"], r.get("lns") or {}
+    return {
+        "start": r["start"]["objective"] if r.get("start") else None,
+        "design": r["objective"]["total"] if r.get("design_found") is True else None,
+        "bound": s.get("dual_bound"),
+        "valid": bool((r.get("validity") or {}).get("valid")),
+        "windows": lns.get("windows", 0),
+        "improving": lns.get("improvements", 0),
+        "search_seconds": round(lns.get("seconds", 0.0), 1),
+        "wall_seconds": round(s["wall_time"], 1),
+        "proven": s["termination"]["reason"] == "optimal" or (s.get("gap") is not None and s["gap"] <= table1.PROVEN_GAP),
+        "solver_version": s.get("solver_version"),
+    }
+
+
+def import_runs(part, dirs):
+    """Records each run under `part`, its directory's name the row."""
     study = load_study()
     for d in dirs:
-        r = json.load(open(os.path.join(d, "result.json")))
-        s, lns = r["solve"], r.get("lns") or {}
-        name = os.path.basename(os.path.normpath(d))
-        study["lns"]["rows"][name] = {
-            "start": r["start"]["objective"],
-            "design": r["objective"]["total"] if r.get("design_found") is True else None,
-            "bound": s.get("dual_bound"),
-            "valid": bool((r.get("validity") or {}).get("valid")),
-            "windows": lns.get("windows", 0),
-            "improving": lns.get("improvements", 0),
-            "search_seconds": round(lns.get("seconds", 0.0), 1),
-            "wall_seconds": round(s["wall_time"], 1),
-            "proven": s["termination"]["reason"] == "optimal" or (s.get("gap") is not None and s["gap"] <= table1.PROVEN_GAP),
-            "solver_version": s.get("solver_version"),
-        }
+        study[part]["rows"][os.path.basename(os.path.normpath(d))] = run_record(d)
     dump_study(study)
+
+
+def run_long(args):
+    """Runs the longer run on the open rows that have none (or the named ones), one at a time,
+    recording each as it ends."""
+    opts = dict(zip(args[::2], args[1::2]))
+    if len(args) % 2 or set(opts) - {"--netspec", "--rows", "--out"} or "--netspec" not in opts:
+        sys.exit(f"--run-long needs --netspec BIN, and takes --rows A,B,... and --out DIR\n\n{__doc__}")
+    res = json.load(open(path(RESULTS)))
+    specs = {m["name"]: m["spec"] for m in res["settings"]["manifest"]["row"]}
+    open_rows = [n for n, _ in rows_by(res, False)]
+    wanted = opts["--rows"].split(",") if "--rows" in opts else open_rows
+    unknown = [n for n in wanted if n not in open_rows]
+    if unknown:
+        sys.exit(f"not open rows of {RESULTS}: {', '.join(unknown)} (open: {', '.join(open_rows)})")
+    done = load_study()["long"]["rows"]
+    todo = [n for n in wanted if n not in done]
+    out = opts.get("--out", path("out/open-rows-long"))
+    print(f"{len(todo)} of {len(wanted)} rows to run, {LONG_LIMIT} s each: {', '.join(todo) or 'none'}", flush=True)
+    for k, name in enumerate(todo, 1):
+        d = os.path.join(out, name)
+        cmd = [opts["--netspec"], "solve", path(specs[name]), "--solver", "highs", "--threads", "2",
+               "--time-limit", str(LONG_LIMIT), "--formulation", "strong", "--out", d]
+        print(f"[{k}/{len(todo)}] {name}: {' '.join(cmd)}", flush=True)
+        if subprocess.run(cmd).returncode != 0 or not os.path.exists(os.path.join(d, "result.json")):
+            sys.exit(f"{name}: the run failed; nothing recorded for it")
+        import_runs("long", [d])
+        open(path(PAGE), "w").write(page_with(render(res, load_study())))
 
 
 ROOT_LINE = re.compile(r"LP bound\s+(\S+) as written, (\S+) after (\d+) cut rounds \((\d+) rows\), ([0-9.]+) s")
@@ -128,14 +176,14 @@ def rows_by(res, proven_by_some):
 
 def render(res, study):
     rows = rows_by(res, False)
-    lns, root = study["lns"]["rows"], study["root"]["rows"]
+    lns, root, long = study["lns"]["rows"], study["root"]["rows"], study["long"]["rows"]
     out = [BEGIN, ""]
     # --- Where each open row's gap sits.
     out += [
         f"**Where the gap sits.** The {len(rows)} rows no backend proves at the paper's limits, each with",
         f"its root LP (`{ROOT_COMMAND}`: as written → after the recipe's cut rounds, their",
         f"time), the {COLUMN} run of the records, and the best design and bound any run knows — every",
-        "column of the records and the `lns` solve below. The gap of the highs/strong run,",
+        "column of the records, the `lns` solve and the longer run below. The gap of the highs/strong run,",
         "(design − bound) / design, splits into the part above the best known design and the part",
         "below it:",
         "",
@@ -143,15 +191,20 @@ def render(res, study):
         "|---|---|---|---|---|---|---|---|---|",
     ]
     split = {"design": 0, "bound": 0}
+    best_design = {}
     for name, recs in rows:
         h = recs[COLUMN]
         designs = [(r["design_objective"], c) for c, r in recs.items() if r["valid"] and r.get("design_objective") is not None]
-        l = lns.get(name)
-        if l and l["valid"] and l["design"] is not None:
-            designs.append((l["design"], "lns"))
         bounds = [(r["dual_bound"], c) for c, r in recs.items() if r.get("dual_bound") is not None and not r.get("killed")]
+        for label, runs in (("lns", lns), (LONG_LABEL, long)):
+            l = runs.get(name)
+            if l and l["valid"] and l["design"] is not None:
+                designs.append((l["design"], label))
+            if l and l["bound"] is not None and label == LONG_LABEL:
+                bounds.append((l["bound"], label))
         best_d = min(designs, key=lambda x: x[0]) if designs else None
         best_b = max(bounds, key=lambda x: x[0]) if bounds else None
+        best_design[name] = best_d[0] if best_d else None
         by = lambda best, xs: ", ".join(sorted({c for v, c in xs if same(v, best[0])}))
         rt = root.get(name)
         rcell = f"{fmt(round(rt['as_written'], 2))} → {fmt(round(rt['after_cuts'], 2))} ({rt['seconds']:.1f})" if rt else "—"
@@ -202,6 +255,7 @@ def render(res, study):
         f"{big(count['same'], 60000)} the same, {big(count['worse'], 60000)} worse.",
         "",
     ]
+    out += render_long(rows, long, best_design)
     # --- Proven rows of that size: does the search cost their proofs?
     done = []
     for name, recs in rows_by(res, True):
@@ -225,6 +279,43 @@ def render(res, study):
     return "\n".join(out)
 
 
+def render_long(rows, long, best_design):
+    """The longer run beside the records' highs/strong run: what more time buys, on each side
+    (`best_design`: the best design any run knows, per row)."""
+    ran = [(n, recs[COLUMN], long[n]) for n, recs in rows if n in long]
+    out = [
+        f"**A longer run** (`{LONG_COMMAND}`: the default recipe, which searches from 60,000 nonzeros)",
+        f"beside the highs/strong run of the records at the paper's limit, on {len(ran)} of the {len(rows)} open rows;",
+        "the gap left after it splits as above, against the best design and bound any run knows:",
+        "",
+    ]
+    if not ran:
+        return out + ["(no row run yet)", ""]
+    out += [
+        f"| row | limit (s) | paper's limit: design / bound | {LONG_LABEL}: design / bound | design gained | bound gained | gap left above best design | gap left below it |",
+        "|---|---|---|---|---|---|---|---|",
+    ]
+    moved = {"design": 0, "bound": 0, "proven": 0}
+    for name, h, l in ran:
+        d0, b0 = h.get("design_objective") if h["valid"] else None, h.get("dual_bound")
+        d1, b1 = l["design"] if l["valid"] else None, l["bound"]
+        gain = lambda old, new, sign: "—" if old is None or new is None else pct(sign * (new - old) / max(abs(old), 1e-9))
+        moved["design"] += d0 is not None and d1 is not None and d1 < d0 - TOL * max(1.0, abs(d0))
+        moved["bound"] += b0 is not None and b1 is not None and b1 > b0 + TOL * max(1.0, abs(b0))
+        moved["proven"] += bool(l["proven"])
+        best_d = best_design.get(name)
+        if d1 is not None and b1 is not None and best_d is not None:
+            parts = f"{pct((d1 - best_d) / d1)} | {pct((best_d - b1) / d1)}"
+        else:
+            parts = "— | —"
+        status = ", proven" if l["proven"] else ""
+        out.append(f"| {name} | {fmt(h['time_limit'])} | {fmt(d0)} / {fmt(b0)} | {fmt(d1)} / {fmt(b1)}{status} | "
+                   f"{gain(d0, d1, -1)} | {gain(b0, b1, 1)} | {parts} |")
+    out += ["", f"Of {len(ran)} rows run longer, the design improves on {moved['design']}, the bound on {moved['bound']}; "
+            f"{moved['proven']} proven.", ""]
+    return out
+
+
 def page_with(section):
     text = open(path(PAGE)).read()
     if BEGIN not in text or END not in text:
@@ -240,7 +331,13 @@ def main():
         print(__doc__)
         return 0
     if args[:1] == ["--import-lns"] and len(args) > 1:
-        import_lns(args[1:])
+        import_runs("lns", args[1:])
+        return 0
+    if args[:1] == ["--import-long"] and len(args) > 1:
+        import_runs("long", args[1:])
+        return 0
+    if args[:1] == ["--run-long"]:
+        run_long(args[1:])
         return 0
     if args[:1] == ["--import-root"] and len(args) > 1:
         import_root(args[1:])
