@@ -286,7 +286,8 @@ def render_long(rows, long, best_design):
     out = [
         f"**A longer run** (`{LONG_COMMAND}`: the default recipe, which searches from 60,000 nonzeros)",
         f"beside the highs/strong run of the records at the paper's limit, on {len(ran)} of the {len(rows)} open rows;",
-        "the gap left after it splits as above, against the best design and bound any run knows:",
+        "the gap left after it splits as above, against the best design and bound any run knows",
+        "(`scripts/open-rows.py --run-long --netspec BIN` runs the rows not recorded yet, one at a time):",
         "",
     ]
     if not ran:
