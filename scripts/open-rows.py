@@ -146,7 +146,8 @@ def run_long(args):
         if subprocess.run(cmd).returncode != 0 or not os.path.exists(os.path.join(d, "result.json")):
             sys.exit(f"{name}: the run failed; nothing recorded for it")
         import_runs("long", [d])
-        open(path(PAGE), "w").write(page_with(render(res, load_study())))
+        page = page_with(render(res, load_study()))
+        open(path(PAGE), "w").write(page)
 
 
 ROOT_LINE = re.compile(r"LP bound\s+(\S+) as written, (\S+) after (\d+) cut rounds \((\d+) rows\), ([0-9.]+) s")
@@ -300,7 +301,7 @@ def render_long(rows, long, best_design):
     for name, h, l in ran:
         d0, b0 = h.get("design_objective") if h["valid"] else None, h.get("dual_bound")
         d1, b1 = l["design"] if l["valid"] else None, l["bound"]
-        gain = lambda old, new, sign: "—" if old is None or new is None else pct(sign * (new - old) / max(abs(old), 1e-9))
+        gain = lambda old, new, sign: "—" if old is None or new is None else pct(sign * (new - old) / max(abs(old), 1e-9) + 0.0)
         moved["design"] += d0 is not None and d1 is not None and d1 < d0 - TOL * max(1.0, abs(d0))
         moved["bound"] += b0 is not None and b1 is not None and b1 > b0 + TOL * max(1.0, abs(b0))
         moved["proven"] += bool(l["proven"])
@@ -312,7 +313,7 @@ def render_long(rows, long, best_design):
         status = ", proven" if l["proven"] else ""
         out.append(f"| {name} | {fmt(h['time_limit'])} | {fmt(d0)} / {fmt(b0)} | {fmt(d1)} / {fmt(b1)}{status} | "
                    f"{gain(d0, d1, -1)} | {gain(b0, b1, 1)} | {parts} |")
-    out += ["", f"Of {len(ran)} rows run longer, the design improves on {moved['design']}, the bound on {moved['bound']}; "
+    out += ["", f"Of the {len(ran)} run longer, the design improves on {moved['design']}, the bound on {moved['bound']}; "
             f"{moved['proven']} proven.", ""]
     return out
 
