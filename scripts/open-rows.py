@@ -280,6 +280,11 @@ def render(res, study):
     return "\n".join(out)
 
 
+def gain(old, new, sign):
+    """The relative change from `old` to `new`, as a percentage (`sign` −1: a fall is a gain)."""
+    return "—" if old is None or new is None else pct(sign * (new - old) / max(abs(old), 1e-9) + 0.0)
+
+
 def render_long(rows, long, best_design):
     """The longer run beside the records' highs/strong run: what more time buys, on each side
     (`best_design`: the best design any run knows, per row)."""
@@ -301,9 +306,8 @@ def render_long(rows, long, best_design):
     for name, h, l in ran:
         d0, b0 = h.get("design_objective") if h["valid"] else None, h.get("dual_bound")
         d1, b1 = l["design"] if l["valid"] else None, l["bound"]
-        gain = lambda old, new, sign: "—" if old is None or new is None else pct(sign * (new - old) / max(abs(old), 1e-9) + 0.0)
-        moved["design"] += d0 is not None and d1 is not None and d1 < d0 - TOL * max(1.0, abs(d0))
-        moved["bound"] += b0 is not None and b1 is not None and b1 > b0 + TOL * max(1.0, abs(b0))
+        moved["design"] += d0 is not None and d1 is not None and d1 < d0 and not same(d0, d1)
+        moved["bound"] += b0 is not None and b1 is not None and b1 > b0 and not same(b0, b1)
         moved["proven"] += bool(l["proven"])
         best_d = best_design.get(name)
         if d1 is not None and b1 is not None and best_d is not None:
