@@ -97,7 +97,10 @@ def dump_study(study):
 
 def run_record(d):
     """The study's record of a `netspec solve … --out DIR` run."""
-    r = json.load(open(os.path.join(d, "result.json")))
+    f = os.path.join(d, "result.json")
+    if not os.path.exists(f):
+        sys.exit(f"{f}: no such file (DIR is a `netspec solve --out DIR` directory)")
+    r = json.load(open(f))
     s, lns = r["solve"], r.get("lns") or {}
     return {
         "start": r["start"]["objective"] if r.get("start") else None,
