@@ -412,12 +412,17 @@ pub fn solve_loaded(
     options.interrupt = req.interrupt.clone();
     options.progress = req.progress.clone();
     options.incumbents = req.incumbents.clone().map(|sink| point_sink(problem, &f, sink));
-    if let Some(limit) = options.finite_time_limit() {
-        options.time_limit = Some((limit - output_reserve(limit) - t0.elapsed().as_secs_f64()).max(0.0));
+    // The searches (`--solver heuristic` or `anneal`, and the heuristic's MIP start) budget work,
+    // not time (module `heuristics::budget`): their budgets come from the limit asked for, not
+    // from what the model's build left of it, so that a seed gives the same design every run.
+    let asked = options.finite_time_limit().map(|limit| limit - output_reserve(limit));
+    if let Some(limit) = asked {
+        let built = if method.milp().is_some() { t0.elapsed().as_secs_f64() } else { 0.0 };
+        options.time_limit = Some((limit - built).max(0.0));
     }
     let start = match &req.start {
         StartChoice::Nothing => StartFrom::Nothing,
-        StartChoice::Heuristic => pipeline::default_start(options.finite_time_limit()),
+        StartChoice::Heuristic => pipeline::default_start(asked),
         StartChoice::File(file) => {
             StartFrom::Design { network: start_design(file, problem, &f)?, source: file.display().to_string() }
         }

@@ -436,6 +436,29 @@ fn solve_and_compare_take_the_searches_as_solvers() {
     assert_eq!(v["solve"]["solver"], "heuristic");
     assert_eq!(v["validity"]["valid"], true);
     assert!(dir.path().join("h/network.png").exists());
+    // The budget is work, not the clock (nor what the model's build left of it): the same seed
+    // gives the same design, one search or two side by side.
+    for threads in ["1", "2"] {
+        let designs: Vec<serde_json::Value> = ["a", "b"]
+            .iter()
+            .map(|run| {
+                let to = dir.path().join(format!("seed-{threads}-{run}"));
+                let out = Command::new(env!("CARGO_BIN_EXE_netspec"))
+                    .arg("solve")
+                    .arg(&spec)
+                    .args(["--solver", "heuristic", "--time-limit", "0.3", "--seed", "11", "--threads", threads])
+                    .arg("--out")
+                    .arg(&to)
+                    .output()
+                    .unwrap();
+                assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+                let v: serde_json::Value =
+                    serde_json::from_str(&std::fs::read_to_string(to.join("result.json")).unwrap()).unwrap();
+                v["network"].clone()
+            })
+            .collect();
+        assert_eq!(designs[0], designs[1], "--threads {threads}: the same seed gave two designs");
+    }
     // An option a search cannot honour is refused.
     let out = Command::new(env!("CARGO_BIN_EXE_netspec"))
         .arg("solve")
@@ -515,6 +538,80 @@ proptest! {
         let net = Network { active, directions: Vec::new(), labels: Vec::new(), rooms: Vec::new() };
         if let Some(fixed) = heuristics::repair(&p, &Inputs::default(), &net) {
             prop_assert!(design::validate(&p, &fixed, None).is_empty());
+        }
+    }
+}
+
+/// Burns one core until `stop` is set: a machine busy with something else.
+fn busy(stop: &std::sync::atomic::AtomicBool) {
+    let mut x = 0u64;
+    while !stop.load(std::sync::atomic::Ordering::Relaxed) {
+        x = std::hint::black_box(x.wrapping_mul(6364136223846793005).wrapping_add(1));
+    }
+}
+
+#[test]
+fn the_budget_is_work_so_a_seed_gives_the_same_design_on_an_idle_or_a_busy_machine() {
+    // A street level and a game level (rooms: tiling, traversal); a budget a search spends
+    // many times over (restarts, local search), far below the wall-clock net.
+    for (path, limit) in [("models/fig2d.toml", 0.1), ("models/fig11a.toml", 0.1)] {
+        let p = load(path);
+        let owned = OwnedInputs::enumerate(&p);
+        let inputs = owned.inputs();
+        let opts = Options { time_limit: limit, seed: 7, ..Options::default() };
+        let idle = heuristics::heuristic(&p, &inputs, &opts);
+        let stop = std::sync::atomic::AtomicBool::new(false);
+        let loaded = std::thread::scope(|scope| {
+            scope.spawn(|| busy(&stop));
+            let out = heuristics::heuristic(&p, &inputs, &opts);
+            stop.store(true, std::sync::atomic::Ordering::Relaxed);
+            out
+        });
+        // Both stopped by work, not by the clock's net.
+        for out in [&idle, &loaded] {
+            assert!(
+                out.stats.work >= heuristics::budget::units(limit),
+                "{path}: stopped by the clock: {:?}",
+                out.stats
+            );
+        }
+        assert!(idle.stats.constructions > 1, "{path}: one construction only: {:?}", idle.stats);
+        assert_eq!(idle.network, loaded.network, "{path}: the same seed gave two designs");
+        assert_eq!(idle.objective, loaded.objective, "{path}");
+        assert_eq!(idle.stats, loaded.stats, "{path}: the same search did different work");
+        assert_valid(&p, &inputs, idle.network.as_ref().expect("a design"));
+    }
+}
+
+#[test]
+fn side_by_side_searches_give_the_same_design_whatever_their_scheduling() {
+    let p = load("models/fig11a.toml");
+    let owned = OwnedInputs::enumerate(&p);
+    let inputs = owned.inputs();
+    // With a budget, and without one but a first-design allowance (the least work's design).
+    for opts in [
+        Options { time_limit: 0.1, seed: 3, threads: 2, ..Options::default() },
+        Options { time_limit: 0.0, first_design_limit: Some(60.0), seed: 3, threads: 3, ..Options::default() },
+    ] {
+        let runs: Vec<_> = (0..3)
+            .map(|k| {
+                let stop = std::sync::atomic::AtomicBool::new(false);
+                std::thread::scope(|scope| {
+                    // Every other run shares the machine with a busy thread.
+                    if k % 2 == 1 {
+                        scope.spawn(|| busy(&stop));
+                    }
+                    let out = heuristics::heuristic(&p, &inputs, &opts);
+                    stop.store(true, std::sync::atomic::Ordering::Relaxed);
+                    out
+                })
+            })
+            .collect();
+        let net = runs[0].network.as_ref().expect("a design");
+        assert_valid(&p, &inputs, net);
+        for r in &runs[1..] {
+            assert_eq!(r.network.as_ref(), Some(net), "{opts:?}: the same seed gave two designs");
+            assert_eq!(r.objective, runs[0].objective);
         }
     }
 }

@@ -31,6 +31,7 @@
 //! - **Passes.** The time limit is split evenly over the passes (default 4); each pass has its
 //!   own seed. A pass ends when no operation is feasible or its time is up.
 
+use super::budget::Deadline;
 use super::rng::Rng;
 use super::state::{Counts, Rules, State};
 use super::TracePoint;
@@ -227,7 +228,7 @@ pub(crate) fn pass(
     r: &Rules,
     opts: &AnnealOptions,
     seed: u64,
-    deadline: Instant,
+    deadline: Deadline,
     t_start: Instant,
     trace: &mut Vec<TracePoint>,
     global_best: &mut f64,
@@ -256,11 +257,11 @@ pub(crate) fn pass(
         };
     record(&s, soft, &mut best, trace, global_best);
     let mut exhausted = false;
-    while Instant::now() < deadline {
+    while !deadline.passed() {
         let ops = operations(r, &s.active);
         let mut ranked: Vec<(i64, f64, usize)> = Vec::new();
         for (i, op) in ops.iter().enumerate() {
-            if i % 256 == 0 && Instant::now() >= deadline {
+            if i % 256 == 0 && deadline.passed() {
                 break;
             }
             set(r, &mut s, op);
@@ -269,7 +270,7 @@ pub(crate) fn pass(
             }
             set(r, &mut s, op);
         }
-        if Instant::now() >= deadline {
+        if deadline.passed() {
             break;
         }
         if ranked.is_empty() {

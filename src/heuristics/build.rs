@@ -15,12 +15,12 @@
 //!
 //! Every path is rule-aware ([`super::paths`]): it never completes a forbidden configuration.
 
+use super::budget::Deadline;
 use super::paths::{apply, PathSearch, Query, Target};
 use super::rng::Rng;
 use super::state::{Rules, State};
 use crate::mesh::{EdgeId, HalfEdgeId, VertexId};
 use std::collections::VecDeque;
-use std::time::Instant;
 
 /// How many rounds of the rule steps before giving up.
 const MAX_ROUNDS: usize = 40;
@@ -33,7 +33,7 @@ pub(crate) struct Builder<'r, 'a> {
     pub rng: Rng,
     /// Relative noise on path costs (varies the design between restarts).
     pub noise: f64,
-    pub deadline: Option<Instant>,
+    pub deadline: Option<Deadline>,
     /// Coverage joins the ball vertex nearest the network (the shortest arm) first, instead of
     /// the one nearest the uncovered vertex: spurs from the sinks rather than streets through
     /// the uncovered area (what a distance objective with dead-ends allowed rewards).
@@ -42,12 +42,12 @@ pub(crate) struct Builder<'r, 'a> {
 
 impl<'r, 'a> Builder<'r, 'a> {
     /// A builder starting from `s`.
-    pub fn new(r: &'r Rules<'a>, s: State, rng: Rng, noise: f64, deadline: Option<Instant>) -> Self {
+    pub fn new(r: &'r Rules<'a>, s: State, rng: Rng, noise: f64, deadline: Option<Deadline>) -> Self {
         Builder { r, s, ps: PathSearch::new(r.mesh.num_vertices()), rng, noise, deadline, short_arms: false }
     }
 
     fn out_of_time(&self) -> bool {
-        self.deadline.is_some_and(|d| Instant::now() >= d)
+        self.deadline.is_some_and(|d| d.passed())
     }
 
     /// Runs the rule steps until every rule holds; `false` when it cannot get there.

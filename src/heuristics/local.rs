@@ -11,11 +11,11 @@
 //! with the construction's rule steps, and descend again (iterated local search), until the
 //! deadline. Connectivity after a removal is checked from the removed edges' ends only.
 
+use super::budget::{self, Deadline};
 use super::build::Builder;
 use super::paths::{apply, Query, Target};
 use super::state::{Rules, State};
 use crate::mesh::{EdgeId, VertexId};
-use std::time::Instant;
 
 /// A maximal run of free active edges through degree-2 vertices.
 #[derive(Clone, Debug, PartialEq)]
@@ -36,6 +36,7 @@ fn stop(r: &Rules, s: &State, v: VertexId) -> bool {
 /// The chains of a state, in a deterministic order.
 pub(crate) fn chains(r: &Rules, s: &State) -> Vec<Chain> {
     let mesh = r.mesh;
+    budget::charge_tight((mesh.num_vertices() + mesh.num_edges()) as u64);
     let mut seen = vec![false; mesh.num_edges()];
     let mut out = Vec::new();
     let walk = |start: VertexId, first: crate::mesh::HalfEdgeId, seen: &mut Vec<bool>| -> Chain {
@@ -203,13 +204,13 @@ impl<'r, 'a> LocalSearch<'r, 'a> {
 
     /// Descends with drops, reroutes and (for distance objectives) additions until no move
     /// improves or the deadline passes.
-    pub fn descend(&mut self, deadline: Instant) {
+    pub fn descend(&mut self, deadline: Deadline) {
         loop {
             let mut improved = false;
             let mut cs = chains(self.b.r, &self.b.s);
             self.b.rng.shuffle(&mut cs);
             for c in &cs {
-                if Instant::now() >= deadline {
+                if deadline.passed() {
                     return;
                 }
                 if c.edges.iter().any(|e| !self.b.s.active[e.index()]) {
@@ -224,7 +225,7 @@ impl<'r, 'a> LocalSearch<'r, 'a> {
                     self.b.r.mesh.edges().filter(|&e| self.b.r.free(e) && !self.b.s.active[e.index()]).collect();
                 self.b.rng.shuffle(&mut free);
                 for e in free {
-                    if Instant::now() >= deadline {
+                    if deadline.passed() {
                         return;
                     }
                     improved |= self.try_add(e);
@@ -238,11 +239,11 @@ impl<'r, 'a> LocalSearch<'r, 'a> {
 
     /// Iterated local search until the deadline: descend, then kick the best design found and
     /// descend again. Returns the best valid state and its objective.
-    pub fn run(mut self, deadline: Instant, mut on_best: impl FnMut(f64)) -> (State, f64, LocalStats) {
+    pub fn run(mut self, deadline: Deadline, mut on_best: impl FnMut(f64)) -> (State, f64, LocalStats) {
         self.descend(deadline);
         let mut best = (self.b.s.clone(), self.objective);
         on_best(best.1);
-        while Instant::now() < deadline {
+        while !deadline.passed() {
             self.stats.kicks += 1;
             self.b.s = best.0.clone();
             let mut cs = chains(self.b.r, &self.b.s);

@@ -22,6 +22,7 @@
 //! checks their designs like a MILP solve's.
 
 mod anneal;
+pub mod budget;
 mod build;
 mod local;
 mod paths;
@@ -36,13 +37,14 @@ use crate::design::{self, Network};
 use crate::rules::paths::{enumerate_path_sets, PathSets};
 use crate::rules::placements::{enumerate_for, Placement, PlacementReport};
 use crate::spec::Problem;
+use budget::Deadline;
 use build::Builder;
 use local::LocalSearch;
 use rng::Rng;
 use serde::{Deserialize, Serialize};
 use state::{Rules, State, Tiling};
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::time::{Duration, Instant};
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::time::Instant;
 
 /// What a search needs besides the problem: the point-to-point path sets and the room
 /// placements *the formulation uses* (a design's room indices point into that list, and the
@@ -84,7 +86,9 @@ impl OwnedInputs {
 /// Settings of [`heuristic`].
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Options {
-    /// Time limit, seconds.
+    /// Budget, in seconds of work ([`budget`]: counted steps at a fixed rate, so the search and
+    /// its design do not depend on the machine's speed or load; the wall clock stops it only at
+    /// [`budget::WALL_FACTOR`] times this).
     pub time_limit: f64,
     /// Seed (the first construction is noise-free; restarts draw from the seed).
     pub seed: u64,
@@ -99,9 +103,11 @@ pub struct Options {
     /// extended; improving it stays within `time_limit`.
     pub first_design_limit: Option<f64>,
     /// Independent searches run side by side, one per thread (default 1); the best design of
-    /// all is kept. The first runs exactly as a single search with `seed` would (timing
-    /// aside); the others draw from seeds derived from it. A search stops waiting for a first
-    /// design (`first_design_limit`) as soon as any of them has one.
+    /// all is kept. The first runs exactly as a single search with `seed` would; the others
+    /// draw from seeds derived from it. A search stops waiting for a first design
+    /// (`first_design_limit`) once another has found one with less work, and only the designs
+    /// found with the least work count (see [`heuristic`]), so the result does not depend on
+    /// how the threads were scheduled.
     pub threads: usize,
 }
 
@@ -159,6 +165,9 @@ pub struct SearchStats {
     pub passes: u64,
     /// Stochastic search: operations performed, over all passes.
     pub steps: u64,
+    /// Work units spent ([`budget`]).
+    #[serde(default)]
+    pub work: u64,
     /// Designs the final validation rejected (a bug if ever non-zero; they are dropped).
     pub rejected: u64,
 }
@@ -173,6 +182,7 @@ impl std::ops::AddAssign<&SearchStats> for SearchStats {
         self.kicks += other.kicks;
         self.passes += other.passes;
         self.steps += other.steps;
+        self.work += other.work;
         self.rejected += other.rejected;
     }
 }
@@ -263,9 +273,32 @@ struct Best<'i, 'p> {
     objective: f64,
     trace: Vec<TracePoint>,
     rejected: u64,
+    /// This thread's work count when the search began.
+    work0: u64,
+    /// The work (since `work0`) at which the first valid design was offered.
+    first_at: Option<u64>,
 }
 
-impl Best<'_, '_> {
+impl<'i, 'p> Best<'i, 'p> {
+    fn new(p: &'p Problem, inputs: &'i Inputs<'i>, t0: Instant) -> Self {
+        Best {
+            p,
+            inputs,
+            t0,
+            network: None,
+            objective: f64::INFINITY,
+            trace: Vec::new(),
+            rejected: 0,
+            work0: budget::spent(),
+            first_at: None,
+        }
+    }
+
+    /// Work since the search began.
+    fn work(&self) -> u64 {
+        budget::spent().wrapping_sub(self.work0)
+    }
+
     fn offer(&mut self, net: Network) {
         self.offer_reached(net, Vec::new());
     }
@@ -290,39 +323,58 @@ impl Best<'_, '_> {
         }
         self.objective = obj;
         self.network = Some(net);
+        if self.first_at.is_none() {
+            self.first_at = Some(self.work());
+        }
         self.trace.push(TracePoint { seconds: self.t0.elapsed().as_secs_f64(), objective: obj });
     }
 }
 
-/// Construction and local search, restarted until the time limit (or the construction count):
-/// the best valid design found. With `opts.threads` > 1, that many independent searches run side
-/// by side and the best design of all is kept (ties: the lowest-numbered search's).
+/// Construction and local search, restarted until the budget (or the construction count): the
+/// best valid design found. With `opts.threads` > 1, that many independent searches run side by
+/// side and the best design of all is kept (ties: the lowest-numbered search's).
+///
+/// The result depends on the spec and `opts` only, not on timing (unless the wall-clock net of
+/// [`budget`] stops a search). Each search's course is a function of its own work count; one
+/// that has no design at the budget waits for its first (up to `first_design_limit`) until
+/// another has found one with less work; and a design counts only when its search found its
+/// first design within the budget, or, when none did, with the least work of all.
 pub fn heuristic(p: &Problem, inputs: &Inputs, opts: &Options) -> SearchOutput {
     let t0 = Instant::now();
     if let Some(why) = obvious_infeasibility(p) {
         return SearchOutput::infeasible(why, t0);
     }
-    let found = AtomicBool::new(false);
-    if opts.threads <= 1 {
-        return search(p, inputs, opts, 0, &found, t0);
-    }
-    let outputs: Vec<SearchOutput> = std::thread::scope(|scope| {
-        let found = &found;
-        let workers: Vec<_> =
-            (0..opts.threads).map(|k| scope.spawn(move || search(p, inputs, opts, k, found, t0))).collect();
-        workers.into_iter().map(|w| w.join().expect("a heuristic search thread panicked")).collect()
-    });
-    merge_outputs(outputs, t0)
+    let found = AtomicU64::new(u64::MAX);
+    let outputs: Vec<(SearchOutput, Option<u64>)> = if opts.threads <= 1 {
+        vec![search(p, inputs, opts, 0, &found, t0)]
+    } else {
+        std::thread::scope(|scope| {
+            let found = &found;
+            let workers: Vec<_> =
+                (0..opts.threads).map(|k| scope.spawn(move || search(p, inputs, opts, k, found, t0))).collect();
+            workers.into_iter().map(|w| w.join().expect("a heuristic search thread panicked")).collect()
+        })
+    };
+    merge_outputs(outputs, budget::units(opts.time_limit), t0)
 }
 
-/// The output of side-by-side searches: the best design (the first search's on ties), every
-/// counter summed, the running best over all traces, the first search's reason to stop.
-fn merge_outputs(outputs: Vec<SearchOutput>, t0: Instant) -> SearchOutput {
+/// The output of side-by-side searches (each with the work at which it found its first design):
+/// the best design (the first search's on ties) among those that count — found first within
+/// `budget_work`, or else with the least work of all — every counter summed, the running best
+/// over their traces, the first search's reason to stop.
+fn merge_outputs(outputs: Vec<(SearchOutput, Option<u64>)>, budget_work: u64, t0: Instant) -> SearchOutput {
+    let least = outputs.iter().filter_map(|(_, w)| *w).min().unwrap_or(u64::MAX);
+    let cutoff = least.max(budget_work);
     let mut stats = SearchStats::default();
     let mut points: Vec<TracePoint> = Vec::new();
-    for o in &outputs {
+    let mut kept = Vec::new();
+    let stop = outputs[0].0.stop;
+    for (o, first_at) in outputs {
         stats += &o.stats;
-        points.extend(&o.trace);
+        if first_at.is_some_and(|w| w <= cutoff) {
+            points.extend(&o.trace);
+            kept.push(o);
+        }
     }
     points.sort_by(|a, b| a.seconds.total_cmp(&b.seconds));
     let mut trace: Vec<TracePoint> = Vec::new();
@@ -331,8 +383,7 @@ fn merge_outputs(outputs: Vec<SearchOutput>, t0: Instant) -> SearchOutput {
             trace.push(pt);
         }
     }
-    let stop = outputs[0].stop;
-    let best = outputs
+    let best = kept
         .into_iter()
         .filter(|o| o.network.is_some())
         .min_by(|a, b| a.objective.unwrap_or(f64::INFINITY).total_cmp(&b.objective.unwrap_or(f64::INFINITY)));
@@ -340,34 +391,38 @@ fn merge_outputs(outputs: Vec<SearchOutput>, t0: Instant) -> SearchOutput {
     SearchOutput { network, objective, trace, stop, infeasible: None, stats, seconds: t0.elapsed().as_secs_f64() }
 }
 
-/// One search of [`heuristic`]: search `worker` of `opts.threads`, which raises `found` once it
-/// has a design and stops waiting for a first design once `found` is up.
+/// One search of [`heuristic`]: search `worker` of `opts.threads`. `found` holds the least work
+/// at which any search has found its first design; without a design of its own, a search past
+/// its budget stops waiting once its work reaches that. Returns the output and the work at which
+/// its first design was found.
 fn search(
     p: &Problem,
     inputs: &Inputs,
     opts: &Options,
     worker: usize,
-    found: &AtomicBool,
+    found: &AtomicU64,
     t0: Instant,
-) -> SearchOutput {
-    let deadline = t0 + Duration::from_secs_f64(opts.time_limit.max(0.0));
+) -> (SearchOutput, Option<u64>) {
+    let deadline = Deadline::after(opts.time_limit);
     // Without a design yet, constructions may go on until this later deadline.
-    let first_deadline =
-        t0 + Duration::from_secs_f64(opts.time_limit.max(opts.first_design_limit.unwrap_or(0.0)).max(0.0));
+    let first_deadline = Deadline::after(opts.time_limit.max(opts.first_design_limit.unwrap_or(0.0)));
     // Search k > 0 draws from its own seed, and its first construction is noisy too (the
     // noise-free one is search 0's).
     let seed = if worker == 0 { opts.seed } else { opts.seed ^ (worker as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15) };
     let mut rng = Rng::new(seed);
-    let mut best = Best { p, inputs, t0, network: None, objective: f64::INFINITY, trace: Vec::new(), rejected: 0 };
+    let mut best = Best::new(p, inputs, t0);
     let mut stats = SearchStats::default();
     let network_rules = p.rooms.is_none().then(|| Rules::new(p, inputs.paths, None, None));
     let mut stop = Stop::TimeLimit;
     loop {
-        if best.network.is_some() {
-            found.store(true, Ordering::Relaxed);
+        if let Some(w) = best.first_at {
+            found.fetch_min(w, Ordering::Relaxed);
         }
-        let limit = if best.network.is_some() || found.load(Ordering::Relaxed) { deadline } else { first_deadline };
-        if Instant::now() >= limit {
+        // The limit of this construction depends on this search alone (its course must not
+        // depend on the others' timing); whether to wait on does not change what counts.
+        let limit = if best.network.is_some() { deadline } else { first_deadline };
+        let waited_enough = best.network.is_none() && best.work() >= found.load(Ordering::Relaxed);
+        if limit.passed() || (deadline.passed() && waited_enough) {
             break;
         }
         if opts.max_constructions.is_some_and(|m| stats.constructions as usize >= m)
@@ -379,9 +434,8 @@ fn search(
         stats.constructions += 1;
         let noise = if stats.constructions == 1 && worker == 0 { 0.0 } else { 0.4 };
         let mut sub = rng.fork();
-        // Half the time left goes to improving this construction.
-        let left = deadline.saturating_duration_since(Instant::now());
-        let slice = Instant::now() + left / 2;
+        // Half the budget left goes to improving this construction.
+        let slice = deadline.share(2);
         let polish = |rules: &Rules, s: State, sub: &mut Rng, best: &mut Best, stats: &mut SearchStats| {
             stats.constructed += 1;
             best.offer(s.network(rules));
@@ -424,7 +478,9 @@ fn search(
         }
     }
     stats.rejected = best.rejected;
-    SearchOutput {
+    stats.work = best.work();
+    let first_at = best.first_at;
+    let out = SearchOutput {
         objective: best.network.as_ref().map(|_| best.objective),
         network: best.network,
         trace: best.trace,
@@ -432,7 +488,8 @@ fn search(
         infeasible: None,
         stats,
         seconds: t0.elapsed().as_secs_f64(),
-    }
+    };
+    (out, first_at)
 }
 
 /// The paper's stochastic search (module `anneal`): several seeded passes from the all-active
@@ -442,8 +499,8 @@ pub fn anneal(p: &Problem, inputs: &Inputs, opts: &AnnealOptions) -> SearchOutpu
     if let Some(why) = obvious_infeasibility(p) {
         return SearchOutput::infeasible(why, t0);
     }
-    let deadline = t0 + Duration::from_secs_f64(opts.time_limit.max(0.0));
-    let mut best = Best { p, inputs, t0, network: None, objective: f64::INFINITY, trace: Vec::new(), rejected: 0 };
+    let deadline = Deadline::after(opts.time_limit);
+    let mut best = Best::new(p, inputs, t0);
     let mut stats = SearchStats::default();
     // Room problems: one tiling for every pass, one the construction can build a design on.
     let rules = if p.rooms.is_some() {
@@ -451,9 +508,9 @@ pub fn anneal(p: &Problem, inputs: &Inputs, opts: &AnnealOptions) -> SearchOutpu
             return SearchOutput::none(Stop::Exhausted, stats, t0);
         };
         let mut rng = Rng::new(opts.seed);
-        let tiling_deadline = t0 + Duration::from_secs_f64(opts.time_limit * 0.2);
+        let tiling_deadline = Deadline::after(opts.time_limit * 0.2);
         let mut found = None;
-        while found.is_none() && Instant::now() < tiling_deadline {
+        while found.is_none() && !tiling_deadline.passed() {
             found = rooms::construct(p, placements, inputs.paths, &mut rng, 0.0, tiling_deadline, stats.constructions)
                 .map(|(r, _)| r.tiling.expect("tiled").rooms);
             stats.constructions += 1;
@@ -470,13 +527,11 @@ pub fn anneal(p: &Problem, inputs: &Inputs, opts: &AnnealOptions) -> SearchOutpu
     let mut trace = Vec::new();
     let mut all_exhausted = true;
     for k in 0..passes {
-        let now = Instant::now();
-        if now >= deadline {
+        if deadline.passed() {
             all_exhausted = false;
             break;
         }
-        let share = deadline.saturating_duration_since(now) / (passes - k) as u32;
-        let pass_deadline = now + share;
+        let pass_deadline = deadline.share((passes - k) as u64);
         let res =
             anneal::pass(&rules, opts, opts.seed.wrapping_add(k as u64), pass_deadline, t0, &mut trace, &mut global);
         stats.passes += 1;
@@ -487,6 +542,7 @@ pub fn anneal(p: &Problem, inputs: &Inputs, opts: &AnnealOptions) -> SearchOutpu
         }
     }
     stats.rejected = best.rejected;
+    stats.work = best.work();
     // The trace of the passes (every improvement of a zero-count state), restricted to what the
     // validator accepted: the final point is the returned design.
     let mut trace: Vec<TracePoint> = trace.into_iter().filter(|t| t.objective >= best.objective - 1e-9).collect();
@@ -511,7 +567,7 @@ pub fn anneal(p: &Problem, inputs: &Inputs, opts: &AnnealOptions) -> SearchOutpu
 /// `inputs.placements`) and needs it to be an exact tiling with valid counts; otherwise `None`.
 /// Returns only validated designs.
 pub fn repair_within(p: &Problem, inputs: &Inputs, net: &Network, budget: f64) -> Option<Network> {
-    let deadline = Instant::now() + Duration::from_secs_f64(budget.max(0.0));
+    let deadline = Deadline::after(budget);
     if net.active.len() != p.mesh.num_edges() {
         return None;
     }

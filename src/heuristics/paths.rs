@@ -5,6 +5,7 @@
 //! complete are added to its cost, so paths avoid zig-zags where they can; a small cost per
 //! turn keeps streets straight; a seeded noise on edge costs varies the paths between restarts.
 
+use super::budget;
 use super::rng::Rng;
 use super::state::{Rules, State};
 use crate::mesh::paths::OrdF64;
@@ -109,7 +110,11 @@ impl PathSearch {
         }
         let mut chain = Vec::with_capacity(LOOKBACK);
         let Target::Vertex(is_target) = q.target;
-        while let Some(Reverse((OrdF64(d), vi))) = heap.pop() {
+        // Work (module `budget`): a unit per vertex popped and per half-edge scanned.
+        let mut work = 0u64;
+        let found = loop {
+            let Some(Reverse((OrdF64(d), vi))) = heap.pop() else { break None };
+            work += 1;
             let v = VertexId(vi);
             if self.done[v.index()] || d > self.dist[v.index()] {
                 continue;
@@ -118,7 +123,7 @@ impl PathSearch {
             let reached = self.pred[v.index()] != NONE;
             if reached {
                 if is_target(v) {
-                    return Some(self.path_to(r, v));
+                    break Some(self.path_to(r, v));
                 }
                 // An active vertex ends a path; it cannot be passed through.
                 if s.deg[v.index()] > 0 {
@@ -127,6 +132,7 @@ impl PathSearch {
             }
             self.chain(r, v, &mut chain);
             let prev = chain.first().copied();
+            work += mesh.outgoing(v).len() as u64;
             for &h in mesh.outgoing(v) {
                 let e = mesh.he_edge(h);
                 if !r.allowed[e.index()] || s.active[e.index()] || chain.contains(&e) {
@@ -168,8 +174,9 @@ impl PathSearch {
                     heap.push(Reverse((OrdF64(nd), w.0)));
                 }
             }
-        }
-        None
+        };
+        budget::charge(work);
+        found
     }
 
     fn path_to(&self, r: &Rules, mut v: VertexId) -> Vec<HalfEdgeId> {

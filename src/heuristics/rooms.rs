@@ -19,6 +19,7 @@
 //!   its exit portal is the cheapest rule-aware path over its inner edges (local rules never
 //!   reach across a block's boundary, so the routes combine).
 
+use super::budget::{self, Deadline};
 use super::build::Builder;
 use super::paths::{PathSearch, Query, Target};
 use super::rng::Rng;
@@ -29,7 +30,6 @@ use crate::rules::paths::PathSets;
 use crate::rules::placements::Placement;
 use crate::spec::{EdgeRole, LevelType, Problem, RoomMode};
 use std::collections::HashMap;
-use std::time::Instant;
 
 /// Search nodes per tiling attempt.
 const TILING_NODES: u64 = 200_000;
@@ -136,7 +136,7 @@ pub(crate) fn construct<'a>(
     paths: Option<&PathSets>,
     rng: &mut Rng,
     noise: f64,
-    deadline: Instant,
+    deadline: Deadline,
     attempt: u64,
 ) -> Option<(Rules<'a>, State)> {
     let rooms_spec = p.rooms.as_ref()?;
@@ -298,7 +298,7 @@ fn retile(
     tp: &TilingProblem,
     mut rooms: Vec<usize>,
     rng: &mut Rng,
-    deadline: Instant,
+    deadline: Deadline,
     doomed: &dyn Fn(&[usize]) -> Vec<usize>,
 ) -> Option<Vec<usize>> {
     let mesh = &p.mesh;
@@ -308,7 +308,7 @@ fn retile(
         if bad.is_empty() {
             return Some(rooms);
         }
-        if Instant::now() >= deadline {
+        if deadline.passed() {
             return None;
         }
         let b = bad[rng.below(bad.len())];
@@ -379,7 +379,7 @@ fn corridors_first(
     range: f64,
     rng: &mut Rng,
     noise: f64,
-    deadline: Instant,
+    deadline: Deadline,
 ) -> Option<Vec<bool>> {
     let mut q = p.clone();
     q.rooms = None;
@@ -533,6 +533,8 @@ struct Ham<'x, 'r, 'a> {
     closing: Option<VertexId>,
     nodes: u64,
     rng: Rng,
+    /// Entries of `blocks.adj`, summed.
+    adj_size: usize,
 }
 
 impl Ham<'_, '_, '_> {
@@ -550,6 +552,9 @@ impl Ham<'_, '_, '_> {
 
     /// Every block left can still be passed through (two usable neighbours; the end block one).
     fn degrees_ok(&self, y: usize) -> bool {
+        // Work (module `budget`): a scan of the blocks and their neighbours, a step a few
+        // nanoseconds (measured: a sixteenth of a unit each).
+        budget::charge_tight((self.n + self.adj_size) as u64 / 2);
         for z in 0..self.n {
             if self.visited[z] {
                 continue;
@@ -589,6 +594,7 @@ impl Ham<'_, '_, '_> {
 
     fn dfs(&mut self, x: usize, entry: Option<VertexId>, count: usize) -> Option<bool> {
         self.nodes += 1;
+        budget::charge(1);
         if self.nodes > HAM_NODES {
             return None;
         }
@@ -658,7 +664,7 @@ impl Ham<'_, '_, '_> {
 }
 
 /// A circular or linear level: a Hamiltonian walk over the blocks and the routes inside them.
-fn traverse(r: &Rules, placements: &[Placement], rng: &mut Rng, deadline: Instant) -> Option<State> {
+fn traverse(r: &Rules, placements: &[Placement], rng: &mut Rng, deadline: Deadline) -> Option<State> {
     let p = r.p;
     let level = p.rooms.as_ref()?.level?;
     let blocks = Blocks::new(r, placements);
@@ -699,7 +705,7 @@ fn traverse(r: &Rules, placements: &[Placement], rng: &mut Rng, deadline: Instan
         }
         LevelType::Branching => return None,
     };
-    if Instant::now() >= deadline {
+    if deadline.passed() {
         return None;
     }
     let mut ham = Ham {
@@ -715,6 +721,7 @@ fn traverse(r: &Rules, placements: &[Placement], rng: &mut Rng, deadline: Instan
         end_exit,
         closing,
         nodes: 0,
+        adj_size: blocks.adj.iter().map(Vec::len).sum(),
         rng: rng.fork(),
     };
     ham.visited[start] = true;

@@ -8,6 +8,7 @@
 //! The counts mirror [`crate::design::validate`] and [`crate::design::validate_rooms`] rule for
 //! rule; the validator stays the authority and judges every design a search returns.
 
+use super::budget;
 use crate::design::{label_distances, travel_distances, Network};
 use crate::mesh::{EdgeId, HalfEdgeId, Mesh, VertexId};
 use crate::rules::paths::PathSets;
@@ -15,6 +16,10 @@ use crate::rules::placements::Placement;
 use crate::rules::{cover_set, designed, t_configs, too_close_configs, zigzag_configs};
 use crate::spec::{Allow, EdgeRole, Problem, RoomMode, Weight};
 use std::collections::VecDeque;
+
+/// Work units per local configuration built by [`Rules::new`] (module `budget`): each is
+/// enumerated and named, at the cost of a few hundred path-search steps.
+const CONFIG_UNITS: usize = 40;
 
 /// A local configuration (zig-zag or too-close pair): present when all its edges are active.
 #[derive(Clone, Debug)]
@@ -253,6 +258,11 @@ impl<'a> Rules<'a> {
         for &v in &p.forced_vertices {
             forced_vertex[v.index()] = true;
         }
+        // Work (module `budget`): the rules' size; a configuration is enumerated (and named)
+        // at the cost of many steps.
+        let ball_size: usize = balls.iter().map(Vec::len).sum();
+        budget::charge_tight((nv + ne + ball_size) as u64);
+        budget::charge((CONFIG_UNITS * (configs.len() + tconfigs.len())) as u64);
         Rules {
             p,
             mesh,
@@ -441,6 +451,12 @@ impl State {
     /// Switches one edge, updating every count.
     pub fn toggle(&mut self, r: &Rules, e: EdgeId) {
         let i = e.index();
+        // Work (module `budget`): a unit, and a tight step per count this edge touches.
+        budget::charge(1);
+        budget::charge_tight(
+            (r.edge_configs[i].len() + r.edge_tconfigs[i].len() + r.edge_paths[i].len() + r.edge_groups[i].len())
+                as u64,
+        );
         let on = !self.active[i];
         self.active[i] = on;
         let (a, b) = r.mesh.edge_vertices(e);
@@ -545,6 +561,7 @@ impl State {
         self.counts.forced_vertices += diff(&forced);
         self.deg[xi] = after;
         if (before == 0) != (after == 0) && !r.balls.is_empty() {
+            budget::charge_tight(r.balls[xi].len() as u64);
             for &y in &r.balls[xi] {
                 let c = &mut self.cover[y.index()];
                 if up {
@@ -606,6 +623,7 @@ impl State {
         let mut queue = VecDeque::from([v]);
         self.stamp[v.index()] = g;
         while let Some(x) = queue.pop_front() {
+            budget::charge(1);
             for &h in r.mesh.outgoing(x) {
                 if !self.active[r.mesh.he_edge(h).index()] {
                     continue;
@@ -627,6 +645,7 @@ impl State {
     /// The components with no sink (islands), as vertex lists.
     pub fn islands(&self, r: &Rules) -> Vec<Vec<VertexId>> {
         let mesh = r.mesh;
+        budget::charge_tight(mesh.num_vertices() as u64);
         let mut seen = vec![false; mesh.num_vertices()];
         let mut out = Vec::new();
         for v in mesh.vertices() {
@@ -679,6 +698,8 @@ impl State {
         let p = r.p;
         let mut total = p.w_length * self.length + self.penalty;
         if r.needs_paths() {
+            // Shortest paths over the network, per term (module `budget`).
+            budget::charge(2 * r.mesh.num_edges() as u64);
             let net =
                 Network { active: self.active.clone(), directions: Vec::new(), labels: Vec::new(), rooms: Vec::new() };
             let mesh = r.mesh;

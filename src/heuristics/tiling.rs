@@ -7,6 +7,7 @@
 //! while a template is below its minimum the search first branches on where to put one more
 //! (so an "exactly one boss room" is placed before the rest is tiled).
 
+use super::budget;
 use super::rng::Rng;
 use crate::rules::placements::Placement;
 
@@ -51,6 +52,7 @@ impl Dlx {
         self.r[l] = r;
         self.l[r] = l;
         let mut i = self.d[c];
+        let mut work = 1u64;
         while i != c {
             let mut j = self.r[i];
             while j != i {
@@ -59,13 +61,16 @@ impl Dlx {
                 self.u[d] = u;
                 self.size[self.col[j]] -= 1;
                 j = self.r[j];
+                work += 1;
             }
             i = self.d[i];
         }
+        budget::charge_tight(work);
     }
 
     fn uncover(&mut self, c: usize) {
         let mut i = self.u[c];
+        let mut work = 1u64;
         while i != c {
             let mut j = self.l[i];
             while j != i {
@@ -74,9 +79,11 @@ impl Dlx {
                 self.d[u] = j;
                 self.u[d] = j;
                 j = self.l[j];
+                work += 1;
             }
             i = self.u[i];
         }
+        budget::charge_tight(work);
         let (l, r) = (self.l[c], self.r[c]);
         self.r[l] = c;
         self.l[r] = c;
@@ -260,6 +267,9 @@ impl Search {
 
     fn solve_rec(&mut self, found: &mut Option<Vec<usize>>) -> Option<bool> {
         self.nodes += 1;
+        // Work (module `budget`): the node, and the scan of the open columns for the next one.
+        budget::charge(1);
+        budget::charge_tight(self.dlx.open as u64);
         if self.nodes > self.node_limit {
             return None;
         }

@@ -653,7 +653,9 @@ fn run_level(
     // checked like any start.
     let start = match crate::run::left_design(&ldir).filter(|l| l.network.active.len() == problem.mesh.num_edges()) {
         Some(left) => pipeline::StartFrom::Design { network: left.network, source: left.path.display().to_string() },
-        None => pipeline::default_start(solve_opts.finite_time_limit()),
+        // The start's budget is work (module `heuristics::budget`), from the level's limit as
+        // asked, not from what is left of it, so that a seed gives the same start every run.
+        None => pipeline::default_start(time_limit.filter(|t| t.is_finite())),
     };
     let run = crate::run::Run {
         method: Method::Milp(opts.solver),
