@@ -10,21 +10,21 @@
 //! where it stops, and what it returns, depends only on the spec and the seed.
 //!
 //! The wall clock stays as a safety net: a deadline also passes at [`WALL_FACTOR`] times its
-//! seconds (plus [`WALL_SLACK`]), for a machine much slower than the one the rate was measured
-//! on or a spec whose steps cost far more than the rate assumes. Only then does timing decide.
+//! seconds (plus [`WALL_SLACK`]), so that no search runs past its limit by more than that, on a
+//! machine slower or busier than the one the rate was measured on. Only then does timing decide.
 
 use std::cell::Cell;
 use std::time::{Duration, Instant};
 
 /// Work units per second of search. Measured with `netspec search --solver heuristic` on the
 /// street, floor-plan and game-level specs of `models/` (work over CPU seconds: see
-/// `docs/heuristics.md`, "Budget"), then rounded down to the slower specs' rate, so that on such
-/// a machine a budget of work ends before its seconds do.
-pub const UNITS_PER_SECOND: f64 = 30_000_000.0;
+/// `docs/heuristics.md`, "Budget"), the slowest spec's rate rounded down, so that on such a
+/// machine a budget of work ends before its seconds do.
+pub const UNITS_PER_SECOND: f64 = 15_000_000.0;
 
 /// The wall-clock net: a deadline of `s` seconds also passes after `WALL_FACTOR · s + WALL_SLACK`
 /// seconds.
-pub const WALL_FACTOR: f64 = 3.0;
+pub const WALL_FACTOR: f64 = 1.0;
 
 /// See [`WALL_FACTOR`].
 pub const WALL_SLACK: f64 = 0.5;
