@@ -39,11 +39,17 @@ pub(crate) fn charge(units: u64) {
     SPENT.with(|c| c.set(c.get().wrapping_add(units)));
 }
 
-/// Counts `steps` of a tight loop (a linked-list or array scan, a few nanoseconds each):
+/// Work units for `steps` of a tight loop (a linked-list or array scan, a few nanoseconds each):
 /// [`TIGHT_STEPS`] to a unit, rounded up.
 #[inline]
+pub(crate) fn tight(steps: u64) -> u64 {
+    steps.div_ceil(TIGHT_STEPS)
+}
+
+/// Counts `steps` of a tight loop ([`tight`]).
+#[inline]
 pub(crate) fn charge_tight(steps: u64) {
-    charge(steps.div_ceil(TIGHT_STEPS));
+    charge(tight(steps));
 }
 
 /// Steps of a tight loop per work unit ([`charge_tight`]).

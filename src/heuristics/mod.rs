@@ -88,7 +88,7 @@ impl OwnedInputs {
 pub struct Options {
     /// Budget, in seconds of work ([`budget`]: counted steps at a fixed rate, so the search and
     /// its design do not depend on the machine's speed or load; the wall clock stops it only at
-    /// [`budget::WALL_FACTOR`] times this).
+    /// [`budget::WALL_FACTOR`] times this plus [`budget::WALL_SLACK`]).
     pub time_limit: f64,
     /// Seed (the first construction is noise-free; restarts draw from the seed).
     pub seed: u64,

@@ -533,8 +533,9 @@ struct Ham<'x, 'r, 'a> {
     closing: Option<VertexId>,
     nodes: u64,
     rng: Rng,
-    /// Entries of `blocks.adj`, summed.
-    adj_size: usize,
+    /// Work units of one [`Ham::degrees_ok`] (module `budget`): a scan of the blocks and their
+    /// neighbours, a step a few nanoseconds (measured: a sixteenth of a unit each).
+    degree_check_units: u64,
 }
 
 impl Ham<'_, '_, '_> {
@@ -552,9 +553,7 @@ impl Ham<'_, '_, '_> {
 
     /// Every block left can still be passed through (two usable neighbours; the end block one).
     fn degrees_ok(&self, y: usize) -> bool {
-        // Work (module `budget`): a scan of the blocks and their neighbours, a step a few
-        // nanoseconds (measured: a sixteenth of a unit each).
-        budget::charge_tight((self.n + self.adj_size) as u64 / 2);
+        budget::charge(self.degree_check_units);
         for z in 0..self.n {
             if self.visited[z] {
                 continue;
@@ -721,7 +720,7 @@ fn traverse(r: &Rules, placements: &[Placement], rng: &mut Rng, deadline: Deadli
         end_exit,
         closing,
         nodes: 0,
-        adj_size: blocks.adj.iter().map(Vec::len).sum(),
+        degree_check_units: budget::tight((n + blocks.adj.iter().map(Vec::len).sum::<usize>()) as u64 / 2),
         rng: rng.fork(),
     };
     ham.visited[start] = true;

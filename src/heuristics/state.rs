@@ -452,11 +452,9 @@ impl State {
     pub fn toggle(&mut self, r: &Rules, e: EdgeId) {
         let i = e.index();
         // Work (module `budget`): a unit, and a tight step per count this edge touches.
-        budget::charge(1);
-        budget::charge_tight(
-            (r.edge_configs[i].len() + r.edge_tconfigs[i].len() + r.edge_paths[i].len() + r.edge_groups[i].len())
-                as u64,
-        );
+        let touched =
+            r.edge_configs[i].len() + r.edge_tconfigs[i].len() + r.edge_paths[i].len() + r.edge_groups[i].len();
+        budget::charge(1 + budget::tight(touched as u64));
         let on = !self.active[i];
         self.active[i] = on;
         let (a, b) = r.mesh.edge_vertices(e);

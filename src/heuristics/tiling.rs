@@ -268,8 +268,7 @@ impl Search {
     fn solve_rec(&mut self, found: &mut Option<Vec<usize>>) -> Option<bool> {
         self.nodes += 1;
         // Work (module `budget`): the node, and the scan of the open columns for the next one.
-        budget::charge(1);
-        budget::charge_tight(self.dlx.open as u64);
+        budget::charge(1 + budget::tight(self.dlx.open as u64));
         if self.nodes > self.node_limit {
             return None;
         }
