@@ -12,6 +12,9 @@
 //! The wall clock stays as a safety net: a deadline also passes at [`WALL_FACTOR`] times its
 //! seconds (plus [`WALL_SLACK`]), so that no search runs past its limit by more than that, on a
 //! machine slower or busier than the one the rate was measured on. Only then does timing decide.
+//! One wait is on the clock alone ([`Deadline::on_clock`]): a MIP start's search that has no design
+//! at its budget goes on for one up to a share of the solve's time limit, which is itself seconds
+//! on the clock; where it finds one, the design is the one its work count leads to.
 
 use std::cell::Cell;
 use std::time::{Duration, Instant};
@@ -89,6 +92,14 @@ impl Deadline {
         Deadline { work: spent().saturating_add(units(seconds)), wall: Instant::now() + Duration::from_secs_f64(net) }
     }
 
+    /// `seconds` on the clock from now, with no work limit: the wait for a first design
+    /// ([`crate::heuristics::Options::first_design_limit`]), which decides only whether a search
+    /// returns a design, not which (0 for a negative or NaN time, at most 1e9 s).
+    pub fn on_clock(seconds: f64) -> Deadline {
+        let secs = if seconds.is_nan() { 0.0 } else { seconds.clamp(0.0, 1e9) };
+        Deadline { work: u64::MAX, wall: Instant::now() + Duration::from_secs_f64(secs) }
+    }
+
     /// Whether the deadline has passed: the work is spent, or the net's time is up.
     pub fn passed(&self) -> bool {
         spent() >= self.work || Instant::now() >= self.wall
@@ -131,6 +142,17 @@ mod tests {
     fn the_wall_clock_net_passes_a_deadline_without_work() {
         let d = Deadline { work: u64::MAX, wall: Instant::now() };
         assert!(d.passed());
+    }
+
+    #[test]
+    fn a_wait_on_the_clock_ignores_work_and_passes_with_its_time() {
+        let d = Deadline::on_clock(60.0);
+        charge(units(1e6));
+        assert!(!d.passed());
+        assert!(Deadline::on_clock(0.0).passed());
+        assert!(Deadline::on_clock(f64::NAN).passed());
+        assert!(Deadline::on_clock(-3.0).passed());
+        assert!(!Deadline::on_clock(f64::INFINITY).passed());
     }
 
     #[test]

@@ -99,8 +99,11 @@ pub struct Options {
     /// Run the local search on each construction (default true).
     pub local_search: bool,
     /// While no valid design has been found, keep constructing past `time_limit` up to this
-    /// many seconds (default: stop at `time_limit`). Only the search for a first design is
-    /// extended; improving it stays within `time_limit`.
+    /// many seconds on the clock (default: stop at `time_limit`). Only the search for a first
+    /// design is extended; improving it stays within `time_limit`. The wait is timed by the
+    /// clock, not by work (a first design may need 11–57 s of one search where work runs fast,
+    /// and a share of a solve's time limit is clock seconds); which design is found does not
+    /// depend on it, only whether one is found before the clock runs out.
     pub first_design_limit: Option<f64>,
     /// Independent searches run side by side, one per thread (default 1); the best design of
     /// all is kept. The first runs exactly as a single search with `seed` would; the others
@@ -335,7 +338,7 @@ impl<'i, 'p> Best<'i, 'p> {
 /// side and the best design of all is kept (ties: the lowest-numbered search's).
 ///
 /// The result depends on the spec and `opts` only, not on timing (unless the wall-clock net of
-/// [`budget`] stops a search). Each search's course is a function of its own work count; one
+/// [`budget`] stops a search, or the clock ends the wait for a first design). Each search's course is a function of its own work count; one
 /// that has no design at the budget waits for its first (up to `first_design_limit`) until
 /// another has found one with less work; and a design counts only when its search found its
 /// first design within the budget, or, when none did, with the least work of all.
@@ -405,7 +408,10 @@ fn search(
 ) -> (SearchOutput, Option<u64>) {
     let deadline = Deadline::after(opts.time_limit);
     // Without a design yet, constructions may go on until this later deadline.
-    let first_deadline = Deadline::after(opts.time_limit.max(opts.first_design_limit.unwrap_or(0.0)));
+    let first_deadline = match opts.first_design_limit {
+        Some(first) if first > opts.time_limit => Deadline::on_clock(first),
+        _ => deadline,
+    };
     // Search k > 0 draws from its own seed, and its first construction is noisy too (the
     // noise-free one is search 0's).
     let seed = if worker == 0 { opts.seed } else { opts.seed ^ (worker as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15) };
@@ -616,7 +622,7 @@ pub fn start(p: &Problem, inputs: &Inputs, budget: f64, seed: u64) -> Option<Net
 }
 
 /// [`start`] that, while it has no design, goes on past `budget` up to `first_design_budget`
-/// seconds to find one (a hard instance's first design is worth more than the solver's first
+/// seconds on the clock to find one (a hard instance's first design is worth more than the solver's first
 /// seconds; once one is found the search stops at `budget`), with `threads` searches side by side
 /// ([`Options::threads`]).
 pub fn start_within(

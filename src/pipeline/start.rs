@@ -49,7 +49,8 @@ fn share_of_limit(time_limit: Option<f64>, share: f64, cap: f64) -> f64 {
 }
 
 /// How long the heuristic may go on while it has no design: a fifth of the time limit, at most
-/// 60 s (60 s without a limit), never less than [`default_start_budget`]. Where the heuristic
+/// 60 s (60 s without a limit), never less than [`default_start_budget`], on the clock
+/// ([`crate::heuristics::Options::first_design_limit`]). Where the heuristic
 /// needs more than its first second (floor plans, game levels) the solver alone usually finds
 /// nothing either, so these seconds are the solve's best chance of a design; once a design is
 /// found the heuristic stops at its ordinary budget. (A tenth and 30 s missed the circular
