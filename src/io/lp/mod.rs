@@ -32,7 +32,8 @@
 //!   entries. Unnamed rows are called `R1`, `R2`, … after their position, avoiding names used
 //!   elsewhere in the file. A row name used twice is an error.
 //! * **Infinity**: a bound or a row side `v` with `|v| ≥ 1e30` is infinite (the HiGHS and CPLEX
-//!   convention); coefficients and the objective constant are taken as written. A lower side
+//!   convention), also where a constant of the row moves its side there (`x + 1e30 >= 5` is a
+//!   free row); coefficients and the objective constant are taken as written. A lower side
 //!   of `+∞` or an upper side of `−∞` is an error.
 //! * **Bounds**: `x <= u`, `x >= l`, `x = v`, `l <= x <= u`, `u >= x >= l`, the reversed
 //!   `5 >= x`, `x free`, `-inf <= x`, `x >= -inf`. A later bound on the same side overrides an

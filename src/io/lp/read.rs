@@ -749,6 +749,9 @@ impl<'a> Parser<'a> {
                 Cmp::Eq => (v, v),
             };
         }
+        // A side that a constant moved to |v| ≥ 1e30 is infinite too, as the same value written
+        // would read (so whatever is read writes and reads back the same).
+        let (lhs, rhs) = (to_bound(lhs), to_bound(rhs));
         let display = name.unwrap_or("(unnamed)");
         if lhs == f64::INFINITY {
             return Err(Self::error(

@@ -309,6 +309,13 @@ fn empty_free_and_infinite_rows() {
     assert!(matches!(e.kind, ParseErrorKind::InfiniteBound(_)), "{e}");
     let e = err("min\nst\n c: x <= -1e30\nend");
     assert!(matches!(e.kind, ParseErrorKind::InfiniteBound(_)), "{e}");
+    // A side that a constant moves past 1e30 is infinite, as it would read once written
+    // (found by `reader_never_panics_on_lp_like_text`: `st 3 <= 1e30`).
+    let m = read("min\nst\n g1: 3 <= 1e30\n g2: x + 1e30 >= 5\nend").model;
+    assert_eq!(row_by_name(&m, "g1").kind(), RowKind::Free);
+    assert_eq!(row_by_name(&m, "g2").kind(), RowKind::Free);
+    let e = err("min\nst\n g3: 2 <= x - 1e30 <= 4\nend");
+    assert!(matches!(e.kind, ParseErrorKind::InfiniteBound(_)), "{e}");
 }
 
 #[test]
