@@ -241,13 +241,14 @@ fn without_a_design_the_start_goes_on_to_its_first_design_budget_and_no_further(
     assert_eq!(first.stats.constructions, 1);
     assert_eq!(first.stats.moves_tried, 0);
     assert_eq!(heuristics::start_within(&p, &Inputs::default(), 0.0, 60.0, 0, 1), Some(net));
-    // The defaults: a twentieth of the limit (≤ 1 s) to improve, a fifth (≤ 60 s) to find one.
+    // The defaults: a tenth of the limit (≤ 2 s of work) to improve, a fifth (≤ 60 s of the
+    // clock) to find one.
     for (limit, budget, first) in [
-        (Some(300.0), 1.0, 60.0),
-        (Some(100.0), 1.0, 20.0),
-        (Some(4.0), 0.2, 0.8),
-        (Some(1.0), 0.05, 0.2),
-        (None, 1.0, 60.0),
+        (Some(300.0), 2.0, 60.0),
+        (Some(100.0), 2.0, 20.0),
+        (Some(4.0), 0.4, 0.8),
+        (Some(1.0), 0.1, 0.2),
+        (None, 2.0, 60.0),
     ] {
         assert!((pipeline::default_start_budget(limit) - budget).abs() < 1e-12, "{limit:?}");
         assert!((pipeline::default_first_design_budget(limit) - first).abs() < 1e-12, "{limit:?}");

@@ -50,8 +50,8 @@ pub struct SolveCmd {
     explain_time: Option<f64>,
     /// Start from this design: an earlier `result.json` of the same spec, or a `.sol` file
     /// of this model (`--sol`). It is checked first; a start that fails is reported, not used.
-    /// Default: the construction heuristic's design (a twentieth of the time limit, ≤ 1 s; while
-    /// it has no design, up to a fifth, ≤ 60 s; one search per solver thread).
+    /// Default: the construction heuristic's design (a tenth of the time limit, ≤ 2 s of work;
+    /// while it has no design, up to a fifth, ≤ 60 s; one search per solver thread).
     #[arg(long, value_name = "FILE", conflicts_with = "no_start")]
     start: Option<PathBuf>,
     /// Solve without a MIP start.
