@@ -85,19 +85,23 @@ pub(crate) struct Deadline {
     wall: Instant,
 }
 
+/// The instant `seconds` from now: 0 for a negative or NaN time, at most 1e9 s.
+fn clock_in(seconds: f64) -> Instant {
+    Instant::now() + Duration::from_secs_f64(seconds.max(0.0).min(1e9))
+}
+
 impl Deadline {
     /// `seconds` of work from now (this thread's count now).
     pub fn after(seconds: f64) -> Deadline {
-        let net = (WALL_FACTOR * seconds.max(0.0) + WALL_SLACK).min(1e9);
-        Deadline { work: spent().saturating_add(units(seconds)), wall: Instant::now() + Duration::from_secs_f64(net) }
+        let net = WALL_FACTOR * seconds.max(0.0) + WALL_SLACK;
+        Deadline { work: spent().saturating_add(units(seconds)), wall: clock_in(net) }
     }
 
     /// `seconds` on the clock from now, with no work limit: the wait for a first design
     /// ([`crate::heuristics::Options::first_design_limit`]), which decides only whether a search
-    /// returns a design, not which (0 for a negative or NaN time, at most 1e9 s).
+    /// returns a design, not which.
     pub fn on_clock(seconds: f64) -> Deadline {
-        let secs = if seconds.is_nan() { 0.0 } else { seconds.clamp(0.0, 1e9) };
-        Deadline { work: u64::MAX, wall: Instant::now() + Duration::from_secs_f64(secs) }
+        Deadline { work: u64::MAX, wall: clock_in(seconds) }
     }
 
     /// Whether the deadline has passed: the work is spent, or the net's time is up.

@@ -338,10 +338,11 @@ impl<'i, 'p> Best<'i, 'p> {
 /// side and the best design of all is kept (ties: the lowest-numbered search's).
 ///
 /// The result depends on the spec and `opts` only, not on timing (unless the wall-clock net of
-/// [`budget`] stops a search, or the clock ends the wait for a first design). Each search's course is a function of its own work count; one
-/// that has no design at the budget waits for its first (up to `first_design_limit`) until
-/// another has found one with less work; and a design counts only when its search found its
-/// first design within the budget, or, when none did, with the least work of all.
+/// [`budget`] stops a search, or the clock ends the wait for a first design). Each search's
+/// course is a function of its own work count; one that has no design at the budget waits for
+/// its first (up to `first_design_limit`) until another has found one with less work; and a
+/// design counts only when its search found its first design within the budget, or, when none
+/// did, with the least work of all.
 pub fn heuristic(p: &Problem, inputs: &Inputs, opts: &Options) -> SearchOutput {
     let t0 = Instant::now();
     if let Some(why) = obvious_infeasibility(p) {
@@ -622,9 +623,9 @@ pub fn start(p: &Problem, inputs: &Inputs, budget: f64, seed: u64) -> Option<Net
 }
 
 /// [`start`] that, while it has no design, goes on past `budget` up to `first_design_budget`
-/// seconds on the clock to find one (a hard instance's first design is worth more than the solver's first
-/// seconds; once one is found the search stops at `budget`), with `threads` searches side by side
-/// ([`Options::threads`]).
+/// seconds on the clock to find one (a hard instance's first design is worth more than the
+/// solver's first seconds; once one is found the search stops at `budget`), with `threads`
+/// searches side by side ([`Options::threads`]).
 pub fn start_within(
     p: &Problem,
     inputs: &Inputs,

@@ -39,9 +39,8 @@ pub enum StartFrom {
 
 /// The heuristic's budget for a solve with this time limit: a tenth of it, at most 2 s (2 s
 /// without a limit), in work ([`crate::heuristics::budget`]). At the budget's rate (the slowest
-/// spec's) that is about 0.5–2 s of the clock, so the solver has its incumbent by the first
-/// second or two; a twentieth and 1 s of work bought the street levels of a city 0.4 s, and
-/// their starts were up to 11 % worse than a second of the clock had found.
+/// spec's) that is 0.4–2 s of the clock (about 0.8 s on a city's street levels), so the solver
+/// has its incumbent by the first second or two.
 pub fn default_start_budget(time_limit: Option<f64>) -> f64 {
     share_of_limit(time_limit, 0.1, 2.0)
 }
