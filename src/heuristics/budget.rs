@@ -87,7 +87,8 @@ pub(crate) struct Deadline {
 
 /// The instant `seconds` from now: 0 for a negative or NaN time, at most 1e9 s.
 fn clock_in(seconds: f64) -> Instant {
-    Instant::now() + Duration::from_secs_f64(seconds.max(0.0).min(1e9))
+    let seconds = if seconds.is_nan() { 0.0 } else { seconds.clamp(0.0, 1e9) };
+    Instant::now() + Duration::from_secs_f64(seconds)
 }
 
 impl Deadline {
