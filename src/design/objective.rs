@@ -102,8 +102,8 @@ impl Objective {
             }
         }
         let present = |es: &[crate::mesh::EdgeId]| designed(p, es) && es.iter().all(|e| net.active[e.index()]);
-        let zigzags = zigzag_configs(mesh).iter().filter(|(_, es)| present(es)).count();
-        let too_close = too_close_configs(mesh).iter().filter(|(_, es)| present(es)).count();
+        let zigzags = zigzag_configs(mesh).iter().filter(|z| present(&z.edges)).count();
+        let too_close = too_close_configs(mesh).iter().filter(|t| present(&t.edges)).count();
         let t_junctions = t_configs(mesh)
             .iter()
             .filter(|(_, _, e0, o)| {

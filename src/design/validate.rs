@@ -256,16 +256,16 @@ pub fn validate(p: &Problem, net: &Network, paths: Option<&PathSets>) -> Vec<Vio
     // Configurations made only of existing roads are given, not designed (see `designed`).
     let all_active = |es: &[EdgeId]| designed(p, es) && es.iter().all(|e| net.active[e.index()]);
     if p.w_zigzag == Weight::Forbid {
-        for (_, es) in zigzag_configs(mesh) {
-            if all_active(&es) {
-                out.push(Violation::ZigZag { edges: es });
+        for z in zigzag_configs(mesh) {
+            if all_active(&z.edges) {
+                out.push(Violation::ZigZag { edges: z.edges.to_vec() });
             }
         }
     }
     if p.w_too_close == Weight::Forbid {
-        for (_, es) in too_close_configs(mesh) {
-            if all_active(&es) {
-                out.push(Violation::TooClose { edges: es });
+        for t in too_close_configs(mesh) {
+            if all_active(&t.edges) {
+                out.push(Violation::TooClose { edges: t.edges.to_vec() });
             }
         }
     }

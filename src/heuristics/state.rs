@@ -87,6 +87,14 @@ pub(crate) struct Rules<'a> {
     pub placements: Option<&'a [Placement]>,
 }
 
+/// Adds a local configuration of weight `w` to `configs` when the design decides it and every
+/// edge of it may be active (otherwise it can never be complete).
+fn keep_config(p: &Problem, allowed: &[bool], edges: &[EdgeId], w: Weight, configs: &mut Vec<Config>) {
+    if designed(p, edges) && edges.iter().all(|e| allowed[e.index()]) {
+        configs.push(Config { edges: edges.to_vec(), forbid: w == Weight::Forbid, weight: w.value() });
+    }
+}
+
 impl<'a> Rules<'a> {
     /// Precomputes the rules of `p` (with `tiling` of `placements` when it has rooms).
     pub fn new(
@@ -202,18 +210,16 @@ impl<'a> Rules<'a> {
         let balls = if coverage { mesh.vertices().map(|v| cover_set(p, v)).collect() } else { Vec::new() };
 
         let mut configs = Vec::new();
-        let mut add = |list: Vec<(String, Vec<EdgeId>)>, w: Weight| {
-            if w == Weight::Off {
-                return;
+        if p.w_zigzag != Weight::Off {
+            for z in zigzag_configs(mesh) {
+                keep_config(p, &allowed, &z.edges, p.w_zigzag, &mut configs);
             }
-            for (_, es) in list {
-                if designed(p, &es) && es.iter().all(|e| allowed[e.index()]) {
-                    configs.push(Config { edges: es, forbid: w == Weight::Forbid, weight: w.value() });
-                }
+        }
+        if p.w_too_close != Weight::Off {
+            for t in too_close_configs(mesh) {
+                keep_config(p, &allowed, &t.edges, p.w_too_close, &mut configs);
             }
-        };
-        add(zigzag_configs(mesh), p.w_zigzag);
-        add(too_close_configs(mesh), p.w_too_close);
+        }
         let mut edge_configs = vec![Vec::new(); ne];
         for (i, c) in configs.iter().enumerate() {
             for e in &c.edges {

@@ -13,10 +13,30 @@ pub fn designed(p: &Problem, edges: &[EdgeId]) -> bool {
     edges.iter().any(|e| p.roles[e.index()] == EdgeRole::Candidate)
 }
 
+/// A local configuration of (13): the edges that may not (or should not) all be active, and the
+/// site it is named after. Its name is built only when asked for ([`LocalConfig::name`]): the
+/// heuristics enumerate these lists once per room tiling and never need one.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct LocalConfig<const N: usize> {
+    /// The configuration's edges.
+    pub edges: [EdgeId; N],
+    /// Its site: `'e'` and the middle edge's id (zig-zags), or `'f'` and the face's (too-close).
+    site: (char, u32),
+    /// Which of the site's two configurations it is (0 or 1).
+    k: u8,
+}
+
+impl<const N: usize> LocalConfig<N> {
+    /// Its name in a model: `e{edge}_{k}` for a zig-zag, `f{face}_{k}` for a too-close pair.
+    pub fn name(&self) -> String {
+        format!("{}{}_{}", self.site.0, self.site.1, self.k)
+    }
+}
+
 /// The zig-zag configurations (13, k = 0) of the mesh: for every interior edge `b` with faces
 /// `f1`, `f2`, the staircases `a, b, c` with `a` a side of `f1` at one end of `b` and `c` a side of
 /// `f2` at the other end. Two per interior edge.
-pub fn zigzag_configs(mesh: &Mesh) -> Vec<(String, Vec<EdgeId>)> {
+pub fn zigzag_configs(mesh: &Mesh) -> Vec<LocalConfig<3>> {
     let mut out = Vec::new();
     for b in mesh.edges() {
         let [h1, h2] = mesh.edge_half_edges(b);
@@ -25,20 +45,22 @@ pub fn zigzag_configs(mesh: &Mesh) -> Vec<(String, Vec<EdgeId>)> {
         else {
             continue;
         };
-        out.push((format!("e{}_0", b.0), vec![mesh.he_edge(p1), b, mesh.he_edge(p2)]));
-        out.push((format!("e{}_1", b.0), vec![mesh.he_edge(n1), b, mesh.he_edge(n2)]));
+        let site = ('e', b.0);
+        out.push(LocalConfig { edges: [mesh.he_edge(p1), b, mesh.he_edge(p2)], site, k: 0 });
+        out.push(LocalConfig { edges: [mesh.he_edge(n1), b, mesh.he_edge(n2)], site, k: 1 });
     }
     out
 }
 
 /// The too-close configurations (13, k = 1): both pairs of opposite edges of every quad face.
-pub fn too_close_configs(mesh: &Mesh) -> Vec<(String, Vec<EdgeId>)> {
+pub fn too_close_configs(mesh: &Mesh) -> Vec<LocalConfig<2>> {
     let mut out = Vec::new();
     for f in mesh.faces() {
         let es = mesh.face_edges(f);
         if es.len() == 4 {
-            out.push((format!("f{}_0", f.0), vec![es[0], es[2]]));
-            out.push((format!("f{}_1", f.0), vec![es[1], es[3]]));
+            let site = ('f', f.0);
+            out.push(LocalConfig { edges: [es[0], es[2]], site, k: 0 });
+            out.push(LocalConfig { edges: [es[1], es[3]], site, k: 1 });
         }
     }
     out

@@ -11,4 +11,4 @@ pub mod local;
 pub mod paths;
 pub mod placements;
 
-pub use local::{cover_set, designed, t_configs, too_close_configs, zigzag_configs};
+pub use local::{cover_set, designed, t_configs, too_close_configs, zigzag_configs, LocalConfig};

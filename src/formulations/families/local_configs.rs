@@ -60,10 +60,10 @@ impl Family for LocalConfigs {
     }
 
     fn emit(&mut self, c: &mut Ctx) {
-        let (configs, w) = if self.k == 0 {
-            (zigzag_configs(&c.p.mesh), c.p.w_zigzag)
+        let (configs, w): (Vec<(String, Vec<EdgeId>)>, _) = if self.k == 0 {
+            (zigzag_configs(&c.p.mesh).iter().map(|z| (z.name(), z.edges.to_vec())).collect(), c.p.w_zigzag)
         } else {
-            (too_close_configs(&c.p.mesh), c.p.w_too_close)
+            (too_close_configs(&c.p.mesh).iter().map(|t| (t.name(), t.edges.to_vec())).collect(), c.p.w_too_close)
         };
         for (tag, edges) in configs {
             self.config(c, tag, edges, w);
