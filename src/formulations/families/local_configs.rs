@@ -60,13 +60,14 @@ impl Family for LocalConfigs {
     }
 
     fn emit(&mut self, c: &mut Ctx) {
-        let (configs, w): (Vec<(String, Vec<EdgeId>)>, _) = if self.k == 0 {
-            (zigzag_configs(&c.p.mesh).iter().map(|z| (z.name(), z.edges.to_vec())).collect(), c.p.w_zigzag)
+        if self.k == 0 {
+            for z in zigzag_configs(&c.p.mesh) {
+                self.config(c, z.name(), z.edges.to_vec(), c.p.w_zigzag);
+            }
         } else {
-            (too_close_configs(&c.p.mesh).iter().map(|t| (t.name(), t.edges.to_vec())).collect(), c.p.w_too_close)
-        };
-        for (tag, edges) in configs {
-            self.config(c, tag, edges, w);
+            for t in too_close_configs(&c.p.mesh) {
+                self.config(c, t.name(), t.edges.to_vec(), c.p.w_too_close);
+            }
         }
     }
 
